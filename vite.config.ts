@@ -1,0 +1,15 @@
+import { defineConfig } from 'vite';
+
+// The app (index.html), test pages (e2e/pages) and benchmark page (bench/page) are all
+// served by this one config; `npm run build` builds the app and the library.
+export default defineConfig({
+  server: { host: '127.0.0.1', port: 5173, strictPort: true },
+  build: { target: 'es2022' },
+  test: {
+    include: ['tests/**/*.test.ts'],
+    // headless-gl is a native module: one process per test file, not worker threads.
+    pool: 'forks',
+    testTimeout: 120_000,
+    hookTimeout: 120_000,
+  },
+});
