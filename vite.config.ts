@@ -1,4 +1,4 @@
-import { defineConfig } from 'vite';
+import { defineConfig } from 'vitest/config';
 
 // The app (index.html), test pages (e2e/pages) and benchmark page (bench/page) are all
 // served by this one config; `npm run build` builds the app and the library.

@@ -1,0 +1,42 @@
+/**
+ * Step sizes of a jump flood over a grid, in the order they run.
+ *
+ * - "jfa":   N/2, N/4, ..., 1            (Rong & Tan; a few texels end up mislabeled)
+ * - "jfa+2": N/2, ..., 1, then 2, 1      (two extra passes fix almost all of them)
+ * - "1+jfa": 1, then N/2, ..., 1         (one pass of step 1 first)
+ * where N is the grid's larger side rounded up to a power of two.
+ *
+ * A warm start begins from the previous iteration's labels: sites moved by at most
+ * `maxDisplacement` texels, so every boundary moved by at most that much and steps from the
+ * first power of two above twice the displacement suffice, followed by one extra step 1.
+ */
+export type JumpFloodVariant = 'jfa' | 'jfa+2' | '1+jfa';
+
+export function coldSchedule(width: number, height: number, variant: JumpFloodVariant): number[] {
+  const halving: number[] = [];
+  for (let step = nextPowerOfTwo(Math.max(width, height)) >> 1; step >= 1; step >>= 1) halving.push(step);
+  if (halving.length === 0) halving.push(1);
+  switch (variant) {
+    case 'jfa':
+      return halving;
+    case 'jfa+2':
+      return [...halving, 2, 1];
+    case '1+jfa':
+      return [1, ...halving];
+  }
+}
+
+export function warmSchedule(width: number, height: number, maxDisplacement: number): number[] {
+  const limit = nextPowerOfTwo(Math.max(width, height)) >> 1;
+  const first = Math.min(limit, nextPowerOfTwo(Math.ceil(2 * maxDisplacement) + 1));
+  const steps: number[] = [];
+  for (let step = Math.max(first, 1); step >= 1; step >>= 1) steps.push(step);
+  steps.push(1);
+  return steps;
+}
+
+export function nextPowerOfTwo(value: number): number {
+  let power = 1;
+  while (power < value) power <<= 1;
+  return power;
+}

@@ -1,0 +1,228 @@
+import * as THREE from 'three';
+import type { Grid } from '../core/grid';
+import { coldSchedule, warmSchedule, type JumpFloodVariant } from '../core/jumpSchedule';
+import centroidGatherFrag from '../shaders/centroidGather.frag';
+import centroidScatterFrag from '../shaders/centroidScatter.frag';
+import centroidScatterVert from '../shaders/centroidScatter.vert';
+import clearLabelsFrag from '../shaders/clearLabels.frag';
+import fullscreenVert from '../shaders/fullscreen.vert';
+import jumpFloodFrag from '../shaders/jumpFlood.frag';
+import splatFrag from '../shaders/splat.frag';
+import splatVert from '../shaders/splat.vert';
+import { GpuCapabilityError, type GpuContext } from './context';
+import { ShaderPass } from './shaderPass';
+import { createFloatDataTexture, createFloatTarget, readTargetRGBA } from './textures';
+
+/** How centroids are summed: additive blending (needs EXT_float_blend) or a gather pass. */
+export type CentroidPath = 'blend' | 'gather';
+
+export interface EngineOptions {
+  readonly variant: JumpFloodVariant;
+  /** 'auto' picks blend where EXT_float_blend exists, gather elsewhere. */
+  readonly centroidPath: CentroidPath | 'auto';
+}
+
+/**
+ * The GPU half of Lloyd's method on a planar-family grid: jump flood (labels) and centroid
+ * sums. Every texture, target and program is created in the constructor, so the Lloyd loop
+ * allocates nothing and compiles nothing. The CPU half (moving sites) is in ./lloyd.
+ */
+export class CcvtEngine {
+  readonly centroidPath: CentroidPath;
+  readonly siteTextureWidth: number;
+  readonly siteTextureHeight: number;
+  /** Sums per site after computeSums(): [w*dx, w*dy, w, w*d²] (texel units, µm²). */
+  readonly sums: Float32Array;
+  /** Jump-flood passes run by the last floodLabels() call. */
+  lastPassCount = 0;
+  /** Window half-size (texels) of the gather path; grows when a cell does not fit. */
+  gatherRadius: number;
+
+  private readonly renderer: THREE.WebGLRenderer;
+  private readonly siteData: Float32Array;
+  private readonly siteTexture: THREE.DataTexture;
+  private readonly weightTexture: THREE.DataTexture;
+  private readonly labelTargets: [THREE.WebGLRenderTarget, THREE.WebGLRenderTarget];
+  private current = 0;
+  private readonly sumsTarget: THREE.WebGLRenderTarget;
+  private readonly clearPass: ShaderPass;
+  private readonly splatPass: ShaderPass;
+  private readonly floodPass: ShaderPass;
+  private readonly centroidPass: ShaderPass;
+  private readonly coldSteps: number[];
+  private readonly syncPixel = new Float32Array(4);
+
+  constructor(
+    private readonly context: GpuContext,
+    readonly grid: Grid,
+    readonly siteCount: number,
+    private readonly options: EngineOptions,
+  ) {
+    const { maxTextureSize, floatBlend } = context.capabilities;
+    if (grid.width > maxTextureSize || grid.height > maxTextureSize) {
+      throw new GpuCapabilityError(
+        `resolution: the grid is ${grid.width} x ${grid.height} texels but this GPU allows at most ` +
+          `${maxTextureSize} per side; lower resolution`,
+      );
+    }
+    if (options.centroidPath === 'blend' && !floatBlend) {
+      throw new GpuCapabilityError(
+        'centroidPath: "blend" needs EXT_float_blend, which this WebGL2 context lacks; use "auto" or "gather"',
+      );
+    }
+    this.centroidPath = options.centroidPath === 'auto' ? (floatBlend ? 'blend' : 'gather') : options.centroidPath;
+    this.renderer = context.renderer;
+
+    this.siteTextureWidth = Math.min(siteCount, maxTextureSize);
+    this.siteTextureHeight = Math.ceil(siteCount / this.siteTextureWidth);
+    if (this.siteTextureHeight > maxTextureSize) {
+      throw new GpuCapabilityError(`cells: ${siteCount} sites do not fit in a ${maxTextureSize}² texture`);
+    }
+    this.siteData = new Float32Array(this.siteTextureWidth * this.siteTextureHeight * 4);
+    this.siteTexture = createFloatDataTexture(this.siteData, this.siteTextureWidth, this.siteTextureHeight, THREE.RGBAFormat);
+    this.weightTexture = createFloatDataTexture(
+      new Float32Array(grid.width * grid.height).fill(1),
+      grid.width,
+      grid.height,
+      THREE.RedFormat,
+    );
+    this.labelTargets = [
+      createFloatTarget(grid.width, grid.height, THREE.RedFormat),
+      createFloatTarget(grid.width, grid.height, THREE.RedFormat),
+    ];
+    this.sumsTarget = createFloatTarget(this.siteTextureWidth, this.siteTextureHeight, THREE.RGBAFormat);
+    this.sums = new Float32Array(this.siteTextureWidth * this.siteTextureHeight * 4);
+    this.coldSteps = coldSchedule(grid.width, grid.height, options.variant);
+    this.gatherRadius = Math.ceil(2.5 * Math.sqrt((grid.width * grid.height) / siteCount));
+
+    // Uniform objects are shared between programs: one update reaches all of them.
+    const metric = {
+      gridSize: { value: new THREE.Vector2(grid.width, grid.height) },
+      texelSize: { value: new THREE.Vector2(grid.texelX, grid.texelY) },
+      periodic: { value: [grid.periodicX, grid.periodicY] },
+      sites: { value: this.siteTexture },
+      siteWidth: { value: this.siteTextureWidth },
+    };
+    const labels = { value: this.labelTargets[0].texture as THREE.Texture };
+    const weights = { value: this.weightTexture };
+    this.clearPass = new ShaderPass('triangles', fullscreenVert, clearLabelsFrag, {});
+    this.splatPass = new ShaderPass('points', splatVert, splatFrag, { ...metric });
+    this.floodPass = new ShaderPass('triangles', fullscreenVert, jumpFloodFrag, {
+      ...metric,
+      labels,
+      stepSize: { value: 1 },
+    });
+    this.centroidPass =
+      this.centroidPath === 'blend'
+        ? new ShaderPass('points', centroidScatterVert, centroidScatterFrag, {
+            ...metric,
+            labels,
+            weights,
+            sumsSize: { value: new THREE.Vector2(this.siteTextureWidth, this.siteTextureHeight) },
+          }, true)
+        : new ShaderPass('triangles', fullscreenVert, centroidGatherFrag, {
+            ...metric,
+            labels,
+            weights,
+            siteCount: { value: siteCount },
+            radius: { value: this.gatherRadius },
+          });
+  }
+
+  /** Uploads site positions (interleaved x, y in texel units). */
+  setSites(sites: ArrayLike<number>): void {
+    const data = this.siteData;
+    for (let i = 0; i < this.siteCount; i++) {
+      data[4 * i] = sites[2 * i];
+      data[4 * i + 1] = sites[2 * i + 1];
+    }
+    this.siteTexture.needsUpdate = true;
+  }
+
+  /** Uploads the per-texel weight (density x area element), width*height values. */
+  setWeights(weights: Float32Array): void {
+    if (weights.length !== this.grid.width * this.grid.height) throw new RangeError('weights: wrong size');
+    (this.weightTexture.image.data as Float32Array).set(weights);
+    this.weightTexture.needsUpdate = true;
+  }
+
+  /**
+   * Labels every texel with its nearest site. Cold: from scratch. Warm: from the previous
+   * labels, given the largest distance (texels) any site moved since they were computed.
+   */
+  floodLabels(warmFromDisplacement?: number): void {
+    const steps =
+      warmFromDisplacement === undefined
+        ? this.coldSteps
+        : warmSchedule(this.grid.width, this.grid.height, warmFromDisplacement);
+    if (warmFromDisplacement === undefined) this.clearPass.draw(this.renderer, this.labelTargets[this.current]);
+    // Splatting on top of old labels makes sure every site owns at least its own texel.
+    this.splatPass.draw(this.renderer, this.labelTargets[this.current], this.siteCount);
+    for (const step of steps) {
+      this.floodPass.uniforms.labels.value = this.labelTargets[this.current].texture;
+      this.floodPass.uniforms.stepSize.value = step;
+      this.current = 1 - this.current;
+      this.floodPass.draw(this.renderer, this.labelTargets[this.current]);
+    }
+    this.lastPassCount = steps.length;
+  }
+
+  /** Sums (w*dx, w*dy, w, w*d²) per site over the current labels; result in `this.sums`. */
+  computeSums(): Float32Array {
+    const labelTexture = this.labelTargets[this.current].texture;
+    this.centroidPass.uniforms.labels.value = labelTexture;
+    if (this.centroidPath === 'blend') {
+      this.renderer.setRenderTarget(this.sumsTarget);
+      this.renderer.setClearColor(0x000000, 0);
+      this.renderer.clear(true, false, false);
+      this.centroidPass.draw(this.renderer, this.sumsTarget, this.grid.width * this.grid.height);
+      return readTargetRGBA(this.renderer, this.sumsTarget, this.sums);
+    }
+    for (;;) {
+      this.centroidPass.uniforms.radius.value = this.gatherRadius;
+      this.centroidPass.draw(this.renderer, this.sumsTarget);
+      readTargetRGBA(this.renderer, this.sumsTarget, this.sums);
+      if (!this.someCellOverflowed()) return this.sums;
+      const largest = Math.max(this.grid.width, this.grid.height);
+      if (this.gatherRadius >= largest) throw new Error('gather window covers the grid but a cell still overflows');
+      this.gatherRadius = Math.min(largest, Math.ceil(this.gatherRadius * 1.5));
+    }
+  }
+
+  /** Waits for the GPU (a one-texel readback); used to time passes apart. */
+  sync(): void {
+    readTargetRGBA(this.renderer, this.labelTargets[this.current], this.syncPixel, 0, 0, 1, 1);
+  }
+
+  /** Reads the current labels: one site id (or -1) per texel, row-major. */
+  readLabels(out = new Int32Array(this.grid.width * this.grid.height)): Int32Array {
+    const { width, height } = this.grid;
+    // Read in bands of rows so the RGBA staging buffer stays small on big grids.
+    const rowsPerBand = Math.max(1, Math.floor((1 << 20) / width));
+    const rgba = new Float32Array(width * Math.min(rowsPerBand, height) * 4);
+    for (let y0 = 0; y0 < height; y0 += rowsPerBand) {
+      const rows = Math.min(rowsPerBand, height - y0);
+      readTargetRGBA(this.renderer, this.labelTargets[this.current], rgba, 0, y0, width, rows);
+      const base = y0 * width;
+      for (let i = 0; i < rows * width; i++) out[base + i] = rgba[4 * i];
+    }
+    return out;
+  }
+
+  /** The current label target's texture (for views that draw the diagram). */
+  get labelTexture(): THREE.Texture {
+    return this.labelTargets[this.current].texture;
+  }
+
+  dispose(): void {
+    for (const pass of [this.clearPass, this.splatPass, this.floodPass, this.centroidPass]) pass.dispose();
+    for (const target of [...this.labelTargets, this.sumsTarget]) target.dispose();
+    this.siteTexture.dispose();
+    this.weightTexture.dispose();
+  }
+
+  private someCellOverflowed(): boolean {
+    for (let i = 0; i < this.siteCount; i++) if (this.sums[4 * i + 2] < 0) return true;
+    return false;
+  }
+}

@@ -1,0 +1,36 @@
+import createGL from 'gl';
+import { GpuCapabilityError, wrapContext, type GpuContext } from '../gpu/context';
+
+/**
+ * A WebGL2 context in Node from headless-gl (`gl` 9.x). It needs an X display: run under
+ * `xvfb-run -a` (the CLI re-executes itself that way when DISPLAY is unset).
+ */
+export function createHeadlessContext(): GpuContext {
+  let gl: WebGL2RenderingContext | null = null;
+  try {
+    gl = createGL(1, 1, { createWebGL2Context: true }) as unknown as WebGL2RenderingContext | null;
+  } catch (error) {
+    throw headlessError(String(error));
+  }
+  if (!gl) throw headlessError('createGL returned null');
+  const context = gl;
+  // three.js only needs these members of a canvas when it is handed a context.
+  const canvas = {
+    width: 1,
+    height: 1,
+    style: {},
+    addEventListener() {},
+    removeEventListener() {},
+    getContext: () => context,
+  } as unknown as HTMLCanvasElement;
+  return wrapContext(context, canvas, () => {
+    (context.getExtension('STACKGL_destroy_context') as { destroy(): void } | null)?.destroy();
+  });
+}
+
+function headlessError(detail: string): GpuCapabilityError {
+  return new GpuCapabilityError(
+    `Could not create a headless WebGL2 context (${detail}). headless-gl needs an X display: ` +
+      'run the command under `xvfb-run -a` (apt-get install xvfb xauth libgl1-mesa-dri).',
+  );
+}

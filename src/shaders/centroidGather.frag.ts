@@ -1,0 +1,56 @@
+import gridMetric from './gridMetric.glsl';
+
+/**
+ * Centroid pass, portable path (no float blending needed): each site's pixel in the sums
+ * target walks a (2R+1)² window of texels around its site and adds up the same
+ * (w * dx, w * dy, w, w * |d|²) as the scatter pass, for texels labelled with its id.
+ * Voronoi cells are convex, so if no texel on the window's outer ring belongs to the cell,
+ * the whole cell was inside. Otherwise the pixel reports weight -1 and the engine retries
+ * with a larger window: a window that is too small is never a silent wrong centroid.
+ */
+export default /* glsl */ `
+precision highp float;
+precision highp int;
+${gridMetric}
+uniform highp sampler2D labels;
+uniform highp sampler2D weights;
+uniform int siteCount;
+uniform int radius;
+out vec4 sums;
+
+void main() {
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  int site = pixel.y * siteWidth + pixel.x;
+  if (site >= siteCount) { sums = vec4(0.0); return; }
+  float id = float(site);
+  vec2 position = siteAt(site);
+  ivec2 origin = ivec2(floor(position));
+  // On a periodic axis the window never covers more than the axis once (no texel twice);
+  // an axis covered whole has no ring to touch.
+  ivec2 low = ivec2(-radius);
+  ivec2 high = ivec2(radius);
+  bvec2 whole = bvec2(false);
+  for (int axis = 0; axis < 2; ++axis) {
+    if (periodic[axis] && 2 * radius + 1 >= gridSize[axis]) {
+      low[axis] = -(gridSize[axis] / 2);
+      high[axis] = low[axis] + gridSize[axis] - 1;
+      whole[axis] = true;
+    }
+  }
+  vec4 total = vec4(0.0);
+  bool touchesRing = false;
+  for (int dy = low.y; dy <= high.y; ++dy) {
+    for (int dx = low.x; dx <= high.x; ++dx) {
+      ivec2 q = origin + ivec2(dx, dy);
+      if (!wrapTexel(q)) continue;
+      if (texelFetch(labels, q, 0).r != id) continue;
+      if ((!whole.x && abs(dx) == radius) || (!whole.y && abs(dy) == radius)) touchesRing = true;
+      vec2 d = gridDelta(position, vec2(q) + 0.5);
+      vec2 dPhysical = d * texelSize;
+      float w = texelFetch(weights, q, 0).r;
+      total += vec4(w * d, w, w * dot(dPhysical, dPhysical));
+    }
+  }
+  sums = touchesRing ? vec4(0.0, 0.0, -1.0, 0.0) : total;
+}
+`;

@@ -1,0 +1,8 @@
+/** A triangle covering the viewport, from gl_VertexID alone (draw 3 vertices, no attributes). */
+export default /* glsl */ `
+precision highp float;
+void main() {
+  vec2 corner = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+  gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+}
+`;
