@@ -1,0 +1,321 @@
+/**
+ * Exact Voronoi diagram of sites on a planar-family grid (plane or tube), computed with
+ * d3-delaunay. This is the CPU reference the GPU passes are checked against, and the exact
+ * (threshold-free) source of adjacency for the analysis.
+ *
+ * Definitions and conventions:
+ * - Sites are given in texel units (see `grid.ts`): interleaved x, y; x in [0, width),
+ *   y in [0, height). Sites outside the domain are wrapped (periodic axis) or clamped (open axis).
+ * - Distance is physical: coordinates are scaled to micrometres (x * texelX, y * texelY) before
+ *   the triangulation and scaled back afterwards, so anisotropic texels give the true Voronoi
+ *   diagram of the physical metric.
+ * - Periodic axes: every site is copied at offsets -L, 0, +L along each periodic axis (3 copies
+ *   for a tube, 3x3 = 9 when both axes are periodic). The diagram of the copies is computed and
+ *   the cells of the originals (offset 0) are kept. A cell of an original lies within half a
+ *   period of its site along a periodic axis, so these copies are enough.
+ * - Clip box: along an open axis [0, L]; along a periodic axis [-L, 2L] (never reached by an
+ *   original's cell).
+ * - `polygon`: the cell's vertices in texel units, unwrapped around its site (they may lie
+ *   outside [0, width) across a periodic seam), counter-clockwise in the (x right, y up)
+ *   sense, not closed (the first vertex is not repeated).
+ * - `area`: physical area in µm² (texel-unit area times texelX * texelY).
+ * - `centroid`: area centroid in texel units, wrapped back into the domain along periodic axes.
+ * - Neighbours: ids of original sites whose cells share an edge of positive length with this
+ *   cell (through any periodic copy), deduplicated; `lengths` is the total shared edge length in
+ *   µm (summed over every copy it is shared with). A cell is never listed as its own neighbour:
+ *   when the domain is so small that a cell touches its own periodic copy, the shared length is
+ *   reported in `selfContact` instead (0 otherwise).
+ * - `borderSides`: bit mask of the open domain edges the cell touches with an edge of positive
+ *   length: 1 = y = 0, 2 = y = height, 4 = x = 0, 8 = x = width (bits 4 and 8 only when x is
+ *   open, 1 and 2 only when y is open). `touchesBorder` = borderSides != 0. For a tube
+ *   (periodic x, open y) this is "touches an open end of the tube".
+ * - `edgeCount`: number of polygon edges of positive length shared with other cells (copies
+ *   included, self-copies included); equal to the neighbour count except in tiny periodic
+ *   domains where a cell shares several edges with the same site.
+ * - Duplicate sites: d3-delaunay gives the later duplicate no cell; it gets an empty polygon,
+ *   area 0 and no neighbours.
+ */
+import { Delaunay } from 'd3-delaunay';
+import type { Grid } from './grid';
+import { wrapCoordinate } from './grid';
+
+/** Compressed sparse row adjacency: the neighbours of cell i are neighbours[offsets[i] .. offsets[i+1]). */
+export interface CsrAdjacency {
+  /** count + 1 offsets into `neighbours`. */
+  offsets: Int32Array;
+  /** Neighbour ids, sorted ascending within each cell. */
+  neighbours: Int32Array;
+  /** Shared boundary length in µm, parallel to `neighbours` (optional for hand-built inputs). */
+  lengths?: Float64Array;
+}
+
+export interface ExactCell {
+  /** Site id. */
+  readonly id: number;
+  /** Vertices in texel units, interleaved x, y, unwrapped around the site, counter-clockwise. */
+  readonly polygon: Float64Array;
+  /** Physical area in µm². */
+  readonly area: number;
+  /** Centroid x in texel units, wrapped into the domain. */
+  readonly centroidX: number;
+  /** Centroid y in texel units, wrapped into the domain. */
+  readonly centroidY: number;
+  /** Neighbour site ids, ascending, never the cell itself. */
+  readonly neighbours: Int32Array;
+  /** Shared edge length in µm per neighbour. */
+  readonly lengths: Float64Array;
+  /** Length in µm of edges shared with the cell's own periodic copies (tiny domains only). */
+  readonly selfContact: number;
+  /** Number of positive-length edges shared with other cells (including copies). */
+  readonly edgeCount: number;
+  /** Bit mask of touched open edges: 1 = y=0, 2 = y=height, 4 = x=0, 8 = x=width. */
+  readonly borderSides: number;
+  readonly touchesBorder: boolean;
+}
+
+export interface ExactVoronoi {
+  readonly grid: Grid;
+  readonly count: number;
+  readonly cells: ExactCell[];
+  /** The same neighbours and lengths as a CSR adjacency (input for the analysis). */
+  readonly adjacency: CsrAdjacency;
+  /** Areas in µm². */
+  readonly areas: Float64Array;
+  /** Centroids in texel units, interleaved x, y, wrapped into the domain. */
+  readonly centroids: Float64Array;
+  /** 1 where the cell touches an open edge of the domain. */
+  readonly touchesBorder: Uint8Array;
+}
+
+export const BORDER_Y0 = 1;
+export const BORDER_Y1 = 2;
+export const BORDER_X0 = 4;
+export const BORDER_X1 = 8;
+
+/** Exact Voronoi diagram of `sites` (interleaved x, y in texel units) on `grid`. */
+export function exactVoronoi(grid: Grid, sites: Float32Array | Float64Array | ArrayLike<number>): ExactVoronoi {
+  const n = Math.floor(sites.length / 2);
+  const sx = grid.texelX;
+  const sy = grid.texelY;
+  const W = grid.width * sx;
+  const H = grid.height * sy;
+  const offsetsX = grid.periodicX ? [0, -W, W] : [0];
+  const offsetsY = grid.periodicY ? [0, -H, H] : [0];
+  const copies = offsetsX.length * offsetsY.length;
+
+  // Physical coordinates of the originals (wrapped / clamped into the domain).
+  const px = new Float64Array(n);
+  const py = new Float64Array(n);
+  for (let i = 0; i < n; i++) {
+    px[i] = wrapCoordinate(sites[2 * i], grid.width, grid.periodicX) * sx;
+    py[i] = wrapCoordinate(sites[2 * i + 1], grid.height, grid.periodicY) * sy;
+  }
+  // Copy c of site i is point c * n + i; copy 0 is the original.
+  const points = new Float64Array(2 * n * copies);
+  let c = 0;
+  for (const oy of offsetsY) {
+    for (const ox of offsetsX) {
+      for (let i = 0; i < n; i++) {
+        points[2 * (c * n + i)] = px[i] + ox;
+        points[2 * (c * n + i) + 1] = py[i] + oy;
+      }
+      c++;
+    }
+  }
+  const x0 = grid.periodicX ? -W : 0;
+  const x1 = grid.periodicX ? 2 * W : W;
+  const y0 = grid.periodicY ? -H : 0;
+  const y1 = grid.periodicY ? 2 * H : H;
+  const delaunay = new Delaunay(points);
+  const voronoi = delaunay.voronoi([x0, y0, x1, y1]);
+  const eps = 1e-9 * Math.max(W, H, 1);
+
+  const cells: ExactCell[] = [];
+  const areas = new Float64Array(n);
+  const centroids = new Float64Array(2 * n);
+  const touches = new Uint8Array(n);
+  const perCellNeighbours: Int32Array[] = [];
+  const perCellLengths: Float64Array[] = [];
+
+  for (let i = 0; i < n; i++) {
+    const raw = n > 0 ? voronoi.cellPolygon(i) : null;
+    const xi = px[i];
+    const yi = py[i];
+    if (!raw || raw.length < 4) {
+      const empty: ExactCell = {
+        id: i, polygon: new Float64Array(0), area: 0,
+        centroidX: xi / sx, centroidY: yi / sy,
+        neighbours: new Int32Array(0), lengths: new Float64Array(0),
+        selfContact: 0, edgeCount: 0, borderSides: 0, touchesBorder: false,
+      };
+      cells.push(empty);
+      centroids[2 * i] = empty.centroidX;
+      centroids[2 * i + 1] = empty.centroidY;
+      perCellNeighbours.push(empty.neighbours);
+      perCellLengths.push(empty.lengths);
+      continue;
+    }
+    // d3 closes the ring: drop the repeated last vertex.
+    let m = raw.length - 1;
+    const vx = new Float64Array(m);
+    const vy = new Float64Array(m);
+    for (let k = 0; k < m; k++) {
+      vx[k] = raw[k][0];
+      vy[k] = raw[k][1];
+    }
+    // Signed area and centroid (shoelace), in µm, relative to the site for precision.
+    let a2 = 0;
+    let cx = 0;
+    let cy = 0;
+    for (let k = 0; k < m; k++) {
+      const ax = vx[k] - xi;
+      const ay = vy[k] - yi;
+      const bx = vx[(k + 1) % m] - xi;
+      const by = vy[(k + 1) % m] - yi;
+      const cross = ax * by - bx * ay;
+      a2 += cross;
+      cx += (ax + bx) * cross;
+      cy += (ay + by) * cross;
+    }
+    if (a2 < 0) {
+      vx.reverse();
+      vy.reverse();
+      a2 = -a2;
+      cx = -cx;
+      cy = -cy;
+    }
+    const area = a2 / 2;
+    const centroidPhysX = area > 0 ? xi + cx / (3 * a2) : xi;
+    const centroidPhysY = area > 0 ? yi + cy / (3 * a2) : yi;
+
+    // Candidate neighbours from the Delaunay graph.
+    const candidates: number[] = [];
+    for (const j of delaunay.neighbors(i)) candidates.push(j);
+
+    const lengthById = new Map<number, number>();
+    let selfContact = 0;
+    let edgeCount = 0;
+    let borderSides = 0;
+    for (let k = 0; k < m; k++) {
+      const ax = vx[k];
+      const ay = vy[k];
+      const bx = vx[(k + 1) % m];
+      const by = vy[(k + 1) % m];
+      const len = Math.hypot(bx - ax, by - ay);
+      if (len <= eps) continue;
+      // Edges on the clip box: open domain edges.
+      if (Math.abs(ay - y0) <= eps && Math.abs(by - y0) <= eps) {
+        if (!grid.periodicY) borderSides |= BORDER_Y0;
+        continue;
+      }
+      if (Math.abs(ay - y1) <= eps && Math.abs(by - y1) <= eps) {
+        if (!grid.periodicY) borderSides |= BORDER_Y1;
+        continue;
+      }
+      if (Math.abs(ax - x0) <= eps && Math.abs(bx - x0) <= eps) {
+        if (!grid.periodicX) borderSides |= BORDER_X0;
+        continue;
+      }
+      if (Math.abs(ax - x1) <= eps && Math.abs(bx - x1) <= eps) {
+        if (!grid.periodicX) borderSides |= BORDER_X1;
+        continue;
+      }
+      // The site across this edge: the candidate whose bisector with i passes closest to the midpoint.
+      const mx = (ax + bx) / 2;
+      const my = (ay + by) / 2;
+      let best = -1;
+      let bestDist = Infinity;
+      for (const j of candidates) {
+        const qx = points[2 * j];
+        const qy = points[2 * j + 1];
+        const dx = qx - xi;
+        const dy = qy - yi;
+        const dl = Math.hypot(dx, dy);
+        if (dl === 0) continue;
+        const dist = Math.abs(dx * (mx - (xi + qx) / 2) + dy * (my - (yi + qy) / 2)) / dl;
+        if (dist < bestDist) {
+          bestDist = dist;
+          best = j;
+        }
+      }
+      if (best < 0) continue;
+      edgeCount++;
+      const id = best % n;
+      if (id === i) selfContact += len;
+      else lengthById.set(id, (lengthById.get(id) ?? 0) + len);
+    }
+
+    const ids = [...lengthById.keys()].sort((p, q) => p - q);
+    const neighbours = Int32Array.from(ids);
+    const lengths = Float64Array.from(ids.map((id) => lengthById.get(id)!));
+    const polygon = new Float64Array(2 * m);
+    for (let k = 0; k < m; k++) {
+      polygon[2 * k] = vx[k] / sx;
+      polygon[2 * k + 1] = vy[k] / sy;
+    }
+    const cell: ExactCell = {
+      id: i,
+      polygon,
+      area,
+      centroidX: wrapCoordinate(centroidPhysX / sx, grid.width, grid.periodicX),
+      centroidY: wrapCoordinate(centroidPhysY / sy, grid.height, grid.periodicY),
+      neighbours,
+      lengths,
+      selfContact,
+      edgeCount,
+      borderSides,
+      touchesBorder: borderSides !== 0,
+    };
+    cells.push(cell);
+    areas[i] = area;
+    centroids[2 * i] = cell.centroidX;
+    centroids[2 * i + 1] = cell.centroidY;
+    touches[i] = cell.touchesBorder ? 1 : 0;
+    perCellNeighbours.push(neighbours);
+    perCellLengths.push(lengths);
+  }
+
+  const offsets = new Int32Array(n + 1);
+  for (let i = 0; i < n; i++) offsets[i + 1] = offsets[i] + perCellNeighbours[i].length;
+  const flat = new Int32Array(offsets[n]);
+  const flatLengths = new Float64Array(offsets[n]);
+  for (let i = 0; i < n; i++) {
+    flat.set(perCellNeighbours[i], offsets[i]);
+    flatLengths.set(perCellLengths[i], offsets[i]);
+  }
+  return {
+    grid,
+    count: n,
+    cells,
+    adjacency: { offsets, neighbours: flat, lengths: flatLengths },
+    areas,
+    centroids,
+    touchesBorder: touches,
+  };
+}
+
+/** True when the point (texel units) lies inside the cell polygon (texel units), tried at every periodic image. */
+export function cellContains(grid: Grid, polygon: Float64Array, x: number, y: number): boolean {
+  const shiftsX = grid.periodicX ? [0, -grid.width, grid.width] : [0];
+  const shiftsY = grid.periodicY ? [0, -grid.height, grid.height] : [0];
+  for (const oy of shiftsY) {
+    for (const ox of shiftsX) {
+      if (pointInPolygon(polygon, x + ox, y + oy)) return true;
+    }
+  }
+  return false;
+}
+
+/** Even-odd point-in-polygon test; polygon interleaved x, y. */
+export function pointInPolygon(polygon: Float64Array, x: number, y: number): boolean {
+  const m = polygon.length / 2;
+  let inside = false;
+  for (let k = 0, l = m - 1; k < m; l = k++) {
+    const xk = polygon[2 * k];
+    const yk = polygon[2 * k + 1];
+    const xl = polygon[2 * l];
+    const yl = polygon[2 * l + 1];
+    if (yk > y !== yl > y && x < ((xl - xk) * (y - yk)) / (yl - yk) + xk) inside = !inside;
+  }
+  return inside;
+}
