@@ -232,7 +232,7 @@ export const configSchema = {
           properties: {
             kind: kindConst('stripes', 'Square wave along one axis: low on the first half of each period, high on the second.'),
             axis: axis('Axis across which the stripes alternate: "x" or "y".'),
-            period: positiveUm('Period, µm, > 0 (2 x the axis length gives two halves).'),
+            period: positiveUm('Period, µm, > 0, starting at coordinate 0 (the axis length gives two halves: low, then high).'),
             low: positive('Density on the first half of each period, unitless, > 0.'),
             high: positive('Density on the second half of each period, unitless, > 0.'),
           },
