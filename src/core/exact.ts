@@ -38,16 +38,9 @@
 import { Delaunay } from 'd3-delaunay';
 import type { Grid } from './grid';
 import { wrapCoordinate } from './grid';
+import type { CsrAdjacency } from './analysis/adjacency';
 
-/** Compressed sparse row adjacency: the neighbours of cell i are neighbours[offsets[i] .. offsets[i+1]). */
-export interface CsrAdjacency {
-  /** count + 1 offsets into `neighbours`. */
-  offsets: Int32Array;
-  /** Neighbour ids, sorted ascending within each cell. */
-  neighbours: Int32Array;
-  /** Shared boundary length in µm, parallel to `neighbours` (optional for hand-built inputs). */
-  lengths?: Float64Array;
-}
+export type { CsrAdjacency } from './analysis/adjacency';
 
 export interface ExactCell {
   /** Site id. */

@@ -1,0 +1,357 @@
+/**
+ * Statistics of the scutoid model over a stack of surfaces.
+ *
+ * Input: a list of surfaces ordered from the seeded surface, through K >= 0 intermediate layers,
+ * to the other surface (basal -> apical or apical -> basal; the order only matters for "won" and
+ * "lost"). Every surface describes the same cells 0..count-1 (cell i on every surface comes from
+ * site i and its projections).
+ *
+ * Definitions (matching the released code of the lab that published the scutoid model):
+ * - N_k(i): the neighbour set of cell i on surface k: the ids in its adjacency list,
+ *   deduplicated, without i itself.
+ * - Border cell: a cell that touches an open edge of the domain (`touchesBorder`) on ANY
+ *   surface or layer. Border cells are excluded from every statistic below, but they stay in
+ *   the neighbour sets of other cells (they count as neighbours, and their sides count in
+ *   Aboav-Weaire unless `aboavNeighbours: 'valid'`). Valid cell = not a border cell.
+ *   `validCells + excludedCells = cells`.
+ * - Sides of cell i on surface k: `sides[i]` when the surface supplies it, otherwise |N_k(i)|.
+ * - Won: |N_last(i) \ N_first(i)|. Lost: |N_first(i) \ N_last(i)|.
+ * - Apico-basal transitions: sum over consecutive surfaces k = 0..S-2 of
+ *   |N_k(i) Δ N_{k+1}(i)| (symmetric difference). With two surfaces this is won + lost; with
+ *   layers a neighbour won and lost again between layers counts twice, while won/lost miss it.
+ * - 3D neighbours: |N_0(i) ∪ N_1(i) ∪ ... ∪ N_{S-1}(i)|.
+ * - Changed: the neighbour set is not the same on all surfaces (N_k(i) != N_l(i) for some k, l,
+ *   equivalently transitions > 0). Scutoid: a valid cell that changed. `percentScutoids` uses
+ *   this; `percentScutoidsEnds` uses only the first and last surfaces (won + lost > 0), which is
+ *   the same number when there are no intermediate layers.
+ * - Means (transitions, won, lost, 3D neighbours, sides, areas) are over valid cells.
+ * - Polygon distribution on each surface: fraction of valid cells with 3, 4, ..., 9 sides and
+ *   with 10 or more ("10+"); valid cells with fewer than 3 sides are counted in `below3` and are
+ *   in the denominator (so the fractions sum to 1 - below3 / validCells).
+ * - Lewis's law per side class (same classes): count, mean area (µm²) of the class and that mean
+ *   divided by the mean area of all valid cells on that surface.
+ * - Aboav-Weaire per side class: m(n) = mean over the class's cells of the mean number of sides
+ *   of their neighbours (all neighbours by default; only valid ones with
+ *   `aboavNeighbours: 'valid'`; cells without counted neighbours are skipped).
+ * - With no valid cells every mean and percentage is NaN (never 0 by default).
+ */
+import type { AdjacencyInput, CsrAdjacency } from './adjacency';
+import { adjacencyCount, filterShortContacts, neighbourSet, toCsr } from './adjacency';
+import type { ExactVoronoi } from '../exact';
+
+export interface SurfaceAdjacency {
+  /** Number of cells (same on every surface of a stack). */
+  count: number;
+  /** Neighbours (CSR, optionally with lengths in µm, or one list per cell). */
+  adjacency: AdjacencyInput;
+  /** Cell areas in µm². */
+  areas: Float64Array | ArrayLike<number>;
+  /** 1 where the cell touches an open edge of the domain on this surface. */
+  touchesBorder: Uint8Array | ArrayLike<number>;
+  /** Optional side counts; default: number of distinct neighbours. */
+  sides?: Int32Array | ArrayLike<number>;
+  /** Optional label (e.g. "basal", "apical", "s=1.5"). */
+  label?: string;
+}
+
+export interface AnalysisOptions {
+  /** Which neighbours enter Aboav-Weaire: 'all' (default) or only 'valid' cells. */
+  aboavNeighbours?: 'all' | 'valid';
+}
+
+/** Side classes of the polygon distribution, Lewis and Aboav-Weaire: 3..9 then "10+". */
+export const SIDE_CLASSES = ['3', '4', '5', '6', '7', '8', '9', '10+'] as const;
+export type SideClass = (typeof SIDE_CLASSES)[number];
+
+/** Index into SIDE_CLASSES, or -1 for fewer than 3 sides. */
+export function sideClassIndex(sides: number): number {
+  if (sides < 3) return -1;
+  return Math.min(sides, 10) - 3;
+}
+
+export interface LewisEntry {
+  sides: SideClass;
+  count: number;
+  /** Mean area of the class, µm² (NaN when empty). */
+  meanArea: number;
+  /** meanArea / mean area of all valid cells (NaN when empty). */
+  normalizedArea: number;
+}
+
+export interface AboavEntry {
+  sides: SideClass;
+  /** Cells of the class that entered the mean. */
+  count: number;
+  /** Mean number of sides of the neighbours, m(n) (NaN when empty). */
+  meanNeighbourSides: number;
+}
+
+export interface SurfaceSummary {
+  label?: string;
+  meanSides: number;
+  meanArea: number;
+  /** Fractions of valid cells per class of SIDE_CLASSES. */
+  polygonDistribution: number[];
+  /** Counts of valid cells per class of SIDE_CLASSES. */
+  polygonCounts: number[];
+  /** Valid cells with fewer than 3 sides. */
+  below3: number;
+  lewis: LewisEntry[];
+  aboavWeaire: AboavEntry[];
+}
+
+export interface ScutoidSummary {
+  cells: number;
+  validCells: number;
+  excludedCells: number;
+  surfaces: number;
+  scutoids: number;
+  /** 100 * scutoids / validCells (neighbour set differs between any two surfaces). */
+  percentScutoids: number;
+  /** 100 * (valid cells with won + lost > 0) / validCells (first vs last surface only). */
+  percentScutoidsEnds: number;
+  meanTransitions: number;
+  meanWon: number;
+  meanLost: number;
+  meanNeighbours3D: number;
+  perSurface: SurfaceSummary[];
+}
+
+export interface CellStatistics {
+  /** 1 for valid cells (no border contact on any surface). */
+  valid: Uint8Array;
+  /** Sides per surface, per cell. */
+  sides: Int32Array[];
+  won: Int32Array;
+  lost: Int32Array;
+  transitions: Int32Array;
+  neighbours3D: Int32Array;
+  /** 1 when the neighbour set is not the same on every surface (any cell, valid or not). */
+  changed: Uint8Array;
+  /** valid && changed. */
+  scutoid: Uint8Array;
+}
+
+export interface ScutoidAnalysis {
+  cells: CellStatistics;
+  summary: ScutoidSummary;
+}
+
+/** Sorted arrays a, b: |a \ b|. */
+function differenceSize(a: Int32Array, b: Int32Array): number {
+  let i = 0;
+  let j = 0;
+  let n = 0;
+  while (i < a.length) {
+    if (j >= b.length || a[i] < b[j]) {
+      n++;
+      i++;
+    } else if (a[i] > b[j]) j++;
+    else {
+      i++;
+      j++;
+    }
+  }
+  return n;
+}
+
+/** Sorted, deduplicated arrays a, b: their union (sorted). */
+function union(a: Int32Array, b: Int32Array): Int32Array {
+  const out = new Int32Array(a.length + b.length);
+  let i = 0;
+  let j = 0;
+  let n = 0;
+  while (i < a.length || j < b.length) {
+    if (j >= b.length || (i < a.length && a[i] < b[j])) out[n++] = a[i++];
+    else if (i >= a.length || b[j] < a[i]) out[n++] = b[j++];
+    else {
+      out[n++] = a[i++];
+      j++;
+    }
+  }
+  return out.subarray(0, n);
+}
+
+/** Neighbours won and lost by cell i between two surfaces (ids). */
+export function neighbourExchange(from: AdjacencyInput, to: AdjacencyInput, i: number): { won: number[]; lost: number[] } {
+  const a = neighbourSet(toCsr(from), i);
+  const b = neighbourSet(toCsr(to), i);
+  const sa = new Set(a);
+  const sb = new Set(b);
+  return { won: [...b].filter((x) => !sa.has(x)), lost: [...a].filter((x) => !sb.has(x)) };
+}
+
+const mean = (sum: number, n: number): number => (n > 0 ? sum / n : NaN);
+
+/** Per-cell statistics and summary of a stack of surfaces (see the module comment). */
+export function analyzeSurfaces(surfaces: SurfaceAdjacency[], options: AnalysisOptions = {}): ScutoidAnalysis {
+  if (surfaces.length === 0) throw new Error('analyzeSurfaces needs at least one surface');
+  const count = surfaces[0].count;
+  const csr: CsrAdjacency[] = surfaces.map((s) => toCsr(s.adjacency));
+  surfaces.forEach((s, k) => {
+    if (s.count !== count || adjacencyCount(s.adjacency) !== count || s.areas.length !== count || s.touchesBorder.length !== count) {
+      throw new Error(`surface ${k} does not describe ${count} cells`);
+    }
+  });
+  const S = surfaces.length;
+
+  // Neighbour sets per surface.
+  const sets: Int32Array[][] = csr.map((adj) => {
+    const out: Int32Array[] = new Array(count);
+    for (let i = 0; i < count; i++) out[i] = neighbourSet(adj, i);
+    return out;
+  });
+  const sides: Int32Array[] = surfaces.map((s, k) => {
+    const out = new Int32Array(count);
+    for (let i = 0; i < count; i++) out[i] = s.sides ? s.sides[i] : sets[k][i].length;
+    return out;
+  });
+
+  const valid = new Uint8Array(count);
+  for (let i = 0; i < count; i++) {
+    let border = false;
+    for (const s of surfaces) if (s.touchesBorder[i]) border = true;
+    valid[i] = border ? 0 : 1;
+  }
+
+  const won = new Int32Array(count);
+  const lost = new Int32Array(count);
+  const transitions = new Int32Array(count);
+  const neighbours3D = new Int32Array(count);
+  const changed = new Uint8Array(count);
+  const scutoid = new Uint8Array(count);
+  for (let i = 0; i < count; i++) {
+    const first = sets[0][i];
+    const last = sets[S - 1][i];
+    won[i] = differenceSize(last, first);
+    lost[i] = differenceSize(first, last);
+    let t = 0;
+    let all = first;
+    for (let k = 0; k + 1 < S; k++) {
+      const a = sets[k][i];
+      const b = sets[k + 1][i];
+      t += differenceSize(a, b) + differenceSize(b, a);
+      all = union(all, b);
+    }
+    transitions[i] = t;
+    neighbours3D[i] = all.length;
+    changed[i] = t > 0 ? 1 : 0;
+    scutoid[i] = valid[i] && changed[i] ? 1 : 0;
+  }
+
+  let validCells = 0;
+  let scutoids = 0;
+  let ends = 0;
+  let sumT = 0;
+  let sumWon = 0;
+  let sumLost = 0;
+  let sum3D = 0;
+  for (let i = 0; i < count; i++) {
+    if (!valid[i]) continue;
+    validCells++;
+    scutoids += scutoid[i];
+    if (won[i] + lost[i] > 0) ends++;
+    sumT += transitions[i];
+    sumWon += won[i];
+    sumLost += lost[i];
+    sum3D += neighbours3D[i];
+  }
+
+  const perSurface = surfaces.map((s, k) => summarizeSurface(s, sets[k], sides[k], valid, validCells, options));
+
+  return {
+    cells: { valid, sides, won, lost, transitions, neighbours3D, changed, scutoid },
+    summary: {
+      cells: count,
+      validCells,
+      excludedCells: count - validCells,
+      surfaces: S,
+      scutoids,
+      percentScutoids: mean(100 * scutoids, validCells),
+      percentScutoidsEnds: mean(100 * ends, validCells),
+      meanTransitions: mean(sumT, validCells),
+      meanWon: mean(sumWon, validCells),
+      meanLost: mean(sumLost, validCells),
+      meanNeighbours3D: mean(sum3D, validCells),
+      perSurface,
+    },
+  };
+}
+
+function summarizeSurface(
+  surface: SurfaceAdjacency,
+  sets: Int32Array[],
+  sides: Int32Array,
+  valid: Uint8Array,
+  validCells: number,
+  options: AnalysisOptions,
+): SurfaceSummary {
+  const classes = SIDE_CLASSES.length;
+  const counts = new Array<number>(classes).fill(0);
+  const areaSums = new Array<number>(classes).fill(0);
+  const aboavSums = new Array<number>(classes).fill(0);
+  const aboavCounts = new Array<number>(classes).fill(0);
+  let below3 = 0;
+  let sumSides = 0;
+  let sumArea = 0;
+  const validOnly = options.aboavNeighbours === 'valid';
+  for (let i = 0; i < sides.length; i++) {
+    if (!valid[i]) continue;
+    const n = sides[i];
+    const area = surface.areas[i];
+    sumSides += n;
+    sumArea += area;
+    const c = sideClassIndex(n);
+    if (c < 0) {
+      below3++;
+      continue;
+    }
+    counts[c]++;
+    areaSums[c] += area;
+    let m = 0;
+    let q = 0;
+    for (const j of sets[i]) {
+      if (validOnly && !valid[j]) continue;
+      m += sides[j];
+      q++;
+    }
+    if (q > 0) {
+      aboavSums[c] += m / q;
+      aboavCounts[c]++;
+    }
+  }
+  const meanArea = mean(sumArea, validCells);
+  return {
+    label: surface.label,
+    meanSides: mean(sumSides, validCells),
+    meanArea,
+    polygonDistribution: counts.map((c) => mean(c, validCells)),
+    polygonCounts: counts,
+    below3,
+    lewis: SIDE_CLASSES.map((label, c) => ({
+      sides: label,
+      count: counts[c],
+      meanArea: mean(areaSums[c], counts[c]),
+      normalizedArea: mean(areaSums[c], counts[c]) / meanArea,
+    })),
+    aboavWeaire: SIDE_CLASSES.map((label, c) => ({
+      sides: label,
+      count: aboavCounts[c],
+      meanNeighbourSides: mean(aboavSums[c], aboavCounts[c]),
+    })),
+  };
+}
+
+/**
+ * The surface with contacts shorter than `minLength` µm removed (see `filterShortContacts`).
+ * Side counts are recomputed from the remaining neighbours (an explicit `sides` is dropped).
+ */
+export function withMinBoundaryLength(surface: SurfaceAdjacency, minLength: number): SurfaceAdjacency {
+  const adj = toCsr(surface.adjacency);
+  return { ...surface, adjacency: filterShortContacts(adj, minLength), sides: undefined };
+}
+
+/** The analysis input for one exact Voronoi diagram. */
+export function surfaceFromExact(v: ExactVoronoi, label?: string): SurfaceAdjacency {
+  return { count: v.count, adjacency: v.adjacency, areas: v.areas, touchesBorder: v.touchesBorder, label };
+}
