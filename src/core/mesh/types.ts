@@ -1,0 +1,128 @@
+/**
+ * The indexed triangle mesh every mesh routine of tissue-sheet works on.
+ *
+ * Why this shape: it is exactly what a three.js BufferGeometry holds (so loaders and
+ * three-mesh-bvh take it without copying), it is transferable to workers and to GPU
+ * buffers, and it has no DOM/WebGL dependency, so all geometry runs in Node.
+ *
+ * - `positions`: x, y, z per vertex (3 floats per vertex).
+ * - `indices`: 3 vertex ids per triangle. Triangles are expected counter-clockwise when seen
+ *   from outside (outward normals), which is what `checkMesh` verifies as "consistent
+ *   orientation" and what the spherical parameterization assumes (it flips if the signed
+ *   volume is negative).
+ */
+export interface TriangleMesh {
+  positions: Float32Array;
+  indices: Uint32Array;
+}
+
+export type Vec3 = [number, number, number];
+
+export function vertexCount(mesh: TriangleMesh): number {
+  return mesh.positions.length / 3;
+}
+
+export function faceCount(mesh: TriangleMesh): number {
+  return mesh.indices.length / 3;
+}
+
+export function getVertex(mesh: TriangleMesh, i: number): Vec3 {
+  const p = mesh.positions;
+  return [p[3 * i], p[3 * i + 1], p[3 * i + 2]];
+}
+
+/** Axis-aligned bounding box; `diagonal` is the length of its diagonal (0 for an empty mesh). */
+export function boundingBox(positions: ArrayLike<number>): { min: Vec3; max: Vec3; diagonal: number } {
+  const min: Vec3 = [Infinity, Infinity, Infinity];
+  const max: Vec3 = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < positions.length; i += 3) {
+    for (let k = 0; k < 3; k++) {
+      const v = positions[i + k];
+      if (v < min[k]) min[k] = v;
+      if (v > max[k]) max[k] = v;
+    }
+  }
+  if (positions.length === 0) return { min: [0, 0, 0], max: [0, 0, 0], diagonal: 0 };
+  const diagonal = Math.hypot(max[0] - min[0], max[1] - min[1], max[2] - min[2]);
+  return { min, max, diagonal };
+}
+
+/** Area of every triangle (float64, computed from the float32 positions). */
+export function faceAreas(mesh: TriangleMesh): Float64Array {
+  const { positions: p, indices: t } = mesh;
+  const nf = t.length / 3;
+  const out = new Float64Array(nf);
+  for (let f = 0; f < nf; f++) {
+    const a = 3 * t[3 * f], b = 3 * t[3 * f + 1], c = 3 * t[3 * f + 2];
+    const ux = p[b] - p[a], uy = p[b + 1] - p[a + 1], uz = p[b + 2] - p[a + 2];
+    const vx = p[c] - p[a], vy = p[c + 1] - p[a + 1], vz = p[c + 2] - p[a + 2];
+    const cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
+    out[f] = 0.5 * Math.sqrt(cx * cx + cy * cy + cz * cz);
+  }
+  return out;
+}
+
+export function surfaceArea(mesh: TriangleMesh): number {
+  let s = 0;
+  for (const a of faceAreas(mesh)) s += a;
+  return s;
+}
+
+/**
+ * Signed enclosed volume (divergence theorem). Positive when the triangles are oriented
+ * outward; used to detect inside-out meshes.
+ */
+export function signedVolume(mesh: TriangleMesh): number {
+  const { positions: p, indices: t } = mesh;
+  let v = 0;
+  for (let f = 0; f < t.length; f += 3) {
+    const a = 3 * t[f], b = 3 * t[f + 1], c = 3 * t[f + 2];
+    v +=
+      p[a] * (p[b + 1] * p[c + 2] - p[b + 2] * p[c + 1]) -
+      p[a + 1] * (p[b] * p[c + 2] - p[b + 2] * p[c]) +
+      p[a + 2] * (p[b] * p[c + 1] - p[b + 1] * p[c]);
+  }
+  return v / 6;
+}
+
+/**
+ * Area-weighted vertex normals (unit length). Smooth normals are what the geometry image
+ * stores per texel: cells are projected along them to the apical surface, and face normals
+ * would make that projection jump at every mesh edge.
+ */
+export function vertexNormals(mesh: TriangleMesh): Float32Array {
+  const { positions: p, indices: t } = mesh;
+  const n = new Float64Array(p.length);
+  for (let f = 0; f < t.length; f += 3) {
+    const a = 3 * t[f], b = 3 * t[f + 1], c = 3 * t[f + 2];
+    const ux = p[b] - p[a], uy = p[b + 1] - p[a + 1], uz = p[b + 2] - p[a + 2];
+    const vx = p[c] - p[a], vy = p[c + 1] - p[a + 1], vz = p[c + 2] - p[a + 2];
+    const cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
+    for (const i of [a, b, c]) {
+      n[i] += cx;
+      n[i + 1] += cy;
+      n[i + 2] += cz;
+    }
+  }
+  const out = new Float32Array(p.length);
+  for (let i = 0; i < p.length; i += 3) {
+    const l = Math.hypot(n[i], n[i + 1], n[i + 2]) || 1;
+    out[i] = n[i] / l;
+    out[i + 1] = n[i + 1] / l;
+    out[i + 2] = n[i + 2] / l;
+  }
+  return out;
+}
+
+/** Mean edge length (each undirected edge counted once per incident face side; fine for h). */
+export function meanEdgeLength(mesh: TriangleMesh): number {
+  const { positions: p, indices: t } = mesh;
+  let s = 0;
+  for (let f = 0; f < t.length; f += 3) {
+    for (let k = 0; k < 3; k++) {
+      const a = 3 * t[f + k], b = 3 * t[f + ((k + 1) % 3)];
+      s += Math.hypot(p[b] - p[a], p[b + 1] - p[a + 1], p[b + 2] - p[a + 2]);
+    }
+  }
+  return t.length ? s / t.length : 0;
+}
