@@ -1,0 +1,116 @@
+import type { ScutoidSummary } from '../core/analysis';
+import type { Config } from '../core/config';
+import type { Grid } from '../core/grid';
+import type { Vec3 } from '../core/surface';
+import type { IterationRecord } from '../gpu/lloyd';
+
+/** A neighbour of a cell and the length (µm) of the boundary they share. */
+export interface NeighbourContact {
+  readonly id: number;
+  readonly length: number;
+}
+
+/** One cell on one surface. */
+export interface CellRecord {
+  readonly id: number;
+  /** Site position in 3D, µm. */
+  readonly position: Vec3;
+  /** Site position on the unrolled surface, µm (u around/along x, v along y). */
+  readonly surface: [number, number];
+  /** Cell area, µm². */
+  readonly area: number;
+  readonly neighbours: NeighbourContact[];
+  /** The cell touches an open edge of the domain (the ends of a tube). */
+  readonly touchesBorder: boolean;
+}
+
+export type GridRecord = Pick<Grid, 'width' | 'height' | 'texelX' | 'texelY' | 'periodicX' | 'periodicY'>;
+
+/** A surface other than the seeded one: an intermediate layer or the other side of the sheet. */
+export interface SurfaceRecord {
+  /** "basal", "apical", or "layer k" (k = 1 next to the seeded surface). */
+  readonly name: string;
+  readonly role: 'layer' | 'other';
+  /** Signed distance from the seeded surface along its normal, µm (outward > 0 on a tube). */
+  readonly offset: number;
+  /** Size of this surface relative to the seeded one around the tube (R / R_seeded); 1 on a plane. */
+  readonly ratio: number;
+  readonly grid: GridRecord;
+  /** Labels-based cells of the projected sites on this surface. */
+  readonly cells: CellRecord[];
+}
+
+/** Per-cell statistics over the stack [seeded, layers..., other]. */
+export interface CellStatisticsRecord {
+  readonly id: number;
+  /** Not a border cell on any surface: counted in the statistics. */
+  readonly valid: boolean;
+  /** Valid, and its neighbour set is not the same on every surface. */
+  readonly scutoid: boolean;
+  /** Neighbours on the last surface that are not on the first, and the other way round. */
+  readonly won: number;
+  readonly lost: number;
+  /** Apico-basal transitions, counted surface to surface through the layers. */
+  readonly transitions: number;
+  /** Size of the union of the neighbour sets over all surfaces. */
+  readonly neighbours3D: number;
+  /** Sides on each surface, in stack order. */
+  readonly sides: number[];
+}
+
+/** Scutoid statistics over the stack [seeded, layers..., other] from one adjacency method. */
+export interface AnalysisRecord {
+  /** "labels": adjacent texels of the label textures; "exact": Delaunay of the unrolled sites. */
+  readonly method: 'labels' | 'exact';
+  /** Contacts shorter than this (µm) were ignored (labels method only; 0 for exact). */
+  readonly minContactLength: number;
+  /** Includes `perSurface`: polygon distribution, Lewis and Aboav-Weaire per surface. */
+  readonly summary: ScutoidSummary;
+  readonly cells: CellStatisticsRecord[];
+}
+
+/** The documented output of `tissue-sheet run` (see README, "Result JSON"). */
+export interface SheetResult {
+  readonly software: { readonly name: 'tissue-sheet'; readonly version: string };
+  /** The configuration with every default filled in: rerunning it reproduces this result. */
+  readonly config: Config;
+  readonly seed: number;
+  readonly grid: GridRecord;
+  readonly gpu: {
+    readonly renderer: string;
+    readonly centroidPath: 'blend' | 'gather';
+    readonly jumpFloodVariant: string;
+  };
+  readonly lloyd: {
+    readonly iterations: IterationRecord[];
+    readonly converged: boolean;
+    /** CVT energy of the final sites. */
+    readonly finalEnergy: number;
+    /** Cells that own no texel (never expected; non-zero means the grid is too coarse). */
+    readonly emptyCells: number;
+  };
+  /** How the seeded surface's neighbours were found: adjacent texels of the label texture. */
+  readonly adjacency: { readonly method: 'labels' };
+  readonly timings: { readonly setupMs: number; readonly lloydMs: number; readonly adjacencyMs: number; readonly totalMs: number };
+  /** Cells of the seeded surface. */
+  readonly cells: CellRecord[];
+  /** Intermediate layers (seeded side first), then the other surface. */
+  readonly surfaces: SurfaceRecord[];
+  /** Statistics per adjacency method (labels always; exact on planes and tubes). */
+  readonly analyses: AnalysisRecord[];
+}
+
+/** Label image of one surface, for views (not part of the JSON). */
+export interface LabelImage {
+  readonly name: string;
+  readonly grid: Grid;
+  /** Site id per texel, row-major (index y * width + x), -1 for none. */
+  readonly labels: Int32Array;
+}
+
+/** What runSheet returns: the JSON result and, for views, the label image of every surface. */
+export interface SheetOutput {
+  readonly result: SheetResult;
+  /** [seeded, layers..., other]. */
+  readonly labelImages: LabelImage[];
+}
