@@ -35,7 +35,7 @@ for (const { file, what, mesh, genusZero } of meshes) {
     if (problems.some((p) => p.severity === 'error')) throw new Error(`${file}: ${problems.map((p) => p.message).join('; ')}`);
     const r = sphericalParameterization(mesh);
     if (r.flipped !== 0) throw new Error(`${file}: ${r.flipped} flipped triangles in the spherical parameterization`);
-    param = `flipped 0, |centre of mass| ${r.centerOfMassNorm.toExponential(1)}, area ratio ${r.areaDistortion.min.toFixed(2)}..${r.areaDistortion.max.toFixed(2)}`;
+    param = `flipped 0, centre-of-mass norm ${r.centerOfMassNorm.toExponential(1)}, area ratio ${r.areaDistortion.min.toFixed(2)}..${r.areaDistortion.max.toFixed(2)}`;
   } else {
     param = problems.map((p) => p.kind).join(', ');
   }
