@@ -1,3 +1,5 @@
+import { readFileSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
 import {
   ConfigError,
@@ -250,5 +252,33 @@ describe('checkFeasible', () => {
     expect(e?.field).toBe('density.center');
     expect(e?.message).toContain('outside the domain');
     expect(feasibilityError({ density: { ...inside, center: [10, -1] } })?.field).toBe('density.center');
+  });
+});
+
+describe('docs/config.md', () => {
+  const text = readFileSync(fileURLToPath(new URL('../../docs/config.md', import.meta.url)), 'utf8');
+
+  it('has examples that validate and are feasible', () => {
+    const blocks = [...text.matchAll(/```json\n([\s\S]*?)```/g)].map((m) => JSON.parse(m[1]) as unknown);
+    expect(blocks.length).toBeGreaterThanOrEqual(2);
+    for (const block of blocks) {
+      const config = validateConfig(block);
+      expect(() => checkFeasible(config, makeGrid(config))).not.toThrow();
+    }
+    // The first example spells out every top-level field.
+    expect(Object.keys(blocks[0] as object).sort()).toEqual(Object.keys(configSchema.properties).sort());
+  });
+
+  it('mentions every field of the schema', () => {
+    const names = new Set<string>();
+    const visit = (node: Record<string, unknown>) => {
+      for (const branch of (node.oneOf as Record<string, unknown>[] | undefined) ?? []) visit(branch);
+      for (const [name, child] of Object.entries((node.properties ?? {}) as Record<string, Record<string, unknown>>)) {
+        names.add(name);
+        visit(child);
+      }
+    };
+    visit(configSchema as unknown as Record<string, unknown>);
+    for (const name of names) expect(text, name).toContain(`\`${name}\``);
   });
 });

@@ -78,6 +78,14 @@ describe('bruteForceLabels', () => {
     expect(labels[1]).toBe(0);
     expect(labels[0]).toBe(1);
     expect(Array.from(labels)).toEqual(Array.from(naiveLabels(grid, sites)));
+    // Ties between sites in different buckets: sites at x = 0.5, 2.5, ..., 14.5 with ids
+    // descending, so each texel's own bucket holds the larger of its two tied sites.
+    const row: Grid = { width: 16, height: 1, texelX: 1, texelY: 1, periodicX: false, periodicY: false };
+    const spread = new Float32Array(16);
+    for (let m = 0; m < 8; m++) [spread[2 * (7 - m)], spread[2 * (7 - m) + 1]] = [0.5 + 2 * m, 0.5];
+    const tied = bruteForceLabels(row, spread);
+    for (let m = 0; m < 7; m++) expect(tied[1 + 2 * m]).toBe(6 - m);
+    expect(Array.from(tied)).toEqual(Array.from(naiveLabels(row, spread)));
     // Coincident sites: the smaller id wins everywhere.
     expect(Array.from(bruteForceLabels(grid, Float32Array.from([1, 1, 1, 1]))).every((l) => l === 0)).toBe(true);
   });
