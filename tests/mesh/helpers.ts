@@ -1,0 +1,15 @@
+import { readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { parseMesh } from '../../src/core/mesh/parse';
+import type { TriangleMesh } from '../../src/core/mesh/types';
+
+export const MESH_DIR = join(__dirname, '..', '..', 'public', 'meshes');
+
+/** Loads a shipped sample mesh through the real parser (as the app would). */
+export function loadShipped(file: string): TriangleMesh {
+  const buf = readFileSync(join(MESH_DIR, file));
+  const ab = buf.buffer.slice(buf.byteOffset, buf.byteOffset + buf.byteLength) as ArrayBuffer;
+  return parseMesh(ab, { fileName: file });
+}
+
+export const GENUS_ZERO_SHIPPED = ['organoid.ply', 'egg-chamber.ply', 'level-set-blob.ply'];
