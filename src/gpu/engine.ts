@@ -13,6 +13,9 @@ import { GpuCapabilityError, type GpuContext } from './context';
 import { ShaderPass } from './shaderPass';
 import { createFloatDataTexture, createFloatTarget, readTargetRGBA } from './textures';
 
+/** Side of the window tile one gather draw covers: bounds the loop length per pixel. */
+const GATHER_TILE = 48;
+
 /** How centroids are summed: additive blending (needs EXT_float_blend) or a gather pass. */
 export type CentroidPath = 'blend' | 'gather';
 
@@ -44,7 +47,7 @@ export class CcvtEngine {
   private readonly weightTexture: THREE.DataTexture;
   private readonly labelTargets: [THREE.WebGLRenderTarget, THREE.WebGLRenderTarget];
   private current = 0;
-  private readonly sumsTarget: THREE.WebGLRenderTarget;
+  private readonly sumsTargets: THREE.WebGLRenderTarget[];
   private readonly clearPass: ShaderPass;
   private readonly splatPass: ShaderPass;
   private readonly floodPass: ShaderPass;
@@ -90,7 +93,10 @@ export class CcvtEngine {
       createFloatTarget(grid.width, grid.height, THREE.RedFormat),
       createFloatTarget(grid.width, grid.height, THREE.RedFormat),
     ];
-    this.sumsTarget = createFloatTarget(this.siteTextureWidth, this.siteTextureHeight, THREE.RGBAFormat);
+    // The gather path ping-pongs between two sums targets, one draw per window tile.
+    this.sumsTargets = [0, 1].map(() =>
+      createFloatTarget(this.siteTextureWidth, this.siteTextureHeight, THREE.RGBAFormat),
+    );
     this.sums = new Float32Array(this.siteTextureWidth * this.siteTextureHeight * 4);
     this.coldSteps = coldSchedule(grid.width, grid.height, options.variant);
     this.gatherRadius = Math.ceil(2.5 * Math.sqrt((grid.width * grid.height) / siteCount));
@@ -124,8 +130,12 @@ export class CcvtEngine {
             ...metric,
             labels,
             weights,
+            previousSums: { value: null },
+            firstTile: { value: true },
             siteCount: { value: siteCount },
             radius: { value: this.gatherRadius },
+            tileStart: { value: new THREE.Vector2() },
+            tileSize: { value: GATHER_TILE },
           });
   }
 
@@ -172,21 +182,44 @@ export class CcvtEngine {
     const labelTexture = this.labelTargets[this.current].texture;
     this.centroidPass.uniforms.labels.value = labelTexture;
     if (this.centroidPath === 'blend') {
-      this.renderer.setRenderTarget(this.sumsTarget);
+      const target = this.sumsTargets[0];
+      this.renderer.setRenderTarget(target);
       this.renderer.setClearColor(0x000000, 0);
       this.renderer.clear(true, false, false);
-      this.centroidPass.draw(this.renderer, this.sumsTarget, this.grid.width * this.grid.height);
-      return readTargetRGBA(this.renderer, this.sumsTarget, this.sums);
+      this.centroidPass.draw(this.renderer, target, this.grid.width * this.grid.height);
+      return readTargetRGBA(this.renderer, target, this.sums);
     }
     for (;;) {
-      this.centroidPass.uniforms.radius.value = this.gatherRadius;
-      this.centroidPass.draw(this.renderer, this.sumsTarget);
-      readTargetRGBA(this.renderer, this.sumsTarget, this.sums);
+      readTargetRGBA(this.renderer, this.gatherWindow(), this.sums);
       if (!this.someCellOverflowed()) return this.sums;
       const largest = Math.max(this.grid.width, this.grid.height);
       if (this.gatherRadius >= largest) throw new Error('gather window covers the grid but a cell still overflows');
       this.gatherRadius = Math.min(largest, Math.ceil(this.gatherRadius * 1.5));
     }
+  }
+
+  /** Runs the gather pass tile by tile over the current window; returns the target holding the sums. */
+  private gatherWindow(): THREE.WebGLRenderTarget {
+    const { uniforms } = this.centroidPass;
+    const radius = this.gatherRadius;
+    uniforms.radius.value = radius;
+    const span = (length: number, periodic: boolean) =>
+      periodic && 2 * radius + 1 >= length ? length : 2 * radius + 1;
+    const spanX = span(this.grid.width, this.grid.periodicX);
+    const spanY = span(this.grid.height, this.grid.periodicY);
+    let index = 0;
+    let first = true;
+    for (let ty = 0; ty < spanY; ty += GATHER_TILE) {
+      for (let tx = 0; tx < spanX; tx += GATHER_TILE) {
+        uniforms.firstTile.value = first;
+        uniforms.previousSums.value = this.sumsTargets[1 - index].texture;
+        (uniforms.tileStart.value as THREE.Vector2).set(tx, ty);
+        this.centroidPass.draw(this.renderer, this.sumsTargets[index]);
+        index = 1 - index;
+        first = false;
+      }
+    }
+    return this.sumsTargets[1 - index];
   }
 
   /** Waits for the GPU (a one-texel readback); used to time passes apart. */
@@ -216,7 +249,7 @@ export class CcvtEngine {
 
   dispose(): void {
     for (const pass of [this.clearPass, this.splatPass, this.floodPass, this.centroidPass]) pass.dispose();
-    for (const target of [...this.labelTargets, this.sumsTarget]) target.dispose();
+    for (const target of [...this.labelTargets, ...this.sumsTargets]) target.dispose();
     this.siteTexture.dispose();
     this.weightTexture.dispose();
   }

@@ -2,11 +2,15 @@ import gridMetric from './gridMetric.glsl';
 
 /**
  * Centroid pass, portable path (no float blending needed): each site's pixel in the sums
- * target walks a (2R+1)² window of texels around its site and adds up the same
+ * target walks a window of texels around its site and adds up the same
  * (w * dx, w * dy, w, w * |d|²) as the scatter pass, for texels labelled with its id.
- * Voronoi cells are convex, so if no texel on the window's outer ring belongs to the cell,
- * the whole cell was inside. Otherwise the pixel reports weight -1 and the engine retries
- * with a larger window: a window that is too small is never a silent wrong centroid.
+ *
+ * The window is (2R+1)² texels; one draw covers one tile of it (at most tileSize² texels per
+ * pixel, because software renderers silently stop long loops) and adds its part to the sums of
+ * the previous draw (ping-pong). Voronoi cells are convex, so if no texel on the window's outer
+ * ring belongs to the cell, the whole cell was inside. Otherwise the pixel reports weight -1
+ * (kept through later tiles) and the engine retries with a larger window: a window that is too
+ * small is never a silent wrong centroid.
  */
 export default /* glsl */ `
 precision highp float;
@@ -14,14 +18,19 @@ precision highp int;
 ${gridMetric}
 uniform highp sampler2D labels;
 uniform highp sampler2D weights;
+uniform highp sampler2D previousSums;
+uniform bool firstTile;
 uniform int siteCount;
 uniform int radius;
+uniform ivec2 tileStart;
+uniform int tileSize;
 out vec4 sums;
 
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   int site = pixel.y * siteWidth + pixel.x;
-  if (site >= siteCount) { sums = vec4(0.0); return; }
+  vec4 total = firstTile ? vec4(0.0) : texelFetch(previousSums, pixel, 0);
+  if (site >= siteCount || total.z < 0.0) { sums = total; return; }
   float id = float(site);
   vec2 position = siteAt(site);
   ivec2 origin = ivec2(floor(position));
@@ -37,10 +46,11 @@ void main() {
       whole[axis] = true;
     }
   }
-  vec4 total = vec4(0.0);
+  ivec2 from = low + tileStart;
+  ivec2 to = min(high, from + tileSize - 1);
   bool touchesRing = false;
-  for (int dy = low.y; dy <= high.y; ++dy) {
-    for (int dx = low.x; dx <= high.x; ++dx) {
+  for (int dy = from.y; dy <= to.y; ++dy) {
+    for (int dx = from.x; dx <= to.x; ++dx) {
       ivec2 q = origin + ivec2(dx, dy);
       if (!wrapTexel(q)) continue;
       if (texelFetch(labels, q, 0).r != id) continue;

@@ -1,0 +1,54 @@
+// `npm run bench`: times the engine in Node (headless-gl) and in headless Chromium, with the
+// hand-written WebGL2 floor and exact CPU Lloyd (d3-delaunay) in the same run. Prints a table
+// and writes bench/out/bench.json. Options: --sizes 512,1024,2048  --budget-s 120  --only node|chromium
+import { mkdirSync, writeFileSync } from 'node:fs';
+import { chromium } from '@playwright/test';
+import { createServer } from 'vite';
+import { chromiumArgs } from '../playwright.config';
+import { createHeadlessContext } from '../src/node/headless';
+import { version } from '../src/version';
+import { benchCases, formatTable, measure, type BenchRow } from './measure';
+
+function option(name: string, fallback: string): string {
+  const index = process.argv.indexOf(`--${name}`);
+  return index >= 0 ? process.argv[index + 1] : fallback;
+}
+
+const sizes = option('sizes', '512,1024,2048').split(',').map(Number);
+const budgetMs = Number(option('budget-s', '120')) * 1000;
+const only = option('only', 'all');
+const rows: BenchRow[] = [];
+
+if (only !== 'chromium') {
+  const context = createHeadlessContext();
+  const max = context.capabilities.maxTextureSize;
+  const cases = benchCases([...sizes.filter((s) => s < max), max]);
+  rows.push(...(await measure(context, 'node', cases, budgetMs, (line) => console.error(line))));
+  context.dispose();
+}
+
+if (only !== 'node') {
+  const server = await createServer({ server: { port: 5175, strictPort: true }, logLevel: 'error' });
+  await server.listen();
+  const browser = await chromium.launch({ executablePath: process.env.CHROMIUM_PATH ?? '/usr/bin/chromium', args: chromiumArgs });
+  try {
+    const page = await browser.newPage();
+    page.on('console', (message) => console.error(`chromium: ${message.text()}`));
+    await page.goto('http://127.0.0.1:5175/bench/page/index.html');
+    await page.waitForFunction(() => document.title === 'ready');
+    page.setDefaultTimeout(0);
+    const browserRows = await page.evaluate(
+      ([s, b]) => (window as unknown as { runBenchmark(s: number[], b: number): Promise<BenchRow[]> }).runBenchmark(s, b),
+      [sizes, budgetMs] as const,
+    );
+    rows.push(...browserRows);
+  } finally {
+    await browser.close();
+    await server.close();
+  }
+}
+
+console.log(formatTable(rows));
+mkdirSync('bench/out', { recursive: true });
+writeFileSync('bench/out/bench.json', JSON.stringify({ version, date: new Date().toISOString(), rows }, null, 2) + '\n');
+console.log('\nwrote bench/out/bench.json');

@@ -1,0 +1,40 @@
+import { defineConfig } from '@playwright/test';
+
+/**
+ * Playwright drives Debian's Chromium (/usr/bin/chromium): a Playwright browser download is not
+ * possible on a closed network. WebGL2 runs on SwiftShader, which has EXT_float_blend.
+ * Screenshot baselines: `npm run test:e2e -- --update-snapshots`.
+ */
+export const chromiumArgs = [
+  '--use-angle=swiftshader',
+  '--enable-unsafe-swiftshader',
+  '--ignore-gpu-blocklist',
+  '--disable-background-networking',
+  '--disable-component-update',
+  '--disable-sync',
+  '--no-first-run',
+  '--no-sandbox',
+];
+
+export default defineConfig({
+  testDir: 'e2e',
+  timeout: 180_000,
+  workers: 1,
+  reporter: [['list']],
+  expect: { toHaveScreenshot: { maxDiffPixelRatio: 0.02 } },
+  use: {
+    baseURL: 'http://127.0.0.1:5174',
+    browserName: 'chromium',
+    viewport: { width: 1280, height: 800 },
+    launchOptions: {
+      executablePath: process.env.CHROMIUM_PATH ?? '/usr/bin/chromium',
+      args: chromiumArgs,
+    },
+  },
+  webServer: {
+    command: 'npx vite --port 5174 --strictPort',
+    url: 'http://127.0.0.1:5174/',
+    reuseExistingServer: !process.env.CI,
+    timeout: 120_000,
+  },
+});

@@ -1,0 +1,74 @@
+import { describe, expect, it } from 'vitest';
+import type { Grid } from '../../src/core/grid';
+import { coldSchedule } from '../../src/core/jumpSchedule';
+import { bruteForceLabels } from '../../src/core/labels';
+import { placeSites } from '../../src/core/sites';
+import { CcvtEngine } from '../../src/gpu/engine';
+import { LloydRun } from '../../src/gpu/lloyd';
+import { mislabeledFraction, useHeadlessContext } from './context';
+
+const context = useHeadlessContext();
+
+const plane: Grid = { width: 192, height: 160, texelX: 1, texelY: 1, periodicX: false, periodicY: false };
+const torus: Grid = { width: 160, height: 192, texelX: 1, texelY: 1, periodicX: true, periodicY: true };
+// A tube unrolled: x runs around (periodic), y along the axis; texels a little anisotropic.
+const tube: Grid = { width: 128, height: 256, texelX: 0.98, texelY: 1, periodicX: true, periodicY: false };
+
+// Sites closer than a texel fall into one texel and cannot both be splatted: keep them apart.
+const minSpacingTexels = 1.5;
+
+describe('jump flood against brute-force nearest site', () => {
+  for (const [name, grid] of [['plane', plane], ['periodic plane', torus], ['tube', tube]] as const) {
+    for (const count of [1, 2, 7, 60, 500, 2000]) {
+      it(`${name}, ${count} sites: at most 1e-4 of texels mislabeled (jfa+2)`, () => {
+        const sites = placeSites(grid, count, 1000 + count, minSpacingTexels * grid.texelX);
+        const engine = new CcvtEngine(context, grid, count, { variant: 'jfa+2', centroidPath: 'auto' });
+        try {
+          engine.setSites(sites);
+          engine.floodLabels();
+          const error = mislabeledFraction(engine.readLabels(), bruteForceLabels(grid, sites));
+          expect(error).toBeLessThanOrEqual(1e-4);
+        } finally {
+          engine.dispose();
+        }
+      });
+    }
+  }
+
+  it('warm start after Lloyd moves stays within the same error bound', () => {
+    const grid = tube;
+    const count = 400;
+    const sites = placeSites(grid, count, 7, minSpacingTexels);
+    const engine = new CcvtEngine(context, grid, count, { variant: 'jfa+2', centroidPath: 'auto' });
+    try {
+      const run = new LloydRun(engine, grid, sites, { maxIterations: 6, tolerance: 0, overRelaxation: 1, warmStart: true });
+      let worst = 0;
+      while (!run.done) {
+        run.step();
+        worst = Math.max(worst, mislabeledFraction(engine.readLabels(), bruteForceLabels(grid, run.sites)));
+      }
+      expect(worst).toBeLessThanOrEqual(1e-4);
+      // After the first moves the warm flood runs fewer than half the passes of a cold one.
+      const cold = coldSchedule(grid.width, grid.height, 'jfa+2').length;
+      expect(run.iterations.at(-1)!.jumpFloodPasses).toBeLessThan(cold / 2);
+    } finally {
+      engine.dispose();
+    }
+  });
+
+  it('plain JFA is measurably worse than jfa+2 on many sites (the variant matters)', () => {
+    const grid = plane;
+    const sites = placeSites(grid, 2000, 99, minSpacingTexels);
+    const reference = bruteForceLabels(grid, sites);
+    const errors: Record<string, number> = {};
+    for (const variant of ['jfa', 'jfa+2', '1+jfa'] as const) {
+      const engine = new CcvtEngine(context, grid, 2000, { variant, centroidPath: 'auto' });
+      engine.setSites(sites);
+      engine.floodLabels();
+      errors[variant] = mislabeledFraction(engine.readLabels(), reference);
+      engine.dispose();
+    }
+    expect(errors['jfa+2']).toBeLessThanOrEqual(errors['jfa']);
+    expect(errors['1+jfa']).toBeLessThanOrEqual(1e-3);
+  });
+});
