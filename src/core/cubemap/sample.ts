@@ -195,12 +195,12 @@ export function closestPointOnEllipsoid(p: Vec3, a: number, b: number, c: number
   const rmin2 = r[minAxis] * r[minAxis];
   const F = (l: number) => {
     let v = -1;
-    for (let k = 0; k < 3; k++) v += ((r[k] * q[k]) / (r[k] * r[k] + l)) ** 2;
+    for (let k = 0; k < 3; k++) if (q[k] !== 0) v += ((r[k] * q[k]) / (r[k] * r[k] + l)) ** 2;
     return v;
   };
   const dF = (l: number) => {
     let v = 0;
-    for (let k = 0; k < 3; k++) v -= (2 * (r[k] * q[k]) ** 2) / (r[k] * r[k] + l) ** 3;
+    for (let k = 0; k < 3; k++) if (q[k] !== 0) v -= (2 * (r[k] * q[k]) ** 2) / (r[k] * r[k] + l) ** 3;
     return v;
   };
   const norm = Math.hypot(q[0], q[1], q[2]);
@@ -246,7 +246,8 @@ export function closestPointOnEllipsoid(p: Vec3, a: number, b: number, c: number
     }
     l = next;
   }
-  return [0, 1, 2].map((k) => (s[k] * r[k] * r[k] * q[k]) / (r[k] * r[k] + l)) as Vec3;
+  // A zero coordinate stays zero (and avoids 0/0 when λ = -r_min²).
+  return [0, 1, 2].map((k) => (q[k] === 0 ? 0 : (s[k] * r[k] * r[k] * q[k]) / (r[k] * r[k] + l))) as Vec3;
 }
 
 export interface ProjectedPoint {
