@@ -99,6 +99,11 @@ describe('closest-point projectors', () => {
         const x = closestPointOnEllipsoid(p, a, b, c);
         expect((x[0] / a) ** 2 + (x[1] / b) ** 2 + (x[2] / c) ** 2).toBeCloseTo(1, 9);
         const dist = Math.hypot(p[0] - x[0], p[1] - x[1], p[2] - x[2]);
+        // Optimality: p - x is parallel to the surface normal (the gradient) at x.
+        const g = [x[0] / (a * a), x[1] / (b * b), x[2] / (c * c)];
+        const e = [p[0] - x[0], p[1] - x[1], p[2] - x[2]];
+        const cr = Math.hypot(g[1] * e[2] - g[2] * e[1], g[2] * e[0] - g[0] * e[2], g[0] * e[1] - g[1] * e[0]);
+        expect(cr / (Math.hypot(...g) * Math.max(dist, 1e-12))).toBeLessThan(1e-6);
         // Brute force over a fine (θ, φ) grid.
         let best = Infinity;
         for (let i = 0; i <= 90; i++) {
