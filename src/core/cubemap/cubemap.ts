@@ -106,17 +106,13 @@ export function texelSolidAngle(i: number, j: number, n: number): number {
   return cornerSolidAngle(x1, y1) - cornerSolidAngle(x0, y1) - cornerSolidAngle(x1, y0) + cornerSolidAngle(x0, y0);
 }
 
-/** Edges of a face: where a texel coordinate leaves [0, n). */
-export const enum CubeEdge {
-  /** i < 0 (u < -1) */
-  MinusS = 0,
-  /** i >= n (u > 1) */
-  PlusS = 1,
-  /** j < 0 (v < -1) */
-  MinusT = 2,
-  /** j >= n (v > 1) */
-  PlusT = 3,
-}
+/**
+ * Edges of a face, numbered by where a texel coordinate leaves [0, n): 0: i < 0 (u < -1),
+ * 1: i >= n (u > 1), 2: j < 0 (v < -1), 3: j >= n (v > 1). A plain object rather than an enum
+ * so the numbers can be copied into GLSL as they are.
+ */
+export const CUBE_EDGE = { MinusS: 0, PlusS: 1, MinusT: 2, PlusT: 3 } as const;
+export type CubeEdge = (typeof CUBE_EDGE)[keyof typeof CUBE_EDGE];
 
 /**
  * How face-plane coordinates continue across one edge: the neighbour face and the affine map
@@ -172,7 +168,7 @@ function computeEdgeTransforms(): EdgeTransform[][] {
   return table;
 }
 
-/** CUBE_EDGES[face][edge]: see EdgeTransform and CubeEdge. */
+/** CUBE_EDGES[face][edge]: see EdgeTransform and CUBE_EDGE. */
 export const CUBE_EDGES: ReadonlyArray<ReadonlyArray<EdgeTransform>> = computeEdgeTransforms();
 
 /**
