@@ -1,0 +1,165 @@
+/**
+ * The biologist's page: wires the configuration panel, the runs, the views, the results, the
+ * charts, the sweep and the exports. The configuration lives in the URL and in localStorage;
+ * errors are shown in words and leave the previous result on screen.
+ */
+import { ConfigError, validateConfig, type Config } from '../core/config';
+import { GpuCapabilityError } from '../gpu/context';
+import type { SheetOutput } from '../run/result';
+import { computeContext, isAbort, LatestRunner } from './model/runner';
+import { initialConfig, saveConfig, urlWithConfig } from './model/settings';
+import { viewStack, type ViewStack } from './model/stack';
+import { Charts } from './panels/charts';
+import { ConfigControls } from './panels/controls';
+import { bindExports } from './panels/exports';
+import { renderResults } from './panels/results';
+import { SweepPanel } from './panels/sweepPanel';
+import { ViewPanel } from './panels/viewPanel';
+import { renderLegend } from './view/legend';
+
+const $ = <T extends HTMLElement>(selector: string) => document.querySelector<T>(selector)!;
+const statusLine = $('#status');
+const progress = $<HTMLProgressElement>('#progress');
+const errorBox = $('#error');
+const cancelButton = $<HTMLButtonElement>('#cancel');
+
+/** Debounce of live slider re-runs and of other edits, ms. */
+const LIVE_DEBOUNCE_MS = 250;
+const EDIT_DEBOUNCE_MS = 400;
+
+let stack: ViewStack | null = null;
+let runs = 0;
+const runner = new LatestRunner();
+
+function setState(state: 'running' | 'done' | 'error' | 'cancelled' | 'no-webgl'): void {
+  document.body.dataset.state = state;
+}
+
+function showError(error: unknown): void {
+  const message =
+    error instanceof ConfigError || error instanceof GpuCapabilityError || error instanceof Error ? error.message : String(error);
+  errorBox.textContent = message;
+  errorBox.hidden = false;
+}
+
+function clearError(): void {
+  errorBox.hidden = true;
+  errorBox.textContent = '';
+}
+
+renderLegend($('#legend'));
+const viewPanel = new ViewPanel($('main'), $('#unrolled'));
+const charts = new Charts($('#chart-polygons'), $('#chart-energy'), $('#chart-sweep'));
+const controls = new ConfigControls($('#controls'), initialConfig((m) => showError(m)), {
+  onEdit: (draft, live) => {
+    runner.debounced(live ? LIVE_DEBOUNCE_MS : EDIT_DEBOUNCE_MS, () => void run(draft));
+  },
+  onError: showError,
+});
+const sweep = new SweepPanel($('#sweep'), {
+  config: () => validateConfig(controls.config),
+  onPoints: (label, points) => charts.showSweep(label, points),
+  onError: showError,
+});
+bindExports($('.exports'), {
+  stack: () => stack,
+  sweepCsv: () => sweep.csv,
+  viewPng: () => viewPanel.toBlob(),
+  onError: showError,
+});
+
+function show(output: SheetOutput): void {
+  stack = viewStack(output);
+  viewPanel.show(stack);
+  renderResults($('.results'), stack);
+  charts.showStack(stack);
+}
+
+/** Validates and runs `draft`; on success the result replaces the one on screen. */
+async function run(draft: Config): Promise<void> {
+  let config: Config;
+  try {
+    config = validateConfig(draft);
+  } catch (error) {
+    showError(error);
+    setState('error');
+    return;
+  }
+  saveConfig(config);
+  clearError();
+  setState('running');
+  cancelButton.disabled = false;
+  statusLine.textContent = 'Running…';
+  progress.max = Math.max(1, config.lloyd.maxIterations);
+  progress.value = 0;
+  const started = performance.now();
+  try {
+    const output = await runner.start({
+      config,
+      onIteration(record, total) {
+        progress.max = Math.max(1, total);
+        progress.value = record.iteration;
+        statusLine.textContent = `Lloyd iteration ${record.iteration} / ${total}, energy ${record.energy.toPrecision(6)} µm⁴`;
+      },
+    });
+    show(output);
+    runs += 1;
+    document.body.dataset.runs = String(runs);
+    statusLine.textContent = `Done in ${((performance.now() - started) / 1000).toFixed(1)} s.`;
+    progress.value = progress.max;
+    setState('done');
+  } catch (error) {
+    if (isAbort(error)) {
+      // A newer run replaced this one, or the user cancelled: the previous result stays.
+      if (!runner.running) {
+        statusLine.textContent = 'Cancelled; the previous result is still shown.';
+        setState('cancelled');
+      }
+      return;
+    }
+    showError(error);
+    statusLine.textContent = stack ? 'Failed; the previous result is still shown.' : 'Failed.';
+    setState(error instanceof GpuCapabilityError ? 'no-webgl' : 'error');
+  } finally {
+    cancelButton.disabled = !runner.running;
+  }
+}
+
+function runWith(change: (config: Config) => Config): void {
+  const next = change(controls.config);
+  controls.setConfig(next);
+  void run(next);
+}
+
+$('#run').addEventListener('click', () => void run(controls.config));
+$('#step').addEventListener('click', () =>
+  runWith((c) => ({ ...c, lloyd: { ...c.lloyd, maxIterations: c.lloyd.maxIterations + 1, tolerance: 0 } })),
+);
+$('#converge').addEventListener('click', () =>
+  runWith((c) => ({ ...c, lloyd: { ...c.lloyd, maxIterations: Math.max(c.lloyd.maxIterations, 500), tolerance: Math.max(c.lloyd.tolerance, 0.05) } })),
+);
+cancelButton.addEventListener('click', () => runner.cancel());
+$('#share').addEventListener('click', async () => {
+  try {
+    const link = urlWithConfig(location.href, validateConfig(controls.config));
+    await navigator.clipboard?.writeText(link);
+    statusLine.textContent = 'Link copied: it reproduces this configuration.';
+  } catch (error) {
+    showError(error);
+  }
+});
+
+function start(): void {
+  try {
+    computeContext();
+  } catch (error) {
+    showError(error);
+    statusLine.textContent = 'No run possible in this browser.';
+    for (const id of ['#run', '#step', '#converge']) $<HTMLButtonElement>(id).disabled = true;
+    setState('no-webgl');
+    return;
+  }
+  void run(controls.config);
+}
+
+start();

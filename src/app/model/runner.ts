@@ -1,0 +1,94 @@
+/**
+ * Runs sheets in the page: one compute context (an off-screen WebGL2 canvas) shared by every
+ * caller on the page, runs queued one at a time on it, a newer request cancelling the one it
+ * replaces, density images decoded on the way. The page stays responsive because runSheet
+ * yields to the event loop between Lloyd iterations.
+ */
+import type { Config } from '../../core/config';
+import type { GrayImage } from '../../core/density';
+import { createCanvasContext, type GpuContext } from '../../gpu/context';
+import type { IterationRecord } from '../../gpu/lloyd';
+import type { SheetOutput } from '../../run/result';
+import { runSheet } from '../../run/runSheet';
+import { decodeGrayImage } from './densityImage';
+
+let sharedContext: GpuContext | null = null;
+let queue: Promise<unknown> = Promise.resolve();
+
+/** The page's compute context; throws GpuCapabilityError (a message for people) without WebGL2. */
+export function computeContext(): GpuContext {
+  sharedContext ??= createCanvasContext(document.createElement('canvas'));
+  return sharedContext;
+}
+
+export interface RunRequest {
+  config: Config;
+  signal?: AbortSignal;
+  onIteration?: (record: IterationRecord, maxIterations: number) => void;
+  /** A decoded density image; else an image density's `src` is fetched and decoded. */
+  densityImage?: GrayImage;
+}
+
+const decoded = new Map<string, Promise<GrayImage>>();
+
+async function densityImageFor(config: Config, given?: GrayImage): Promise<GrayImage | undefined> {
+  if (config.density.kind !== 'image') return undefined;
+  if (given) return given;
+  const { src } = config.density;
+  if (!decoded.has(src)) {
+    if (decoded.size > 8) decoded.clear();
+    decoded.set(src, decodeGrayImage(src));
+  }
+  return decoded.get(src);
+}
+
+/** One run, queued behind any run already on the shared context. */
+export function runInPage(request: RunRequest): Promise<SheetOutput> {
+  const job = queue.then(async () => {
+    if (request.signal?.aborted) throw new DOMException('The run was cancelled', 'AbortError');
+    const context = computeContext();
+    const densityImage = await densityImageFor(request.config, request.densityImage);
+    return runSheet(request.config, context, { signal: request.signal, onIteration: request.onIteration, densityImage });
+  });
+  queue = job.catch(() => undefined);
+  return job;
+}
+
+export function isAbort(error: unknown): boolean {
+  return error instanceof DOMException && error.name === 'AbortError';
+}
+
+/**
+ * Keeps at most one run of one owner in flight: `start` cancels the previous run of this
+ * runner. `debounced` waits `ms` of quiet first (for sliders that re-run live).
+ */
+export class LatestRunner {
+  private controller: AbortController | null = null;
+  private timer: ReturnType<typeof setTimeout> | undefined;
+
+  get running(): boolean {
+    return this.controller !== null;
+  }
+
+  cancel(): void {
+    clearTimeout(this.timer);
+    this.controller?.abort();
+    this.controller = null;
+  }
+
+  async start(request: Omit<RunRequest, 'signal'>): Promise<SheetOutput> {
+    this.cancel();
+    const controller = new AbortController();
+    this.controller = controller;
+    try {
+      return await runInPage({ ...request, signal: controller.signal });
+    } finally {
+      if (this.controller === controller) this.controller = null;
+    }
+  }
+
+  debounced(ms: number, action: () => void): void {
+    clearTimeout(this.timer);
+    this.timer = setTimeout(action, ms);
+  }
+}

@@ -1,0 +1,73 @@
+/**
+ * The page's configuration: its defaults (small enough to run in a few seconds on a software
+ * GPU), and where it lives between visits: the URL (`?config=<JSON>`, a shareable link that
+ * reproduces the result) and localStorage (the last session, used when the URL has none).
+ */
+import { validateConfig, type Config, type ConfigInput } from '../../core/config';
+
+/** The app's default sheet: a short tube, 150 cells, surface ratio 1.5. */
+export const APP_DEFAULTS: ConfigInput = {
+  surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 },
+  resolution: 256,
+  cells: 150,
+  seed: 1,
+  lloyd: { maxIterations: 5 },
+  sheet: { surfaceRatio: 1.5 },
+};
+
+const STORAGE_KEY = 'tissue-sheet:last-config';
+const URL_PARAM = 'config';
+
+export function defaultConfig(): Config {
+  return validateConfig(APP_DEFAULTS);
+}
+
+/** The config written in a URL, or null when there is none (throws ConfigError when invalid). */
+export function configFromUrl(href: string): Config | null {
+  const text = new URL(href).searchParams.get(URL_PARAM);
+  if (text === null) return null;
+  let data: unknown;
+  try {
+    data = JSON.parse(text);
+  } catch {
+    throw new Error(`The link's configuration is not valid JSON; it was ignored and the defaults are shown.`);
+  }
+  return validateConfig(data);
+}
+
+/** A link to this page that reproduces `config`. */
+export function urlWithConfig(href: string, config: Config): string {
+  const url = new URL(href);
+  url.searchParams.set(URL_PARAM, JSON.stringify(config));
+  return url.toString();
+}
+
+export function configFromStorage(storage: Storage | undefined = globalThis.localStorage): Config | null {
+  try {
+    const text = storage?.getItem(STORAGE_KEY);
+    return text ? validateConfig(JSON.parse(text)) : null;
+  } catch {
+    return null; // an old or damaged session is not worth an error message
+  }
+}
+
+export function saveConfig(config: Config): void {
+  try {
+    globalThis.localStorage?.setItem(STORAGE_KEY, JSON.stringify(config));
+  } catch {
+    // storage full or disabled: the URL still holds the configuration
+  }
+  const next = urlWithConfig(location.href, config);
+  if (next !== location.href) history.replaceState(null, '', next);
+}
+
+/** URL first (a shared link), then the last session, then the defaults. */
+export function initialConfig(onWarning: (message: string) => void): Config {
+  try {
+    const fromUrl = configFromUrl(location.href);
+    if (fromUrl) return fromUrl;
+  } catch (error) {
+    onWarning(`The link's configuration was not used: ${(error as Error).message}`);
+  }
+  return configFromStorage() ?? defaultConfig();
+}

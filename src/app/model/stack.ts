@@ -1,0 +1,75 @@
+/**
+ * The sheet as the views see it: one entry per surface of the stack [seeded, layers..., other],
+ * each with its label image, its cells and the number of sides of every cell there, plus the
+ * per-cell flags (valid, scutoid) of the analysis shown. Pure data; no DOM.
+ */
+import type { AnalysisRecord, CellRecord, LabelImage, SheetOutput, SheetResult } from '../../run/result';
+
+export interface ViewSurface {
+  readonly index: number;
+  /** "basal", "apical" or "layer k". */
+  readonly name: string;
+  readonly role: 'seeded' | 'layer' | 'other';
+  /** µm along the seeded surface's normal. */
+  readonly offset: number;
+  /** R / R_seeded on a tube, 1 on a plane. */
+  readonly ratio: number;
+  readonly image: LabelImage;
+  readonly cells: readonly CellRecord[];
+  /** Sides of every cell on this surface (from the analysis shown). */
+  readonly sides: Int32Array;
+}
+
+export interface ViewStack {
+  readonly result: SheetResult;
+  readonly analysis: AnalysisRecord | null;
+  readonly surfaces: ViewSurface[];
+  /** 1 for cells counted in the statistics. */
+  readonly valid: Uint8Array;
+  /** 1 for scutoids. */
+  readonly scutoid: Uint8Array;
+}
+
+/** The analysis the page reports: labels (the lab's method) when present, else the first. */
+export function primaryAnalysis(result: SheetResult): AnalysisRecord | null {
+  const analyses = result.analyses ?? [];
+  return analyses.find((a) => a.method === 'labels') ?? analyses[0] ?? null;
+}
+
+export function analysisByMethod(result: SheetResult, method: 'labels' | 'exact'): AnalysisRecord | null {
+  return (result.analyses ?? []).find((a) => a.method === method) ?? null;
+}
+
+export function viewStack(output: SheetOutput): ViewStack {
+  const { result, labelImages } = output;
+  const analysis = primaryAnalysis(result);
+  const n = result.cells.length;
+  const records = result.surfaces ?? [];
+  const surfaces: ViewSurface[] = labelImages.map((image, k) => {
+    const record = k === 0 ? null : records[k - 1];
+    const cells = k === 0 ? result.cells : (record?.cells ?? []);
+    const sides = new Int32Array(n);
+    for (let i = 0; i < n; i++) {
+      const fromAnalysis = analysis?.cells[i]?.sides[k];
+      sides[i] = fromAnalysis ?? cells[i]?.neighbours.length ?? 0;
+    }
+    return {
+      index: k,
+      name: image.name,
+      role: k === 0 ? 'seeded' : (record?.role ?? 'other'),
+      offset: record?.offset ?? 0,
+      ratio: record?.ratio ?? 1,
+      image,
+      cells,
+      sides,
+    };
+  });
+  const valid = new Uint8Array(n);
+  const scutoid = new Uint8Array(n);
+  for (let i = 0; i < n; i++) {
+    const stats = analysis?.cells[i];
+    valid[i] = stats ? (stats.valid ? 1 : 0) : result.cells[i]?.touchesBorder ? 0 : 1;
+    scutoid[i] = stats?.scutoid ? 1 : 0;
+  }
+  return { result, analysis, surfaces, valid, scutoid };
+}

@@ -1,0 +1,94 @@
+/**
+ * uPlot charts: the polygon distribution on each surface (seeded and other side by side as bars,
+ * layers as lines), the CVT energy per Lloyd iteration, and % scutoids against the swept
+ * parameter (mean ± sd over realizations).
+ */
+import uPlot from 'uplot';
+import 'uplot/dist/uPlot.min.css';
+import type { ViewStack } from '../model/stack';
+import { SIDE_LABELS } from '../view/sideColors';
+
+const SURFACE_COLORS = ['#1f5fa8', '#c0392b', '#7f8c8d', '#16a085', '#8e44ad', '#d35400'];
+
+class Chart {
+  private plot: uPlot | null = null;
+  constructor(private readonly root: HTMLElement) {}
+
+  show(options: Omit<uPlot.Options, 'width' | 'height'>, data: uPlot.AlignedData): void {
+    this.plot?.destroy();
+    const width = Math.max(240, Math.floor(this.root.clientWidth || 320));
+    this.plot = new uPlot({ ...options, width, height: 200 }, data, this.root);
+  }
+}
+
+export class Charts {
+  private readonly polygons: Chart;
+  private readonly energy: Chart;
+  private readonly sweep: Chart;
+
+  constructor(polygons: HTMLElement, energy: HTMLElement, sweep: HTMLElement) {
+    this.polygons = new Chart(polygons);
+    this.energy = new Chart(energy);
+    this.sweep = new Chart(sweep);
+  }
+
+  showStack(stack: ViewStack): void {
+    const perSurface = stack.analysis?.summary.perSurface ?? [];
+    const last = perSurface.length - 1;
+    const x = SIDE_LABELS.map((_, k) => k + 3);
+    const series: uPlot.Series[] = [{ label: 'sides', value: (_u, v) => (v === null ? '' : v >= 10 ? '10+' : String(v)) }];
+    const data: number[][] = [x];
+    perSurface.forEach((surface, k) => {
+      const color = SURFACE_COLORS[k === 0 ? 0 : k === last ? 1 : 2 + ((k - 1) % 4)];
+      const ends = k === 0 || k === last;
+      series.push({
+        label: stack.surfaces[k]?.name ?? `surface ${k}`,
+        stroke: color,
+        fill: ends ? `${color}99` : undefined,
+        width: ends ? 1 : 2,
+        paths: ends ? uPlot.paths.bars!({ size: [0.4, 60], align: k === 0 ? -1 : 1 }) : undefined,
+        points: { show: !ends },
+        value: (_u, v) => (v === null ? '' : `${v.toFixed(1)} %`),
+      });
+      data.push(surface.polygonDistribution.map((f) => 100 * f));
+    });
+    this.polygons.show(
+      {
+        title: 'Polygon distribution (%)',
+        scales: { x: { time: false, range: [2.5, 10.5] } },
+        axes: [{ values: (_u, ticks) => ticks.map((t) => (t >= 10 ? '10+' : String(t))) }, {}],
+        series,
+      },
+      data as uPlot.AlignedData,
+    );
+
+    const iterations = stack.result.lloyd.iterations;
+    this.energy.show(
+      {
+        title: 'CVT energy per iteration (µm⁴)',
+        scales: { x: { time: false } },
+        axes: [{}, { size: 60, values: (_u, ticks) => ticks.map((t) => t.toPrecision(3)) }],
+        series: [{ label: 'iteration' }, { label: 'energy', stroke: '#1f5fa8', width: 2, points: { show: true }, value: (_u, v) => (v === null ? '' : v.toPrecision(6)) }],
+      },
+      [iterations.map((r) => r.iteration), iterations.map((r) => r.energy)],
+    );
+  }
+
+  /** Points of a sweep: x, mean and sd of % scutoids. */
+  showSweep(label: string, points: { x: number; mean: number; sd: number }[]): void {
+    const xs = points.map((p) => p.x);
+    this.sweep.show(
+      {
+        title: `% scutoids vs ${label}`,
+        scales: { x: { time: false }, y: { range: (_u, min, max) => [Math.min(0, min), Math.max(10, max)] } },
+        series: [
+          { label },
+          { label: 'mean % scutoids', stroke: '#c0392b', width: 2, points: { show: true, size: 6 }, value: (_u, v) => (v === null ? '' : v.toFixed(1)) },
+          { label: '+ sd', stroke: '#c0392b55', dash: [4, 4] },
+          { label: '- sd', stroke: '#c0392b55', dash: [4, 4] },
+        ],
+      },
+      [xs, points.map((p) => p.mean), points.map((p) => p.mean + p.sd), points.map((p) => p.mean - p.sd)],
+    );
+  }
+}

@@ -1,0 +1,164 @@
+/**
+ * The configuration panel: plain, labelled HTML controls rendered from FIELDS, grouped in
+ * fieldsets. It holds a draft config (plain data) and reports every edit; the page validates
+ * the draft and decides whether to run. `live` edits come from sliders being dragged.
+ */
+import type { Config } from '../../core/config';
+import { getPath, setPath } from '../../core/sweep';
+import { imageFileToDataUrl } from '../model/densityImage';
+import { FIELDS, type FieldSpec } from './fields';
+
+export interface ControlsEvents {
+  onEdit(draft: Config, live: boolean): void;
+  onError(message: string): void;
+}
+
+interface Bound {
+  spec: FieldSpec;
+  row: HTMLElement;
+  input: HTMLInputElement | HTMLSelectElement;
+  output?: HTMLOutputElement;
+}
+
+export class ConfigControls {
+  private draft: Config;
+  private readonly bound: Bound[] = [];
+
+  constructor(
+    private readonly root: HTMLElement,
+    initial: Config,
+    private readonly events: ControlsEvents,
+  ) {
+    this.draft = structuredClone(initial);
+    const groups = new Map<string, HTMLFieldSetElement>();
+    for (const spec of FIELDS) {
+      let fieldset = groups.get(spec.group);
+      if (!fieldset) {
+        fieldset = document.createElement('fieldset');
+        fieldset.append(Object.assign(document.createElement('legend'), { textContent: spec.group }));
+        groups.set(spec.group, fieldset);
+        root.append(fieldset);
+      }
+      this.bound.push(this.renderField(fieldset, spec));
+    }
+    this.refresh();
+  }
+
+  get config(): Config {
+    return structuredClone(this.draft);
+  }
+
+  /** Replaces the draft (e.g. from a URL) and updates every control. */
+  setConfig(config: Config): void {
+    this.draft = structuredClone(config);
+    this.refresh();
+  }
+
+  private renderField(fieldset: HTMLFieldSetElement, spec: FieldSpec): Bound {
+    const row = document.createElement('div');
+    row.className = `field field-${spec.kind}`;
+    row.dataset.path = spec.path;
+    const id = `field-${spec.path.replace(/\./g, '-')}`;
+    const label = document.createElement('label');
+    label.htmlFor = id;
+    label.textContent = spec.unit ? `${spec.label} (${spec.unit})` : spec.label;
+    let input: HTMLInputElement | HTMLSelectElement;
+    let output: HTMLOutputElement | undefined;
+    if (spec.kind === 'select') {
+      const select = document.createElement('select');
+      for (const option of spec.options ?? []) {
+        select.append(new Option(option.label, option.value));
+        select.options[select.options.length - 1].disabled = option.disabled ?? false;
+      }
+      input = select;
+    } else {
+      const element = document.createElement('input');
+      element.type = { number: 'number', integer: 'number', 'optional-number': 'number', range: 'range', checkbox: 'checkbox', file: 'file', select: '' }[spec.kind];
+      if (spec.kind === 'file') element.accept = 'image/png,image/jpeg,image/webp';
+      if (spec.min !== undefined) element.min = String(spec.min);
+      if (spec.step !== undefined) element.step = String(spec.step);
+      input = element;
+    }
+    input.id = id;
+    input.name = spec.path;
+    if (spec.kind === 'checkbox') row.append(input, label);
+    else row.append(label, input);
+    if (spec.kind === 'range') {
+      output = document.createElement('output');
+      output.htmlFor.add(id);
+      row.append(output);
+    }
+    if (spec.note) {
+      const note = document.createElement('small');
+      note.className = 'note';
+      note.textContent = spec.note;
+      row.append(note);
+    }
+    fieldset.append(row);
+    const bound: Bound = { spec, row, input, output };
+    input.addEventListener('change', () => void this.edit(bound, false));
+    if (spec.live) input.addEventListener('input', () => void this.edit(bound, true));
+    return bound;
+  }
+
+  private async edit(bound: Bound, live: boolean): Promise<void> {
+    const { spec, input } = bound;
+    let value: unknown;
+    try {
+      value = await this.readValue(spec, input);
+    } catch (error) {
+      this.events.onError((error as Error).message);
+      return;
+    }
+    if (value === undefined) return;
+    if (spec.set) this.draft = spec.set(this.draft, value);
+    else {
+      const next = structuredClone(this.draft) as unknown as Record<string, unknown>;
+      setPath(next, spec.path, value);
+      this.draft = next as unknown as Config;
+    }
+    this.refresh();
+    this.events.onEdit(this.config, live);
+  }
+
+  private async readValue(spec: FieldSpec, input: HTMLInputElement | HTMLSelectElement): Promise<unknown> {
+    switch (spec.kind) {
+      case 'checkbox':
+        return (input as HTMLInputElement).checked;
+      case 'select':
+        return input.value;
+      case 'file': {
+        const file = (input as HTMLInputElement).files?.[0];
+        return file ? imageFileToDataUrl(file) : undefined;
+      }
+      case 'optional-number':
+        return input.value.trim() === '' ? null : Number(input.value);
+      default:
+        // An empty or half-typed number goes through as NaN: validation names the field.
+        return input.value.trim() === '' ? Number.NaN : Number(input.value);
+    }
+  }
+
+  /** Shows/hides fields for the draft and writes its values into the controls. */
+  private refresh(): void {
+    for (const { spec, row, input, output } of this.bound) {
+      const visible = spec.show ? spec.show(this.draft) : true;
+      row.hidden = !visible;
+      if (!visible) continue;
+      const value = spec.get ? spec.get(this.draft) : getPath(this.draft, spec.path);
+      if (spec.max !== undefined && input instanceof HTMLInputElement) {
+        input.max = String(typeof spec.max === 'function' ? spec.max(this.draft) : spec.max);
+      }
+      if (spec.kind === 'checkbox') (input as HTMLInputElement).checked = Boolean(value);
+      else if (spec.kind === 'file') continue;
+      else if (document.activeElement !== input || spec.kind === 'select' || spec.kind === 'range') {
+        input.value = value === null || value === undefined || (typeof value === 'number' && Number.isNaN(value)) ? '' : String(roundForDisplay(value));
+      }
+      if (output) output.value = String(value);
+    }
+  }
+}
+
+function roundForDisplay(value: unknown): unknown {
+  return typeof value === 'number' ? Number(value.toPrecision(10)) : value;
+}

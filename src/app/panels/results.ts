@@ -1,0 +1,93 @@
+/**
+ * The results panel: % scutoids in large type, the summary statistics (per adjacency method and
+ * per surface), how the run went (iterations, energy, centroid path, timings), and the per-cell
+ * table. Every number carries its full value in `data-value` for tests and copy-paste.
+ */
+import { cellTable } from '../model/cellRows';
+import { analysisByMethod, type ViewStack } from '../model/stack';
+
+const fmt = (value: number, digits = 2) => (Number.isFinite(value) ? value.toFixed(digits) : '–');
+
+export function renderResults(root: HTMLElement, stack: ViewStack): void {
+  const { result, analysis } = stack;
+  const headline = root.querySelector<HTMLElement>('#percent-scutoids');
+  if (headline) {
+    const value = analysis?.summary.percentScutoids ?? Number.NaN;
+    headline.textContent = `${fmt(value, 1)} %`;
+    headline.dataset.value = String(value);
+  }
+  const caption = root.querySelector<HTMLElement>('#percent-scutoids-caption');
+  if (caption) {
+    const method = analysis ? `${analysis.method} adjacency, contacts < ${fmt(analysis.minContactLength)} µm ignored` : 'no analysis';
+    caption.textContent = `scutoids (${method})`;
+  }
+  const summary = root.querySelector<HTMLElement>('#summary');
+  if (summary) summary.replaceChildren(summaryTable(stack));
+  const run = root.querySelector<HTMLElement>('#run-info');
+  if (run) {
+    const last = result.lloyd.iterations.length;
+    run.textContent =
+      `${result.cells.length} cells, ${result.grid.width} x ${result.grid.height} texels, ${last} Lloyd iterations` +
+      `${result.lloyd.converged ? ' (converged)' : ''}, final energy ${result.lloyd.finalEnergy.toPrecision(6)} µm⁴, ` +
+      `centroid path ${result.gpu.centroidPath}, ${fmt(result.timings.totalMs, 0)} ms on ${result.gpu.renderer}`;
+  }
+  const table = root.querySelector<HTMLElement>('#cell-table');
+  if (table) table.replaceChildren(cellTableElement(stack));
+}
+
+function row(cells: (string | number)[], header = false, key?: string, value?: number): HTMLTableRowElement {
+  const tr = document.createElement('tr');
+  cells.forEach((text, k) => {
+    const cell = document.createElement(header || k === 0 ? 'th' : 'td');
+    cell.textContent = String(text);
+    if (!header && k === 0) cell.setAttribute('scope', 'row');
+    tr.append(cell);
+  });
+  if (key) tr.dataset.key = key;
+  if (value !== undefined) tr.dataset.value = String(value);
+  return tr;
+}
+
+function summaryTable(stack: ViewStack): HTMLTableElement {
+  const table = document.createElement('table');
+  table.className = 'summary';
+  const methods = (['labels', 'exact'] as const).map((m) => analysisByMethod(stack.result, m)).filter((a) => a !== null);
+  table.append(row(['', ...methods.map((a) => a.method)], true));
+  const line = (key: keyof (typeof methods)[number]['summary'], label: string, digits: number) => {
+    const values = methods.map((a) => a.summary[key] as number);
+    table.append(row([label, ...values.map((v) => fmt(v, digits))], false, String(key), values[0]));
+  };
+  line('percentScutoids', '% scutoids', 2);
+  line('scutoids', 'scutoids', 0);
+  line('validCells', 'cells counted (not touching the ends)', 0);
+  line('meanTransitions', 'mean apico-basal transitions', 3);
+  line('meanWon', 'mean neighbours won', 3);
+  line('meanLost', 'mean neighbours lost', 3);
+  line('meanNeighbours3D', 'mean 3D neighbours', 3);
+  const surfaces = methods[0]?.summary.perSurface ?? [];
+  surfaces.forEach((s, k) => {
+    const name = stack.surfaces[k]?.name ?? s.label ?? `surface ${k}`;
+    const values = methods.map((a) => a.summary.perSurface[k]?.meanSides ?? Number.NaN);
+    table.append(row([`mean sides, ${name}`, ...values.map((v) => fmt(v, 3))], false, `meanSides.${k}`, values[0]));
+    const hex = methods.map((a) => 100 * (a.summary.perSurface[k]?.polygonDistribution[3] ?? Number.NaN));
+    table.append(row([`% hexagons, ${name}`, ...hex.map((v) => fmt(v, 1))], false, `hexagons.${k}`, hex[0]));
+  });
+  return table;
+}
+
+function cellTableElement(stack: ViewStack): HTMLTableElement {
+  const { header, rows } = cellTable(stack);
+  const table = document.createElement('table');
+  table.className = 'cells';
+  const head = document.createElement('thead');
+  head.append(row(header, true));
+  const body = document.createElement('tbody');
+  for (const cells of rows) {
+    const tr = row(cells);
+    if (cells[2] === 1) tr.className = 'scutoid';
+    else if (cells[1] === 0) tr.className = 'border';
+    body.append(tr);
+  }
+  table.append(head, body);
+  return table;
+}

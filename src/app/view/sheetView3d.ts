@@ -1,0 +1,201 @@
+/**
+ * The 3D view of the sheet: every surface of the stack as a mesh textured with its painted label
+ * image (tube: coaxial cylinders; plane: parallel sheets), orbit controls, per-surface
+ * visibility, and a cut (a clipping plane) to see inside. Renders on demand only (no loop), so
+ * screenshots are stable and an idle page costs nothing.
+ */
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import type { ViewStack } from '../model/stack';
+import { paintSurface } from './sideColors';
+import { surfaceGeometry } from './surfaceGeometry';
+
+export interface SheetViewOptions {
+  highlightScutoids?: boolean;
+  background?: string;
+}
+
+export class SheetView3D {
+  readonly renderer: THREE.WebGLRenderer;
+  private readonly scene = new THREE.Scene();
+  private readonly camera = new THREE.PerspectiveCamera(35, 1, 1, 1e6);
+  private readonly controls: OrbitControls;
+  /** Orientation (a tube lies across the view); `inner` centres the sheet at the origin. */
+  private readonly group = new THREE.Group();
+  private readonly inner = new THREE.Group();
+  private readonly meshes: THREE.Mesh[] = [];
+  private readonly clip = new THREE.Plane(new THREE.Vector3(0, -1, 0), 0);
+  private cutFraction = 0;
+  private radius = 1;
+  private highlight: boolean;
+  private stack: ViewStack | null = null;
+  private frame = 0;
+  private readonly resizeObserver: ResizeObserver;
+
+  /** Throws when the canvas cannot give a WebGL context (the caller says so in the page). */
+  constructor(readonly canvas: HTMLCanvasElement, options: SheetViewOptions = {}) {
+    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+    this.renderer.setPixelRatio(1);
+    this.renderer.localClippingEnabled = true;
+    this.scene.background = new THREE.Color(options.background ?? '#f4f4f0');
+    this.highlight = options.highlightScutoids ?? true;
+    this.scene.add(this.group);
+    this.group.add(this.inner);
+    this.controls = new OrbitControls(this.camera, canvas);
+    this.controls.addEventListener('change', () => this.requestRender());
+    this.resizeObserver = new ResizeObserver(() => this.resize());
+    this.resizeObserver.observe(canvas);
+    this.resize();
+  }
+
+  /** Shows a new result; the camera is refitted only when the sheet's size changed. */
+  setStack(stack: ViewStack): void {
+    const previous = this.stack;
+    this.stack = stack;
+    this.rebuild();
+    const config = stack.result.config;
+    const sameShape = previous && JSON.stringify(previous.result.config.surface) === JSON.stringify(config.surface);
+    if (!sameShape) this.fitCamera();
+    this.requestRender();
+  }
+
+  setHighlightScutoids(on: boolean): void {
+    this.highlight = on;
+    if (this.stack) this.rebuild();
+    this.requestRender();
+  }
+
+  /** Visibility of surface `index` of the stack. */
+  setSurfaceVisible(index: number, visible: boolean): void {
+    const mesh = this.meshes[index];
+    if (mesh) mesh.visible = visible;
+    this.requestRender();
+  }
+
+  surfaceVisible(index: number): boolean {
+    return this.meshes[index]?.visible ?? false;
+  }
+
+  /** 0: no cut; 0..1: removes that fraction of the sheet's depth, nearest the viewer first. */
+  setCut(fraction: number): void {
+    this.cutFraction = Math.max(0, Math.min(1, fraction));
+    this.updateClip();
+    this.requestRender();
+  }
+
+  resetCamera(): void {
+    this.fitCamera();
+    this.requestRender();
+  }
+
+  /** Renders now (synchronously), e.g. before reading pixels. */
+  renderNow(): void {
+    cancelAnimationFrame(this.frame);
+    this.frame = 0;
+    this.updateClip();
+    this.renderer.render(this.scene, this.camera);
+  }
+
+  requestRender(): void {
+    if (this.frame) return;
+    this.frame = requestAnimationFrame(() => {
+      this.frame = 0;
+      this.renderNow();
+    });
+  }
+
+  toBlob(type = 'image/png'): Promise<Blob> {
+    this.renderNow();
+    return new Promise((resolve, reject) =>
+      this.canvas.toBlob((blob) => (blob ? resolve(blob) : reject(new Error('the view could not be encoded'))), type),
+    );
+  }
+
+  dispose(): void {
+    this.resizeObserver.disconnect();
+    this.controls.dispose();
+    this.clearMeshes();
+    this.renderer.dispose();
+  }
+
+  private resize(): void {
+    const width = Math.max(1, this.canvas.clientWidth);
+    const height = Math.max(1, this.canvas.clientHeight);
+    this.renderer.setSize(width, height, false);
+    this.camera.aspect = width / height;
+    this.camera.updateProjectionMatrix();
+    this.requestRender();
+  }
+
+  private clearMeshes(): void {
+    for (const mesh of this.meshes) {
+      this.inner.remove(mesh);
+      mesh.geometry.dispose();
+      const material = mesh.material as THREE.MeshBasicMaterial;
+      material.map?.dispose();
+      material.dispose();
+    }
+    this.meshes.length = 0;
+  }
+
+  private rebuild(): void {
+    const stack = this.stack;
+    if (!stack) return;
+    const visible = this.meshes.map((m) => m.visible);
+    this.clearMeshes();
+    const config = stack.result.config;
+    for (const surface of stack.surfaces) {
+      const { width, height } = surface.image.grid;
+      const rgba = paintSurface(surface, { highlightScutoids: this.highlight, valid: stack.valid, scutoid: stack.scutoid });
+      const texture = new THREE.DataTexture(rgba, width, height, THREE.RGBAFormat, THREE.UnsignedByteType);
+      texture.magFilter = THREE.NearestFilter;
+      texture.minFilter = THREE.LinearFilter;
+      texture.colorSpace = THREE.SRGBColorSpace;
+      texture.wrapS = config.surface.kind === 'tube' ? THREE.RepeatWrapping : THREE.ClampToEdgeWrapping;
+      texture.needsUpdate = true;
+      const material = new THREE.MeshBasicMaterial({ map: texture, side: THREE.DoubleSide, clippingPlanes: [this.clip] });
+      const mesh = new THREE.Mesh(surfaceGeometry(config.surface, surface.image.grid, surface.offset), material);
+      mesh.name = surface.name;
+      mesh.visible = visible[surface.index] ?? true;
+      this.meshes.push(mesh);
+      this.inner.add(mesh);
+    }
+    // Centre the sheet at the origin; the tube's axis (z) turned to x, across the view.
+    const box = new THREE.Box3();
+    for (const mesh of this.meshes) {
+      mesh.geometry.computeBoundingBox();
+      box.union(mesh.geometry.boundingBox!);
+    }
+    const centre = box.getCenter(new THREE.Vector3());
+    this.inner.position.copy(centre.negate());
+    this.group.rotation.set(0, config.surface.kind === 'tube' ? Math.PI / 2 : 0, 0);
+    this.radius = Math.max(1, box.getBoundingSphere(new THREE.Sphere()).radius);
+    this.updateClip();
+  }
+
+  private fitCamera(): void {
+    const distance = this.radius / Math.sin((this.camera.fov * Math.PI) / 360);
+    // Look from the side, a little above: a tube lies across the view.
+    const direction = new THREE.Vector3(0, 0.45, 1).normalize();
+    if (this.stack?.result.config.surface.kind === 'plane') direction.set(0.25, 0.5, 1).normalize();
+    this.camera.position.copy(direction.multiplyScalar(distance * 0.62));
+    this.camera.near = distance / 100;
+    this.camera.far = distance * 10;
+    this.camera.updateProjectionMatrix();
+    this.controls.target.set(0, 0, 0);
+    this.controls.update();
+  }
+
+  /** The cut plane faces the camera: it removes the near part of the sheet. */
+  private updateClip(): void {
+    if (this.cutFraction <= 0) {
+      this.clip.set(new THREE.Vector3(0, 0, -1), 1e9);
+      return;
+    }
+    const toCamera = this.camera.position.clone().sub(this.controls.target).normalize();
+    // Points p with n·p + c >= 0 are kept; n points away from the camera.
+    const normal = toCamera.clone().negate();
+    const depth = this.radius * (1 - 2 * this.cutFraction);
+    this.clip.set(normal, depth);
+  }
+}
