@@ -174,7 +174,9 @@ export class SheetView3D {
   }
 
   private fitCamera(): void {
-    const distance = this.radius / Math.sin((this.camera.fov * Math.PI) / 360);
+    const halfV = (this.camera.fov * Math.PI) / 360;
+    const halfH = Math.atan(Math.tan(halfV) * this.camera.aspect);
+    const distance = this.radius / Math.sin(Math.min(halfV, halfH));
     // Look from the side, a little above: a tube lies across the view.
     const direction = new THREE.Vector3(0, 0.45, 1).normalize();
     if (this.stack?.result.config.surface.kind === 'plane') direction.set(0.25, 0.5, 1).normalize();

@@ -1,0 +1,166 @@
+/**
+ * `<tissue-sheet>`: a sheet computed and shown in any page. Attributes (kebab-case) configure
+ * it, properties carry rich data (`config`, `densityImage`), methods run and export it, and
+ * `progress` / `result` / `error` events report on it. A bare element shows the app's small
+ * default tube. Runs share one compute context per page and are queued.
+ */
+import type { ConfigInput, Config } from '../core/config';
+import type { GrayImage } from '../core/density';
+import { ConfigError } from '../core/config';
+import { isAbort, LatestRunner } from '../app/model/runner';
+import { primaryAnalysis, viewStack } from '../app/model/stack';
+import { SheetView3D } from '../app/view/sheetView3d';
+import type { SheetResult } from '../run/result';
+import { ATTRIBUTES, OTHER_ATTRIBUTES, configFromAttributes } from './attributes';
+import type { TissueSheetErrorDetail, TissueSheetEventMap, TissueSheetProgressDetail, TissueSheetResultDetail } from './events';
+import { TEMPLATE } from './template';
+
+export class TissueSheetElement extends HTMLElement {
+  static get observedAttributes(): string[] {
+    return [...Object.keys(ATTRIBUTES), ...OTHER_ATTRIBUTES];
+  }
+
+  private base: ConfigInput | null = null;
+  private image: GrayImage | null = null;
+  private last: SheetResult | null = null;
+  private view: SheetView3D | null = null;
+  private readonly runner = new LatestRunner();
+  private scheduled = false;
+  private readonly shadow: ShadowRoot;
+
+  constructor() {
+    super();
+    this.shadow = this.attachShadow({ mode: 'open' });
+    this.shadow.innerHTML = TEMPLATE;
+  }
+
+  /** The effective, validated configuration (throws ConfigError when the attributes are invalid). */
+  get config(): Config {
+    return configFromAttributes(this, this.base);
+  }
+
+  /** A configuration (fields may be left out); attributes still override its fields. */
+  set config(value: ConfigInput | null) {
+    this.base = value ? structuredClone(value) : null;
+    this.schedule();
+  }
+
+  /** The decoded grayscale image for `density.kind = "image"` (else the `src` URL is fetched). */
+  get densityImage(): GrayImage | null {
+    return this.image;
+  }
+
+  set densityImage(value: GrayImage | null) {
+    this.image = value;
+    this.schedule();
+  }
+
+  /** The last result, or null. */
+  get result(): SheetResult | null {
+    return this.last;
+  }
+
+  /** Without the `manual` attribute, the element runs when connected and when configured. */
+  get manual(): boolean {
+    return this.hasAttribute('manual');
+  }
+
+  connectedCallback(): void {
+    if (!this.view) {
+      try {
+        this.view = new SheetView3D(this.shadow.querySelector('canvas')!);
+      } catch {
+        this.view = null; // the error event of the run says why
+      }
+    }
+    this.schedule();
+  }
+
+  disconnectedCallback(): void {
+    this.runner.cancel();
+  }
+
+  attributeChangedCallback(name: string, previous: string | null, next: string | null): void {
+    if (previous !== next && name !== 'manual') this.schedule();
+  }
+
+  /** Runs the sheet now; resolves with the result (also sent as a `result` event). */
+  async run(): Promise<SheetResult> {
+    let config: Config;
+    try {
+      config = this.config;
+    } catch (error) {
+      this.fail(error);
+      throw error;
+    }
+    this.status(`Running ${config.cells} cells…`);
+    try {
+      const output = await this.runner.start({
+        config,
+        densityImage: this.image ?? undefined,
+        onIteration: (record, maxIterations) => {
+          this.status(`Lloyd iteration ${record.iteration} / ${maxIterations}`);
+          this.emit<TissueSheetProgressDetail>('progress', { iteration: record.iteration, maxIterations, energy: record.energy, maxDisplacement: record.maxDisplacement });
+        },
+      });
+      const stack = viewStack(output);
+      this.view?.setStack(stack);
+      this.last = output.result;
+      const percent = primaryAnalysis(output.result)?.summary.percentScutoids ?? Number.NaN;
+      const label = this.shadow.querySelector<HTMLElement>('.percent')!;
+      label.textContent = `${percent.toFixed(1)} %`;
+      label.dataset.value = String(percent);
+      this.status(`${config.cells} cells, ${output.result.lloyd.iterations.length} Lloyd iterations, ${config.surface.kind}`);
+      this.emit<TissueSheetResultDetail>('result', { result: output.result, percentScutoids: percent });
+      return output.result;
+    } catch (error) {
+      if (!isAbort(error)) this.fail(error);
+      throw error;
+    }
+  }
+
+  /** The last result as the documented JSON object (a copy); throws before the first result. */
+  exportResult(): SheetResult {
+    if (!this.last) throw new Error('tissue-sheet: no result yet; call run() or wait for the "result" event');
+    return structuredClone(this.last);
+  }
+
+  /** A PNG (or `type`) of the 3D view. */
+  toBlob(options: { type?: string } = {}): Promise<Blob> {
+    if (!this.view) return Promise.reject(new Error('tissue-sheet: no 3D view (WebGL is not available)'));
+    return this.view.toBlob(options.type);
+  }
+
+  override addEventListener<K extends keyof TissueSheetEventMap>(type: K, listener: (this: TissueSheetElement, event: TissueSheetEventMap[K]) => unknown, options?: boolean | AddEventListenerOptions): void;
+  override addEventListener(type: string, listener: EventListenerOrEventListenerObject, options?: boolean | AddEventListenerOptions): void;
+  override addEventListener(type: string, listener: EventListenerOrEventListenerObject, options?: boolean | AddEventListenerOptions): void {
+    super.addEventListener(type, listener, options);
+  }
+
+  private schedule(): void {
+    if (this.manual || !this.isConnected || this.scheduled) return;
+    this.scheduled = true;
+    setTimeout(() => {
+      this.scheduled = false;
+      if (this.isConnected) this.run().catch(() => undefined);
+    }, 0);
+  }
+
+  private status(text: string, error = false): void {
+    const line = this.shadow.querySelector<HTMLElement>('.status')!;
+    line.textContent = text;
+    line.classList.toggle('error', error);
+  }
+
+  private fail(error: unknown): void {
+    const e = error instanceof Error ? error : new Error(String(error));
+    const detail: TissueSheetErrorDetail = { message: e.message, name: e.name };
+    if (error instanceof ConfigError) detail.field = error.field;
+    this.status(e.message, true);
+    this.emit('error', detail);
+  }
+
+  private emit<T>(type: keyof TissueSheetEventMap, detail: T): void {
+    this.dispatchEvent(new CustomEvent(type, { detail, bubbles: true, composed: true }));
+  }
+}

@@ -1,0 +1,83 @@
+/**
+ * The element's kebab-case attributes and how they map onto the configuration. Attributes
+ * override the `config` property, which overrides the defaults (the app's small default tube).
+ * Numbers are parsed as given; a bad value reaches validation, which names the field.
+ */
+import { densityPreset } from '../app/panels/fields';
+import { APP_DEFAULTS } from '../app/model/settings';
+import { validateConfig, type Config, type ConfigInput } from '../core/config';
+import { setPath } from '../core/sweep';
+
+type Kind = 'number' | 'string' | 'boolean' | 'nullable-number';
+
+/** attribute -> [config path, kind]. */
+export const ATTRIBUTES: Record<string, [string, Kind]> = {
+  surface: ['surface.kind', 'string'],
+  radius: ['surface.radius', 'number'],
+  length: ['surface.length', 'number'],
+  width: ['surface.width', 'number'],
+  height: ['surface.height', 'number'],
+  'periodic-x': ['surface.periodicX', 'boolean'],
+  'periodic-y': ['surface.periodicY', 'boolean'],
+  resolution: ['resolution', 'number'],
+  cells: ['cells', 'number'],
+  seed: ['seed', 'number'],
+  'min-spacing': ['minSpacing', 'number'],
+  iterations: ['lloyd.maxIterations', 'number'],
+  tolerance: ['lloyd.tolerance', 'number'],
+  'over-relaxation': ['lloyd.overRelaxation', 'number'],
+  'jump-flood': ['jumpFlood.variant', 'string'],
+  'centroid-path': ['centroidPath', 'string'],
+  seeded: ['sheet.seeded', 'string'],
+  direction: ['sheet.direction', 'string'],
+  thickness: ['sheet.thickness', 'number'],
+  'surface-ratio': ['sheet.surfaceRatio', 'nullable-number'],
+  layers: ['sheet.layers', 'number'],
+  adjacency: ['sheet.adjacency', 'string'],
+  'min-contact-length': ['sheet.minContactLength', 'nullable-number'],
+  density: ['density.kind', 'string'],
+};
+
+/** Attributes that are not configuration. */
+export const OTHER_ATTRIBUTES = ['manual'];
+
+function parse(kind: Kind, text: string): unknown {
+  switch (kind) {
+    case 'boolean':
+      return text !== 'false';
+    case 'string':
+      return text.trim();
+    case 'nullable-number':
+      return text.trim() === '' || text.trim() === 'null' ? null : Number(text);
+    default:
+      return text.trim() === '' ? Number.NaN : Number(text);
+  }
+}
+
+/**
+ * The validated configuration of an element: defaults, then `base` (the config property), then
+ * the attributes. Switching `surface` to a plane drops the tube's surface ratio; giving a
+ * thickness on a tube without a surface ratio uses the thickness.
+ */
+export function configFromAttributes(element: Element, base: ConfigInput | null): Config {
+  const input = structuredClone(base ?? APP_DEFAULTS) as Record<string, unknown>;
+  const surfaceKind = element.getAttribute('surface');
+  if (surfaceKind !== null && surfaceKind !== (input.surface as { kind?: string } | undefined)?.kind) {
+    // A different kind starts from that kind's required fields (an empty plane/tube is invalid).
+    input.surface = surfaceKind === 'plane' ? { kind: 'plane', width: 512, height: 512 } : { kind: surfaceKind, radius: 256 / (2 * Math.PI), length: 512 };
+  }
+  for (const [attribute, [path, kind]] of Object.entries(ATTRIBUTES)) {
+    const text = element.getAttribute(attribute);
+    if (text === null || attribute === 'surface') continue;
+    if (attribute === 'density') continue;
+    setPath(input, path, parse(kind, text));
+  }
+  const sheet = (input.sheet ?? {}) as Record<string, unknown>;
+  const kind = (input.surface as { kind: string }).kind;
+  if (!element.hasAttribute('surface-ratio') && (kind !== 'tube' || element.hasAttribute('thickness'))) sheet.surfaceRatio = null;
+  input.sheet = sheet;
+  let config = validateConfig(input);
+  const density = element.getAttribute('density');
+  if (density !== null && density !== config.density.kind) config = validateConfig({ ...config, density: densityPreset(density, config) });
+  return config;
+}

@@ -1,0 +1,24 @@
+/**
+ * The `<tissue-sheet>` web component. Importing this module defines the element.
+ *
+ *   <script type="module" src="tissue-sheet.js"></script>
+ *   <tissue-sheet cells="150" surface-ratio="2"></tissue-sheet>
+ */
+import { TissueSheetElement } from './TissueSheetElement';
+
+export { TissueSheetElement } from './TissueSheetElement';
+export { ATTRIBUTES } from './attributes';
+export type { TissueSheetErrorDetail, TissueSheetEventMap, TissueSheetProgressDetail, TissueSheetResultDetail } from './events';
+export type { Config, ConfigInput } from '../core/config';
+export type { GrayImage } from '../core/density';
+export type { SheetResult, AnalysisRecord, CellRecord, CellStatisticsRecord, SurfaceRecord } from '../run/result';
+
+if (typeof customElements !== 'undefined' && !customElements.get('tissue-sheet')) {
+  customElements.define('tissue-sheet', TissueSheetElement);
+}
+
+declare global {
+  interface HTMLElementTagNameMap {
+    'tissue-sheet': TissueSheetElement;
+  }
+}
