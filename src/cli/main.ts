@@ -43,7 +43,7 @@ async function runCommand(args: string[]): Promise<number> {
     config.density.kind === 'image' ? loadGrayImage(resolve(dirname(input), config.density.src)) : undefined;
   const context = createHeadlessContext();
   try {
-    const result = await runSheet(config, context, {
+    const { result } = await runSheet(config, context, {
       densityImage,
       onIteration(record, total) {
         process.stderr.write(

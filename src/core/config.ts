@@ -72,6 +72,17 @@ export interface JumpFloodConfig {
 }
 export type CentroidPathName = 'auto' | 'blend' | 'gather';
 
+/** The sheet: which surface is seeded, and where the other surface and the layers lie. */
+export interface SheetConfig {
+  seeded: 'basal' | 'apical';
+  direction: 'outward' | 'inward';
+  thickness: number;
+  surfaceRatio: number | null;
+  layers: number;
+  adjacency: 'labels' | 'exact' | 'both';
+  minContactLength: number | null;
+}
+
 /** A validated configuration: every field present, every default filled in. */
 export interface Config {
   surface: SurfaceConfig;
@@ -83,6 +94,7 @@ export interface Config {
   lloyd: LloydConfig;
   jumpFlood: JumpFloodConfig;
   centroidPath: CentroidPathName;
+  sheet: SheetConfig;
 }
 
 type Optional<T, K extends keyof T> = Omit<T, K> & Partial<Pick<T, K>>;
@@ -103,6 +115,7 @@ export interface ConfigInput {
   lloyd?: Partial<LloydConfig>;
   jumpFlood?: Partial<JumpFloodConfig>;
   centroidPath?: CentroidPathName;
+  sheet?: Partial<SheetConfig>;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -309,6 +322,64 @@ export const configSchema = {
       default: 'auto',
       description:
         'Centroid pass: "blend" (additive float blending, needs EXT_float_blend), "gather" (portable) or "auto" (blend when available). Default "auto".',
+    },
+    sheet: {
+      description:
+        'The sheet: the seeded surface (where Lloyd runs), the other surface at a thickness along the normal, and layers between them.',
+      type: 'object',
+      default: {},
+      additionalProperties: false,
+      properties: {
+        seeded: {
+          type: 'string',
+          enum: ['basal', 'apical'],
+          default: 'basal',
+          description: 'Which surface the sites are seeded and relaxed on: "basal" or "apical"; the other one gets the projected sites. Default "basal".',
+        },
+        direction: {
+          type: 'string',
+          enum: ['outward', 'inward'],
+          default: 'outward',
+          description:
+            'Side of the seeded surface the other surface lies on, along its normal: "outward" (plane: +z; tube: away from the axis) or "inward". Default "outward".',
+        },
+        thickness: {
+          type: 'number',
+          minimum: 0,
+          unit: 'µm',
+          default: 0,
+          description: 'Distance between the two surfaces along the normal, µm, >= 0 (inward on a tube: less than the radius). Default 0.',
+        },
+        surfaceRatio: {
+          type: ['number', 'null'],
+          minimum: 1,
+          default: null,
+          description:
+            'Tube only: R_outer / R_inner, >= 1, instead of thickness (outward: the other radius is radius·s; inward: radius/s). null: use thickness. Default null.',
+        },
+        layers: {
+          type: 'integer',
+          minimum: 0,
+          maximum: 64,
+          default: 0,
+          description: 'Intermediate surfaces evenly spaced between the two, integer 0..64, each with its own Voronoi diagram. Default 0.',
+        },
+        adjacency: {
+          type: 'string',
+          enum: ['labels', 'exact', 'both'],
+          default: 'both',
+          description:
+            'How neighbours are found on every surface: "labels" (adjacent texels of the label textures), "exact" (Delaunay of the unrolled sites with periodic copies) or "both". Default "both".',
+        },
+        minContactLength: {
+          type: ['number', 'null'],
+          minimum: 0,
+          unit: 'µm',
+          default: null,
+          description:
+            "Labels method: ignore contacts shorter than this, µm, >= 0. null: the lab's 6 px at 512 px around, scaled to this surface (6 x circumference / 512). Default null.",
+        },
+      },
     },
   },
 } as const;
@@ -576,6 +647,8 @@ export function checkFeasible(config: Config, grid: Grid): void {
     }
   }
 
+  checkSheet(config);
+
   if (config.density.kind === 'gaussian') {
     const [u, v] = config.density.center;
     if (u < 0 || u > domain.lengthX || v < 0 || v > domain.lengthY) {
@@ -584,6 +657,31 @@ export function checkFeasible(config: Config, grid: Grid): void {
         `density.center: [${u}, ${v}] µm is outside the domain [0, ${fmt(domain.lengthX)}] x [0, ${fmt(domain.lengthY)}] µm; move the centre inside`,
       );
     }
+  }
+}
+
+/** The other surface must exist: a ratio only on a tube, an inward offset short of the axis. */
+function checkSheet(config: Config): void {
+  const { sheet, surface } = config;
+  if (sheet.surfaceRatio !== null) {
+    if (surface.kind !== 'tube') {
+      throw new ConfigError(
+        'sheet.surfaceRatio',
+        `sheet.surfaceRatio: only a tube has a surface ratio (surface.kind is "${surface.kind}"); give sheet.thickness in µm instead`,
+      );
+    }
+    if (sheet.thickness !== 0) {
+      throw new ConfigError(
+        'sheet.thickness',
+        `sheet.thickness: give either sheet.thickness (${sheet.thickness} µm) or sheet.surfaceRatio (${sheet.surfaceRatio}), not both`,
+      );
+    }
+  }
+  if (surface.kind === 'tube' && sheet.direction === 'inward' && sheet.thickness >= surface.radius) {
+    throw new ConfigError(
+      'sheet.thickness',
+      `sheet.thickness: ${sheet.thickness} µm inward reaches the tube's axis (radius ${fmt(surface.radius)} µm); use less than ${fmt(surface.radius)} µm or direction "outward"`,
+    );
   }
 }
 

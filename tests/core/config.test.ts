@@ -87,6 +87,15 @@ describe('validateConfig: defaults', () => {
       lloyd: { maxIterations: 10, tolerance: 0.01, overRelaxation: 1.5, warmStart: false },
       jumpFlood: { variant: '1+jfa' },
       centroidPath: 'gather',
+      sheet: {
+        seeded: 'apical',
+        direction: 'inward',
+        thickness: 4,
+        surfaceRatio: null,
+        layers: 2,
+        adjacency: 'labels',
+        minContactLength: 1.5,
+      },
     };
     expect(validateConfig(full)).toEqual(full);
   });

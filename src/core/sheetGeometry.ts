@@ -1,0 +1,61 @@
+import type { Config } from './config';
+import type { Grid } from './grid';
+
+/** One surface of the sheet's stack: the seeded surface, a layer, or the other surface. */
+export interface StackSurface {
+  /** "basal", "apical" or "layer k" (k = 1 next to the seeded surface). */
+  readonly name: string;
+  readonly role: 'seeded' | 'layer' | 'other';
+  /** Signed distance from the seeded surface along its normal, µm (outward > 0). */
+  readonly offset: number;
+  /** Circumference relative to the seeded surface (R / R_seeded on a tube; 1 on a plane). */
+  readonly ratio: number;
+  readonly grid: Grid;
+}
+
+/**
+ * The stack [seeded, layers..., other] of a sheet. Surfaces are parallel: the other one lies at
+ * `thickness` along the seeded surface's normal (or, on a tube, at radius R·s or R/s for a
+ * surface ratio s), and K layers are evenly spaced between them. A tube's surfaces are coaxial
+ * cylinders: the same strip with the circumference scaled by R_k / R and square texels kept
+ * (the width in texels scales too); a plane's are identical copies.
+ */
+export function surfaceStack(config: Config, seededGrid: Grid): StackSurface[] {
+  const { sheet, surface } = config;
+  const otherName = sheet.seeded === 'basal' ? 'apical' : 'basal';
+  const sign = sheet.direction === 'outward' ? 1 : -1;
+  let otherOffset = sign * sheet.thickness;
+  if (surface.kind === 'tube' && sheet.surfaceRatio !== null) {
+    const otherRadius = sign > 0 ? surface.radius * sheet.surfaceRatio : surface.radius / sheet.surfaceRatio;
+    otherOffset = otherRadius - surface.radius;
+  }
+  const stack: StackSurface[] = [];
+  const count = sheet.layers + 2;
+  for (let k = 0; k < count; k++) {
+    const offset = (otherOffset * k) / (count - 1);
+    const role = k === 0 ? 'seeded' : k === count - 1 ? 'other' : 'layer';
+    const name = role === 'seeded' ? sheet.seeded : role === 'other' ? otherName : `layer ${k}`;
+    if (surface.kind === 'plane') {
+      stack.push({ name, role, offset, ratio: 1, grid: seededGrid });
+      continue;
+    }
+    const ratio = (surface.radius + offset) / surface.radius;
+    const width = Math.max(1, Math.round(seededGrid.width * ratio));
+    const grid: Grid = { ...seededGrid, width, texelX: (2 * Math.PI * (surface.radius + offset)) / width };
+    stack.push({ name, role, offset, ratio, grid });
+  }
+  return stack;
+}
+
+/**
+ * Projects sites (interleaved x, y texel units of `from`) along the normal onto the surface with
+ * grid `to`: the same angle around a tube (x scaled by the texel counts), the same y.
+ */
+export function projectSites(from: Grid, to: Grid, sites: Float32Array, out = new Float32Array(sites.length)): Float32Array {
+  const scale = to.width / from.width;
+  for (let i = 0; i < sites.length; i += 2) {
+    out[i] = Math.min(sites[i] * scale, to.width * (1 - Number.EPSILON));
+    out[i + 1] = sites[i + 1];
+  }
+  return out;
+}

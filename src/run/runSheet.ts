@@ -1,0 +1,49 @@
+import type { Config } from '../core/config';
+import type { GpuContext } from '../gpu/context';
+import { version } from '../version';
+import type { SheetOutput } from './result';
+import { relaxSeededSurface, type RunCallbacks } from './seededSurface';
+import { analyzeStack } from './sheetStack';
+
+export type { RunCallbacks } from './seededSurface';
+
+/**
+ * The whole computation of one sheet: validated config -> grid -> density -> sites -> Lloyd on
+ * the GPU (seeded surface) -> projection onto layers and the other surface -> labels ->
+ * adjacency -> statistics -> the documented result. Same config, same result.
+ */
+export async function runSheet(config: Config, context: GpuContext, callbacks: RunCallbacks = {}): Promise<SheetOutput> {
+  const start = performance.now();
+  const seeded = await relaxSeededSurface(config, context, callbacks);
+  const stack = await analyzeStack(config, seeded, context, callbacks.signal);
+  return {
+    result: {
+      software: { name: 'tissue-sheet', version },
+      config,
+      seed: config.seed,
+      grid: { ...seeded.grid },
+      gpu: {
+        renderer: context.capabilities.renderer,
+        centroidPath: seeded.centroidPath,
+        jumpFloodVariant: config.jumpFlood.variant,
+      },
+      lloyd: {
+        iterations: seeded.iterations,
+        converged: seeded.converged,
+        finalEnergy: seeded.finalEnergy,
+        emptyCells: seeded.emptyCells,
+      },
+      adjacency: { method: 'labels' },
+      timings: {
+        setupMs: seeded.setupMs,
+        lloydMs: seeded.lloydMs,
+        adjacencyMs: stack.adjacencyMs,
+        totalMs: performance.now() - start,
+      },
+      cells: stack.seededCells,
+      surfaces: stack.surfaces,
+      analyses: stack.analyses,
+    },
+    labelImages: stack.labelImages,
+  };
+}
