@@ -71,7 +71,7 @@ bindExports($('.exports'), {
 function show(output: SheetOutput): void {
   stack = viewStack(output);
   viewPanel.show(stack);
-  renderResults($('.results'), stack);
+  renderResults($('main'), stack);
   charts.showStack(stack);
 }
 

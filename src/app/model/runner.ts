@@ -48,7 +48,10 @@ export function runInPage(request: RunRequest): Promise<SheetOutput> {
     if (request.signal?.aborted) throw new DOMException('The run was cancelled', 'AbortError');
     const context = computeContext();
     const densityImage = await densityImageFor(request.config, request.densityImage);
-    return runSheet(request.config, context, { signal: request.signal, onIteration: request.onIteration, densityImage });
+    // Always a function: runSheet's loop steps inside `onIteration?.(run.step(), ...)`, so an
+    // absent callback would skip the step (reported to the engine's owner).
+    const onIteration = request.onIteration ?? (() => undefined);
+    return runSheet(request.config, context, { signal: request.signal, onIteration, densityImage });
   });
   queue = job.catch(() => undefined);
   return job;

@@ -67,7 +67,7 @@ export class Charts {
       {
         title: 'CVT energy per iteration (µm⁴)',
         scales: { x: { time: false } },
-        axes: [{}, { size: 60, values: (_u, ticks) => ticks.map((t) => t.toPrecision(3)) }],
+        axes: [{}, { size: 72, values: (_u, ticks) => ticks.map((t) => t.toPrecision(3)) }],
         series: [{ label: 'iteration' }, { label: 'energy', stroke: '#1f5fa8', width: 2, points: { show: true }, value: (_u, v) => (v === null ? '' : v.toPrecision(6)) }],
       },
       [iterations.map((r) => r.iteration), iterations.map((r) => r.energy)],
