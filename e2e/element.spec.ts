@@ -1,0 +1,115 @@
+import { execFileSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { expect, test, type Page } from '@playwright/test';
+
+/**
+ * `<tissue-sheet>` on Debian's Chromium. Screenshot tolerance: maxDiffPixelRatio 0.02.
+ * The CLI comparison runs `node bin/tissue-sheet.mjs run` (headless-gl under xvfb-run, the
+ * portable gather centroid path) on the element's own config; the browser runs the additive
+ * blend path. Both are Lloyd on the same grid from the same seeded sites, so the neighbour
+ * sets and % scutoids are compared for equality, energies within a relative 1e-4.
+ */
+
+async function waitForExample(page: Page): Promise<void> {
+  await page.waitForFunction(() => [...document.querySelectorAll('tissue-sheet')].every((e) => (e as HTMLElement).dataset.done), null, {
+    timeout: 120_000,
+  });
+}
+
+test('example page with two instances (screenshot)', async ({ page }) => {
+  await page.goto('/examples/element.html');
+  await waitForExample(page);
+  await expect(page.locator('#bare').locator('.percent')).toHaveText(/\d+\.\d %/);
+  await expect(page.locator('#wide').locator('.percent')).toHaveText(/\d+\.\d %/);
+  expect(await page.locator('#bare').evaluate((e) => e.shadowRoot !== null)).toBe(true);
+  await page.evaluate(() => new Promise(requestAnimationFrame));
+  await expect(page).toHaveScreenshot('element-example.png', { maxDiffPixelRatio: 0.02 });
+});
+
+test('attributes, properties, methods and events', async ({ page }) => {
+  await page.goto('/examples/element.html');
+  await waitForExample(page);
+  const outcome = await page.evaluate(async () => {
+    const element = document.createElement('tissue-sheet');
+    element.setAttribute('manual', '');
+    element.setAttribute('cells', '80');
+    element.setAttribute('iterations', '3');
+    element.setAttribute('surface-ratio', '2');
+    document.body.append(element);
+    const progress: number[] = [];
+    let fired: unknown = null;
+    element.addEventListener('progress', (e) => progress.push(e.detail.iteration));
+    element.addEventListener('result', (e) => (fired = e.detail.percentScutoids));
+    const result = await element.run();
+    const exported = element.exportResult();
+    const blob = await element.toBlob();
+    const errors: unknown[] = [];
+    element.addEventListener('error', (e) => errors.push(e.detail));
+    element.setAttribute('cells', '-5');
+    const failed = await element.run().then(
+      () => 'resolved',
+      (e: Error) => e.name,
+    );
+    return {
+      progress,
+      fired,
+      percent: result.analyses[0].summary.percentScutoids,
+      exportedCells: exported.cells.length,
+      ratio: exported.config.sheet.surfaceRatio,
+      blobType: blob.type,
+      blobSize: blob.size,
+      failed,
+      errors,
+      stillShown: element.result?.cells.length,
+    };
+  });
+  expect(outcome.progress).toEqual([1, 2, 3]);
+  expect(outcome.fired).toBe(outcome.percent);
+  expect(outcome.exportedCells).toBe(80);
+  expect(outcome.ratio).toBe(2);
+  expect(outcome.blobType).toBe('image/png');
+  expect(outcome.blobSize).toBeGreaterThan(2000);
+  expect(outcome.failed).toBe('ConfigError');
+  expect(outcome.errors).toEqual([{ name: 'ConfigError', field: 'cells', message: 'cells: must be an integer >= 1 (got -5)' }]);
+  expect(outcome.stillShown).toBe(80);
+});
+
+test('the element fires result with the same numbers as the CLI for the same config', async ({ page }) => {
+  await page.goto('/examples/element.html');
+  await waitForExample(page);
+  const browser = await page.evaluate(async () => {
+    const element = document.createElement('tissue-sheet');
+    element.setAttribute('manual', '');
+    element.setAttribute('cells', '120');
+    element.setAttribute('seed', '3');
+    element.setAttribute('surface-ratio', '2');
+    element.setAttribute('iterations', '4');
+    document.body.append(element);
+    const detail = new Promise<unknown>((resolve) => element.addEventListener('result', (e) => resolve(e.detail), { once: true }));
+    await element.run();
+    return { config: element.config, detail: (await detail) as { result: any; percentScutoids: number } };
+  });
+  const dir = mkdtempSync(join(tmpdir(), 'tissue-sheet-e2e-'));
+  writeFileSync(join(dir, 'cfg.json'), JSON.stringify(browser.config));
+  execFileSync(process.execPath, ['bin/tissue-sheet.mjs', 'run', join(dir, 'cfg.json'), '--out', join(dir, 'out.json')], { stdio: 'pipe', timeout: 120_000 });
+  const cli = JSON.parse(readFileSync(join(dir, 'out.json'), 'utf8'));
+  const web = browser.detail.result;
+
+  expect(web.gpu.centroidPath).toBe('blend');
+  expect(cli.gpu.centroidPath).toBe('gather');
+  expect(cli.config).toEqual(web.config);
+  for (const method of ['labels', 'exact']) {
+    const a = web.analyses.find((x: { method: string }) => x.method === method);
+    const b = cli.analyses.find((x: { method: string }) => x.method === method);
+    expect(a.summary.percentScutoids, `${method} % scutoids`).toBe(b.summary.percentScutoids);
+    expect(a.cells.map((c: { sides: number[] }) => c.sides)).toEqual(b.cells.map((c: { sides: number[] }) => c.sides));
+  }
+  expect(browser.detail.percentScutoids).toBe(cli.analyses[0].summary.percentScutoids);
+  const neighbourSets = (r: any) => r.cells.map((c: any) => c.neighbours.map((n: any) => n.id).sort((x: number, y: number) => x - y));
+  expect(neighbourSets(web)).toEqual(neighbourSets(cli));
+  expect(neighbourSets({ cells: web.surfaces.at(-1).cells })).toEqual(neighbourSets({ cells: cli.surfaces.at(-1).cells }));
+  const relative = Math.abs(web.lloyd.finalEnergy - cli.lloyd.finalEnergy) / cli.lloyd.finalEnergy;
+  expect(relative).toBeLessThan(1e-4);
+});
