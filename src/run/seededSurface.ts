@@ -49,7 +49,8 @@ export async function relaxSeededSurface(config: Config, context: GpuContext, ca
     const setupMs = performance.now() - start;
     while (!run.done) {
       throwIfAborted(callbacks.signal);
-      callbacks.onIteration?.(run.step(), config.lloyd.maxIterations);
+      const record = run.step();
+      callbacks.onIteration?.(record, config.lloyd.maxIterations);
       await yieldToEventLoop();
     }
     const final = run.finish();
