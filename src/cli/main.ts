@@ -5,12 +5,14 @@ import { GpuCapabilityError } from '../gpu/context';
 import { loadGrayImage } from '../node/image';
 import { createHeadlessContext } from '../node/headless';
 import { runSheet } from '../run/runSheet';
+import { sweepCommand } from './sweep';
 import { version } from '../version';
 
 const usage = `tissue-sheet ${version}
 
 Usage:
   tissue-sheet run CONFIG.json --out RESULT.json   compute one sheet (see docs/config.md)
+  tissue-sheet sweep SWEEP.json --out DIR          a grid of runs; resumes when rerun (docs/sweep.md)
   tissue-sheet --version | --help
 
 Progress goes to stderr. Exit codes: 0 done, 2 bad input, 3 no usable GPU context, 1 other.`;
@@ -30,6 +32,11 @@ export async function main(argv: string[]): Promise<number> {
       return 0;
     }
     if (command === 'run') return await runCommand(rest);
+    if (command === 'sweep') {
+      const { input, out } = parseInputAndOut(rest, 'sweep SWEEP.json --out DIR');
+      await sweepCommand(input, out, (line) => process.stderr.write(line + '\n'));
+      return 0;
+    }
     throw new UsageError(`unknown command "${command}"; try: tissue-sheet run CONFIG.json --out RESULT.json`);
   } catch (error) {
     return report(error);

@@ -2,7 +2,7 @@ import type { Config } from '../core/config';
 import type { GpuContext } from '../gpu/context';
 import { version } from '../version';
 import type { SheetOutput } from './result';
-import { relaxSeededSurface, type RunCallbacks } from './seededSurface';
+import { relaxSeededSurface, type RunCallbacks, type SeededSurface } from './seededSurface';
 import { analyzeStack } from './sheetStack';
 
 export type { RunCallbacks } from './seededSurface';
@@ -12,9 +12,14 @@ export type { RunCallbacks } from './seededSurface';
  * the GPU (seeded surface) -> projection onto layers and the other surface -> labels ->
  * adjacency -> statistics -> the documented result. Same config, same result.
  */
-export async function runSheet(config: Config, context: GpuContext, callbacks: RunCallbacks = {}): Promise<SheetOutput> {
+export async function runSheet(
+  config: Config,
+  context: GpuContext,
+  callbacks: RunCallbacks & { seeded?: SeededSurface } = {},
+): Promise<SheetOutput> {
   const start = performance.now();
-  const seeded = await relaxSeededSurface(config, context, callbacks);
+  // A seeded surface relaxed earlier for the same config (see SheetRunner) is reused as is.
+  const seeded = callbacks.seeded ?? (await relaxSeededSurface(config, context, callbacks));
   const stack = await analyzeStack(config, seeded, context, callbacks.signal);
   return {
     result: {
