@@ -26,7 +26,30 @@ export interface TubeSurface {
   radius: number;
   length: number;
 }
+/** Surfaces unrolled to a rectangle (the planar pipeline: plane, tube). */
 export type SurfaceConfig = PlaneSurface | TubeSurface;
+
+/** A sphere of the given radius (µm), centred at the origin. */
+export interface SphereSurface {
+  kind: 'sphere';
+  radius: number;
+}
+/** An ellipsoid x²/a² + y²/b² + z²/c² = 1 (semi-axes in µm), centred at the origin. */
+export interface EllipsoidSurface {
+  kind: 'ellipsoid';
+  a: number;
+  b: number;
+  c: number;
+}
+/** A closed genus-0 triangle mesh (OBJ, PLY, STL), coordinates times `scale` in µm. */
+export interface MeshSurface {
+  kind: 'mesh';
+  src: string;
+  scale: number;
+  geodesic: boolean;
+}
+/** Closed surfaces, sampled on a cube-map geometry image (src/run/closedSheet.ts). */
+export type ClosedSurfaceConfig = SphereSurface | EllipsoidSurface | MeshSurface;
 
 export type Axis = 'x' | 'y';
 export interface UniformDensity {
@@ -97,11 +120,29 @@ export interface Config {
   sheet: SheetConfig;
 }
 
+/** A validated configuration on a closed surface (sphere, ellipsoid, mesh). */
+export interface ClosedConfig extends Omit<Config, 'surface'> {
+  surface: ClosedSurfaceConfig;
+}
+/** Any validated configuration: planar (Config) or closed (ClosedConfig). */
+export type AnyConfig = Config | ClosedConfig;
+
+export const CLOSED_SURFACE_KINDS = ['sphere', 'ellipsoid', 'mesh'] as const;
+
+export function isClosedConfig(config: AnyConfig): config is ClosedConfig {
+  return (CLOSED_SURFACE_KINDS as readonly string[]).includes(config.surface.kind);
+}
+
 type Optional<T, K extends keyof T> = Omit<T, K> & Partial<Pick<T, K>>;
 
 /** What a user may write: any field with a default may be left out. */
 export interface ConfigInput {
-  surface?: Optional<PlaneSurface, 'periodicX' | 'periodicY'> | TubeSurface;
+  surface?:
+    | Optional<PlaneSurface, 'periodicX' | 'periodicY'>
+    | TubeSurface
+    | SphereSurface
+    | EllipsoidSurface
+    | Optional<MeshSurface, 'scale' | 'geodesic'>;
   resolution?: number;
   cells?: number;
   seed?: number;
@@ -143,7 +184,7 @@ export const configSchema = {
   properties: {
     surface: {
       description:
-        'The surface the sheet lies on, unrolled to a rectangle: x across, y along. Chosen by "kind": "plane" or "tube". Default: the published tube (circumference 512 µm, length 4096 µm).',
+        'The surface the sheet lies on. Chosen by "kind": "plane" or "tube" (unrolled to a rectangle: x across, y along), or the closed surfaces "sphere", "ellipsoid" and "mesh" (sampled on a cube map). Default: the published tube (circumference 512 µm, length 4096 µm).',
       type: 'object',
       default: { kind: 'tube', radius: DEFAULT_TUBE_RADIUS, length: 4096 },
       required: ['kind'],
@@ -171,6 +212,51 @@ export const configSchema = {
             length: positiveUm('Length along the axis, µm, > 0 (the y extent).'),
           },
         },
+        {
+          type: 'object',
+          additionalProperties: false,
+          required: ['kind', 'radius'],
+          properties: {
+            kind: kindConst('sphere', 'A sphere centred at the origin (closed: no border cells).'),
+            radius: positiveUm('Radius of the seeded surface, µm, > 0.'),
+          },
+        },
+        {
+          type: 'object',
+          additionalProperties: false,
+          required: ['kind', 'a', 'b', 'c'],
+          properties: {
+            kind: kindConst('ellipsoid', 'An ellipsoid x²/a² + y²/b² + z²/c² = 1 centred at the origin (closed).'),
+            a: positiveUm('Semi-axis along x, µm, > 0.'),
+            b: positiveUm('Semi-axis along y, µm, > 0.'),
+            c: positiveUm('Semi-axis along z, µm, > 0.'),
+          },
+        },
+        {
+          type: 'object',
+          additionalProperties: false,
+          required: ['kind', 'src'],
+          properties: {
+            kind: kindConst('mesh', 'A closed genus-0 triangle mesh (OBJ, PLY or STL), mapped to the sphere and sampled on a cube map.'),
+            src: {
+              type: 'string',
+              minLength: 1,
+              description: 'Path (Node: relative to the working directory, or public/meshes/NAME) or URL (browser) of an .obj, .ply or .stl file, non-empty.',
+            },
+            scale: {
+              type: 'number',
+              exclusiveMinimum: 0,
+              default: 1,
+              description: 'µm per mesh coordinate unit, > 0. Default 1.',
+            },
+            geodesic: {
+              type: 'boolean',
+              default: false,
+              description:
+                'Also compute the heat-method geodesic Voronoi of the final sites on the mesh vertices and report its time and its agreement with the GPU Voronoi (true/false). Default false.',
+            },
+          },
+        },
       ],
     },
     resolution: {
@@ -178,7 +264,8 @@ export const configSchema = {
       minimum: 16,
       maximum: 16384,
       default: 512,
-      description: 'Texels along the longer side of the unrolled domain, integer 16..16384. Default 512.',
+      description:
+        'Texels along the longer side of the unrolled domain, integer 16..16384; closed surfaces: texels along each cube-face edge (6 x resolution² texels). Default 512.',
     },
     cells: { type: 'integer', minimum: 1, default: 200, description: 'Number of cells (sites), integer >= 1. Default 200.' },
     seed: {
@@ -377,7 +464,7 @@ export const configSchema = {
           unit: 'µm',
           default: null,
           description:
-            "Labels method: ignore contacts shorter than this, µm, >= 0. null: the lab's 6 px at 512 px around, scaled to this surface (6 x circumference / 512). Default null.",
+            "Labels method: ignore contacts shorter than this, µm, >= 0. null: the lab's 6 px for cells 102.4 px across, scaled to this sheet: 6/102.4 x sqrt(area / cells) (6 µm on the published tube). Default null.",
         },
       },
     },
@@ -412,7 +499,7 @@ const validate = ajv.compile(configSchema as unknown as SchemaNode);
  * Throws ConfigError with a one-line message naming the field, the problem, the value given
  * and what to change.
  */
-export function validateConfig(input: unknown): Config {
+export function validateAnyConfig(input: unknown): AnyConfig {
   // Clone first: ajv writes defaults into the object it validates, and NaN/Infinity (which
   // JSON cannot carry but JS objects can) must be caught with their path before ajv sees them.
   const data = cloneJson(input, []);
@@ -421,7 +508,23 @@ export function validateConfig(input: unknown): Config {
     if (!error) throw new ConfigError('', 'config: invalid');
     throw toConfigError(error);
   }
-  return data as Config;
+  return data as AnyConfig;
+}
+
+/**
+ * validateAnyConfig for the planar pipeline: a closed surface (sphere, ellipsoid, mesh) is
+ * refused here, because callers of this function read planar fields (width, radius, length);
+ * entry points that run closed surfaces too call validateAnyConfig and runSheet.
+ */
+export function validateConfig(input: unknown): Config {
+  const config = validateAnyConfig(input);
+  if (isClosedConfig(config)) {
+    throw new ConfigError(
+      'surface.kind',
+      `surface.kind: "${config.surface.kind}" is a closed surface, which this entry point does not run; use one of "plane", "tube" here (closed surfaces run through validateAnyConfig and runSheet)`,
+    );
+  }
+  return config;
 }
 
 function cloneJson(value: unknown, path: (string | number)[]): unknown {
@@ -687,4 +790,99 @@ function checkSheet(config: Config): void {
 
 function fmt(value: number): string {
   return Number(value.toPrecision(6)).toString();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Closed surfaces: cube-map size and feasibility
+// ---------------------------------------------------------------------------------------------
+
+/** The cube-map geometry image of a closed surface: n x n texels per face, 6 faces. */
+export interface CubeGrid {
+  /** Texels along each face edge (= config.resolution). */
+  readonly n: number;
+  readonly texels: number;
+}
+
+export function makeCubeGrid(config: Pick<ClosedConfig, 'resolution'>): CubeGrid {
+  return { n: config.resolution, texels: 6 * config.resolution * config.resolution };
+}
+
+/** Surface area of an ellipsoid (Knud Thomsen's formula, relative error below 1.1 %). */
+export function ellipsoidArea(a: number, b: number, c: number): number {
+  const p = 1.6075;
+  return 4 * Math.PI * (((a * b) ** p + (a * c) ** p + (b * c) ** p) / 3) ** (1 / p);
+}
+
+/**
+ * Smallest principal radius of curvature of an analytic closed surface (µm): R for a sphere;
+ * (smallest semi-axis)² / (largest semi-axis) for an ellipsoid (at the tips of the longest
+ * axis). null for a mesh (estimated from the mesh at run time).
+ */
+export function minCurvatureRadius(surface: ClosedSurfaceConfig): number | null {
+  if (surface.kind === 'sphere') return surface.radius;
+  if (surface.kind === 'ellipsoid') {
+    const lo = Math.min(surface.a, surface.b, surface.c);
+    const hi = Math.max(surface.a, surface.b, surface.c);
+    return (lo * lo) / hi;
+  }
+  return null;
+}
+
+/** The refusal of an inward offset that reaches a focal point of the surface. */
+export function inwardOffsetError(thickness: number, radius: number, where: string): ConfigError {
+  return new ConfigError(
+    'sheet.thickness',
+    `sheet.thickness: ${fmt(thickness)} µm inward reaches the smallest radius of curvature of the ${where} (${fmt(radius)} µm), where the offset surface folds over itself; use less than ${fmt(radius)} µm or direction "outward"`,
+  );
+}
+
+/**
+ * checkFeasible for closed surfaces: at most one cell per 16 texels of the 6 n² cube map,
+ * uniform density only, minSpacing within hexagonal packing of the surface area (analytic
+ * surfaces), no surfaceRatio, exact adjacency only on the sphere, and no inward offset at or
+ * beyond the smallest radius of curvature (sphere, ellipsoid; a mesh is checked once loaded).
+ */
+export function checkClosedFeasible(config: ClosedConfig, grid: CubeGrid = makeCubeGrid(config)): void {
+  if (config.cells * MIN_TEXELS_PER_CELL > grid.texels) {
+    const need = config.cells * MIN_TEXELS_PER_CELL;
+    throw new ConfigError(
+      'cells',
+      `cells: ${config.cells} cells need at least ${need} texels (${MIN_TEXELS_PER_CELL} per cell) but the cube map has ${grid.texels} (6 x ${grid.n}²); lower cells or raise resolution`,
+    );
+  }
+  if (config.density.kind !== 'uniform') {
+    throw new ConfigError(
+      'density.kind',
+      `density.kind: closed surfaces support only "uniform" density for now (got "${config.density.kind}")`,
+    );
+  }
+  const { surface, sheet } = config;
+  const d = config.minSpacing;
+  if (d > 0 && config.cells > 1 && surface.kind !== 'mesh') {
+    const area = surface.kind === 'sphere' ? 4 * Math.PI * surface.radius ** 2 : ellipsoidArea(surface.a, surface.b, surface.c);
+    const needed = config.cells * hexagonalAreaPerPoint(d);
+    if (needed > area) {
+      const largest = Math.sqrt(area / (config.cells * (Math.sqrt(3) / 2)));
+      throw new ConfigError(
+        'minSpacing',
+        `minSpacing: ${config.cells} cells at least ${d} µm apart need ${fmt(needed)} µm² (hexagonal packing) but the surface has ${fmt(area)} µm²; lower minSpacing to at most ${fmt(largest)} µm or lower cells`,
+      );
+    }
+  }
+  if (sheet.surfaceRatio !== null) {
+    throw new ConfigError(
+      'sheet.surfaceRatio',
+      `sheet.surfaceRatio: only a tube has a surface ratio (surface.kind is "${surface.kind}"); give sheet.thickness in µm instead`,
+    );
+  }
+  if (sheet.adjacency === 'exact' && surface.kind !== 'sphere') {
+    throw new ConfigError(
+      'sheet.adjacency',
+      `sheet.adjacency: "exact" exists only on a sphere (the spherical Delaunay); use "labels" or "both" on a ${surface.kind}`,
+    );
+  }
+  const radius = minCurvatureRadius(surface);
+  if (radius !== null && sheet.direction === 'inward' && sheet.thickness >= radius) {
+    throw inwardOffsetError(sheet.thickness, radius, surface.kind);
+  }
 }

@@ -140,9 +140,9 @@ describe('validateConfig: errors name the exact field', () => {
   });
 
   it('unknown union kinds list the kinds', () => {
-    const e = errorOf({ surface: { kind: 'sphere' } });
+    const e = errorOf({ surface: { kind: 'cone' } });
     expect(e.field).toBe('surface.kind');
-    expect(e.message).toBe('surface.kind: must be one of "plane", "tube" (got "sphere")');
+    expect(e.message).toBe('surface.kind: must be one of "plane", "tube", "sphere", "ellipsoid", "mesh" (got "cone")');
     const d = errorOf({ density: { kind: 'noise' } });
     expect(d.field).toBe('density.kind');
     expect(d.message).toContain('"uniform", "linear", "gaussian", "stripes", "image"');
