@@ -585,6 +585,11 @@ function formatValue(value: unknown): string {
 
 /** "an integer from 16 to 16384", "a number > 0 µm", "one of "x", "y"": what a field accepts. */
 function expectation(schema: SchemaNode, withType: boolean): string {
+  // A nullable number (type ["number", "null"]): describe the number, and say null is allowed.
+  if (Array.isArray(schema.type) && schema.type.includes('null')) {
+    const type = schema.type.find((t) => t !== 'null');
+    return `${expectation({ ...schema, type }, withType)} or null`;
+  }
   if (Array.isArray(schema.enum)) return `one of ${schema.enum.map((v) => JSON.stringify(v)).join(', ')}`;
   if (schema.const !== undefined) return JSON.stringify(schema.const);
   switch (schema.type) {

@@ -1,5 +1,6 @@
 import { analyzeSurfaces, labMinBoundaryLength, withMinBoundaryLength, surfaceFromExact, type ScutoidAnalysis, type SurfaceAdjacency } from '../core/analysis';
 import type { Config } from '../core/config';
+import type { Grid } from '../core/grid';
 import { exactVoronoi } from '../core/exact';
 import { labelAdjacency, type LabelAdjacency } from '../core/labels';
 import { projectSites, surfaceStack, type StackSurface } from '../core/sheetGeometry';
@@ -43,7 +44,7 @@ export async function analyzeStack(config: Config, seeded: SeededSurface, contex
   const analyses: AnalysisRecord[] = [];
   const { adjacency } = config.sheet;
   if (adjacency !== 'exact') {
-    const minContactLength = config.sheet.minContactLength ?? labMinBoundaryLength(seeded.grid);
+    const minContactLength = config.sheet.minContactLength ?? defaultMinContactLength(seeded.grid, config.cells);
     const inputs = labelAdjacencies.map((a, k) => withMinBoundaryLength(fromLabels(a, stack[k].name), minContactLength));
     analyses.push(toRecord('labels', minContactLength, analyzeSurfaces(inputs)));
   }
@@ -75,6 +76,11 @@ async function labelSurface(context: GpuContext, surface: StackSurface, sites: F
   } finally {
     engine.dispose();
   }
+}
+
+/** The lab's threshold scaled to this sheet's mean cell size (see labMinBoundaryLength). */
+export function defaultMinContactLength(grid: Grid, cells: number): number {
+  return labMinBoundaryLength(grid.width * grid.texelX * grid.height * grid.texelY, cells);
 }
 
 function fromLabels(adjacency: LabelAdjacency, label: string): SurfaceAdjacency {

@@ -174,8 +174,9 @@ describe('scutoid statistics on exact diagrams', () => {
   });
 
   it('expresses the lab threshold (6 px at 512 px around) in µm', () => {
-    expect(labMinBoundaryLength({ ...plane, width: 512, texelX: 1 })).toBeCloseTo(6);
-    expect(labMinBoundaryLength({ ...plane, width: 1024, texelX: 0.5 })).toBeCloseTo(6);
-    expect(labMinBoundaryLength({ ...plane, width: 512, texelX: 2 })).toBeCloseTo(12);
+    // The lab's tube: 512 x 4096 µm, 200 cells -> exactly 6 µm; 4x the area per cell -> 12 µm.
+    expect(labMinBoundaryLength(512 * 4096, 200)).toBeCloseTo(6, 12);
+    expect(labMinBoundaryLength(512 * 4096, 50)).toBeCloseTo(12, 12);
+    expect(labMinBoundaryLength(1000 * 600, 300)).toBeCloseTo((6 * Math.sqrt(2000)) / Math.sqrt((512 * 4096) / 200), 12);
   });
 });

@@ -95,16 +95,21 @@ export function filterShortContacts(adj: CsrAdjacency, minLength: number): CsrAd
   return { offsets, neighbours, lengths: kept };
 }
 
-/** Default pixel threshold of the lab's pixel-based adjacency (px) and the image width it refers to (px around). */
+/**
+ * The lab's pixel-based adjacency ignores contacts shorter than 6 px, on 512 x 4096 px tubes with
+ * 200 cells, i.e. cells whose mean diameter sqrt(area / cells) is 102.4 px.
+ */
 export const LAB_MIN_BOUNDARY_PIXELS = 6;
-export const LAB_REFERENCE_WIDTH = 512;
+export const LAB_MEAN_CELL_DIAMETER_PIXELS = Math.sqrt((512 * 4096) / 200);
 
 /**
- * The lab's short-contact threshold in µm for a grid: `pixels` px of an image `referenceWidth`
- * px across the same width (circumference) as the grid: pixels * grid.width * grid.texelX / referenceWidth.
+ * The lab's short-contact threshold carried over to any sheet: the same fraction (6 / 102.4) of
+ * the mean cell diameter sqrt(area / cells). On the lab's tube (1 µm per px) that is exactly
+ * 6 µm; on other sizes and densities it keeps ignoring the same relative contact length,
+ * whatever the grid's resolution.
  */
-export function labMinBoundaryLength(grid: Grid, pixels = LAB_MIN_BOUNDARY_PIXELS, referenceWidth = LAB_REFERENCE_WIDTH): number {
-  return (pixels * grid.width * grid.texelX) / referenceWidth;
+export function labMinBoundaryLength(areaUm2: number, cells: number, pixels = LAB_MIN_BOUNDARY_PIXELS): number {
+  return (pixels * Math.sqrt(areaUm2 / cells)) / LAB_MEAN_CELL_DIAMETER_PIXELS;
 }
 
 /** True when j is in i's list exactly when i is in j's list (with equal lengths when present, within tol). */
