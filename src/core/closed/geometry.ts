@@ -1,0 +1,339 @@
+/**
+ * Pure geometry of closed sheets on cube-map geometry images (no GL): initial sites, offset
+ * (apical) surfaces, label adjacency across face edges, a brute-force nearest-site reference,
+ * and the curvature bound for offsets of a mesh.
+ */
+import { texelFromIndex, texelIndex, wrapTexel, type Vec3 } from '../cubemap/cubemap';
+import type { CubeGeometryImage } from '../cubemap/sample';
+import type { TriangleMesh } from '../mesh/types';
+import { vertexNormals } from '../mesh/types';
+import { createRandom } from '../random';
+import { directionTexel, PROJECTION_STRIDE, type ClosedProjector } from './projector';
+
+/** Sites on a closed surface: xyz, unit normal, atlas texel per site. */
+export interface ClosedSites {
+  readonly count: number;
+  /** x, y, z per site, µm. */
+  readonly positions: Float64Array;
+  /** Unit outward normal per site. */
+  readonly normals: Float64Array;
+  /** Parameter direction per site (unit). */
+  readonly directions: Float64Array;
+  /** Atlas index of the cube-map texel each site lies in. */
+  readonly texels: Int32Array;
+}
+
+export function allocateSites(count: number): ClosedSites {
+  return {
+    count,
+    positions: new Float64Array(3 * count),
+    normals: new Float64Array(3 * count),
+    directions: new Float64Array(3 * count),
+    texels: new Int32Array(count),
+  };
+}
+
+/** Copies projector output (stride 9) for site i into `sites`, with its texel on an n-texel map. */
+export function storeProjection(sites: ClosedSites, i: number, buffer: Float64Array, o: number, n: number): void {
+  const b = PROJECTION_STRIDE * o;
+  for (let c = 0; c < 3; c++) {
+    sites.positions[3 * i + c] = buffer[b + c];
+    sites.normals[3 * i + c] = buffer[b + 3 + c];
+    sites.directions[3 * i + c] = buffer[b + 6 + c];
+  }
+  sites.texels[i] = directionTexel(buffer[b + 6], buffer[b + 7], buffer[b + 8], n);
+}
+
+/**
+ * Random sites, uniform in surface area: a texel is drawn with probability proportional to
+ * its area element, a point uniform in its face-plane square is taken and projected onto the
+ * surface (the texel's point plus the jitter). With minSpacing > 0, dart throwing in 3D
+ * (Euclidean distance; a hash grid of cells minSpacing wide). Reproducible from `seed`.
+ */
+export function placeClosedSites(
+  image: CubeGeometryImage,
+  projector: ClosedProjector,
+  count: number,
+  seed: number,
+  minSpacing: number,
+): ClosedSites {
+  const { n, area, position } = image;
+  const texels = 6 * n * n;
+  const cdf = new Float64Array(texels);
+  let total = 0;
+  for (let k = 0; k < texels; k++) cdf[k] = total += area[k];
+  const random = createRandom(seed);
+  const sites = allocateSites(count);
+  const buffer = new Float64Array(PROJECTION_STRIDE);
+  const cell = minSpacing > 0 ? minSpacing : 1;
+  const hash = new Map<string, number[]>();
+  const key = (x: number, y: number, z: number) => `${Math.floor(x / cell)},${Math.floor(y / cell)},${Math.floor(z / cell)}`;
+  let placed = 0;
+  let failures = 0;
+  const taken = new Set<number>();
+  while (placed < count) {
+    if (failures > 20000) {
+      throw new Error(`minSpacing: could place only ${placed} of ${count} sites at least ${minSpacing} µm apart; lower minSpacing or cells`);
+    }
+    const r = random.next() * total;
+    let lo = 0, hi = texels - 1;
+    while (lo < hi) {
+      const mid = (lo + hi) >> 1;
+      if (cdf[mid] > r) hi = mid;
+      else lo = mid + 1;
+    }
+    // Jitter within the texel: half a texel's extent towards a random neighbour point.
+    const { face, i, j } = texelFromIndex(lo, n);
+    const ju = random.next() - 0.5, jv = random.next() - 0.5;
+    const other = wrapTexel(face, i + (ju >= 0 ? 1 : -1), j + (jv >= 0 ? 1 : -1), n);
+    const ko = texelIndex(other.face, other.i, other.j, n);
+    const f = Math.abs(ju) + Math.abs(jv) > 0 ? 0.5 : 0;
+    const x = position[3 * lo] + f * Math.abs(ju) * (position[3 * ko] - position[3 * lo]);
+    const y = position[3 * lo + 1] + f * Math.abs(jv) * (position[3 * ko + 1] - position[3 * lo + 1]);
+    const z = position[3 * lo + 2] + f * Math.abs(ju) * (position[3 * ko + 2] - position[3 * lo + 2]);
+    projector.project(x, y, z, buffer, 0);
+    const px = buffer[0], py = buffer[1], pz = buffer[2];
+    if (minSpacing > 0) {
+      let close = false;
+      const cx = Math.floor(px / cell), cy = Math.floor(py / cell), cz = Math.floor(pz / cell);
+      for (let a = -1; a <= 1 && !close; a++) {
+        for (let b = -1; b <= 1 && !close; b++) {
+          for (let c = -1; c <= 1 && !close; c++) {
+            for (const id of hash.get(`${cx + a},${cy + b},${cz + c}`) ?? []) {
+              const d = Math.hypot(sites.positions[3 * id] - px, sites.positions[3 * id + 1] - py, sites.positions[3 * id + 2] - pz);
+              if (d < minSpacing) {
+                close = true;
+                break;
+              }
+            }
+          }
+        }
+      }
+      if (close) {
+        failures++;
+        continue;
+      }
+    }
+    storeProjection(sites, placed, buffer, 0, n);
+    // Two sites in one texel would splat over each other: draw again.
+    if (taken.has(sites.texels[placed])) {
+      failures++;
+      continue;
+    }
+    taken.add(sites.texels[placed]);
+    if (minSpacing > 0) {
+      const k = key(px, py, pz);
+      const list = hash.get(k);
+      if (list) list.push(placed);
+      else hash.set(k, [placed]);
+    }
+    failures = 0;
+    placed++;
+  }
+  return sites;
+}
+
+/** The four wrapped neighbours (i±1, j±1) of every texel, atlas indices (4 per texel: -i, +i, -j, +j). */
+export function texelNeighbours(n: number): Int32Array {
+  const out = new Int32Array(4 * 6 * n * n);
+  for (let f = 0; f < 6; f++) {
+    for (let j = 0; j < n; j++) {
+      for (let i = 0; i < n; i++) {
+        const k = texelIndex(f, i, j, n);
+        const steps: [number, number][] = [[i - 1, j], [i + 1, j], [i, j - 1], [i, j + 1]];
+        steps.forEach(([a, b], s) => {
+          const w = wrapTexel(f, a, b, n);
+          out[4 * k + s] = texelIndex(w.face, w.i, w.j, n);
+        });
+      }
+    }
+  }
+  return out;
+}
+
+/** A surface of the stack: per-texel points and area elements. */
+export interface CubeSurfaceSample {
+  readonly n: number;
+  readonly position: Float32Array;
+  readonly area: Float32Array;
+  readonly totalArea: number;
+}
+
+/**
+ * The parallel surface at signed distance t along the normal: point + t·normal per texel, and
+ * the area element scaled by the ratio of the tangent-plane areas after and before the offset,
+ * from central differences over the (wrapped) texel neighbours (exactly ((R + t)/R)² up to
+ * rounding on a sphere). t = 0 returns the image itself.
+ */
+export function offsetSurface(image: CubeGeometryImage, t: number, neighbours = texelNeighbours(image.n)): CubeSurfaceSample {
+  const { n, position: P, normal: N, area: A } = image;
+  if (t === 0) return { n, position: P, area: A, totalArea: image.totalArea };
+  const count = 6 * n * n;
+  const position = new Float32Array(3 * count);
+  for (let k = 0; k < 3 * count; k++) position[k] = P[k] + t * N[k];
+  const area = new Float32Array(count);
+  let total = 0;
+  const crossNorm = (X: ArrayLike<number>, k: number) => {
+    const a = neighbours[4 * k], b = neighbours[4 * k + 1], c = neighbours[4 * k + 2], d = neighbours[4 * k + 3];
+    const ux = X[3 * b] - X[3 * a], uy = X[3 * b + 1] - X[3 * a + 1], uz = X[3 * b + 2] - X[3 * a + 2];
+    const vx = X[3 * d] - X[3 * c], vy = X[3 * d + 1] - X[3 * c + 1], vz = X[3 * d + 2] - X[3 * c + 2];
+    return Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
+  };
+  for (let k = 0; k < count; k++) {
+    const before = crossNorm(P, k);
+    const ratio = before > 0 ? crossNorm(position, k) / before : 1;
+    area[k] = A[k] * ratio;
+    total += area[k];
+  }
+  return { n, position, area, totalArea: total };
+}
+
+/** Cell adjacency of a cube-map label image (the planar LabelAdjacency's fields). */
+export interface CubeLabelAdjacency {
+  readonly count: number;
+  readonly offsets: Int32Array;
+  readonly neighbours: Int32Array;
+  /** Shared boundary length, µm. */
+  readonly lengths: Float64Array;
+  readonly texels: Int32Array;
+  /** Cell area, µm² (sum of the area elements of its texels). */
+  readonly area: Float64Array;
+  /** Always 0: a closed surface has no open edge. */
+  readonly touchesBorder: Uint8Array;
+}
+
+/**
+ * Every pair of edge-adjacent texels (4-neighbourhood, across face edges through the edge
+ * table) with different labels adds their shared texel edge to both cells' boundary. The edge
+ * length is estimated as (A_k + A_l) / (2 |p_k - p_l|): the texels' area over the distance
+ * between their centres, i.e. their extent across the line joining them (staircase lengths,
+ * like the planar labels method).
+ */
+export function cubeLabelAdjacency(
+  surface: CubeSurfaceSample,
+  labels: ArrayLike<number>,
+  count: number,
+  neighbours = texelNeighbours(surface.n),
+): CubeLabelAdjacency {
+  const { position: P, area: A } = surface;
+  const texelCount = labels.length;
+  const texels = new Int32Array(count);
+  const area = new Float64Array(count);
+  const pairs = new Map<number, number>();
+  for (let k = 0; k < texelCount; k++) {
+    const a = labels[k];
+    if (a < 0) continue;
+    texels[a]++;
+    area[a] += A[k];
+    // +i and +j neighbours: each undirected texel pair once, except where wrapping across an
+    // edge turns a +i neighbour into a texel whose own +i/+j does not point back; those pairs
+    // are caught from both sides, so count pairs by (min texel, max texel) below.
+    for (let s = 0; s < 4; s++) {
+      const l = neighbours[4 * k + s];
+      if (l <= k) continue;
+      const b = labels[l];
+      if (b < 0 || b === a) continue;
+      const d = Math.hypot(P[3 * k] - P[3 * l], P[3 * k + 1] - P[3 * l + 1], P[3 * k + 2] - P[3 * l + 2]);
+      const length = d > 0 ? (A[k] + A[l]) / (2 * d) : 0;
+      const key = Math.min(a, b) * count + Math.max(a, b);
+      pairs.set(key, (pairs.get(key) ?? 0) + length);
+    }
+  }
+  const degree = new Int32Array(count + 1);
+  for (const key of pairs.keys()) {
+    degree[Math.floor(key / count) + 1]++;
+    degree[(key % count) + 1]++;
+  }
+  for (let c = 0; c < count; c++) degree[c + 1] += degree[c];
+  const offsets = degree;
+  const neighboursOut = new Int32Array(offsets[count]);
+  const lengths = new Float64Array(offsets[count]);
+  const cursor = offsets.slice(0, count);
+  const sorted = [...pairs.entries()].sort((x, y) => x[0] - y[0]);
+  for (const [key, length] of sorted) {
+    const a = Math.floor(key / count), b = key % count;
+    neighboursOut[cursor[a]] = b;
+    lengths[cursor[a]++] = length;
+    neighboursOut[cursor[b]] = a;
+    lengths[cursor[b]++] = length;
+  }
+  return { count, offsets, neighbours: neighboursOut, lengths, texels, area, touchesBorder: new Uint8Array(count) };
+}
+
+/**
+ * Exact nearest-site labels of every texel by 3D distance (ties: smaller id), the reference
+ * for the jump flood. Sites are bucketed in a 3D grid; O(texels · sites in nearby buckets).
+ */
+export function cubeBruteForceLabels(position: ArrayLike<number>, sites: ArrayLike<number>, count: number): Int32Array {
+  const texels = position.length / 3;
+  const out = new Int32Array(texels);
+  let lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < count; i++) for (let c = 0; c < 3; c++) {
+    lo[c] = Math.min(lo[c], sites[3 * i + c]);
+    hi[c] = Math.max(hi[c], sites[3 * i + c]);
+  }
+  lo = lo.map((v) => v - 1e-9);
+  const extent = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-9);
+  const side = Math.max(1, Math.round(Math.cbrt(count / 2) * 2));
+  const size = (extent / side) * 1.0000001;
+  const bucket = (v: number, c: number) => Math.max(0, Math.min(side - 1, Math.floor((v - lo[c]) / size)));
+  const lists: number[][] = Array.from({ length: side ** 3 }, () => []);
+  for (let i = 0; i < count; i++) lists[(bucket(sites[3 * i], 0) * side + bucket(sites[3 * i + 1], 1)) * side + bucket(sites[3 * i + 2], 2)].push(i);
+  for (let k = 0; k < texels; k++) {
+    const x = position[3 * k], y = position[3 * k + 1], z = position[3 * k + 2];
+    const bx = bucket(x, 0), by = bucket(y, 1), bz = bucket(z, 2);
+    let best = -1, bestD = Infinity;
+    for (let ring = 0; ring <= side; ring++) {
+      // A site in ring r+1 or beyond is at least (r + distance to the bucket wall) away; stop
+      // once the best distance is below r · size (conservative).
+      if (best >= 0 && Math.sqrt(bestD) < (ring - 1) * size) break;
+      for (let a = bx - ring; a <= bx + ring; a++) {
+        for (let b = by - ring; b <= by + ring; b++) {
+          for (let c = bz - ring; c <= bz + ring; c++) {
+            if (Math.max(Math.abs(a - bx), Math.abs(b - by), Math.abs(c - bz)) !== ring) continue;
+            if (a < 0 || b < 0 || c < 0 || a >= side || b >= side || c >= side) continue;
+            for (const i of lists[(a * side + b) * side + c]) {
+              const dx = sites[3 * i] - x, dy = sites[3 * i + 1] - y, dz = sites[3 * i + 2] - z;
+              const d = dx * dx + dy * dy + dz * dz;
+              if (d < bestD || (d === bestD && i < best)) {
+                bestD = d;
+                best = i;
+              }
+            }
+          }
+        }
+      }
+    }
+    out[k] = best;
+  }
+  return out;
+}
+
+/**
+ * Smallest radii of curvature of a mesh, estimated per edge from the vertex normals:
+ * κ_ij = (n_i - n_j)·(p_i - p_j) / |p_i - p_j|² (the normal curvature along the edge).
+ * `convex`: 1 / max κ over edges with κ > 0 (an inward offset this far folds);
+ * `concave`: 1 / max(-κ) over edges with κ < 0 (an outward offset this far folds);
+ * Infinity when no edge bends that way. Edge estimates are noisy on coarse meshes: a bound,
+ * not an exact value.
+ */
+export function meshCurvatureRadii(mesh: TriangleMesh): { convex: number; concave: number } {
+  const p = mesh.positions, t = mesh.indices;
+  const nrm = vertexNormals(mesh);
+  let kPlus = 0, kMinus = 0;
+  for (let f = 0; f < t.length; f += 3) {
+    for (let e = 0; e < 3; e++) {
+      const i = t[f + e], j = t[f + ((e + 1) % 3)];
+      if (i > j) continue;
+      const dx = p[3 * i] - p[3 * j], dy = p[3 * i + 1] - p[3 * j + 1], dz = p[3 * i + 2] - p[3 * j + 2];
+      const l2 = dx * dx + dy * dy + dz * dz;
+      if (!(l2 > 0)) continue;
+      const k = ((nrm[3 * i] - nrm[3 * j]) * dx + (nrm[3 * i + 1] - nrm[3 * j + 1]) * dy + (nrm[3 * i + 2] - nrm[3 * j + 2]) * dz) / l2;
+      if (k > kPlus) kPlus = k;
+      if (-k > kMinus) kMinus = -k;
+    }
+  }
+  return { convex: kPlus > 0 ? 1 / kPlus : Infinity, concave: kMinus > 0 ? 1 / kMinus : Infinity };
+}
+
+export type { Vec3 };

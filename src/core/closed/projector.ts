@@ -1,0 +1,138 @@
+/**
+ * Closest-point projectors of closed surfaces: where a 3D point (a Euclidean centroid) lands on
+ * the surface, the unit normal there and the point's parameter direction (the unit vector the
+ * cube-map geometry image is indexed by). Du et al.'s constrained centroid is the closest
+ * surface point to the Euclidean centroid of a cell.
+ *
+ * Parameter directions, consistent with sampleSurface (src/core/cubemap/sample.ts):
+ * - sphere: the direction of the point from the centre;
+ * - ellipsoid: the texel of direction (x, y, z) holds the point (a x, b y, c z), so a surface
+ *   point p has direction normalize(p.x / a, p.y / b, p.z / c);
+ * - mesh: closest point -> triangle + barycentric coordinates -> the same combination of the
+ *   triangle's parameter-sphere vertices -> normalised.
+ */
+import { BufferAttribute, BufferGeometry, Vector3 } from 'three';
+import { MeshBVH } from 'three-mesh-bvh';
+import { directionToTexel, texelIndex, type Vec3 } from '../cubemap/cubemap';
+import { closestPointOnEllipsoid } from '../cubemap/sample';
+import { vertexNormals, type TriangleMesh } from '../mesh/types';
+
+/** Where a point landed: stride 9 [px, py, pz, nx, ny, nz, dx, dy, dz] in the caller's buffer. */
+export const PROJECTION_STRIDE = 9;
+
+export interface ClosedProjector {
+  /** Projects (x, y, z); writes position, normal and parameter direction into out[9 o ..]. */
+  project(x: number, y: number, z: number, out: Float64Array, o: number): void;
+}
+
+export function sphereProjector(radius: number): ClosedProjector {
+  return {
+    project(x, y, z, out, o) {
+      const l = Math.hypot(x, y, z);
+      const b = PROJECTION_STRIDE * o;
+      // The centre has no direction: any pole will do (never reached by a centroid of a cell).
+      const [nx, ny, nz] = l > 0 ? [x / l, y / l, z / l] : [0, 0, 1];
+      out[b] = radius * nx;
+      out[b + 1] = radius * ny;
+      out[b + 2] = radius * nz;
+      out[b + 3] = out[b + 6] = nx;
+      out[b + 4] = out[b + 7] = ny;
+      out[b + 5] = out[b + 8] = nz;
+    },
+  };
+}
+
+export function ellipsoidProjector(a: number, b: number, c: number): ClosedProjector {
+  const point: Vec3 = [0, 0, 0];
+  return {
+    project(x, y, z, out, o) {
+      point[0] = x;
+      point[1] = y;
+      point[2] = z;
+      const [px, py, pz] = closestPointOnEllipsoid(point, a, b, c);
+      const k = PROJECTION_STRIDE * o;
+      out[k] = px;
+      out[k + 1] = py;
+      out[k + 2] = pz;
+      let nx = px / (a * a), ny = py / (b * b), nz = pz / (c * c);
+      let l = Math.hypot(nx, ny, nz) || 1;
+      out[k + 3] = nx / l;
+      out[k + 4] = ny / l;
+      out[k + 5] = nz / l;
+      nx = px / a;
+      ny = py / b;
+      nz = pz / c;
+      l = Math.hypot(nx, ny, nz) || 1;
+      out[k + 6] = nx / l;
+      out[k + 7] = ny / l;
+      out[k + 8] = nz / l;
+    },
+  };
+}
+
+/**
+ * Mesh projector (three-mesh-bvh closest point). `mesh` must be oriented outward (its vertex
+ * normals are the surface normals); `sphere` is its parameterization (unit point per vertex).
+ */
+export function meshProjector(mesh: TriangleMesh, sphere: Float64Array): ClosedProjector & { nearestVertex(x: number, y: number, z: number): number } {
+  const g = new BufferGeometry();
+  g.setAttribute('position', new BufferAttribute(mesh.positions.slice(), 3));
+  g.setIndex(new BufferAttribute(mesh.indices.slice(), 1));
+  const bvh = new MeshBVH(g, { indirect: true });
+  const normals = vertexNormals(mesh);
+  const p = mesh.positions, t = mesh.indices;
+  const q = new Vector3();
+  const target = { point: new Vector3(), distance: 0, faceIndex: 0 };
+  const w = [0, 0, 0];
+  const locate = (x: number, y: number, z: number) => {
+    bvh.closestPointToPoint(q.set(x, y, z), target);
+    const f = target.faceIndex;
+    const ia = t[3 * f], ib = t[3 * f + 1], ic = t[3 * f + 2];
+    // Barycentric coordinates of the closest point in its triangle (Ericson, Real-Time Collision Detection).
+    const P = target.point;
+    const v0x = p[3 * ib] - p[3 * ia], v0y = p[3 * ib + 1] - p[3 * ia + 1], v0z = p[3 * ib + 2] - p[3 * ia + 2];
+    const v1x = p[3 * ic] - p[3 * ia], v1y = p[3 * ic + 1] - p[3 * ia + 1], v1z = p[3 * ic + 2] - p[3 * ia + 2];
+    const v2x = P.x - p[3 * ia], v2y = P.y - p[3 * ia + 1], v2z = P.z - p[3 * ia + 2];
+    const d00 = v0x * v0x + v0y * v0y + v0z * v0z, d01 = v0x * v1x + v0y * v1y + v0z * v1z, d11 = v1x * v1x + v1y * v1y + v1z * v1z;
+    const d20 = v2x * v0x + v2y * v0y + v2z * v0z, d21 = v2x * v1x + v2y * v1y + v2z * v1z;
+    const den = d00 * d11 - d01 * d01 || 1;
+    let beta = (d11 * d20 - d01 * d21) / den, gamma = (d00 * d21 - d01 * d20) / den;
+    beta = Math.min(1, Math.max(0, beta));
+    gamma = Math.min(1 - beta, Math.max(0, gamma));
+    w[0] = 1 - beta - gamma;
+    w[1] = beta;
+    w[2] = gamma;
+    return [ia, ib, ic];
+  };
+  return {
+    project(x, y, z, out, o) {
+      const ids = locate(x, y, z);
+      const k = PROJECTION_STRIDE * o;
+      out[k] = target.point.x;
+      out[k + 1] = target.point.y;
+      out[k + 2] = target.point.z;
+      for (const [base, src] of [[3, normals], [6, sphere]] as const) {
+        let sx = 0, sy = 0, sz = 0;
+        for (let v = 0; v < 3; v++) {
+          sx += w[v] * src[3 * ids[v]];
+          sy += w[v] * src[3 * ids[v] + 1];
+          sz += w[v] * src[3 * ids[v] + 2];
+        }
+        const l = Math.hypot(sx, sy, sz) || 1;
+        out[k + base] = sx / l;
+        out[k + base + 1] = sy / l;
+        out[k + base + 2] = sz / l;
+      }
+    },
+    nearestVertex(x, y, z) {
+      const ids = locate(x, y, z);
+      return w[0] >= w[1] && w[0] >= w[2] ? ids[0] : w[1] >= w[2] ? ids[1] : ids[2];
+    },
+  };
+}
+
+/** Atlas index of the texel a parameter direction falls in, on an n-texel cube map. */
+export function directionTexel(dx: number, dy: number, dz: number, n: number): number {
+  const t = directionToTexel([dx, dy, dz], n);
+  return texelIndex(t.face, t.i, t.j, n);
+}
