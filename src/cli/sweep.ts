@@ -3,7 +3,7 @@ import { join } from 'node:path';
 import { validateConfig, type Config } from '../core/config';
 import { aggregateRows, aggregateToCsv, aggregateToJson, expandSweep, runSweep, variedFields, type SweepSpec } from '../core/sweep';
 import { createHeadlessContext } from '../node/headless';
-import { SheetRunner, sweepSummary } from '../run/sheetRunner';
+import { SheetRunner, seededKey, sweepSummary } from '../run/sheetRunner';
 import { version } from '../version';
 
 /**
@@ -15,15 +15,21 @@ import { version } from '../version';
  */
 export async function sweepCommand(specPath: string, outDir: string, log: (line: string) => void): Promise<void> {
   const spec = readSpec(specPath);
-  const runs = expandSweep(spec);
-  // Validate every configuration before computing anything: a typo fails in a second, not an hour.
-  for (const run of runs) {
+  // Validate every configuration before computing anything: a typo fails in a second, not an
+  // hour. Then order runs so those sharing a seeded surface (same config but for `sheet`) are
+  // consecutive: the runner relaxes it once and reuses it for every ratio or thickness.
+  const keyed = expandSweep(spec).map((run) => {
     try {
-      validateConfig(run.config);
+      return { run, key: seededKey(validateConfig(run.config)) };
     } catch (error) {
       throw new Error(`${specPath}: run ${run.key}: ${(error as Error).message}`);
     }
-  }
+  });
+  const firstIndex = new Map<string, number>();
+  keyed.forEach(({ key }, index) => firstIndex.has(key) || firstIndex.set(key, index));
+  const runs = keyed
+    .sort((a, b) => firstIndex.get(a.key)! - firstIndex.get(b.key)! || a.run.index - b.run.index)
+    .map(({ run }) => run);
   const fields = variedFields(spec);
   mkdirSync(outDir, { recursive: true });
   writeFileSync(join(outDir, 'sweep.json'), JSON.stringify({ software: { name: 'tissue-sheet', version }, spec }, null, 2) + '\n');

@@ -27,12 +27,16 @@ export function coldSchedule(width: number, height: number, variant: JumpFloodVa
 }
 
 export function warmSchedule(width: number, height: number, maxDisplacement: number): number[] {
-  const limit = nextPowerOfTwo(Math.max(width, height)) >> 1;
-  const first = Math.min(limit, nextPowerOfTwo(Math.ceil(2 * maxDisplacement) + 1));
   const steps: number[] = [];
-  for (let step = Math.max(first, 1); step >= 1; step >>= 1) steps.push(step);
+  for (let step = warmFirstStep(width, height, maxDisplacement); step >= 1; step >>= 1) steps.push(step);
   steps.push(1);
   return steps;
+}
+
+/** The first (largest) step of a warm schedule; the rest follows from it. */
+export function warmFirstStep(width: number, height: number, maxDisplacement: number): number {
+  const limit = nextPowerOfTwo(Math.max(width, height)) >> 1;
+  return Math.max(1, Math.min(limit, nextPowerOfTwo(Math.ceil(2 * maxDisplacement) + 1)));
 }
 
 export function nextPowerOfTwo(value: number): number {

@@ -1,6 +1,6 @@
 import * as THREE from 'three';
 import type { Grid } from '../core/grid';
-import { coldSchedule, warmSchedule, type JumpFloodVariant } from '../core/jumpSchedule';
+import { coldSchedule, warmFirstStep, warmSchedule, type JumpFloodVariant } from '../core/jumpSchedule';
 import centroidGatherFrag from '../shaders/centroidGather.frag';
 import centroidScatterFrag from '../shaders/centroidScatter.frag';
 import centroidScatterVert from '../shaders/centroidScatter.vert';
@@ -53,6 +53,7 @@ export class CcvtEngine {
   private readonly floodPass: ShaderPass;
   private readonly centroidPass: ShaderPass;
   private readonly coldSteps: number[];
+  private readonly warmSchedules = new Map<number, readonly number[]>();
   private readonly syncPixel = new Float32Array(4);
 
   constructor(
@@ -161,10 +162,7 @@ export class CcvtEngine {
    * labels, given the largest distance (texels) any site moved since they were computed.
    */
   floodLabels(warmFromDisplacement?: number): void {
-    const steps =
-      warmFromDisplacement === undefined
-        ? this.coldSteps
-        : warmSchedule(this.grid.width, this.grid.height, warmFromDisplacement);
+    const steps = warmFromDisplacement === undefined ? this.coldSteps : this.warmSteps(warmFromDisplacement);
     if (warmFromDisplacement === undefined) this.clearPass.draw(this.renderer, this.labelTargets[this.current]);
     // Splatting on top of old labels makes sure every site owns at least its own texel.
     this.splatPass.draw(this.renderer, this.labelTargets[this.current], this.siteCount);
@@ -175,6 +173,17 @@ export class CcvtEngine {
       this.floodPass.draw(this.renderer, this.labelTargets[this.current]);
     }
     this.lastPassCount = steps.length;
+  }
+
+  /** Warm schedules depend only on their first step: built once each, so the loop allocates nothing. */
+  private warmSteps(maxDisplacement: number): readonly number[] {
+    const first = warmFirstStep(this.grid.width, this.grid.height, maxDisplacement);
+    let steps = this.warmSchedules.get(first);
+    if (!steps) {
+      steps = warmSchedule(this.grid.width, this.grid.height, maxDisplacement);
+      this.warmSchedules.set(first, steps);
+    }
+    return steps;
   }
 
   /** Sums (w*dx, w*dy, w, w*d²) per site over the current labels; result in `this.sums`. */

@@ -40,7 +40,7 @@ export async function relaxSeededSurface(config: Config, context: GpuContext, ca
   const grid = makeGrid(config);
   checkFeasible(config, grid);
   const density = densityField(config.density, grid, callbacks.densityImage);
-  const sites = placeSites(grid, config.cells, config.seed, config.minSpacing, config.density.kind === 'uniform' ? undefined : density);
+  const sites = placeSites(grid, config.cells, config.seed, config.minSpacing, placementDensity(config, density));
   const engine = new CcvtEngine(context, grid, config.cells, { variant: config.jumpFlood.variant, centroidPath: config.centroidPath });
   try {
     // Planar-family texels all cover the same area, so the weight is the density alone.
@@ -69,6 +69,15 @@ export async function relaxSeededSurface(config: Config, context: GpuContext, ca
   } finally {
     engine.dispose();
   }
+}
+
+/**
+ * Initial sites follow the point density a CVT converges to, rho^(d/(d+2)) = sqrt(rho) in 2D
+ * (Gersho; Du et al.), not rho itself: Lloyd then has little mass to move across the sheet.
+ */
+function placementDensity(config: Config, density: Float32Array): Float32Array | undefined {
+  if (config.density.kind === 'uniform') return undefined;
+  return density.map(Math.sqrt);
 }
 
 export function throwIfAborted(signal: AbortSignal | undefined): void {

@@ -1,0 +1,21 @@
+import { describe, expect, it } from 'vitest';
+import { coldSchedule, nextPowerOfTwo, warmFirstStep, warmSchedule } from '../src/core/jumpSchedule';
+
+describe('jump flood schedules', () => {
+  it('halves from half the next power of two of the larger side', () => {
+    expect(coldSchedule(300, 200, 'jfa')).toEqual([256, 128, 64, 32, 16, 8, 4, 2, 1]);
+    expect(coldSchedule(300, 200, 'jfa+2').slice(-3)).toEqual([1, 2, 1]);
+    expect(coldSchedule(300, 200, '1+jfa').slice(0, 2)).toEqual([1, 256]);
+    expect(coldSchedule(1, 1, 'jfa')).toEqual([1]);
+  });
+  it('starts a warm flood above twice the largest displacement, then one extra step 1', () => {
+    expect(warmSchedule(512, 512, 0)).toEqual([1, 1]);
+    expect(warmSchedule(512, 512, 0.4)).toEqual([2, 1, 1]);
+    expect(warmSchedule(512, 512, 3)).toEqual([8, 4, 2, 1, 1]);
+    expect(warmSchedule(64, 64, 1000)[0]).toBe(32);
+    expect(warmFirstStep(512, 512, 3)).toBe(warmSchedule(512, 512, 3)[0]);
+  });
+  it('rounds up to powers of two', () => {
+    expect([1, 2, 3, 1000, 1024].map(nextPowerOfTwo)).toEqual([1, 2, 4, 1024, 1024]);
+  });
+});
