@@ -5,6 +5,9 @@ import { defineConfig } from 'vitest/config';
 export default defineConfig({
   server: { host: '127.0.0.1', port: 5173, strictPort: true },
   build: { target: 'es2022' },
+  // Scan every page up front: otherwise Vite discovers a dependency on first load, re-optimizes
+  // and reloads the page under a running test.
+  optimizeDeps: { entries: ['index.html', 'e2e/pages/*.html', 'bench/page/*.html', 'examples/*.html'] },
   test: {
     include: ['tests/**/*.test.ts'],
     // headless-gl is a native module: one process per test file, not worker threads.

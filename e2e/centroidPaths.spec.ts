@@ -14,6 +14,7 @@ test.describe('centroid paths in Chromium', () => {
           (window as unknown as { tissueSheetTest: { compareCentroidPaths: Function } }).tissueSheetTest.compareCentroidPaths(grid, count, 3, weighted),
         { grid, count, weighted },
       );
+      console.log(`${grid.width}x${grid.height}, ${count} sites: worst centroid difference ${result.worstCentroid.toExponential(2)} texel, energy ${result.worstEnergy.toExponential(2)}`);
       expect(result.capabilities.floatBlend).toBe(true);
       expect(result.emptyCells).toBe(0);
       expect(result.worstCentroid).toBeLessThanOrEqual(1e-3);
