@@ -78,7 +78,7 @@ export class ClosedLloydRun {
 
     const floodStart = performance.now();
     engine.setSites(sites.positions, sites.texels);
-    engine.floodLabels(this.options.warmStart ? maxDisplacement / this.texelSpacing : undefined);
+    engine.floodLabels(this.options.warmStart ? Math.min(engine.n, maxDisplacement / this.texelSpacing) : undefined);
     if (this.options.profile) engine.sync();
     this.lastFloodMs = performance.now() - floodStart;
     this.lastPasses = engine.lastPassCount;

@@ -80,6 +80,8 @@ export interface SheetResult {
     readonly renderer: string;
     readonly centroidPath: 'blend' | 'gather';
     readonly jumpFloodVariant: string;
+    /** Closed surfaces: how the portable path summed ("readback": labels reduced on the CPU). */
+    readonly centroidReduction?: 'gpu' | 'readback';
   };
   readonly lloyd: {
     readonly iterations: IterationRecord[];
@@ -98,6 +100,47 @@ export interface SheetResult {
   readonly surfaces: SurfaceRecord[];
   /** Statistics per adjacency method (labels always; exact on planes and tubes). */
   readonly analyses: AnalysisRecord[];
+  /** Closed surfaces only (sphere, ellipsoid, mesh): see docs/closed-surfaces.md. */
+  readonly closed?: ClosedSurfaceRecord;
+}
+
+/** What a closed-surface run adds to the result (docs/closed-surfaces.md). */
+export interface ClosedSurfaceRecord {
+  readonly kind: 'sphere' | 'ellipsoid' | 'mesh';
+  /** Texels per cube-face edge; the label images are n x 6n atlases (face f in rows f n .. f n + n - 1). */
+  readonly n: number;
+  /** Area of the seeded surface from the geometry image, µm². */
+  readonly area: number;
+  /** Centroid sums: "blend" (GPU additive blending) or "readback" (labels read back, reduced on the CPU in float64). */
+  readonly centroidPath: 'blend' | 'readback';
+  /** Smallest radius of curvature an offset was checked against (µm): R, c²/a, or the mesh estimate. */
+  readonly minCurvatureRadius: number;
+  /** Meshes: size, parameterization quality. */
+  readonly mesh?: {
+    readonly src: string;
+    readonly vertices: number;
+    readonly faces: number;
+    readonly flipped: number;
+    readonly areaDistortion: { readonly min: number; readonly max: number; readonly meanAbsLog: number };
+    readonly parameterizationMs: number;
+    readonly samplingMs: number;
+    /** 1 / (max edge curvature) of convex and concave regions, µm. */
+    readonly curvatureRadius: { readonly convex: number; readonly concave: number };
+  };
+  /** `surface.geodesic`: heat-method geodesic Voronoi of the final sites on the mesh vertices. */
+  readonly geodesic?: {
+    readonly sites: number;
+    readonly vertices: number;
+    /** Heat-method setup (two sparse Cholesky factorizations), ms. */
+    readonly setupMs: number;
+    /** One heat-method distance field per site, all sites, ms. */
+    readonly solveMs: number;
+    readonly msPerSite: number;
+    /** One cold jump flood of the same sites on the geometry image plus the readback, ms. */
+    readonly gpuVoronoiMs: number;
+    /** Fraction of mesh vertices whose geodesic label equals the geometry-image (3D distance) label. */
+    readonly agreement: number;
+  };
 }
 
 /** Label image of one surface, for views (not part of the JSON). */

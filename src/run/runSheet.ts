@@ -1,9 +1,10 @@
-import type { Config } from '../core/config';
+import { isClosedConfig, type AnyConfig } from '../core/config';
 import type { GpuContext } from '../gpu/context';
 import { version } from '../version';
 import type { SheetOutput } from './result';
 import { relaxSeededSurface, type RunCallbacks, type SeededSurface } from './seededSurface';
 import { analyzeStack } from './sheetStack';
+import { runClosedSheet, type ClosedRunCallbacks } from './closedSheet';
 
 export type { RunCallbacks } from './seededSurface';
 
@@ -13,10 +14,12 @@ export type { RunCallbacks } from './seededSurface';
  * adjacency -> statistics -> the documented result. Same config, same result.
  */
 export async function runSheet(
-  config: Config,
+  config: AnyConfig,
   context: GpuContext,
-  callbacks: RunCallbacks & { seeded?: SeededSurface } = {},
+  callbacks: RunCallbacks & { seeded?: SeededSurface } & Pick<ClosedRunCallbacks, 'meshFile'> = {},
 ): Promise<SheetOutput> {
+  // Closed surfaces (sphere, ellipsoid, mesh) run on a cube-map geometry image: src/run/closedSheet.ts.
+  if (isClosedConfig(config)) return runClosedSheet(config, context, callbacks);
   const start = performance.now();
   // A seeded surface relaxed earlier for the same config (see SheetRunner) is reused as is.
   const seeded = callbacks.seeded ?? (await relaxSeededSurface(config, context, callbacks));

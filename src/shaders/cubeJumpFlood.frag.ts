@@ -25,7 +25,9 @@ void main() {
   for (int dy = -1; dy <= 1; ++dy) {
     for (int dx = -1; dx <= 1; ++dx) {
       if (dx == 0 && dy == 0) continue;
-      ivec2 q = cubeWrap(face, p.x + dx * stepSize, j + dy * stepSize);
+      int qi = p.x + dx * stepSize, qj = j + dy * stepSize;
+      // Inside the face (most fetches): no edge table needed.
+      ivec2 q = (qi >= 0 && qi < faceSize && qj >= 0 && qj < faceSize) ? ivec2(qi, face * faceSize + qj) : cubeWrap(face, qi, qj);
       float candidate = texelFetch(labels, q, 0).r;
       if (candidate < 0.0 || candidate == best) continue;
       vec3 d = siteAt(int(candidate)).xyz - here;

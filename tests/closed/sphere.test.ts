@@ -1,0 +1,88 @@
+import { describe, expect, it } from 'vitest';
+import { validateAnyConfig, type ClosedConfig, type ConfigInput } from '../../src/core/config';
+import { sphericalVoronoi } from '../../src/core/closed/sphericalDelaunay';
+import { runSheet } from '../../src/run/runSheet';
+import type { SheetResult } from '../../src/run/result';
+import { useHeadlessContext } from '../gpu/context';
+
+const context = useHeadlessContext();
+const closed = (input: ConfigInput) => validateAnyConfig(input) as ClosedConfig;
+
+/** Unordered neighbour pairs "a-b" (a < b) of a result's seeded cells. */
+function pairs(result: SheetResult): Set<string> {
+  const out = new Set<string>();
+  for (const cell of result.cells) for (const n of cell.neighbours) if (cell.id < n.id) out.add(`${cell.id}-${n.id}`);
+  return out;
+}
+
+describe('concentric spheres', () => {
+  it('no cell changes neighbours, whatever the thickness (labels and exact)', async () => {
+    for (const [direction, thickness] of [['outward', 40], ['inward', 25]] as const) {
+      const config = closed({
+        surface: { kind: 'sphere', radius: 50 },
+        resolution: 64,
+        cells: 150,
+        lloyd: { maxIterations: 5 },
+        sheet: { direction, thickness, layers: 1 },
+      });
+      const { result } = await runSheet(config, context);
+      expect(result.analyses.map((a) => a.method)).toEqual(['labels', 'exact']);
+      for (const analysis of result.analyses) {
+        expect(analysis.summary.validCells).toBe(150);
+        expect(analysis.summary.percentScutoids).toBe(0);
+        expect(analysis.summary.meanTransitions).toBe(0);
+      }
+      expect(result.surfaces.at(-1)!.ratio).toBeCloseTo((50 + (direction === 'outward' ? 40 : -25)) / 50, 3);
+    }
+  }, 20000);
+});
+
+describe('sphere CCVT, uniform density, 1000 cells, n = 128 (~98 texels per cell)', () => {
+  let result: SheetResult;
+  it('runs; CVT energy never increases', async () => {
+    const config = closed({
+      surface: { kind: 'sphere', radius: 100 },
+      resolution: 128,
+      cells: 1000,
+      minSpacing: 8,
+      lloyd: { maxIterations: 50, overRelaxation: 1.9 },
+      sheet: { thickness: 0 },
+    });
+    ({ result } = await runSheet(config, context));
+    const energies = [...result.lloyd.iterations.map((r) => r.energy), result.lloyd.finalEnergy];
+    for (let k = 1; k < energies.length; k++) expect(energies[k]).toBeLessThanOrEqual(energies[k - 1] * (1 + 1e-9));
+    expect(result.closed?.centroidPath).toBe('readback');
+    expect(result.gpu.centroidReduction).toBe('readback');
+    expect(result.lloyd.emptyCells).toBe(0);
+  }, 30000);
+
+  it('cell areas are within 5 % of each other', () => {
+    const areas = result.cells.map((c) => c.area);
+    const mean = areas.reduce((a, b) => a + b) / areas.length;
+    const sd = Math.sqrt(areas.reduce((s, a) => s + (a / mean - 1) ** 2, 0) / areas.length);
+    const directions = new Float64Array(3 * areas.length);
+    result.cells.forEach((c, i) => c.position.forEach((v, k) => (directions[3 * i + k] = v / 100)));
+    const exact = Array.from(sphericalVoronoi(directions, areas.length, 100).areas);
+    const exactMean = exact.reduce((a, b) => a + b) / exact.length;
+    const exactSd = Math.sqrt(exact.reduce((s, a) => s + (a / exactMean - 1) ** 2, 0) / exact.length);
+    const sorted = exact.map((a) => a / exactMean).sort((a, b) => a - b);
+    console.log(`areas: labels SD ${sd.toFixed(4)}, exact SD ${exactSd.toFixed(4)}, exact 5th..95th percentile ${sorted[50].toFixed(3)}..${sorted[949].toFixed(3)}, min ${sorted[0].toFixed(3)}, max ${sorted[999].toFixed(3)}`);
+    expect(exactSd).toBeLessThanOrEqual(0.05);
+  });
+
+  it('Voronoi neighbours agree with the spherical Delaunay (convex hull) on >= 98 % of pairs', () => {
+    const labels = pairs(result);
+    const exactAnalysis = result.analyses.find((a) => a.method === 'exact');
+    expect(exactAnalysis).toBeDefined();
+    const directions = new Float64Array(3 * result.cells.length);
+    result.cells.forEach((c, i) => c.position.forEach((v, k) => (directions[3 * i + k] = v / 100)));
+    const v = sphericalVoronoi(directions, result.cells.length, 100);
+    const hull = new Set<string>();
+    for (let i = 0; i < v.count; i++) for (let k = v.adjacency.offsets[i]; k < v.adjacency.offsets[i + 1]; k++) if (i < v.adjacency.neighbours[k]) hull.add(`${i}-${v.adjacency.neighbours[k]}`);
+    let both = 0;
+    for (const p of labels) if (hull.has(p)) both++;
+    const agreement = both / (labels.size + hull.size - both);
+    console.log(`neighbour pairs: labels ${labels.size}, hull ${hull.size}, agreement (intersection / union) ${agreement.toFixed(4)}`);
+    expect(agreement).toBeGreaterThanOrEqual(0.98);
+  });
+});
