@@ -4,11 +4,12 @@ import { coldSchedule, warmFirstStep, warmSchedule, type JumpFloodVariant } from
 import centroidGatherFrag from '../shaders/centroidGather.frag';
 import centroidScatterFrag from '../shaders/centroidScatter.frag';
 import centroidScatterVert from '../shaders/centroidScatter.vert';
-import clearLabelsFrag from '../shaders/clearLabels.frag';
+import clearLabelsFrag from '../shaders/labelClear.frag';
+import refreshLabelsFrag from '../shaders/refreshLabels.frag';
 import fullscreenVert from '../shaders/fullscreen.vert';
 import jumpFloodFrag from '../shaders/jumpFlood.frag';
-import splatFrag from '../shaders/splat.frag';
-import splatVert from '../shaders/splat.vert';
+import splatFrag from '../shaders/labelSplat.frag';
+import splatVert from '../shaders/labelSplat.vert';
 import { GpuCapabilityError, type GpuContext } from './context';
 import { ShaderPass } from './shaderPass';
 import { createFloatDataTexture, createFloatTarget, readTargetRGBA } from './textures';
@@ -49,6 +50,7 @@ export class CcvtEngine {
   private current = 0;
   private readonly sumsTargets: THREE.WebGLRenderTarget[];
   private readonly clearPass: ShaderPass;
+  private readonly refreshPass: ShaderPass;
   private readonly splatPass: ShaderPass;
   private readonly floodPass: ShaderPass;
   private readonly centroidPass: ShaderPass;
@@ -90,9 +92,10 @@ export class CcvtEngine {
       grid.height,
       THREE.RedFormat,
     );
+    // Labels: (site x, site y, site id, 1) per texel; see shaders/jumpFlood.frag.
     this.labelTargets = [
-      createFloatTarget(grid.width, grid.height, THREE.RedFormat),
-      createFloatTarget(grid.width, grid.height, THREE.RedFormat),
+      createFloatTarget(grid.width, grid.height, THREE.RGBAFormat),
+      createFloatTarget(grid.width, grid.height, THREE.RGBAFormat),
     ];
     // The gather path ping-pongs between two sums targets, one draw per window tile.
     this.sumsTargets = [0, 1].map(() =>
@@ -106,19 +109,23 @@ export class CcvtEngine {
     const metric = {
       gridSize: { value: new THREE.Vector2(grid.width, grid.height) },
       texelSize: { value: new THREE.Vector2(grid.texelX, grid.texelY) },
-      periodic: { value: [grid.periodicX, grid.periodicY] },
       sites: { value: this.siteTexture },
       siteWidth: { value: this.siteTextureWidth },
     };
+    const defines = { PERIODIC_X: grid.periodicX ? 1 : 0, PERIODIC_Y: grid.periodicY ? 1 : 0 };
     const labels = { value: this.labelTargets[0].texture as THREE.Texture };
     const weights = { value: this.weightTexture };
     this.clearPass = new ShaderPass('triangles', fullscreenVert, clearLabelsFrag, {});
-    this.splatPass = new ShaderPass('points', splatVert, splatFrag, { ...metric });
-    this.floodPass = new ShaderPass('triangles', fullscreenVert, jumpFloodFrag, {
-      ...metric,
-      labels,
-      stepSize: { value: 1 },
-    });
+    this.refreshPass = new ShaderPass('triangles', fullscreenVert, refreshLabelsFrag, { ...metric, labels }, false, defines);
+    this.splatPass = new ShaderPass('points', splatVert, splatFrag, { ...metric }, false, defines);
+    this.floodPass = new ShaderPass(
+      'triangles',
+      fullscreenVert,
+      jumpFloodFrag,
+      { ...metric, labels, stepSize: { value: 1 } },
+      false,
+      defines,
+    );
     this.centroidPass =
       this.centroidPath === 'blend'
         ? new ShaderPass('points', centroidScatterVert, centroidScatterFrag, {
@@ -126,7 +133,7 @@ export class CcvtEngine {
             labels,
             weights,
             sumsSize: { value: new THREE.Vector2(this.siteTextureWidth, this.siteTextureHeight) },
-          }, true)
+          }, true, defines)
         : new ShaderPass('triangles', fullscreenVert, centroidGatherFrag, {
             ...metric,
             labels,
@@ -137,7 +144,7 @@ export class CcvtEngine {
             radius: { value: this.gatherRadius },
             tileStart: { value: new THREE.Vector2() },
             tileSize: { value: GATHER_TILE },
-          });
+          }, false, defines);
   }
 
   /** Uploads site positions (interleaved x, y in texel units). */
@@ -163,7 +170,13 @@ export class CcvtEngine {
    */
   floodLabels(warmFromDisplacement?: number): void {
     const steps = warmFromDisplacement === undefined ? this.coldSteps : this.warmSteps(warmFromDisplacement);
-    if (warmFromDisplacement === undefined) this.clearPass.draw(this.renderer, this.labelTargets[this.current]);
+    if (warmFromDisplacement === undefined) {
+      this.clearPass.draw(this.renderer, this.labelTargets[this.current]);
+    } else {
+      this.refreshPass.uniforms.labels.value = this.labelTargets[this.current].texture;
+      this.current = 1 - this.current;
+      this.refreshPass.draw(this.renderer, this.labelTargets[this.current]);
+    }
     // Splatting on top of old labels makes sure every site owns at least its own texel.
     this.splatPass.draw(this.renderer, this.labelTargets[this.current], this.siteCount);
     for (const step of steps) {
@@ -246,7 +259,7 @@ export class CcvtEngine {
       const rows = Math.min(rowsPerBand, height - y0);
       readTargetRGBA(this.renderer, this.labelTargets[this.current], rgba, 0, y0, width, rows);
       const base = y0 * width;
-      for (let i = 0; i < rows * width; i++) out[base + i] = rgba[4 * i];
+      for (let i = 0; i < rows * width; i++) out[base + i] = rgba[4 * i + 2];
     }
     return out;
   }
@@ -257,7 +270,7 @@ export class CcvtEngine {
   }
 
   dispose(): void {
-    for (const pass of [this.clearPass, this.splatPass, this.floodPass, this.centroidPass]) pass.dispose();
+    for (const pass of [this.clearPass, this.refreshPass, this.splatPass, this.floodPass, this.centroidPass]) pass.dispose();
     for (const target of [...this.labelTargets, ...this.sumsTargets]) target.dispose();
     this.siteTexture.dispose();
     this.weightTexture.dispose();

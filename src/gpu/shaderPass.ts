@@ -17,9 +17,11 @@ export class ShaderPass {
     fragmentShader: string,
     uniforms: Record<string, THREE.IUniform>,
     additiveBlend = false,
+    defines: Record<string, number> = {},
   ) {
     this.material = new THREE.RawShaderMaterial({
       glslVersion: THREE.GLSL3,
+      defines,
       vertexShader,
       fragmentShader,
       uniforms,

@@ -23,6 +23,8 @@ export function createHeadlessContext(): GpuContext {
     removeEventListener() {},
     getContext: () => context,
   } as unknown as HTMLCanvasElement;
+  // three.js reads gl.canvas (e.g. in resetState), which headless-gl leaves undefined.
+  if (!context.canvas) Object.defineProperty(context, 'canvas', { value: canvas });
   return wrapContext(context, canvas, () => {
     (context.getExtension('STACKGL_destroy_context') as { destroy(): void } | null)?.destroy();
   });

@@ -2,11 +2,15 @@
  * Shared GLSL: the grid's metric and the site lookup, exactly the conventions of
  * src/core/grid.ts (texel units, centres at i + 0.5, minimum image on periodic axes,
  * physical distance scaled by the texel size in µm).
+ *
+ * Which axes wrap is compiled in (defines PERIODIC_X, PERIODIC_Y = 0 or 1), not a uniform:
+ * software renderers run both sides of a uniform branch, and the jump flood's inner loop is
+ * the hot spot of the whole engine.
  */
 export default /* glsl */ `
 uniform ivec2 gridSize;
 uniform vec2 texelSize;
-uniform bvec2 periodic;
+const bvec2 periodic = bvec2(PERIODIC_X == 1, PERIODIC_Y == 1);
 uniform highp sampler2D sites;
 uniform int siteWidth;
 
