@@ -225,9 +225,8 @@ export function cubeLabelAdjacency(
     if (a < 0) continue;
     texels[a]++;
     area[a] += A[k];
-    // +i and +j neighbours: each undirected texel pair once, except where wrapping across an
-    // edge turns a +i neighbour into a texel whose own +i/+j does not point back; those pairs
-    // are caught from both sides, so count pairs by (min texel, max texel) below.
+    // All 4 neighbours, each undirected texel pair counted once from its smaller index (across
+    // a face edge the neighbour's axes are rotated, so "+i and +j only" would miss pairs).
     for (let s = 0; s < 4; s++) {
       const l = neighbours[4 * k + s];
       if (l <= k) continue;

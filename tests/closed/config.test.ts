@@ -1,0 +1,49 @@
+import { describe, expect, it } from 'vitest';
+import {
+  checkClosedFeasible,
+  ConfigError,
+  ellipsoidArea,
+  minCurvatureRadius,
+  validateAnyConfig,
+  validateConfig,
+  type ClosedConfig,
+  type ConfigInput,
+} from '../../src/core/config';
+
+const closed = (input: ConfigInput) => validateAnyConfig(input) as ClosedConfig;
+const feasibility = (input: ConfigInput) => {
+  try {
+    checkClosedFeasible(closed(input));
+    return null;
+  } catch (e) {
+    return e as ConfigError;
+  }
+};
+
+describe('closed surface config', () => {
+  it('fills defaults and validates the new kinds', () => {
+    const mesh = closed({ surface: { kind: 'mesh', src: 'organoid.ply' } });
+    expect(mesh.surface).toEqual({ kind: 'mesh', src: 'organoid.ply', scale: 1, geodesic: false });
+    expect(() => validateAnyConfig({ surface: { kind: 'ellipsoid', a: 1, b: 1 } })).toThrow('surface.c: required for kind "ellipsoid"; add a number > 0 µm');
+    expect(() => validateAnyConfig({ surface: { kind: 'sphere', radius: -1 } })).toThrow('surface.radius: must be > 0 µm (got -1)');
+  });
+  it('validateConfig (planar callers) refuses closed kinds with a one-line message', () => {
+    expect(() => validateConfig({ surface: { kind: 'sphere', radius: 5 } })).toThrow(/^surface\.kind: "sphere" is a closed surface/);
+  });
+  it('cells <= 6 n² / 16, uniform density, exact only on a sphere, no surface ratio', () => {
+    expect(feasibility({ surface: { kind: 'sphere', radius: 50 }, resolution: 32, cells: 384 })).toBeNull();
+    expect(feasibility({ surface: { kind: 'sphere', radius: 50 }, resolution: 32, cells: 385 })?.message).toBe(
+      'cells: 385 cells need at least 6160 texels (16 per cell) but the cube map has 6144 (6 x 32²); lower cells or raise resolution',
+    );
+    expect(feasibility({ surface: { kind: 'sphere', radius: 50 }, resolution: 32, cells: 10, density: { kind: 'linear', axis: 'x', from: 1, to: 2 } })?.field).toBe('density.kind');
+    expect(feasibility({ surface: { kind: 'ellipsoid', a: 2, b: 1, c: 1 }, resolution: 32, cells: 10, sheet: { adjacency: 'exact' } })?.field).toBe('sheet.adjacency');
+    expect(feasibility({ surface: { kind: 'sphere', radius: 50 }, resolution: 32, cells: 10, sheet: { surfaceRatio: 2 } })?.field).toBe('sheet.surfaceRatio');
+    expect(feasibility({ surface: { kind: 'sphere', radius: 10 }, resolution: 64, cells: 100, minSpacing: 5 })?.field).toBe('minSpacing');
+  });
+  it('smallest radius of curvature: R, and (min semi-axis)² / (max semi-axis)', () => {
+    expect(minCurvatureRadius({ kind: 'sphere', radius: 7 })).toBe(7);
+    expect(minCurvatureRadius({ kind: 'ellipsoid', a: 100, b: 50, c: 50 })).toBe(25);
+    expect(minCurvatureRadius({ kind: 'ellipsoid', a: 30, b: 60, c: 45 })).toBe(15);
+    expect(ellipsoidArea(10, 10, 10) / (4 * Math.PI * 100)).toBeCloseTo(1, 6);
+  });
+});
