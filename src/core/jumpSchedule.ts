@@ -7,8 +7,10 @@
  * where N is the grid's larger side rounded up to a power of two.
  *
  * A warm start begins from the previous iteration's labels: sites moved by at most
- * `maxDisplacement` texels, so every boundary moved by at most that much and steps from the
- * first power of two above twice the displacement suffice, followed by one extra step 1.
+ * `maxDisplacement` = D texels, so every boundary moved by at most D, and a label has to travel
+ * at most about D texels. Steps k, k/2, ..., 1 carry a label up to 2k - 1 texels, so k is the
+ * first power of two with 2k - 1 >= D + 1 (one texel of slack for rounding), followed by one
+ * extra step 1 as in jfa+2. Tests check the result against brute force.
  */
 export type JumpFloodVariant = 'jfa' | 'jfa+2' | '1+jfa';
 
@@ -36,7 +38,7 @@ export function warmSchedule(width: number, height: number, maxDisplacement: num
 /** The first (largest) step of a warm schedule; the rest follows from it. */
 export function warmFirstStep(width: number, height: number, maxDisplacement: number): number {
   const limit = nextPowerOfTwo(Math.max(width, height)) >> 1;
-  return Math.max(1, Math.min(limit, nextPowerOfTwo(Math.ceil(2 * maxDisplacement) + 1)));
+  return Math.max(1, Math.min(limit, nextPowerOfTwo(Math.ceil((maxDisplacement + 2) / 2))));
 }
 
 export function nextPowerOfTwo(value: number): number {

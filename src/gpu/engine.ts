@@ -1,7 +1,6 @@
 import * as THREE from 'three';
 import type { Grid } from '../core/grid';
 import { coldSchedule, warmFirstStep, warmSchedule, type JumpFloodVariant } from '../core/jumpSchedule';
-import centroidGatherFrag from '../shaders/centroidGather.frag';
 import centroidScatterFrag from '../shaders/centroidScatter.frag';
 import centroidScatterVert from '../shaders/centroidScatter.vert';
 import clearLabelsFrag from '../shaders/labelClear.frag';
@@ -11,11 +10,9 @@ import jumpFloodFrag from '../shaders/jumpFlood.frag';
 import splatFrag from '../shaders/labelSplat.frag';
 import splatVert from '../shaders/labelSplat.vert';
 import { GpuCapabilityError, type GpuContext } from './context';
+import { GatherCentroids } from './gatherCentroids';
 import { ShaderPass } from './shaderPass';
 import { createFloatDataTexture, createFloatTarget, readTargetRGBA } from './textures';
-
-/** Side of the window tile one gather draw covers: bounds the loop length per pixel. */
-const GATHER_TILE = 48;
 
 /** How centroids are summed: additive blending (needs EXT_float_blend) or a gather pass. */
 export type CentroidPath = 'blend' | 'gather';
@@ -39,8 +36,6 @@ export class CcvtEngine {
   readonly sums: Float32Array;
   /** Jump-flood passes run by the last floodLabels() call. */
   lastPassCount = 0;
-  /** Window half-size (texels) of the gather path; grows when a cell does not fit. */
-  gatherRadius: number;
 
   private readonly renderer: THREE.WebGLRenderer;
   private readonly siteData: Float32Array;
@@ -48,12 +43,13 @@ export class CcvtEngine {
   private readonly weightTexture: THREE.DataTexture;
   private readonly labelTargets: [THREE.WebGLRenderTarget, THREE.WebGLRenderTarget];
   private current = 0;
-  private readonly sumsTargets: THREE.WebGLRenderTarget[];
+  private readonly sumsTarget: THREE.WebGLRenderTarget;
+  private readonly gather: GatherCentroids | null;
   private readonly clearPass: ShaderPass;
   private readonly refreshPass: ShaderPass;
   private readonly splatPass: ShaderPass;
   private readonly floodPass: ShaderPass;
-  private readonly centroidPass: ShaderPass;
+  private readonly centroidPass: ShaderPass | null;
   private readonly coldSteps: number[];
   private readonly warmSchedules = new Map<number, readonly number[]>();
   private readonly syncPixel = new Float32Array(4);
@@ -97,13 +93,9 @@ export class CcvtEngine {
       createFloatTarget(grid.width, grid.height, THREE.RGBAFormat),
       createFloatTarget(grid.width, grid.height, THREE.RGBAFormat),
     ];
-    // The gather path ping-pongs between two sums targets, one draw per window tile.
-    this.sumsTargets = [0, 1].map(() =>
-      createFloatTarget(this.siteTextureWidth, this.siteTextureHeight, THREE.RGBAFormat),
-    );
+    this.sumsTarget = createFloatTarget(this.siteTextureWidth, this.siteTextureHeight, THREE.RGBAFormat);
     this.sums = new Float32Array(this.siteTextureWidth * this.siteTextureHeight * 4);
     this.coldSteps = coldSchedule(grid.width, grid.height, options.variant);
-    this.gatherRadius = Math.ceil(2.5 * Math.sqrt((grid.width * grid.height) / siteCount));
 
     // Uniform objects are shared between programs: one update reaches all of them.
     const metric = {
@@ -126,25 +118,18 @@ export class CcvtEngine {
       false,
       defines,
     );
-    this.centroidPass =
-      this.centroidPath === 'blend'
-        ? new ShaderPass('points', centroidScatterVert, centroidScatterFrag, {
-            ...metric,
-            labels,
-            weights,
-            sumsSize: { value: new THREE.Vector2(this.siteTextureWidth, this.siteTextureHeight) },
-          }, true, defines)
-        : new ShaderPass('triangles', fullscreenVert, centroidGatherFrag, {
-            ...metric,
-            labels,
-            weights,
-            previousSums: { value: null },
-            firstTile: { value: true },
-            siteCount: { value: siteCount },
-            radius: { value: this.gatherRadius },
-            tileStart: { value: new THREE.Vector2() },
-            tileSize: { value: GATHER_TILE },
-          }, false, defines);
+    this.centroidPass = this.centroidPath !== 'blend' ? null : new ShaderPass(
+      'points',
+      centroidScatterVert,
+      centroidScatterFrag,
+      { ...metric, labels, weights, sumsSize: { value: new THREE.Vector2(this.siteTextureWidth, this.siteTextureHeight) } },
+      true,
+      defines,
+    );
+    this.gather =
+      this.centroidPath === 'gather'
+        ? new GatherCentroids(this.renderer, grid, siteCount, this.siteTextureWidth, this.siteTextureHeight, { ...metric, labels, weights }, defines)
+        : null;
   }
 
   /** Uploads site positions (interleaved x, y in texel units). */
@@ -202,46 +187,16 @@ export class CcvtEngine {
   /** Sums (w*dx, w*dy, w, w*d²) per site over the current labels; result in `this.sums`. */
   computeSums(): Float32Array {
     const labelTexture = this.labelTargets[this.current].texture;
-    this.centroidPass.uniforms.labels.value = labelTexture;
-    if (this.centroidPath === 'blend') {
-      const target = this.sumsTargets[0];
-      this.renderer.setRenderTarget(target);
-      this.renderer.setClearColor(0x000000, 0);
-      this.renderer.clear(true, false, false);
-      this.centroidPass.draw(this.renderer, target, this.grid.width * this.grid.height);
-      return readTargetRGBA(this.renderer, target, this.sums);
+    if (this.gather) {
+      return this.gather.compute(labelTexture, this.sums, this.siteData, this.weightTexture.image.data as Float32Array);
     }
-    for (;;) {
-      readTargetRGBA(this.renderer, this.gatherWindow(), this.sums);
-      if (!this.someCellOverflowed()) return this.sums;
-      const largest = Math.max(this.grid.width, this.grid.height);
-      if (this.gatherRadius >= largest) throw new Error('gather window covers the grid but a cell still overflows');
-      this.gatherRadius = Math.min(largest, Math.ceil(this.gatherRadius * 1.5));
-    }
-  }
-
-  /** Runs the gather pass tile by tile over the current window; returns the target holding the sums. */
-  private gatherWindow(): THREE.WebGLRenderTarget {
-    const { uniforms } = this.centroidPass;
-    const radius = this.gatherRadius;
-    uniforms.radius.value = radius;
-    const span = (length: number, periodic: boolean) =>
-      periodic && 2 * radius + 1 >= length ? length : 2 * radius + 1;
-    const spanX = span(this.grid.width, this.grid.periodicX);
-    const spanY = span(this.grid.height, this.grid.periodicY);
-    let index = 0;
-    let first = true;
-    for (let ty = 0; ty < spanY; ty += GATHER_TILE) {
-      for (let tx = 0; tx < spanX; tx += GATHER_TILE) {
-        uniforms.firstTile.value = first;
-        uniforms.previousSums.value = this.sumsTargets[1 - index].texture;
-        (uniforms.tileStart.value as THREE.Vector2).set(tx, ty);
-        this.centroidPass.draw(this.renderer, this.sumsTargets[index]);
-        index = 1 - index;
-        first = false;
-      }
-    }
-    return this.sumsTargets[1 - index];
+    const scatter = this.centroidPass!;
+    scatter.uniforms.labels.value = labelTexture;
+    this.renderer.setRenderTarget(this.sumsTarget);
+    this.renderer.setClearColor(0x000000, 0);
+    this.renderer.clear(true, false, false);
+    scatter.draw(this.renderer, this.sumsTarget, this.grid.width * this.grid.height);
+    return readTargetRGBA(this.renderer, this.sumsTarget, this.sums);
   }
 
   /** Waits for the GPU (a one-texel readback); used to time passes apart. */
@@ -264,20 +219,21 @@ export class CcvtEngine {
     return out;
   }
 
+  /** Window half-sizes per site of the gather path (null on the blend path). */
+  get gatherRadii(): Float32Array | null {
+    return this.gather?.radii ?? null;
+  }
+
   /** The current label target's texture (for views that draw the diagram). */
   get labelTexture(): THREE.Texture {
     return this.labelTargets[this.current].texture;
   }
 
   dispose(): void {
-    for (const pass of [this.clearPass, this.refreshPass, this.splatPass, this.floodPass, this.centroidPass]) pass.dispose();
-    for (const target of [...this.labelTargets, ...this.sumsTargets]) target.dispose();
+    for (const pass of [this.clearPass, this.refreshPass, this.splatPass, this.floodPass, this.centroidPass]) pass?.dispose();
+    for (const target of [...this.labelTargets, this.sumsTarget]) target.dispose();
+    this.gather?.dispose();
     this.siteTexture.dispose();
     this.weightTexture.dispose();
-  }
-
-  private someCellOverflowed(): boolean {
-    for (let i = 0; i < this.siteCount; i++) if (this.sums[4 * i + 2] < 0) return true;
-    return false;
   }
 }

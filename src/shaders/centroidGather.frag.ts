@@ -5,9 +5,10 @@ import gridMetric from './gridMetric.glsl';
  * target walks a window of texels around its site and adds up the same
  * (w * dx, w * dy, w, w * |d|²) as the scatter pass, for texels labelled with its id.
  *
- * The window is (2R+1)² texels; one draw covers one tile of it (at most tileSize² texels per
- * pixel, because software renderers silently stop long loops) and adds its part to the sums of
- * the previous draw (ping-pong). Voronoi cells are convex, so if no texel on the window's outer
+ * Site i's window is (2R_i+1)² texels (R_i from the radii texture). One draw covers one tile
+ * of the largest window (at most tileSize² texels per pixel, because software renderers
+ * silently stop long loops); each pixel walks the part of its own window inside that tile and
+ * adds it to the sums of the previous draw (ping-pong). Voronoi cells are convex, so if no texel on the window's outer
  * ring belongs to the cell, the whole cell was inside. Otherwise the pixel reports weight -1
  * (kept through later tiles) and the engine retries with a larger window: a window that is too
  * small is never a silent wrong centroid.
@@ -21,7 +22,8 @@ uniform highp sampler2D weights;
 uniform highp sampler2D previousSums;
 uniform bool firstTile;
 uniform int siteCount;
-uniform int radius;
+uniform highp sampler2D radii;
+uniform int maxRadius;
 uniform ivec2 tileStart;
 uniform int tileSize;
 out vec4 sums;
@@ -32,6 +34,7 @@ void main() {
   vec4 total = firstTile ? vec4(0.0) : texelFetch(previousSums, pixel, 0);
   if (site >= siteCount || total.z < 0.0) { sums = total; return; }
   float id = float(site);
+  int radius = int(texelFetch(radii, pixel, 0).r);
   vec2 position = siteAt(site);
   ivec2 origin = ivec2(floor(position));
   // On a periodic axis the window never covers more than the axis once (no texel twice);
@@ -46,8 +49,13 @@ void main() {
       whole[axis] = true;
     }
   }
-  ivec2 from = low + tileStart;
-  ivec2 to = min(high, from + tileSize - 1);
+  // This draw's tile of the largest window, clipped to this site's own window.
+  ivec2 tileLow = ivec2(-maxRadius) + tileStart;
+  for (int axis = 0; axis < 2; ++axis) {
+    if (periodic[axis] && 2 * maxRadius + 1 >= gridSize[axis]) tileLow[axis] = -(gridSize[axis] / 2) + tileStart[axis];
+  }
+  ivec2 from = max(low, tileLow);
+  ivec2 to = min(high, tileLow + tileSize - 1);
   bool touchesRing = false;
   for (int dy = from.y; dy <= to.y; ++dy) {
     for (int dx = from.x; dx <= to.x; ++dx) {
