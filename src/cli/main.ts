@@ -1,6 +1,6 @@
-import { readFileSync, writeFileSync } from 'node:fs';
+import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
-import { ConfigError, validateConfig, type Config } from '../core/config';
+import { ConfigError, isClosedConfig, validateAnyConfig, type AnyConfig } from '../core/config';
 import { GpuCapabilityError } from '../gpu/context';
 import { loadGrayImage } from '../node/image';
 import { createHeadlessContext } from '../node/headless';
@@ -48,10 +48,12 @@ async function runCommand(args: string[]): Promise<number> {
   const config = readConfig(input);
   const densityImage =
     config.density.kind === 'image' ? loadGrayImage(resolve(dirname(input), config.density.src)) : undefined;
+  const meshFile = meshNextToConfig(config, input);
   const context = createHeadlessContext();
   try {
     const { result } = await runSheet(config, context, {
       densityImage,
+      meshFile,
       onIteration(record, total) {
         process.stderr.write(
           `iteration ${record.iteration}/${total}  energy ${record.energy.toPrecision(8)}  ` +
@@ -85,7 +87,16 @@ export function parseInputAndOut(args: string[], form: string): { input: string;
   return { input, out };
 }
 
-export function readConfig(path: string): Config {
+/** A mesh `src` relative to the config file is read from there (else runSheet searches cwd and public/meshes). */
+function meshNextToConfig(config: AnyConfig, configPath: string) {
+  if (!isClosedConfig(config) || config.surface.kind !== 'mesh') return undefined;
+  const path = resolve(dirname(configPath), config.surface.src);
+  if (!existsSync(path)) return undefined;
+  const bytes = readFileSync(path);
+  return { data: bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength) as ArrayBuffer, name: path };
+}
+
+export function readConfig(path: string): AnyConfig {
   let text: string;
   try {
     text = readFileSync(path, 'utf8');
@@ -98,7 +109,7 @@ export function readConfig(path: string): Config {
   } catch (error) {
     throw new UsageError(`${path}: not valid JSON (${(error as Error).message})`);
   }
-  return validateConfig(json);
+  return validateAnyConfig(json);
 }
 
 function report(error: unknown): number {

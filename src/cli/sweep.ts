@@ -1,6 +1,6 @@
 import { appendFileSync, existsSync, mkdirSync, readFileSync, truncateSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { validateConfig, type Config } from '../core/config';
+import { validateAnyConfig, type AnyConfig } from '../core/config';
 import { aggregateRows, aggregateToCsv, aggregateToJson, expandSweep, runSweep, variedFields, type SweepSpec } from '../core/sweep';
 import { createHeadlessContext } from '../node/headless';
 import { SheetRunner, seededKey, sweepSummary } from '../run/sheetRunner';
@@ -20,7 +20,7 @@ export async function sweepCommand(specPath: string, outDir: string, log: (line:
   // consecutive: the runner relaxes it once and reuses it for every ratio or thickness.
   const keyed = expandSweep(spec).map((run) => {
     try {
-      return { run, key: seededKey(validateConfig(run.config)) };
+      return { run, key: seededKey(validateAnyConfig(run.config)) };
     } catch (error) {
       throw new Error(`${specPath}: run ${run.key}: ${(error as Error).message}`);
     }
@@ -45,7 +45,7 @@ export async function sweepCommand(specPath: string, outDir: string, log: (line:
       existingCsv,
       append: (text) => appendFileSync(csvPath, text),
       truncate: (length) => truncateSync(csvPath, Buffer.byteLength(existingCsv!.slice(0, length))),
-      runner: async (config) => sweepSummary((await runner.run(validateConfig(config))).result),
+      runner: async (config) => sweepSummary((await runner.run(validateAnyConfig(config))).result),
       onProgress: (p) => {
         if (p.phase === 'start') return;
         const eta = p.finished > 0 ? ((p.elapsedMs / p.finished) * (p.total - p.finished)) / 1000 : 0;
@@ -61,7 +61,7 @@ export async function sweepCommand(specPath: string, outDir: string, log: (line:
   }
 }
 
-function readSpec(path: string): SweepSpec<Config & Record<string, unknown>> {
+function readSpec(path: string): SweepSpec<AnyConfig & Record<string, unknown>> {
   let spec: unknown;
   try {
     spec = JSON.parse(readFileSync(path, 'utf8'));
@@ -77,5 +77,5 @@ function readSpec(path: string): SweepSpec<Config & Record<string, unknown>> {
   }
   // Same seed for every grid point of a realization: ratios are compared on the same sites,
   // and the converged seeded surface is computed once per realization.
-  return { seedMode: 'per-realization', ...(spec as SweepSpec<Config & Record<string, unknown>>) };
+  return { seedMode: 'per-realization', ...(spec as SweepSpec<AnyConfig & Record<string, unknown>>) };
 }

@@ -1,5 +1,5 @@
 import { SIDE_CLASSES } from '../core/analysis';
-import type { Config } from '../core/config';
+import { isClosedConfig, type AnyConfig, type Config } from '../core/config';
 import type { GpuContext } from '../gpu/context';
 import type { SheetResult } from './result';
 import { runSheet, type RunCallbacks } from './runSheet';
@@ -14,7 +14,9 @@ export class SheetRunner {
 
   constructor(private readonly context: GpuContext) {}
 
-  async run(config: Config, callbacks: RunCallbacks = {}) {
+  async run(config: AnyConfig, callbacks: RunCallbacks = {}) {
+    // Closed surfaces have their own pipeline (no reuse yet): run them whole.
+    if (isClosedConfig(config)) return runSheet(config, this.context, callbacks);
     const key = seededKey(config);
     if (this.cached?.key !== key) {
       this.cached = { key, seeded: relaxSeededSurface(config, this.context, callbacks) };
@@ -31,7 +33,7 @@ export class SheetRunner {
 }
 
 /** Everything the seeded surface depends on: the config without its `sheet` section. */
-export function seededKey(config: Config): string {
+export function seededKey(config: AnyConfig): string {
   const { sheet: _sheet, ...rest } = config;
   return JSON.stringify(rest);
 }
