@@ -47,3 +47,14 @@ describe('closed surface config', () => {
     expect(ellipsoidArea(10, 10, 10) / (4 * Math.PI * 100)).toBeCloseTo(1, 6);
   });
 });
+
+describe('directionTexel (allocation-free) matches directionToTexel', () => {
+  it('on random directions and on cube edges and corners', async () => {
+    const { directionTexel, directionTexelReference } = await import('../../src/core/closed/projector');
+    const { createRandom } = await import('../../src/core/random');
+    const random = createRandom(9);
+    const dirs: number[][] = [[1, 1, 1], [-1, 1, 0], [0, -1, -1], [1, 0, 0], [0, 0, -1], [-1, -1, -1]];
+    for (let k = 0; k < 2000; k++) dirs.push([random.next() - 0.5, random.next() - 0.5, random.next() - 0.5]);
+    for (const [x, y, z] of dirs) for (const n of [7, 64]) expect(directionTexel(x, y, z, n)).toBe(directionTexelReference(x, y, z, n));
+  });
+});

@@ -82,15 +82,17 @@ export function placeClosedSites(
       if (cdf[mid] > r) hi = mid;
       else lo = mid + 1;
     }
-    // Jitter within the texel: half a texel's extent towards a random neighbour point.
+    // Jitter within the texel: up to half the spacing towards the neighbours along i and j
+    // (wrapped across face edges), then onto the surface.
     const { face, i, j } = texelFromIndex(lo, n);
     const ju = random.next() - 0.5, jv = random.next() - 0.5;
-    const other = wrapTexel(face, i + (ju >= 0 ? 1 : -1), j + (jv >= 0 ? 1 : -1), n);
-    const ko = texelIndex(other.face, other.i, other.j, n);
-    const f = Math.abs(ju) + Math.abs(jv) > 0 ? 0.5 : 0;
-    const x = position[3 * lo] + f * Math.abs(ju) * (position[3 * ko] - position[3 * lo]);
-    const y = position[3 * lo + 1] + f * Math.abs(jv) * (position[3 * ko + 1] - position[3 * lo + 1]);
-    const z = position[3 * lo + 2] + f * Math.abs(ju) * (position[3 * ko + 2] - position[3 * lo + 2]);
+    const ni = wrapTexel(face, i + (ju >= 0 ? 1 : -1), j, n);
+    const nj = wrapTexel(face, i, j + (jv >= 0 ? 1 : -1), n);
+    const ki = texelIndex(ni.face, ni.i, ni.j, n), kj = texelIndex(nj.face, nj.i, nj.j, n);
+    const fu = Math.abs(ju), fv = Math.abs(jv);
+    const x = position[3 * lo] + fu * (position[3 * ki] - position[3 * lo]) + fv * (position[3 * kj] - position[3 * lo]);
+    const y = position[3 * lo + 1] + fu * (position[3 * ki + 1] - position[3 * lo + 1]) + fv * (position[3 * kj + 1] - position[3 * lo + 1]);
+    const z = position[3 * lo + 2] + fu * (position[3 * ki + 2] - position[3 * lo + 2]) + fv * (position[3 * kj + 2] - position[3 * lo + 2]);
     projector.project(x, y, z, buffer, 0);
     const px = buffer[0], py = buffer[1], pz = buffer[2];
     if (minSpacing > 0) {

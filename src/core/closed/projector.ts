@@ -13,7 +13,7 @@
  */
 import { BufferAttribute, BufferGeometry, Vector3 } from 'three';
 import { MeshBVH } from 'three-mesh-bvh';
-import { directionToTexel, texelIndex, type Vec3 } from '../cubemap/cubemap';
+import { CUBE_FACES, directionToTexel, texelIndex, type Vec3 } from '../cubemap/cubemap';
 import { closestPointOnEllipsoid } from '../cubemap/sample';
 import { vertexNormals, type TriangleMesh } from '../mesh/types';
 
@@ -131,8 +131,28 @@ export function meshProjector(mesh: TriangleMesh, sphere: Float64Array): ClosedP
   };
 }
 
-/** Atlas index of the texel a parameter direction falls in, on an n-texel cube map. */
+/**
+ * Atlas index of the texel a parameter direction falls in, on an n-texel cube map: the same
+ * as directionToTexel (cubemap.ts; same face choice and tie rules), without allocating, for
+ * the Lloyd loop.
+ */
 export function directionTexel(dx: number, dy: number, dz: number, n: number): number {
+  const ax = Math.abs(dx), ay = Math.abs(dy), az = Math.abs(dz);
+  let face: number;
+  if (ax >= ay && ax >= az) face = dx >= 0 ? 0 : 1;
+  else if (ay >= az) face = dy >= 0 ? 2 : 3;
+  else face = dz >= 0 ? 4 : 5;
+  const F = CUBE_FACES[face];
+  const m = dx * F.normal[0] + dy * F.normal[1] + dz * F.normal[2];
+  const u = (dx * F.s[0] + dy * F.s[1] + dz * F.s[2]) / m;
+  const v = (dx * F.t[0] + dy * F.t[1] + dz * F.t[2]) / m;
+  const i = Math.min(n - 1, Math.max(0, Math.floor(((u + 1) / 2) * n)));
+  const j = Math.min(n - 1, Math.max(0, Math.floor(((v + 1) / 2) * n)));
+  return texelIndex(face, i, j, n);
+}
+
+/** directionToTexel's atlas index (reference for directionTexel). */
+export function directionTexelReference(dx: number, dy: number, dz: number, n: number): number {
   const t = directionToTexel([dx, dy, dz], n);
   return texelIndex(t.face, t.i, t.j, n);
 }
