@@ -203,7 +203,7 @@ export async function runClosedSheet(config: ClosedConfig, context: GpuContext, 
               areaDistortion: { ...surface.mesh.parameterization.areaDistortion },
               parameterizationMs: surface.mesh.parameterizationMs,
               samplingMs: surface.mesh.samplingMs,
-              curvatureRadius: { convex: surface.convexRadius, concave: surface.concaveRadius },
+              curvatureRadius: { convex: finiteOrNull(surface.convexRadius), concave: finiteOrNull(surface.concaveRadius) },
             },
           }
         : {}),
@@ -236,6 +236,8 @@ export async function runClosedSheet(config: ClosedConfig, context: GpuContext, 
     engine.dispose();
   }
 }
+
+const finiteOrNull = (x: number): number | null => (Number.isFinite(x) ? x : null);
 
 /** Smallest distance between edge-neighbouring texel centres (µm), > 0. */
 function minTexelSpacing(image: CubeGeometryImage, neighbours: Int32Array): number {

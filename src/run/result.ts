@@ -124,8 +124,8 @@ export interface ClosedSurfaceRecord {
     readonly areaDistortion: { readonly min: number; readonly max: number; readonly meanAbsLog: number };
     readonly parameterizationMs: number;
     readonly samplingMs: number;
-    /** 1 / (max edge curvature) of convex and concave regions, µm. */
-    readonly curvatureRadius: { readonly convex: number; readonly concave: number };
+    /** 1 / (max edge curvature) of convex and concave regions, µm; null: no edge bends that way. */
+    readonly curvatureRadius: { readonly convex: number | null; readonly concave: number | null };
   };
   /** `surface.geodesic`: heat-method geodesic Voronoi of the final sites on the mesh vertices. */
   readonly geodesic?: {
