@@ -21,7 +21,16 @@ export interface PreparedMesh {
   readonly samplingMs: number;
 }
 
-const isNode = () => typeof process !== 'undefined' && !!process.versions?.node && typeof window === 'undefined';
+// No Node typings here: this module is also part of the browser bundle and the library's types.
+interface NodeFs {
+  readFile(path: string): Promise<Uint8Array>;
+}
+interface NodePath {
+  join(...parts: string[]): string;
+  basename(path: string): string;
+}
+const isNode = () =>
+  !!(globalThis as { process?: { versions?: { node?: string } } }).process?.versions?.node && typeof window === 'undefined';
 
 /**
  * Reads `surface.src`: in Node a file path (as given, then under public/meshes/ for a bare
@@ -31,8 +40,8 @@ export async function readMeshSource(src: string): Promise<MeshFile> {
   if (isNode() && !/^https?:\/\//.test(src)) {
     const fsName = 'node:fs/promises';
     const pathName = 'node:path';
-    const fs = (await import(/* @vite-ignore */ fsName)) as typeof import('node:fs/promises');
-    const path = (await import(/* @vite-ignore */ pathName)) as typeof import('node:path');
+    const fs = (await import(/* @vite-ignore */ fsName)) as NodeFs;
+    const path = (await import(/* @vite-ignore */ pathName)) as NodePath;
     const candidates = [src, path.join('public', 'meshes', path.basename(src)), path.join('public', src.replace(/^\/+/, ''))];
     for (const file of candidates) {
       try {

@@ -19,6 +19,7 @@ export async function runSheet(
   callbacks: RunCallbacks & { seeded?: SeededSurface } & Pick<ClosedRunCallbacks, 'meshFile'> = {},
 ): Promise<SheetOutput> {
   // Closed surfaces (sphere, ellipsoid, mesh) run on a cube-map geometry image: src/run/closedSheet.ts.
+  // A static import (not import()): the library build stays one self-contained module.
   if (isClosedConfig(config)) return runClosedSheet(config, context, callbacks);
   const start = performance.now();
   // A seeded surface relaxed earlier for the same config (see SheetRunner) is reused as is.
