@@ -53,6 +53,9 @@ export async function relaxSeededSurface(config: Config, context: GpuContext, ca
       callbacks.onIteration?.(record, config.lloyd.maxIterations);
       await yieldToEventLoop();
     }
+    // Label the final sites with a cold flood, as every other surface of the stack is labelled:
+    // identical surfaces then get identical labels (no warm-start residue at s = 1).
+    engine.floodLabels();
     const final = run.finish();
     return {
       grid,
