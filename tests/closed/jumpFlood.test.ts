@@ -3,6 +3,7 @@ import { cubeBruteForceLabels, placeClosedSites } from '../../src/core/closed/ge
 import { ellipsoidProjector, sphereProjector } from '../../src/core/closed/projector';
 import { sampleSurface } from '../../src/core/cubemap/sample';
 import { CubeCcvtEngine } from '../../src/gpu/cubeEngine';
+import { ClosedLloydRun } from '../../src/gpu/cubeLloyd';
 import { mislabeledFraction, useHeadlessContext } from '../gpu/context';
 
 const context = useHeadlessContext();
@@ -32,4 +33,25 @@ describe('jump flood on the cube map vs brute-force nearest site (3D distance)',
       }
     });
   }
+});
+
+describe('warm-started floods during Lloyd', () => {
+  it('labels after 6 warm-started iterations still match brute force (<= 1e-3)', () => {
+    const image = sampleSurface({ kind: 'ellipsoid', a: 60, b: 30, c: 45 }, 64);
+    const projector = ellipsoidProjector(60, 30, 45);
+    const sites = placeClosedSites(image, projector, 250, 8, 0);
+    const engine = new CubeCcvtEngine(context, 64, 250, { variant: 'jfa+2', centroidPath: 'auto' });
+    try {
+      engine.setGeometry(image.position, image.area);
+      const spacing = 0.9 * Math.sqrt(Math.min(...image.area));
+      const run = new ClosedLloydRun(engine, projector, sites, { maxIterations: 6, tolerance: 0, overRelaxation: 1, warmStart: true }, spacing);
+      while (!run.done) run.step();
+      expect(run.iterations.at(-1)!.jumpFloodPasses).toBeLessThan(9);
+      const wrong = mislabeledFraction(engine.readLabels(), cubeBruteForceLabels(image.position, Float32Array.from(sites.positions), 250));
+      console.log(`warm-started flood after 6 iterations: mislabeled ${wrong}`);
+      expect(wrong).toBeLessThanOrEqual(1e-3);
+    } finally {
+      engine.dispose();
+    }
+  });
 });

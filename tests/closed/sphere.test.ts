@@ -33,6 +33,12 @@ describe('concentric spheres', () => {
         expect(analysis.summary.meanTransitions).toBe(0);
       }
       expect(result.surfaces.at(-1)!.ratio).toBeCloseTo((50 + (direction === 'outward' ? 40 : -25)) / 50, 3);
+      // The documented shape: 3D positions on each surface, no border cells, plain JSON.
+      const other = result.surfaces.at(-1)!;
+      for (const cell of other.cells) expect(Math.hypot(...cell.position)).toBeCloseTo(50 + other.offset, 3);
+      expect(result.cells.every((c) => !c.touchesBorder && c.neighbours.length >= 3)).toBe(true);
+      expect(JSON.parse(JSON.stringify(result)).closed).toEqual(result.closed);
+      expect(result.grid).toMatchObject({ width: 64, height: 384 });
     }
   }, 20000);
 });
