@@ -84,6 +84,8 @@ export function meshProjector(mesh: TriangleMesh, sphere: Float64Array): ClosedP
   const q = new Vector3();
   const target = { point: new Vector3(), distance: 0, faceIndex: 0 };
   const w = [0, 0, 0];
+  const ids = [0, 0, 0];
+  /** Closest point into `target`, its triangle's vertices into `ids`, barycentrics into `w`. */
   const locate = (x: number, y: number, z: number) => {
     bvh.closestPointToPoint(q.set(x, y, z), target);
     const f = target.faceIndex;
@@ -102,7 +104,10 @@ export function meshProjector(mesh: TriangleMesh, sphere: Float64Array): ClosedP
     w[0] = 1 - beta - gamma;
     w[1] = beta;
     w[2] = gamma;
-    return [ia, ib, ic];
+    ids[0] = ia;
+    ids[1] = ib;
+    ids[2] = ic;
+    return ids;
   };
   return {
     project(x, y, z, out, o) {
@@ -111,7 +116,9 @@ export function meshProjector(mesh: TriangleMesh, sphere: Float64Array): ClosedP
       out[k] = target.point.x;
       out[k + 1] = target.point.y;
       out[k + 2] = target.point.z;
-      for (const [base, src] of [[3, normals], [6, sphere]] as const) {
+      for (let pass = 0; pass < 2; pass++) {
+        const base = pass === 0 ? 3 : 6;
+        const src: ArrayLike<number> = pass === 0 ? normals : sphere;
         let sx = 0, sy = 0, sz = 0;
         for (let v = 0; v < 3; v++) {
           sx += w[v] * src[3 * ids[v]];
