@@ -1,4 +1,4 @@
-import { analyzeSurfaces, withMinBoundaryLength, type ScutoidAnalysis, type SurfaceAdjacency } from '../core/analysis';
+import { analyzeSurfaces, withMinBoundaryLength, type SurfaceAdjacency } from '../core/analysis';
 import {
   checkClosedFeasible,
   ConfigError,
@@ -29,6 +29,7 @@ import { CubeCcvtEngine } from '../gpu/cubeEngine';
 import { ClosedLloydRun } from '../gpu/cubeLloyd';
 import { version } from '../version';
 import { prepareMesh, readMeshSource, type MeshFile, type PreparedMesh } from './closedMesh';
+import { analysisRecord } from './analysisRecord';
 import type { AnalysisRecord, CellRecord, ClosedSurfaceRecord, LabelImage, SheetOutput, SurfaceRecord } from './result';
 import { throwIfAborted, yieldToEventLoop, type RunCallbacks } from './seededSurface';
 
@@ -163,7 +164,7 @@ export async function runClosedSheet(config: ClosedConfig, context: GpuContext, 
       const inputs = adjacencies.map((a, k) =>
         withMinBoundaryLength(fromLabels(a, stack[k].name), minContactLength * Math.sqrt(samples[k].totalArea / image.totalArea)),
       );
-      analyses.push(toRecord('labels', minContactLength, analyzeSurfaces(inputs)));
+      analyses.push(analysisRecord('labels', minContactLength, analyzeSurfaces(inputs)));
     }
     if (adjacency !== 'labels' && config.surface.kind === 'sphere') {
       const R = config.surface.radius;
@@ -171,7 +172,7 @@ export async function runClosedSheet(config: ClosedConfig, context: GpuContext, 
         const v = sphericalVoronoi(sites.directions, count, R + layer.offset);
         return { count, adjacency: v.adjacency, areas: v.areas, touchesBorder: v.touchesBorder, label: layer.name } satisfies SurfaceAdjacency;
       });
-      analyses.push(toRecord('exact', 0, analyzeSurfaces(inputs)));
+      analyses.push(analysisRecord('exact', 0, analyzeSurfaces(inputs)));
     }
     const adjacencyMs = performance.now() - adjacencyStart;
 
@@ -324,19 +325,4 @@ function cellRecords(positions: Float64Array, sites: ClosedSites, adjacency: Cub
     });
   }
   return cells;
-}
-
-function toRecord(method: 'labels' | 'exact', minContactLength: number, analysis: ScutoidAnalysis): AnalysisRecord {
-  const c = analysis.cells;
-  const cells = Array.from(c.valid, (valid, id) => ({
-    id,
-    valid: valid === 1,
-    scutoid: c.scutoid[id] === 1,
-    won: c.won[id],
-    lost: c.lost[id],
-    transitions: c.transitions[id],
-    neighbours3D: c.neighbours3D[id],
-    sides: c.sides.map((perSurface) => perSurface[id]),
-  }));
-  return { method, minContactLength, summary: analysis.summary, cells };
 }

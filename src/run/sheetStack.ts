@@ -1,4 +1,4 @@
-import { analyzeSurfaces, labMinBoundaryLength, withMinBoundaryLength, surfaceFromExact, type ScutoidAnalysis, type SurfaceAdjacency } from '../core/analysis';
+import { analyzeSurfaces, labMinBoundaryLength, withMinBoundaryLength, surfaceFromExact, type SurfaceAdjacency } from '../core/analysis';
 import type { Config } from '../core/config';
 import type { Grid } from '../core/grid';
 import { exactVoronoi } from '../core/exact';
@@ -7,6 +7,7 @@ import { projectSites, surfaceStack, type StackSurface } from '../core/sheetGeom
 import { embed, surfaceCoordinates } from '../core/surface';
 import type { GpuContext } from '../gpu/context';
 import { CcvtEngine } from '../gpu/engine';
+import { analysisRecord } from './analysisRecord';
 import type { AnalysisRecord, CellRecord, LabelImage, SurfaceRecord } from './result';
 import { throwIfAborted, yieldToEventLoop, type SeededSurface } from './seededSurface';
 
@@ -46,11 +47,11 @@ export async function analyzeStack(config: Config, seeded: SeededSurface, contex
   if (adjacency !== 'exact') {
     const minContactLength = config.sheet.minContactLength ?? defaultMinContactLength(seeded.grid, config.cells);
     const inputs = labelAdjacencies.map((a, k) => withMinBoundaryLength(fromLabels(a, stack[k].name), minContactLength));
-    analyses.push(toRecord('labels', minContactLength, analyzeSurfaces(inputs)));
+    analyses.push(analysisRecord('labels', minContactLength, analyzeSurfaces(inputs)));
   }
   if (adjacency !== 'labels') {
     const inputs = stack.map((surface, k) => surfaceFromExact(exactVoronoi(surface.grid, projected[k]), surface.name));
-    analyses.push(toRecord('exact', 0, analyzeSurfaces(inputs)));
+    analyses.push(analysisRecord('exact', 0, analyzeSurfaces(inputs)));
   }
 
   const cellsOf = (k: number) => cellRecords(config, stack[k], projected[k], labelAdjacencies[k]);
@@ -112,19 +113,4 @@ function cellRecords(config: Config, surface: StackSurface, sites: Float32Array,
     });
   }
   return cells;
-}
-
-function toRecord(method: 'labels' | 'exact', minContactLength: number, analysis: ScutoidAnalysis): AnalysisRecord {
-  const c = analysis.cells;
-  const cells = Array.from(c.valid, (valid, id) => ({
-    id,
-    valid: valid === 1,
-    scutoid: c.scutoid[id] === 1,
-    won: c.won[id],
-    lost: c.lost[id],
-    transitions: c.transitions[id],
-    neighbours3D: c.neighbours3D[id],
-    sides: c.sides.map((perSurface) => perSurface[id]),
-  }));
-  return { method, minContactLength, summary: analysis.summary, cells };
 }

@@ -1,12 +1,12 @@
 // Test page for the closed-surface engine's browser-only path (additive float blending): the
 // blend and readback sums of the same labels, and a short blend-path Lloyd run. Driven by
 // tests/closed/chromium-blend.ts (`npx tsx tests/closed/chromium-blend.ts`).
-import { placeClosedSites } from '../../../src/core/closed/geometry';
-import { ellipsoidProjector } from '../../../src/core/closed/projector';
-import { sampleSurface } from '../../../src/core/cubemap/sample';
-import { createCanvasContext } from '../../../src/gpu/context';
-import { CUBE_SUMS_STRIDE, CubeCcvtEngine } from '../../../src/gpu/cubeEngine';
-import { ClosedLloydRun } from '../../../src/gpu/cubeLloyd';
+import { placeClosedSites } from '../../src/core/closed/geometry';
+import { ellipsoidProjector } from '../../src/core/closed/projector';
+import { sampleSurface } from '../../src/core/cubemap/sample';
+import { createCanvasContext } from '../../src/gpu/context';
+import { CUBE_SUMS_STRIDE, CubeCcvtEngine } from '../../src/gpu/cubeEngine';
+import { ClosedLloydRun } from '../../src/gpu/cubeLloyd';
 
 const context = createCanvasContext(document.getElementById('gl') as HTMLCanvasElement);
 
