@@ -82,12 +82,11 @@ test('an impossible configuration is explained in words and the previous result 
   expect(await percentScutoids(page)).toBe(shown);
 });
 
-test('closed surfaces are listed but disabled until their engine lands', async ({ page }) => {
+test('closed surfaces are offered: sphere, ellipsoid and mesh (sample or upload)', async ({ page }) => {
   await page.goto('/');
   const surface = page.getByLabel('Surface', { exact: true });
-  await expect(surface.locator('option[value="sphere"]')).toBeDisabled();
-  await expect(surface.locator('option[value="mesh"]')).toBeDisabled();
-  await expect(page.locator('.note', { hasText: 'coming with closed surfaces' })).toBeVisible();
+  for (const kind of ['sphere', 'ellipsoid', 'mesh']) await expect(surface.locator(`option[value="${kind}"]`)).toBeEnabled();
+  await expect(page.locator('.note', { hasText: 'coming with closed surfaces' })).toHaveCount(0);
 });
 
 test('a plane runs, with thickness instead of a surface ratio', async ({ page }) => {

@@ -3,10 +3,9 @@
  * charts, the sweep and the exports. The configuration lives in the URL and in localStorage;
  * errors are shown in words and leave the previous result on screen.
  */
-import { ConfigError, validateConfig, type Config } from '../core/config';
+import { ConfigError, validateAnyConfig, type AnyConfig as Config } from '../core/config';
 import { GpuCapabilityError } from '../gpu/context';
-import type { SheetOutput } from '../run/result';
-import { computeContext, isAbort, LatestRunner } from './model/runner';
+import { computeContext, isAbort, LatestRunner, type PageOutput } from './model/runner';
 import { initialConfig, saveConfig, urlWithConfig } from './model/settings';
 import { viewStack, type ViewStack } from './model/stack';
 import { Charts } from './panels/charts';
@@ -57,7 +56,7 @@ const controls = new ConfigControls($('#controls'), initialConfig((m) => showErr
   onError: showError,
 });
 const sweep = new SweepPanel($('#sweep'), {
-  config: () => validateConfig(controls.config),
+  config: () => validateAnyConfig(controls.config),
   onPoints: (label, points) => charts.showSweep(label, points),
   onError: showError,
 });
@@ -68,9 +67,13 @@ bindExports($('.exports'), {
   onError: showError,
 });
 
-function show(output: SheetOutput): void {
+function show(output: PageOutput): void {
   stack = viewStack(output);
-  viewPanel.show(stack);
+  try {
+    viewPanel.show(stack);
+  } catch (error) {
+    showError(`The 3D view could not draw this result: ${(error as Error).message}`);
+  }
   renderResults($('main'), stack);
   charts.showStack(stack);
 }
@@ -79,13 +82,12 @@ function show(output: SheetOutput): void {
 async function run(draft: Config): Promise<void> {
   let config: Config;
   try {
-    config = validateConfig(draft);
+    config = validateAnyConfig(draft);
   } catch (error) {
     showError(error);
     setState('error');
     return;
   }
-  saveConfig(config);
   clearError();
   setState('running');
   cancelButton.disabled = false;
@@ -103,6 +105,8 @@ async function run(draft: Config): Promise<void> {
       },
     });
     show(output);
+    // Saved once it ran: the URL and the session hold the configuration of the result on screen.
+    saveConfig(config);
     runs += 1;
     document.body.dataset.runs = String(runs);
     statusLine.textContent = `Done in ${((performance.now() - started) / 1000).toFixed(1)} s.`;
@@ -141,7 +145,7 @@ $('#converge').addEventListener('click', () =>
 cancelButton.addEventListener('click', () => runner.cancel());
 $('#share').addEventListener('click', async () => {
   try {
-    const link = urlWithConfig(location.href, validateConfig(controls.config));
+    const link = urlWithConfig(location.href, validateAnyConfig(controls.config));
     await navigator.clipboard?.writeText(link);
     statusLine.textContent = 'Link copied: it reproduces this configuration.';
   } catch (error) {

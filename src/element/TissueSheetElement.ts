@@ -1,12 +1,13 @@
 /**
  * `<tissue-sheet>`: a sheet computed and shown in any page. Attributes (kebab-case) configure
- * it, properties carry rich data (`config`, `densityImage`), methods run and export it, and
+ * it, properties carry rich data (`config`, `densityImage`, `meshFile`), methods run and export it, and
  * `progress` / `result` / `error` events report on it. A bare element shows the app's small
  * default tube. Runs share one compute context per page and are queued.
  */
-import type { ConfigInput, Config } from '../core/config';
+import type { AnyConfig, ConfigInput } from '../core/config';
 import type { GrayImage } from '../core/density';
 import { ConfigError } from '../core/config';
+import type { MeshFile } from '../app/model/meshFiles';
 import { isAbort, LatestRunner } from '../app/model/runner';
 import { primaryAnalysis, viewStack } from '../app/model/stack';
 import { SheetView3D } from '../app/view/sheetView3d';
@@ -22,6 +23,7 @@ export class TissueSheetElement extends HTMLElement {
 
   private base: ConfigInput | null = null;
   private image: GrayImage | null = null;
+  private mesh: MeshFile | null = null;
   private last: SheetResult | null = null;
   private view: SheetView3D | null = null;
   private readonly runner = new LatestRunner();
@@ -35,8 +37,8 @@ export class TissueSheetElement extends HTMLElement {
   }
 
   /** The effective, validated configuration (throws ConfigError when the attributes are invalid). */
-  get config(): Config {
-    return configFromAttributes(this, this.base);
+  get config(): AnyConfig {
+    return configFromAttributes(this, this.base, this.mesh?.name);
   }
 
   /** A configuration (fields may be left out); attributes still override its fields. */
@@ -52,6 +54,20 @@ export class TissueSheetElement extends HTMLElement {
 
   set densityImage(value: GrayImage | null) {
     this.image = value;
+    this.schedule();
+  }
+
+  /**
+   * A mesh file for `surface="mesh"`: `{ data: ArrayBuffer (or the text), name }`, e.g. a user's
+   * File read with `await file.arrayBuffer()`. Used instead of fetching `src`; without a `src`
+   * attribute the config's `surface.src` is its name.
+   */
+  get meshFile(): MeshFile | null {
+    return this.mesh;
+  }
+
+  set meshFile(value: MeshFile | null) {
+    this.mesh = value;
     this.schedule();
   }
 
@@ -86,7 +102,7 @@ export class TissueSheetElement extends HTMLElement {
 
   /** Runs the sheet now; resolves with the result (also sent as a `result` event). */
   async run(): Promise<SheetResult> {
-    let config: Config;
+    let config: AnyConfig;
     try {
       config = this.config;
     } catch (error) {
@@ -98,13 +114,18 @@ export class TissueSheetElement extends HTMLElement {
       const output = await this.runner.start({
         config,
         densityImage: this.image ?? undefined,
+        meshFile: config.surface.kind === 'mesh' ? this.mesh : null,
         onIteration: (record, maxIterations) => {
           this.status(`Lloyd iteration ${record.iteration} / ${maxIterations}`);
           this.emit<TissueSheetProgressDetail>('progress', { iteration: record.iteration, maxIterations, energy: record.energy, maxDisplacement: record.maxDisplacement });
         },
       });
       const stack = viewStack(output);
-      this.view?.setStack(stack);
+      try {
+        this.view?.setStack(stack);
+      } catch (error) {
+        this.status(`3D view: ${(error as Error).message}`, true);
+      }
       this.last = output.result;
       const percent = primaryAnalysis(output.result)?.summary.percentScutoids ?? Number.NaN;
       const label = this.shadow.querySelector<HTMLElement>('.percent')!;

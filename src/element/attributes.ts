@@ -3,9 +3,9 @@
  * override the `config` property, which overrides the defaults (the app's small default tube).
  * Numbers are parsed as given; a bad value reaches validation, which names the field.
  */
-import { densityPreset } from '../app/panels/fields';
+import { CLOSED_RESOLUTION, densityPreset, surfaceOfKind } from '../app/panels/fields';
 import { APP_DEFAULTS } from '../app/model/settings';
-import { validateConfig, type Config, type ConfigInput } from '../core/config';
+import { isClosedConfig, validateAnyConfig, type AnyConfig, type ConfigInput } from '../core/config';
 import { setPath } from '../core/sweep';
 
 type Kind = 'number' | 'string' | 'boolean' | 'nullable-number';
@@ -14,6 +14,11 @@ type Kind = 'number' | 'string' | 'boolean' | 'nullable-number';
 export const ATTRIBUTES: Record<string, [string, Kind]> = {
   surface: ['surface.kind', 'string'],
   radius: ['surface.radius', 'number'],
+  a: ['surface.a', 'number'],
+  b: ['surface.b', 'number'],
+  c: ['surface.c', 'number'],
+  src: ['surface.src', 'string'],
+  scale: ['surface.scale', 'number'],
   length: ['surface.length', 'number'],
   width: ['surface.width', 'number'],
   height: ['surface.height', 'number'],
@@ -57,15 +62,25 @@ function parse(kind: Kind, text: string): unknown {
 /**
  * The validated configuration of an element: defaults, then `base` (the config property), then
  * the attributes. Switching `surface` to a plane drops the tube's surface ratio; giving a
- * thickness on a tube without a surface ratio uses the thickness.
+ * thickness on a tube without a surface ratio uses the thickness. A closed surface (sphere,
+ * ellipsoid, mesh) starts from the app's dimensions for it and, without a `resolution`
+ * attribute, a cube map of 64 texels per face edge. A mesh without `src` uses `meshName` (the
+ * element's meshFile) or the organoid sample.
  */
-export function configFromAttributes(element: Element, base: ConfigInput | null): Config {
+export function configFromAttributes(element: Element, base: ConfigInput | null, meshName?: string): AnyConfig {
   const input = structuredClone(base ?? APP_DEFAULTS) as Record<string, unknown>;
   const surfaceKind = element.getAttribute('surface');
   if (surfaceKind !== null && surfaceKind !== (input.surface as { kind?: string } | undefined)?.kind) {
     // A different kind starts from that kind's required fields (an empty plane/tube is invalid).
-    input.surface = surfaceKind === 'plane' ? { kind: 'plane', width: 512, height: 512 } : { kind: surfaceKind, radius: 256 / (2 * Math.PI), length: 512 };
+    if (['sphere', 'ellipsoid', 'mesh'].includes(surfaceKind)) {
+      input.surface = surfaceOfKind({ kind: 'tube', radius: 1, length: 1 }, surfaceKind);
+      if (!element.hasAttribute('resolution')) input.resolution = Math.min(Number(input.resolution ?? 512), CLOSED_RESOLUTION);
+    } else {
+      input.surface = surfaceKind === 'plane' ? { kind: 'plane', width: 512, height: 512 } : { kind: surfaceKind, radius: 256 / (2 * Math.PI), length: 512 };
+    }
   }
+  const surface = input.surface as { kind?: string; src?: string };
+  if (surface.kind === 'mesh' && meshName && !element.hasAttribute('src')) surface.src = meshName;
   for (const [attribute, [path, kind]] of Object.entries(ATTRIBUTES)) {
     const text = element.getAttribute(attribute);
     if (text === null || attribute === 'surface') continue;
@@ -76,8 +91,9 @@ export function configFromAttributes(element: Element, base: ConfigInput | null)
   const kind = (input.surface as { kind: string }).kind;
   if (!element.hasAttribute('surface-ratio') && (kind !== 'tube' || element.hasAttribute('thickness'))) sheet.surfaceRatio = null;
   input.sheet = sheet;
-  let config = validateConfig(input);
+  let config = validateAnyConfig(input);
   const density = element.getAttribute('density');
-  if (density !== null && density !== config.density.kind) config = validateConfig({ ...config, density: densityPreset(density, config) });
+  if (density !== null && density !== config.density.kind) config = validateAnyConfig({ ...config, density: densityPreset(density, config) });
+  if (isClosedConfig(config) && density === null && config.density.kind !== 'uniform') config = { ...config, density: { kind: 'uniform' } };
   return config;
 }

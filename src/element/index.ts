@@ -9,9 +9,10 @@ import { TissueSheetElement } from './TissueSheetElement';
 export { TissueSheetElement } from './TissueSheetElement';
 export { ATTRIBUTES } from './attributes';
 export type { TissueSheetErrorDetail, TissueSheetEventMap, TissueSheetProgressDetail, TissueSheetResultDetail } from './events';
-export type { Config, ConfigInput } from '../core/config';
+export type { AnyConfig, ClosedConfig, Config, ConfigInput } from '../core/config';
+export type { MeshFile } from '../run/closedMesh';
 export type { GrayImage } from '../core/density';
-export type { SheetResult, AnalysisRecord, CellRecord, CellStatisticsRecord, SurfaceRecord } from '../run/result';
+export type { SheetResult, AnalysisRecord, CellRecord, CellStatisticsRecord, ClosedSurfaceRecord, SurfaceRecord } from '../run/result';
 
 if (typeof customElements !== 'undefined' && !customElements.get('tissue-sheet')) {
   customElements.define('tissue-sheet', TissueSheetElement);

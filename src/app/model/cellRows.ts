@@ -22,8 +22,8 @@ export function cellTable(stack: ViewStack): CellTable {
     'transitions',
     'neighbours3D',
     'area_um2',
-    'u_um',
-    'v_um',
+    // Closed surfaces: the site's parameter direction as longitude / latitude.
+    ...(stack.closed ? ['longitude_deg', 'latitude_deg'] : ['u_um', 'v_um']),
   ];
   const rows = stack.result.cells.map((cell, i) => {
     const stats = stack.analysis?.cells[i];

@@ -4,12 +4,17 @@
  * surface, placed in 3D with the engine's embedding; each polygon has its own vertices, which
  * carry the cell's data: id, surface index, sides on that surface (from the analysis shown),
  * scutoid and valid flags.
+ *
+ * Closed surfaces (sphere, ellipsoid, mesh): every surface of the stack as the triangle mesh the
+ * 3D view draws, each vertex carrying the data of the cell of its nearest site on that surface.
  */
 import { exactVoronoi } from '../../core/exact';
 import { embed } from '../../core/surface';
+import { closedSurfaceMesh } from '../view/closedGeometry';
 import type { ViewStack } from './stack';
 
 export function cellsPly(stack: ViewStack): string {
+  if (stack.closed) return closedCellsPly(stack);
   const { config } = stack.result;
   const vertices: string[] = [];
   const faces: string[] = [];
@@ -34,10 +39,31 @@ export function cellsPly(stack: ViewStack): string {
       faces.push(`${count} ${Array.from({ length: count }, (_, k) => first + k).join(' ')}`);
     }
   }
+  return plyDocument(stack, 'cells of every surface (0 = seeded), µm', vertices, faces);
+}
+
+function closedCellsPly(stack: ViewStack): string {
+  const vertices: string[] = [];
+  const faces: string[] = [];
+  for (const surface of stack.surfaces) {
+    const mesh = closedSurfaceMesh(stack, surface);
+    const first = vertices.length;
+    for (let v = 0; v < mesh.cells.length; v++) {
+      const id = mesh.cells[v];
+      const p = [mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]];
+      vertices.push(`${p.map((x) => x.toFixed(4)).join(' ')} ${id} ${surface.index} ${surface.sides[id] ?? 0} ${stack.scutoid[id] ?? 0} ${stack.valid[id] ?? 0}`);
+    }
+    const t = mesh.indices;
+    for (let f = 0; f < t.length; f += 3) faces.push(`3 ${first + t[f]} ${first + t[f + 1]} ${first + t[f + 2]}`);
+  }
+  return plyDocument(stack, 'closed surfaces (0 = seeded) as triangle meshes, each vertex labelled with the cell of its nearest site, µm', vertices, faces);
+}
+
+function plyDocument(stack: ViewStack, comment: string, vertices: string[], faces: string[]): string {
   const header = [
     'ply',
     'format ascii 1.0',
-    `comment tissue-sheet ${stack.result.software.version}: cells of every surface (0 = seeded), µm`,
+    `comment tissue-sheet ${stack.result.software.version}: ${comment}`,
     `element vertex ${vertices.length}`,
     'property float x',
     'property float y',

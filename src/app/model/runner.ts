@@ -1,18 +1,25 @@
 /**
  * Runs sheets in the page: one compute context (an off-screen WebGL2 canvas) shared by every
  * caller on the page, runs queued one at a time on it, a newer request cancelling the one it
- * replaces, density images decoded on the way. The page stays responsive because runSheet
- * yields to the event loop between Lloyd iterations.
+ * replaces, density images decoded and mesh files fetched on the way. The page stays responsive
+ * because runSheet yields to the event loop between Lloyd iterations.
+ *
+ * Planar runs go through one SheetRunner: when only `sheet.*` changed (the live surface-ratio and
+ * thickness sliders, a sweep's points) the converged seeded surface is reused and Lloyd is not
+ * run again. Closed surfaces (sphere, ellipsoid, mesh) run whole through runSheet.
  */
-import type { Config } from '../../core/config';
+import { isClosedConfig, type AnyConfig } from '../../core/config';
 import type { GrayImage } from '../../core/density';
 import { createCanvasContext, type GpuContext } from '../../gpu/context';
 import type { IterationRecord } from '../../gpu/lloyd';
 import type { SheetOutput } from '../../run/result';
 import { runSheet } from '../../run/runSheet';
+import { SheetRunner } from '../../run/sheetRunner';
 import { decodeGrayImage } from './densityImage';
+import { meshFileFor, type MeshFile } from './meshFiles';
 
 let sharedContext: GpuContext | null = null;
+let sharedRunner: SheetRunner | null = null;
 let queue: Promise<unknown> = Promise.resolve();
 
 /** The page's compute context; throws GpuCapabilityError (a message for people) without WebGL2. */
@@ -21,17 +28,24 @@ export function computeContext(): GpuContext {
   return sharedContext;
 }
 
+/** What a run in the page gives: the engine's output and, for a mesh, the file it ran on (the 3D view draws it). */
+export interface PageOutput extends SheetOutput {
+  readonly meshFile?: MeshFile | null;
+}
+
 export interface RunRequest {
-  config: Config;
+  config: AnyConfig;
   signal?: AbortSignal;
   onIteration?: (record: IterationRecord, maxIterations: number) => void;
   /** A decoded density image; else an image density's `src` is fetched and decoded. */
   densityImage?: GrayImage;
+  /** A mesh file for `surface.kind = "mesh"` (else an upload of that name, or `src` fetched). */
+  meshFile?: MeshFile | null;
 }
 
 const decoded = new Map<string, Promise<GrayImage>>();
 
-async function densityImageFor(config: Config, given?: GrayImage): Promise<GrayImage | undefined> {
+async function densityImageFor(config: AnyConfig, given?: GrayImage): Promise<GrayImage | undefined> {
   if (config.density.kind !== 'image') return undefined;
   if (given) return given;
   const { src } = config.density;
@@ -43,15 +57,19 @@ async function densityImageFor(config: Config, given?: GrayImage): Promise<GrayI
 }
 
 /** One run, queued behind any run already on the shared context. */
-export function runInPage(request: RunRequest): Promise<SheetOutput> {
-  const job = queue.then(async () => {
+export function runInPage(request: RunRequest): Promise<PageOutput> {
+  const job = queue.then(async (): Promise<PageOutput> => {
     if (request.signal?.aborted) throw new DOMException('The run was cancelled', 'AbortError');
     const context = computeContext();
-    const densityImage = await densityImageFor(request.config, request.densityImage);
-    // Always a function: runSheet's loop steps inside `onIteration?.(run.step(), ...)`, so an
-    // absent callback would skip the step (reported to the engine's owner).
-    const onIteration = request.onIteration ?? (() => undefined);
-    return runSheet(request.config, context, { signal: request.signal, onIteration, densityImage });
+    const { config, signal, onIteration } = request;
+    if (isClosedConfig(config)) {
+      const meshFile = await meshFileFor(config, request.meshFile);
+      const output = await runSheet(config, context, { signal, onIteration, ...(meshFile ? { meshFile } : {}) });
+      return { ...output, meshFile };
+    }
+    const densityImage = await densityImageFor(config, request.densityImage);
+    sharedRunner ??= new SheetRunner(context);
+    return sharedRunner.run(config, { signal, onIteration, densityImage });
   });
   queue = job.catch(() => undefined);
   return job;
@@ -79,7 +97,7 @@ export class LatestRunner {
     this.controller = null;
   }
 
-  async start(request: Omit<RunRequest, 'signal'>): Promise<SheetOutput> {
+  async start(request: Omit<RunRequest, 'signal'>): Promise<PageOutput> {
     this.cancel();
     const controller = new AbortController();
     this.controller = controller;

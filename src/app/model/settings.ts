@@ -2,8 +2,10 @@
  * The page's configuration: its defaults (small enough to run in a few seconds on a software
  * GPU), and where it lives between visits: the URL (`?config=<JSON>`, a shareable link that
  * reproduces the result) and localStorage (the last session, used when the URL has none).
+ * Closed surfaces are part of it; a mesh is its sample URL (/meshes/<name>) or, for a user's
+ * file, only its name (see meshFiles.ts).
  */
-import { validateConfig, type Config, type ConfigInput } from '../../core/config';
+import { validateAnyConfig, type AnyConfig, type ConfigInput } from '../../core/config';
 
 /** The app's default sheet: a short tube, 150 cells, surface ratio 1.5. */
 export const APP_DEFAULTS: ConfigInput = {
@@ -18,12 +20,12 @@ export const APP_DEFAULTS: ConfigInput = {
 const STORAGE_KEY = 'tissue-sheet:last-config';
 const URL_PARAM = 'config';
 
-export function defaultConfig(): Config {
-  return validateConfig(APP_DEFAULTS);
+export function defaultConfig(): AnyConfig {
+  return validateAnyConfig(APP_DEFAULTS);
 }
 
 /** The config written in a URL, or null when there is none (throws ConfigError when invalid). */
-export function configFromUrl(href: string): Config | null {
+export function configFromUrl(href: string): AnyConfig | null {
   const text = new URL(href).searchParams.get(URL_PARAM);
   if (text === null) return null;
   let data: unknown;
@@ -32,26 +34,26 @@ export function configFromUrl(href: string): Config | null {
   } catch {
     throw new Error(`The link's configuration is not valid JSON; it was ignored and the defaults are shown.`);
   }
-  return validateConfig(data);
+  return validateAnyConfig(data);
 }
 
 /** A link to this page that reproduces `config`. */
-export function urlWithConfig(href: string, config: Config): string {
+export function urlWithConfig(href: string, config: AnyConfig): string {
   const url = new URL(href);
   url.searchParams.set(URL_PARAM, JSON.stringify(config));
   return url.toString();
 }
 
-export function configFromStorage(storage: Storage | undefined = globalThis.localStorage): Config | null {
+export function configFromStorage(storage: Storage | undefined = globalThis.localStorage): AnyConfig | null {
   try {
     const text = storage?.getItem(STORAGE_KEY);
-    return text ? validateConfig(JSON.parse(text)) : null;
+    return text ? validateAnyConfig(JSON.parse(text)) : null;
   } catch {
     return null; // an old or damaged session is not worth an error message
   }
 }
 
-export function saveConfig(config: Config): void {
+export function saveConfig(config: AnyConfig): void {
   try {
     globalThis.localStorage?.setItem(STORAGE_KEY, JSON.stringify(config));
   } catch {
@@ -62,7 +64,7 @@ export function saveConfig(config: Config): void {
 }
 
 /** URL first (a shared link), then the last session, then the defaults. */
-export function initialConfig(onWarning: (message: string) => void): Config {
+export function initialConfig(onWarning: (message: string) => void): AnyConfig {
   try {
     const fromUrl = configFromUrl(location.href);
     if (fromUrl) return fromUrl;

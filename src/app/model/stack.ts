@@ -4,6 +4,7 @@
  * per-cell flags (valid, scutoid) of the analysis shown. Pure data; no DOM.
  */
 import type { AnalysisRecord, CellRecord, LabelImage, SheetOutput, SheetResult } from '../../run/result';
+import type { MeshFile } from './meshFiles';
 
 export interface ViewSurface {
   readonly index: number;
@@ -12,7 +13,7 @@ export interface ViewSurface {
   readonly role: 'seeded' | 'layer' | 'other';
   /** µm along the seeded surface's normal. */
   readonly offset: number;
-  /** R / R_seeded on a tube, 1 on a plane. */
+  /** R / R_seeded on a tube, 1 on a plane, sqrt(area / seeded area) on a closed surface. */
   readonly ratio: number;
   readonly image: LabelImage;
   readonly cells: readonly CellRecord[];
@@ -28,6 +29,10 @@ export interface ViewStack {
   readonly valid: Uint8Array;
   /** 1 for scutoids. */
   readonly scutoid: Uint8Array;
+  /** Closed surfaces (sphere, ellipsoid, mesh): label images are n x 6n cube-map atlases. */
+  readonly closed: boolean;
+  /** A mesh surface: the file it ran on (the 3D view draws the mesh itself). */
+  readonly meshFile: MeshFile | null;
 }
 
 /** The analysis the page reports: labels (the lab's method) when present, else the first. */
@@ -40,7 +45,7 @@ export function analysisByMethod(result: SheetResult, method: 'labels' | 'exact'
   return (result.analyses ?? []).find((a) => a.method === method) ?? null;
 }
 
-export function viewStack(output: SheetOutput): ViewStack {
+export function viewStack(output: SheetOutput & { meshFile?: MeshFile | null }): ViewStack {
   const { result, labelImages } = output;
   const analysis = primaryAnalysis(result);
   const n = result.cells.length;
@@ -71,5 +76,5 @@ export function viewStack(output: SheetOutput): ViewStack {
     valid[i] = stats ? (stats.valid ? 1 : 0) : result.cells[i]?.touchesBorder ? 0 : 1;
     scutoid[i] = stats?.scutoid ? 1 : 0;
   }
-  return { result, analysis, surfaces, valid, scutoid };
+  return { result, analysis, surfaces, valid, scutoid, closed: result.closed !== undefined, meshFile: output.meshFile ?? null };
 }

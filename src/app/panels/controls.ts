@@ -3,9 +3,10 @@
  * fieldsets. It holds a draft config (plain data) and reports every edit; the page validates
  * the draft and decides whether to run. `live` edits come from sliders being dragged.
  */
-import type { Config } from '../../core/config';
+import type { AnyConfig as Config } from '../../core/config';
 import { getPath, setPath } from '../../core/sweep';
 import { imageFileToDataUrl } from '../model/densityImage';
+import { isUploadName, rememberUpload, sampleName } from '../model/meshFiles';
 import { FIELDS, type FieldSpec } from './fields';
 
 export interface ControlsEvents {
@@ -73,8 +74,9 @@ export class ConfigControls {
       input = select;
     } else {
       const element = document.createElement('input');
-      element.type = { number: 'number', integer: 'number', 'optional-number': 'number', range: 'range', checkbox: 'checkbox', file: 'file', select: '' }[spec.kind];
+      element.type = { number: 'number', integer: 'number', 'optional-number': 'number', range: 'range', checkbox: 'checkbox', file: 'file', 'mesh-file': 'file', select: '' }[spec.kind];
       if (spec.kind === 'file') element.accept = 'image/png,image/jpeg,image/webp';
+      if (spec.kind === 'mesh-file') element.accept = '.ply,.obj,.stl';
       if (spec.min !== undefined) element.min = String(spec.min);
       if (spec.step !== undefined) element.step = String(spec.step);
       input = element;
@@ -83,7 +85,7 @@ export class ConfigControls {
     input.name = spec.path;
     if (spec.kind === 'checkbox') row.append(input, label);
     else row.append(label, input);
-    if (spec.kind === 'range') {
+    if (spec.kind === 'range' || spec.kind === 'mesh-file') {
       output = document.createElement('output');
       output.htmlFor.add(id);
       row.append(output);
@@ -131,6 +133,16 @@ export class ConfigControls {
         const file = (input as HTMLInputElement).files?.[0];
         return file ? imageFileToDataUrl(file) : undefined;
       }
+      case 'mesh-file': {
+        // The bytes stay in memory; the config keeps the file's name (a URL cannot hold the file).
+        const element = input as HTMLInputElement;
+        const file = element.files?.[0];
+        if (!file) return undefined;
+        const name = file.name.replace(/\//g, '_') || 'mesh.ply';
+        rememberUpload({ name, data: await file.arrayBuffer() });
+        element.value = ''; // choosing the same file again re-runs it
+        return name;
+      }
       case 'optional-number':
         return input.value.trim() === '' ? null : Number(input.value);
       default:
@@ -151,12 +163,22 @@ export class ConfigControls {
       }
       if (spec.kind === 'checkbox') (input as HTMLInputElement).checked = Boolean(value);
       else if (spec.kind === 'file') continue;
+      else if (spec.kind === 'mesh-file') {
+        if (output) output.value = meshSourceText(String(value ?? ''));
+        continue;
+      }
       else if (document.activeElement !== input || spec.kind === 'select' || spec.kind === 'range') {
         input.value = value === null || value === undefined || (typeof value === 'number' && Number.isNaN(value)) ? '' : String(roundForDisplay(value));
       }
       if (output) output.value = String(value);
     }
   }
+}
+
+function meshSourceText(src: string): string {
+  const sample = sampleName(src);
+  if (sample) return `using the sample ${sample}`;
+  return isUploadName(src) ? `using your file ${src} (not in links)` : `using ${src}`;
 }
 
 function roundForDisplay(value: unknown): unknown {

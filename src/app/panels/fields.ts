@@ -1,10 +1,14 @@
 /**
  * Every control of the configuration panel, as data: the config path it edits, its label, its
  * kind and range, and when it shows. The panel (controls.ts) renders and binds them; changing
- * the list is all it takes to add a field. Closed surfaces (sphere, ellipsoid, mesh) are listed
- * disabled until their engine lands.
+ * the list is all it takes to add a field. Closed surfaces: sphere (radius), ellipsoid (a, b,
+ * c), mesh (a sample from public/meshes/ or a user's file; see model/meshFiles.ts).
  */
-import { DEFAULT_TUBE_RADIUS, unrolledDomain, type Config, type DensitySpec, type SurfaceConfig } from '../../core/config';
+import { DEFAULT_TUBE_RADIUS, isClosedConfig, unrolledDomain, type AnyConfig, type DensitySpec, type SurfaceConfig } from '../../core/config';
+import { SAMPLE_MESHES, sampleName, sampleUrl } from '../model/meshFiles';
+
+type Config = AnyConfig;
+type AnySurface = AnyConfig['surface'];
 
 export interface Option {
   value: string;
@@ -17,7 +21,7 @@ export interface FieldSpec {
   path: string;
   label: string;
   group: 'Surface' | 'Cells' | 'Density' | 'Lloyd' | 'Sheet';
-  kind: 'number' | 'integer' | 'range' | 'select' | 'checkbox' | 'optional-number' | 'file';
+  kind: 'number' | 'integer' | 'range' | 'select' | 'checkbox' | 'optional-number' | 'file' | 'mesh-file';
   min?: number;
   max?: number | ((c: Config) => number);
   step?: number;
@@ -34,19 +38,70 @@ export interface FieldSpec {
 
 const isTube = (c: Config) => c.surface.kind === 'tube';
 const isPlane = (c: Config) => c.surface.kind === 'plane';
+const isKind = (kind: AnySurface['kind']) => (c: Config) => c.surface.kind === kind;
+const isMesh = isKind('mesh');
+
+/** Closed surfaces start small enough for a software GPU: n texels per cube face. */
+export const CLOSED_RESOLUTION = 64;
+const PLANAR_RESOLUTION = 256;
+export const DEFAULT_SPHERE_RADIUS = 60;
+export const DEFAULT_ELLIPSOID = { a: 90, b: 45, c: 45 } as const;
+/** The samples are about unit size: µm per unit. */
+export const DEFAULT_MESH_SCALE = 50;
+export const DEFAULT_MESH_SRC = sampleUrl('organoid.ply');
+
+/** A surface of `kind` with default dimensions (closed kinds), or keeping the unrolled size (plane, tube). */
+export function surfaceOfKind(current: AnySurface, kind: string): AnySurface {
+  if (kind === 'sphere') return { kind: 'sphere', radius: current.kind === 'sphere' ? current.radius : DEFAULT_SPHERE_RADIUS };
+  if (kind === 'ellipsoid') return { kind: 'ellipsoid', ...DEFAULT_ELLIPSOID };
+  if (kind === 'mesh') return { kind: 'mesh', src: DEFAULT_MESH_SRC, scale: DEFAULT_MESH_SCALE, geodesic: false };
+  if (current.kind === 'plane' || current.kind === 'tube') return planarOfKind(current, kind);
+  return planarOfKind({ kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 }, kind);
+}
+
+/** Switching kind: closed kinds get a cube-map resolution, planar ones a planar one; no surface ratio off a tube; uniform density on closed surfaces. */
+function withSurfaceKind(c: Config, kind: string): Config {
+  const surface = surfaceOfKind(c.surface, kind);
+  const wasClosed = isClosedConfig(c);
+  const closed = kind === 'sphere' || kind === 'ellipsoid' || kind === 'mesh';
+  const resolution = closed && !wasClosed ? Math.min(c.resolution, CLOSED_RESOLUTION) : !closed && wasClosed ? PLANAR_RESOLUTION : c.resolution;
+  return {
+    ...c,
+    surface,
+    resolution,
+    density: closed ? { kind: 'uniform' } : c.density,
+    sheet: { ...c.sheet, surfaceRatio: kind === 'tube' ? c.sheet.surfaceRatio : null },
+  } as Config;
+}
+
+/** Largest thickness offered by the slider. */
+function maxThickness(c: Config): number {
+  const s = c.surface;
+  const inward = c.sheet.direction === 'inward';
+  if (s.kind === 'tube') return inward ? Math.floor(s.radius * 0.95) : 400;
+  if (s.kind === 'sphere') return Math.max(1, Math.floor(s.radius * (inward ? 0.95 : 2)));
+  if (s.kind === 'ellipsoid') {
+    const lo = Math.min(s.a, s.b, s.c);
+    const hi = Math.max(s.a, s.b, s.c);
+    return Math.max(1, Math.floor(inward ? ((lo * lo) / hi) * 0.95 : 2 * hi));
+  }
+  if (s.kind === 'mesh') return Math.max(1, Math.round(s.scale * (inward ? 0.5 : 1)));
+  return 400;
+}
 const densityIs = (...kinds: DensitySpec['kind'][]) => (c: Config) => kinds.includes(c.density.kind);
 
-/** Switching kind keeps the unrolled size: circumference <-> width, length <-> height. */
-function surfaceOfKind(current: SurfaceConfig, kind: string): SurfaceConfig {
+/** Switching between plane and tube keeps the unrolled size: circumference <-> width, length <-> height. */
+function planarOfKind(current: SurfaceConfig, kind: string): SurfaceConfig {
   const d = unrolledDomain(current);
   if (kind === 'plane') return { kind: 'plane', width: d.lengthX, height: d.lengthY, periodicX: false, periodicY: false };
   if (kind === 'tube') return { kind: 'tube', radius: d.lengthX / (2 * Math.PI) || DEFAULT_TUBE_RADIUS, length: d.lengthY };
-  throw new Error(`surface "${kind}" comes with closed surfaces and is not available yet`);
+  throw new Error(`surface.kind: unknown surface "${kind}"; use plane, tube, sphere, ellipsoid or mesh`);
 }
 
 /** Density presets: parameters that suit the current domain. */
 export function densityPreset(kind: string, c: Config): DensitySpec {
-  const d = unrolledDomain(c.surface);
+  // Closed surfaces take uniform density only: validation says so for any other preset.
+  const d = isClosedConfig(c) ? { lengthX: 1, lengthY: 1 } : unrolledDomain(c.surface);
   switch (kind) {
     case 'linear':
       return { kind: 'linear', axis: 'y', from: 1, to: 4 };
@@ -66,7 +121,7 @@ const AXES: Option[] = [
   { value: 'y', label: 'y (along)' },
 ];
 
-const CLOSED_NOTE = 'coming with closed surfaces';
+const UPLOAD_NOTE = 'An uploaded file cannot travel in a link: the link and the saved session keep only its name, and ask for the file again.';
 
 export const FIELDS: FieldSpec[] = [
   {
@@ -77,20 +132,42 @@ export const FIELDS: FieldSpec[] = [
     options: [
       { value: 'tube', label: 'tube' },
       { value: 'plane', label: 'plane' },
-      { value: 'sphere', label: `sphere (${CLOSED_NOTE})`, disabled: true },
-      { value: 'ellipsoid', label: `ellipsoid (${CLOSED_NOTE})`, disabled: true },
-      { value: 'mesh', label: `mesh upload (${CLOSED_NOTE})`, disabled: true },
+      { value: 'sphere', label: 'sphere' },
+      { value: 'ellipsoid', label: 'ellipsoid' },
+      { value: 'mesh', label: 'mesh (sample or upload)' },
     ],
-    note: `Sphere, ellipsoid and mesh upload: ${CLOSED_NOTE}.`,
-    set: (c, v) => ({ ...c, surface: surfaceOfKind(c.surface, String(v)), sheet: { ...c.sheet, surfaceRatio: v === 'tube' ? c.sheet.surfaceRatio : null } }),
+    set: (c, v) => withSurfaceKind(c, String(v)),
   },
-  { path: 'surface.radius', label: 'Radius', unit: 'µm', group: 'Surface', kind: 'number', min: 0, step: 1, show: isTube },
+  { path: 'surface.radius', label: 'Radius', unit: 'µm', group: 'Surface', kind: 'number', min: 0, step: 1, show: (c) => isTube(c) || c.surface.kind === 'sphere' },
+  { path: 'surface.a', label: 'Semi-axis a (x)', unit: 'µm', group: 'Surface', kind: 'number', min: 0, step: 1, show: isKind('ellipsoid') },
+  { path: 'surface.b', label: 'Semi-axis b (y)', unit: 'µm', group: 'Surface', kind: 'number', min: 0, step: 1, show: isKind('ellipsoid') },
+  { path: 'surface.c', label: 'Semi-axis c (z)', unit: 'µm', group: 'Surface', kind: 'number', min: 0, step: 1, show: isKind('ellipsoid') },
+  {
+    path: 'surface.sample',
+    label: 'Mesh',
+    group: 'Surface',
+    kind: 'select',
+    options: [...SAMPLE_MESHES.map((m) => ({ value: m.name, label: m.label })), { value: '', label: 'uploaded file', disabled: true }],
+    show: isMesh,
+    get: (c) => (c.surface.kind === 'mesh' ? (sampleName(c.surface.src) ?? '') : ''),
+    set: (c, v) => (c.surface.kind === 'mesh' && v ? { ...c, surface: { ...c.surface, src: sampleUrl(String(v)) } } : c),
+  },
+  {
+    path: 'surface.src',
+    label: 'Mesh file (.ply, .obj, .stl)',
+    group: 'Surface',
+    kind: 'mesh-file',
+    note: UPLOAD_NOTE,
+    show: isMesh,
+  },
+  { path: 'surface.scale', label: 'Scale', unit: 'µm per mesh unit', group: 'Surface', kind: 'number', min: 0, step: 1, show: isMesh },
+  { path: 'surface.geodesic', label: 'Compare with the geodesic (heat-method) Voronoi', group: 'Surface', kind: 'checkbox', show: isMesh },
   { path: 'surface.length', label: 'Length', unit: 'µm', group: 'Surface', kind: 'number', min: 0, step: 1, show: isTube },
   { path: 'surface.width', label: 'Width', unit: 'µm', group: 'Surface', kind: 'number', min: 0, step: 1, show: isPlane },
   { path: 'surface.height', label: 'Height', unit: 'µm', group: 'Surface', kind: 'number', min: 0, step: 1, show: isPlane },
   { path: 'surface.periodicX', label: 'Periodic in x', group: 'Surface', kind: 'checkbox', show: isPlane },
   { path: 'surface.periodicY', label: 'Periodic in y', group: 'Surface', kind: 'checkbox', show: isPlane },
-  { path: 'resolution', label: 'Resolution (texels, longer side)', group: 'Surface', kind: 'integer', min: 16, max: 16384, step: 1 },
+  { path: 'resolution', label: 'Resolution (texels: longer side; closed: per cube-face edge)', group: 'Surface', kind: 'integer', min: 16, max: 16384, step: 1 },
 
   { path: 'cells', label: 'Cells', group: 'Cells', kind: 'integer', min: 1, step: 1 },
   { path: 'seed', label: 'Random seed', group: 'Cells', kind: 'integer', min: 0, step: 1 },
@@ -191,7 +268,7 @@ export const FIELDS: FieldSpec[] = [
     group: 'Sheet',
     kind: 'range',
     min: 0,
-    max: (c) => (c.surface.kind === 'tube' && c.sheet.direction === 'inward' ? Math.floor(c.surface.radius * 0.95) : 400),
+    max: maxThickness,
     step: 1,
     live: true,
     show: (c) => !isTube(c) || c.sheet.surfaceRatio === null,

@@ -26,10 +26,19 @@ export function renderResults(root: HTMLElement, stack: ViewStack): void {
   const run = root.querySelector<HTMLElement>('#run-info');
   if (run) {
     const last = result.lloyd.iterations.length;
+    const closed = result.closed;
+    const mesh = closed?.mesh;
+    const where = closed
+      ? `${closed.kind}${mesh ? ` ${mesh.src} (${mesh.vertices} vertices, ${mesh.faces} faces, parameterization area ratio ${mesh.areaDistortion.min.toFixed(2)}..${mesh.areaDistortion.max.toFixed(2)})` : ''}, ` +
+        `area ${fmt(closed.area, 0)} µm², cube map 6 x ${closed.n}² texels`
+      : `${result.grid.width} x ${result.grid.height} texels`;
+    const geodesic = closed?.geodesic
+      ? `; geodesic Voronoi (heat method) ${fmt(closed.geodesic.msPerSite, 1)} ms per site, agrees with the GPU cells on ${fmt(100 * closed.geodesic.agreement, 1)} % of vertices`
+      : '';
     run.textContent =
-      `${result.cells.length} cells, ${result.grid.width} x ${result.grid.height} texels, ${last} Lloyd iterations` +
+      `${result.cells.length} cells, ${where}, ${last} Lloyd iterations` +
       `${result.lloyd.converged ? ' (converged)' : ''}, final energy ${result.lloyd.finalEnergy.toPrecision(6)} µm⁴, ` +
-      `centroid path ${result.gpu.centroidPath}, ${fmt(result.timings.totalMs, 0)} ms on ${result.gpu.renderer}`;
+      `centroid path ${result.gpu.centroidPath}, ${fmt(result.timings.totalMs, 0)} ms on ${result.gpu.renderer}${geodesic}`;
   }
   const table = root.querySelector<HTMLElement>('#cell-table');
   if (table) table.replaceChildren(cellTableElement(stack));
@@ -59,7 +68,7 @@ function summaryTable(stack: ViewStack): HTMLTableElement {
   };
   line('percentScutoids', '% scutoids', 2);
   line('scutoids', 'scutoids', 0);
-  line('validCells', 'cells counted (not touching the ends)', 0);
+  line('validCells', stack.closed ? 'cells counted (all: a closed surface has no border)' : 'cells counted (not touching the ends)', 0);
   line('meanTransitions', 'mean apico-basal transitions', 3);
   line('meanWon', 'mean neighbours won', 3);
   line('meanLost', 'mean neighbours lost', 3);

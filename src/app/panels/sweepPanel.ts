@@ -1,11 +1,11 @@
 /**
- * The in-page sweep: % scutoids against the surface ratio (tube) or the thickness (plane), over
+ * The in-page sweep: % scutoids against the surface ratio (tube) or the thickness (plane, closed surfaces), over
  * a few realizations, run with src/core/sweep (expandSweep + runSweep) and runSheet as the
  * runner. Every grid point of a realization shares its random sites (seedMode
  * "per-realization"), as when the lab evaluates the same realizations at every ratio. The tidy
  * CSV is kept for download; the chart shows mean ± sd.
  */
-import { validateConfig, type Config } from '../../core/config';
+import { validateAnyConfig, type AnyConfig as Config } from '../../core/config';
 import { aggregateRows, expandSweep, runSweep } from '../../core/sweep';
 import { isAbort, runInPage } from '../model/runner';
 import { primaryAnalysis } from '../model/stack';
@@ -73,7 +73,7 @@ export class SweepPanel {
           csv += text;
         },
         runner: async (config) => {
-          const output = await runInPage({ config: validateConfig(config), signal: controller.signal });
+          const output = await runInPage({ config: validateAnyConfig(config), signal: controller.signal });
           const analysis = primaryAnalysis(output.result);
           const summary = analysis?.summary;
           return {

@@ -1,14 +1,20 @@
 /**
  * The 3D view of the sheet: every surface of the stack as a mesh textured with its painted label
- * image (tube: coaxial cylinders; plane: parallel sheets), orbit controls, per-surface
- * visibility, and a cut (a clipping plane) to see inside. Renders on demand only (no loop), so
- * screenshots are stable and an idle page costs nothing.
+ * image (tube: coaxial cylinders; plane: parallel sheets) or, on closed surfaces (sphere,
+ * ellipsoid, mesh), a triangle mesh of each surface coloured per vertex by the cell of the
+ * nearest site (closedGeometry.ts); orbit controls, per-surface visibility, and a cut (a
+ * clipping plane) to see inside. Renders on demand only (no loop), so screenshots are stable and
+ * an idle page costs nothing.
  */
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import type { ViewStack } from '../model/stack';
-import { paintSurface } from './sideColors';
+import type { ViewStack, ViewSurface } from '../model/stack';
+import { closedSurfaceMesh, edgeLength } from './closedGeometry';
+import { paintSurface, RGB, sideColorIndex } from './sideColors';
 import { surfaceGeometry } from './surfaceGeometry';
+
+/** A fixed light (world space, from the default camera's side) baked into closed surfaces' colours. */
+const LIGHT = new THREE.Vector3(0.35, 0.6, 0.75).normalize();
 
 export interface SheetViewOptions {
   highlightScutoids?: boolean;
@@ -145,6 +151,14 @@ export class SheetView3D {
     this.clearMeshes();
     const config = stack.result.config;
     for (const surface of stack.surfaces) {
+      if (stack.closed) {
+        const mesh = new THREE.Mesh(this.closedGeometry(stack, surface), new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide, clippingPlanes: [this.clip] }));
+        mesh.name = surface.name;
+        mesh.visible = visible[surface.index] ?? true;
+        this.meshes.push(mesh);
+        this.inner.add(mesh);
+        continue;
+      }
       const { width, height } = surface.image.grid;
       const rgba = paintSurface(surface, { highlightScutoids: this.highlight, valid: stack.valid, scutoid: stack.scutoid });
       const texture = new THREE.DataTexture(rgba, width, height, THREE.RGBAFormat, THREE.UnsignedByteType);
@@ -173,6 +187,39 @@ export class SheetView3D {
     this.updateClip();
   }
 
+  /** A closed surface: colours by sides, dark cell boundaries, striped scutoids, a baked light. */
+  private closedGeometry(stack: ViewStack, surface: ViewSurface): THREE.BufferGeometry {
+    const built = closedSurfaceMesh(stack, surface);
+    const { positions, normals, cells, boundary } = built;
+    const colors = new Float32Array(positions.length);
+    const period = Math.max(1e-6, 3 * edgeLength(stack));
+    const color = new THREE.Color();
+    for (let v = 0; v < cells.length; v++) {
+      const id = cells[v];
+      let [r, g, b] = id >= 0 ? RGB[sideColorIndex(surface.sides[id] ?? 0)] : [40, 40, 40];
+      const x = positions[3 * v], y = positions[3 * v + 1], z = positions[3 * v + 2];
+      if (this.highlight && id >= 0 && stack.scutoid[id]) {
+        const phase = (x + y + z) / period;
+        if (phase - Math.floor(phase) < 0.4) r = g = b = 20;
+      }
+      if (boundary[v]) {
+        r *= 0.25;
+        g *= 0.25;
+        b *= 0.25;
+      }
+      const light = 0.6 + 0.4 * Math.max(0, normals[3 * v] * LIGHT.x + normals[3 * v + 1] * LIGHT.y + normals[3 * v + 2] * LIGHT.z);
+      color.setRGB((r / 255) * light, (g / 255) * light, (b / 255) * light, THREE.SRGBColorSpace);
+      colors[3 * v] = color.r;
+      colors[3 * v + 1] = color.g;
+      colors[3 * v + 2] = color.b;
+    }
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+    geometry.setAttribute('color', new THREE.BufferAttribute(colors, 3));
+    geometry.setIndex(new THREE.BufferAttribute(built.indices, 1));
+    return geometry;
+  }
+
   private fitCamera(): void {
     const halfV = (this.camera.fov * Math.PI) / 360;
     const halfH = Math.atan(Math.tan(halfV) * this.camera.aspect);
@@ -180,7 +227,9 @@ export class SheetView3D {
     // Look from the side, a little above: a tube lies across the view.
     const direction = new THREE.Vector3(0, 0.45, 1).normalize();
     if (this.stack?.result.config.surface.kind === 'plane') direction.set(0.25, 0.5, 1).normalize();
-    this.camera.position.copy(direction.multiplyScalar(distance * 0.62));
+    // A closed surface is seen whole.
+    const closeness = this.stack?.closed ? 0.8 : 0.62;
+    this.camera.position.copy(direction.multiplyScalar(distance * closeness));
     this.camera.near = distance / 100;
     this.camera.far = distance * 10;
     this.camera.updateProjectionMatrix();

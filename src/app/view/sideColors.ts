@@ -10,7 +10,7 @@ export const SIDE_LABELS = ['3', '4', '5', '6', '7', '8', '9', '10+'] as const;
 export const SIDE_COLORS = ['#6a3d9a', '#1f78b4', '#33a02c', '#f2e394', '#ff7f00', '#e31a1c', '#8c510a', '#4d4d4d'] as const;
 const NO_CELL = [40, 40, 40] as const;
 
-const RGB = SIDE_COLORS.map((hex) => [1, 3, 5].map((k) => parseInt(hex.slice(k, k + 2), 16)));
+export const RGB = SIDE_COLORS.map((hex) => [1, 3, 5].map((k) => parseInt(hex.slice(k, k + 2), 16)));
 
 /** Colour index of a cell with `sides` sides (fewer than 3 share the "3" colour). */
 export function sideColorIndex(sides: number): number {

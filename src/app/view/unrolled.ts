@@ -2,32 +2,68 @@
  * The unrolled diagrams: one 2D canvas per surface of the stack, side by side, drawn from the
  * label images (cells coloured by sides, scutoids striped, border cells faded). Widths keep the
  * surfaces' true proportions, so a tube's outer surface is drawn wider than its inner one.
+ *
+ * Closed surfaces cannot be unrolled: their label images are cube maps (n x 6n atlases, face f
+ * in rows f n .. f n + n - 1), drawn as a strip of the six faces +X, -X, +Y, -Y, +Z, -Z (each
+ * face as stored: i to the right, j down), one strip per surface.
  */
-import type { ViewStack } from '../model/stack';
+import { FACE_NAMES } from '../../core/cubemap/cubemap';
+import type { ViewStack, ViewSurface } from '../model/stack';
 import { flipRows, paintSurface } from './sideColors';
 
 export function drawUnrolled(container: HTMLElement, stack: ViewStack, highlightScutoids: boolean): void {
   container.replaceChildren();
+  container.classList.toggle('closed', stack.closed);
+  if (stack.closed) {
+    const note = document.createElement('p');
+    note.id = 'unrolled-note';
+    note.className = 'small';
+    note.textContent = `A closed surface cannot be unrolled: each surface is shown as its cube-map label image, the six faces ${FACE_NAMES.join(', ')} side by side (GL cube-map order and orientation).`;
+    container.append(note);
+  }
   for (const surface of stack.surfaces) {
     const { width, height } = surface.image.grid;
     const figure = document.createElement('figure');
-    figure.className = 'unrolled';
+    figure.className = stack.closed ? 'unrolled cube' : 'unrolled';
     const canvas = document.createElement('canvas');
-    canvas.width = width;
-    canvas.height = height;
     canvas.dataset.surface = surface.name;
     canvas.setAttribute('role', 'img');
-    canvas.setAttribute('aria-label', `unrolled ${surface.name} surface, ${width} x ${height} texels`);
-    const context = canvas.getContext('2d');
-    if (context) {
-      const rgba = paintSurface(surface, { highlightScutoids, valid: stack.valid, scutoid: stack.scutoid });
-      context.putImageData(new ImageData(flipRows(rgba, width, height), width, height), 0, 0);
+    const context = () => canvas.getContext('2d');
+    const rgba = paintSurface(surface, { highlightScutoids, valid: stack.valid, scutoid: stack.scutoid });
+    if (stack.closed) {
+      const n = width;
+      canvas.width = 6 * n;
+      canvas.height = n;
+      canvas.setAttribute('aria-label', `cube-map labels of the ${surface.name} surface, 6 faces of ${n} x ${n} texels`);
+      context()?.putImageData(new ImageData(cubeStrip(rgba, n), 6 * n, n), 0, 0);
+    } else {
+      canvas.width = width;
+      canvas.height = height;
+      canvas.setAttribute('aria-label', `unrolled ${surface.name} surface, ${width} x ${height} texels`);
+      context()?.putImageData(new ImageData(flipRows(rgba, width, height), width, height), 0, 0);
     }
     const caption = document.createElement('figcaption');
-    const ratio = surface.ratio !== 1 ? `, ratio ${surface.ratio.toFixed(2)}` : '';
-    const offset = surface.offset !== 0 ? `, ${surface.offset.toFixed(1)} µm` : '';
-    caption.textContent = `${surface.name}${surface.role === 'seeded' ? ' (seeded)' : ''}${offset}${ratio}`;
+    caption.textContent = captionOf(surface, stack.closed);
     figure.append(canvas, caption);
     container.append(figure);
   }
+}
+
+function captionOf(surface: ViewSurface, closed: boolean): string {
+  const offset = surface.offset !== 0 ? `, ${surface.offset.toFixed(1)} µm` : '';
+  const ratio = surface.ratio !== 1 ? `, ${closed ? 'size ratio' : 'ratio'} ${surface.ratio.toFixed(2)}` : '';
+  return `${surface.name}${surface.role === 'seeded' ? ' (seeded)' : ''}${offset}${ratio}`;
+}
+
+/** The n x 6n atlas (face f in rows f n ..) as a 6n x n strip (face f in columns f n ..). */
+function cubeStrip(rgba: Uint8ClampedArray, n: number): Uint8ClampedArray<ArrayBuffer> {
+  const out = new Uint8ClampedArray(rgba.length);
+  for (let f = 0; f < 6; f++) {
+    for (let j = 0; j < n; j++) {
+      const from = ((f * n + j) * n) * 4;
+      const to = (j * 6 * n + f * n) * 4;
+      out.set(rgba.subarray(from, from + 4 * n), to);
+    }
+  }
+  return out;
 }
