@@ -43,6 +43,15 @@ export const ATTRIBUTES: Record<string, [string, Kind]> = {
   density: ['density.kind', 'string'],
 };
 
+/** Surface fields each kind takes: other surface attributes are ignored (switching kind keeps them harmless). */
+const SURFACE_FIELDS: Record<string, string[]> = {
+  plane: ['width', 'height', 'periodicX', 'periodicY'],
+  tube: ['radius', 'length'],
+  sphere: ['radius'],
+  ellipsoid: ['a', 'b', 'c'],
+  mesh: ['src', 'scale'],
+};
+
 /** Attributes that are not configuration. */
 export const OTHER_ATTRIBUTES = ['manual'];
 
@@ -85,6 +94,8 @@ export function configFromAttributes(element: Element, base: ConfigInput | null,
     const text = element.getAttribute(attribute);
     if (text === null || attribute === 'surface') continue;
     if (attribute === 'density') continue;
+    const currentKind = (input.surface as { kind?: string } | undefined)?.kind ?? '';
+    if (path.startsWith('surface.') && !(SURFACE_FIELDS[currentKind] ?? []).includes(path.slice('surface.'.length))) continue;
     setPath(input, path, parse(kind, text));
   }
   const sheet = (input.sheet ?? {}) as Record<string, unknown>;
