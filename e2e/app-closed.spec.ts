@@ -1,4 +1,4 @@
-import { mkdtempSync, writeFileSync } from 'node:fs';
+import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
@@ -43,6 +43,19 @@ test('a sphere runs: concentric spheres keep every neighbour (0 % scutoids)', as
   expect(await page.locator('#unrolled canvas').first().evaluate((c: HTMLCanvasElement) => [c.width, c.height])).toEqual([192, 32]);
   await expect(page.getByLabel('Radius (µm)')).toHaveValue('50');
   await expect(page.locator('#surface-toggles input')).toHaveCount(2);
+
+  // Exports: the per-cell CSV gives the site's direction; the PLY holds both surfaces' meshes.
+  const download = async (name: string) => {
+    const [file] = await Promise.all([page.waitForEvent('download'), page.locator(`[data-export="${name}"]`).click()]);
+    return readFileSync((await file.path())!, 'utf8');
+  };
+  const csv = (await download('cells')).trim().split('\n');
+  expect(csv[0]).toContain('longitude_deg,latitude_deg');
+  expect(csv).toHaveLength(101);
+  const ply = await download('ply');
+  const vertices = Number(/element vertex (\d+)/.exec(ply)?.[1]);
+  expect(vertices).toBeGreaterThan(2 * 100 * 30);
+  expect(ply.trim().split('\n').length).toBe(ply.indexOf('end_header') >= 0 ? ply.slice(0, ply.indexOf('end_header')).split('\n').length + vertices + Number(/element face (\d+)/.exec(ply)?.[1]) : -1);
 
   // The thickness slider re-runs; concentric spheres stay free of scutoids.
   const before = await runs(page);
