@@ -3,12 +3,14 @@ import type { Grid } from '../core/grid';
 import { coldSchedule, warmFirstStep, warmSchedule, type JumpFloodVariant } from '../core/jumpSchedule';
 import centroidScatterFrag from '../shaders/centroidScatter.frag';
 import centroidScatterVert from '../shaders/centroidScatter.vert';
-import clearLabelsFrag from '../shaders/labelClear.frag';
+import idSplatFrag from '../shaders/idSplat.frag';
+import labelClearFrag from '../shaders/labelClear.frag';
 import refreshLabelsFrag from '../shaders/refreshLabels.frag';
+import resolveIdsFrag from '../shaders/resolveIds.frag';
 import fullscreenVert from '../shaders/fullscreen.vert';
 import jumpFloodFrag from '../shaders/jumpFlood.frag';
-import splatFrag from '../shaders/labelSplat.frag';
-import splatVert from '../shaders/labelSplat.vert';
+import labelSplatFrag from '../shaders/labelSplat.frag';
+import labelSplatVert from '../shaders/labelSplat.vert';
 import { GpuCapabilityError, type GpuContext } from './context';
 import { GatherCentroids } from './gatherCentroids';
 import { ShaderPass } from './shaderPass';
@@ -43,11 +45,15 @@ export class CcvtEngine {
   private readonly weightTexture: THREE.DataTexture;
   private readonly labelTargets: [THREE.WebGLRenderTarget, THREE.WebGLRenderTarget];
   private current = 0;
+  private readonly idMapTarget: THREE.WebGLRenderTarget;
+  private readonly idTarget: THREE.WebGLRenderTarget;
   private readonly sumsTarget: THREE.WebGLRenderTarget;
   private readonly gather: GatherCentroids | null;
   private readonly clearPass: ShaderPass;
   private readonly refreshPass: ShaderPass;
   private readonly splatPass: ShaderPass;
+  private readonly idSplatPass: ShaderPass;
+  private readonly resolvePass: ShaderPass;
   private readonly floodPass: ShaderPass;
   private readonly centroidPass: ShaderPass | null;
   private readonly coldSteps: number[];
@@ -88,11 +94,14 @@ export class CcvtEngine {
       grid.height,
       THREE.RedFormat,
     );
-    // Labels: (site x, site y, site id, 1) per texel; see shaders/jumpFlood.frag.
+    // Labels: the nearest site's position (RG32F) per texel, flooded; the id map: each site's
+    // id at the texel it is splatted to; ids: each texel's site id, resolved after a flood.
     this.labelTargets = [
-      createFloatTarget(grid.width, grid.height, THREE.RGBAFormat),
-      createFloatTarget(grid.width, grid.height, THREE.RGBAFormat),
+      createFloatTarget(grid.width, grid.height, THREE.RGFormat),
+      createFloatTarget(grid.width, grid.height, THREE.RGFormat),
     ];
+    this.idMapTarget = createFloatTarget(grid.width, grid.height, THREE.RedFormat);
+    this.idTarget = createFloatTarget(grid.width, grid.height, THREE.RedFormat);
     this.sumsTarget = createFloatTarget(this.siteTextureWidth, this.siteTextureHeight, THREE.RGBAFormat);
     this.sums = new Float32Array(this.siteTextureWidth * this.siteTextureHeight * 4);
     this.coldSteps = coldSchedule(grid.width, grid.height, options.variant);
@@ -106,10 +115,14 @@ export class CcvtEngine {
     };
     const defines = { PERIODIC_X: grid.periodicX ? 1 : 0, PERIODIC_Y: grid.periodicY ? 1 : 0 };
     const labels = { value: this.labelTargets[0].texture as THREE.Texture };
+    const idMap = { value: this.idMapTarget.texture };
+    const ids = { value: this.idTarget.texture };
     const weights = { value: this.weightTexture };
-    this.clearPass = new ShaderPass('triangles', fullscreenVert, clearLabelsFrag, {});
-    this.refreshPass = new ShaderPass('triangles', fullscreenVert, refreshLabelsFrag, { ...metric, labels }, false, defines);
-    this.splatPass = new ShaderPass('points', splatVert, splatFrag, { ...metric }, false, defines);
+    this.clearPass = new ShaderPass('triangles', fullscreenVert, labelClearFrag, {});
+    this.refreshPass = new ShaderPass('triangles', fullscreenVert, refreshLabelsFrag, { ...metric, labels, idMap }, false, defines);
+    this.splatPass = new ShaderPass('points', labelSplatVert, labelSplatFrag, { ...metric }, false, defines);
+    this.idSplatPass = new ShaderPass('points', labelSplatVert, idSplatFrag, { ...metric }, false, defines);
+    this.resolvePass = new ShaderPass('triangles', fullscreenVert, resolveIdsFrag, { ...metric, labels, idMap }, false, defines);
     this.floodPass = new ShaderPass(
       'triangles',
       fullscreenVert,
@@ -122,13 +135,13 @@ export class CcvtEngine {
       'points',
       centroidScatterVert,
       centroidScatterFrag,
-      { ...metric, labels, weights, sumsSize: { value: new THREE.Vector2(this.siteTextureWidth, this.siteTextureHeight) } },
+      { ...metric, labels: ids, weights, sumsSize: { value: new THREE.Vector2(this.siteTextureWidth, this.siteTextureHeight) } },
       true,
       defines,
     );
     this.gather =
       this.centroidPath === 'gather'
-        ? new GatherCentroids(this.renderer, grid, siteCount, this.siteTextureWidth, this.siteTextureHeight, { ...metric, labels, weights }, defines)
+        ? new GatherCentroids(this.renderer, grid, siteCount, this.siteTextureWidth, this.siteTextureHeight, { ...metric, labels: ids, weights }, defines)
         : null;
   }
 
@@ -158,10 +171,13 @@ export class CcvtEngine {
     if (warmFromDisplacement === undefined) {
       this.clearPass.draw(this.renderer, this.labelTargets[this.current]);
     } else {
+      // Old positions -> ids (through the id map of the old positions) -> new positions.
       this.refreshPass.uniforms.labels.value = this.labelTargets[this.current].texture;
       this.current = 1 - this.current;
       this.refreshPass.draw(this.renderer, this.labelTargets[this.current]);
     }
+    this.clearPass.draw(this.renderer, this.idMapTarget);
+    this.idSplatPass.draw(this.renderer, this.idMapTarget, this.siteCount);
     // Splatting on top of old labels makes sure every site owns at least its own texel.
     this.splatPass.draw(this.renderer, this.labelTargets[this.current], this.siteCount);
     for (const step of steps) {
@@ -170,6 +186,8 @@ export class CcvtEngine {
       this.current = 1 - this.current;
       this.floodPass.draw(this.renderer, this.labelTargets[this.current]);
     }
+    this.resolvePass.uniforms.labels.value = this.labelTargets[this.current].texture;
+    this.resolvePass.draw(this.renderer, this.idTarget);
     this.lastPassCount = steps.length;
   }
 
@@ -186,7 +204,7 @@ export class CcvtEngine {
 
   /** Sums (w*dx, w*dy, w, w*d²) per site over the current labels; result in `this.sums`. */
   computeSums(): Float32Array {
-    const labelTexture = this.labelTargets[this.current].texture;
+    const labelTexture = this.idTarget.texture;
     if (this.gather) {
       return this.gather.compute(labelTexture, this.sums, this.siteData, this.weightTexture.image.data as Float32Array);
     }
@@ -201,7 +219,7 @@ export class CcvtEngine {
 
   /** Waits for the GPU (a one-texel readback); used to time passes apart. */
   sync(): void {
-    readTargetRGBA(this.renderer, this.labelTargets[this.current], this.syncPixel, 0, 0, 1, 1);
+    readTargetRGBA(this.renderer, this.idTarget, this.syncPixel, 0, 0, 1, 1);
   }
 
   /** Reads the current labels: one site id (or -1) per texel, row-major. */
@@ -212,9 +230,9 @@ export class CcvtEngine {
     const rgba = new Float32Array(width * Math.min(rowsPerBand, height) * 4);
     for (let y0 = 0; y0 < height; y0 += rowsPerBand) {
       const rows = Math.min(rowsPerBand, height - y0);
-      readTargetRGBA(this.renderer, this.labelTargets[this.current], rgba, 0, y0, width, rows);
+      readTargetRGBA(this.renderer, this.idTarget, rgba, 0, y0, width, rows);
       const base = y0 * width;
-      for (let i = 0; i < rows * width; i++) out[base + i] = rgba[4 * i + 2];
+      for (let i = 0; i < rows * width; i++) out[base + i] = rgba[4 * i];
     }
     return out;
   }
@@ -224,14 +242,15 @@ export class CcvtEngine {
     return this.gather?.radii ?? null;
   }
 
-  /** The current label target's texture (for views that draw the diagram). */
+  /** Site id per texel after the last flood (R32F; for views that draw the diagram). */
   get labelTexture(): THREE.Texture {
-    return this.labelTargets[this.current].texture;
+    return this.idTarget.texture;
   }
 
   dispose(): void {
-    for (const pass of [this.clearPass, this.refreshPass, this.splatPass, this.floodPass, this.centroidPass]) pass?.dispose();
-    for (const target of [...this.labelTargets, this.sumsTarget]) target.dispose();
+    const passes = [this.clearPass, this.refreshPass, this.splatPass, this.idSplatPass, this.floodPass, this.resolvePass, this.centroidPass];
+    for (const pass of passes) pass?.dispose();
+    for (const target of [...this.labelTargets, this.idMapTarget, this.idTarget, this.sumsTarget]) target.dispose();
     this.gather?.dispose();
     this.siteTexture.dispose();
     this.weightTexture.dispose();

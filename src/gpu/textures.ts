@@ -4,7 +4,7 @@ import * as THREE from 'three';
 export function createFloatTarget(
   width: number,
   height: number,
-  format: typeof THREE.RedFormat | typeof THREE.RGBAFormat,
+  format: typeof THREE.RedFormat | typeof THREE.RGFormat | typeof THREE.RGBAFormat,
 ): THREE.WebGLRenderTarget {
   const target = new THREE.WebGLRenderTarget(width, height, {
     type: THREE.FloatType,

@@ -61,7 +61,7 @@ void main() {
     for (int dx = from.x; dx <= to.x; ++dx) {
       ivec2 q = origin + ivec2(dx, dy);
       if (!wrapTexel(q)) continue;
-      if (texelFetch(labels, q, 0).z != id) continue;
+      if (texelFetch(labels, q, 0).r != id) continue;
       if ((!whole.x && abs(dx) == radius) || (!whole.y && abs(dy) == radius)) touchesRing = true;
       vec2 d = gridDelta(position, vec2(q) + 0.5);
       vec2 dPhysical = d * texelSize;

@@ -20,7 +20,7 @@ out vec4 contribution;
 
 void main() {
   ivec2 p = ivec2(gl_VertexID % gridSize.x, gl_VertexID / gridSize.x);
-  float id = texelFetch(labels, p, 0).z;
+  float id = texelFetch(labels, p, 0).r;
   gl_PointSize = 1.0;
   if (id < 0.0) {
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: dropped

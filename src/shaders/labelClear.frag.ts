@@ -1,8 +1,8 @@
-/** Marks every texel as belonging to no site (id -1) before a cold jump flood. */
+/** Empties a label or id target (-1 everywhere: no site) before a cold flood or a new splat. */
 export default /* glsl */ `
 precision highp float;
-out vec4 label;
+out vec4 empty;
 void main() {
-  label = vec4(0.0, 0.0, -1.0, 0.0);
+  empty = vec4(-1.0, -1.0, -1.0, 0.0);
 }
 `;

@@ -1,18 +1,23 @@
 import gridMetric from './gridMetric.glsl';
+import siteTexel from './siteTexel.glsl';
 
 /**
- * Warm start: the previous iteration's labels keep their ids, but their copied site positions
- * are stale once the sites moved. Re-read every texel's site position from the site texture.
+ * Warm start: the previous iteration's labels hold the sites' previous positions. Each is
+ * mapped to its site's id through the previous id map, and replaced by that site's current
+ * position from the site texture.
  */
 export default /* glsl */ `
 precision highp float;
 precision highp int;
 ${gridMetric}
+${siteTexel}
 uniform highp sampler2D labels;
+uniform highp sampler2D idMap;
 out vec4 label;
 
 void main() {
-  vec4 previous = texelFetch(labels, ivec2(gl_FragCoord.xy), 0);
-  label = previous.z < 0.0 ? previous : vec4(siteAt(int(previous.z)), previous.z, 1.0);
+  vec2 previous = texelFetch(labels, ivec2(gl_FragCoord.xy), 0).xy;
+  float id = previous.x < 0.0 ? -1.0 : texelFetch(idMap, siteTexel(previous), 0).r;
+  label = id < 0.0 ? vec4(-1.0, -1.0, 0.0, 0.0) : vec4(siteAt(int(id)), 0.0, 1.0);
 }
 `;
