@@ -4,7 +4,6 @@ import { coldSchedule, warmFirstStep, warmSchedule, type JumpFloodVariant } from
 import centroidScatterFrag from '../shaders/centroidScatter.frag';
 import centroidScatterVert from '../shaders/centroidScatter.vert';
 import idSplatFrag from '../shaders/idSplat.frag';
-import labelClearFrag from '../shaders/labelClear.frag';
 import refreshLabelsFrag from '../shaders/refreshLabels.frag';
 import resolveIdsFrag from '../shaders/resolveIds.frag';
 import fullscreenVert from '../shaders/fullscreen.vert';
@@ -15,6 +14,9 @@ import { GpuCapabilityError, type GpuContext } from './context';
 import { GatherCentroids } from './gatherCentroids';
 import { ShaderPass } from './shaderPass';
 import { createFloatDataTexture, createFloatTarget, readTargetRGBA } from './textures';
+
+/** "No site" in a label (x < 0) and in an id map or id target (id < 0). */
+const EMPTY_LABEL = new Float32Array([-1, -1, -1, 0]);
 
 /** How centroids are summed: additive blending (needs EXT_float_blend) or a gather pass. */
 export type CentroidPath = 'blend' | 'gather';
@@ -45,11 +47,11 @@ export class CcvtEngine {
   private readonly weightTexture: THREE.DataTexture;
   private readonly labelTargets: [THREE.WebGLRenderTarget, THREE.WebGLRenderTarget];
   private current = 0;
+  private idsStale = true;
   private readonly idMapTarget: THREE.WebGLRenderTarget;
   private readonly idTarget: THREE.WebGLRenderTarget;
   private readonly sumsTarget: THREE.WebGLRenderTarget;
   private readonly gather: GatherCentroids | null;
-  private readonly clearPass: ShaderPass;
   private readonly refreshPass: ShaderPass;
   private readonly splatPass: ShaderPass;
   private readonly idSplatPass: ShaderPass;
@@ -118,7 +120,6 @@ export class CcvtEngine {
     const idMap = { value: this.idMapTarget.texture };
     const ids = { value: this.idTarget.texture };
     const weights = { value: this.weightTexture };
-    this.clearPass = new ShaderPass('triangles', fullscreenVert, labelClearFrag, {});
     this.refreshPass = new ShaderPass('triangles', fullscreenVert, refreshLabelsFrag, { ...metric, labels, idMap }, false, defines);
     this.splatPass = new ShaderPass('points', labelSplatVert, labelSplatFrag, { ...metric }, false, defines);
     this.idSplatPass = new ShaderPass('points', labelSplatVert, idSplatFrag, { ...metric }, false, defines);
@@ -127,7 +128,7 @@ export class CcvtEngine {
       'triangles',
       fullscreenVert,
       jumpFloodFrag,
-      { ...metric, labels, stepSize: { value: 1 } },
+      { ...metric, labels, stepSize: { value: 1 }, aspect: { value: grid.texelY / grid.texelX } },
       false,
       defines,
     );
@@ -169,14 +170,14 @@ export class CcvtEngine {
   floodLabels(warmFromDisplacement?: number): void {
     const steps = warmFromDisplacement === undefined ? this.coldSteps : this.warmSteps(warmFromDisplacement);
     if (warmFromDisplacement === undefined) {
-      this.clearPass.draw(this.renderer, this.labelTargets[this.current]);
+      this.clearToEmpty(this.labelTargets[this.current]);
     } else {
       // Old positions -> ids (through the id map of the old positions) -> new positions.
       this.refreshPass.uniforms.labels.value = this.labelTargets[this.current].texture;
       this.current = 1 - this.current;
       this.refreshPass.draw(this.renderer, this.labelTargets[this.current]);
     }
-    this.clearPass.draw(this.renderer, this.idMapTarget);
+    this.clearToEmpty(this.idMapTarget);
     this.idSplatPass.draw(this.renderer, this.idMapTarget, this.siteCount);
     // Splatting on top of old labels makes sure every site owns at least its own texel.
     this.splatPass.draw(this.renderer, this.labelTargets[this.current], this.siteCount);
@@ -186,9 +187,28 @@ export class CcvtEngine {
       this.current = 1 - this.current;
       this.floodPass.draw(this.renderer, this.labelTargets[this.current]);
     }
-    this.resolvePass.uniforms.labels.value = this.labelTargets[this.current].texture;
-    this.resolvePass.draw(this.renderer, this.idTarget);
+    this.idsStale = true;
     this.lastPassCount = steps.length;
+  }
+
+  /** Clears a label or id target to "no site" with glClear: far cheaper than a pass on software GL. */
+  private clearToEmpty(target: THREE.WebGLRenderTarget): void {
+    this.renderer.setRenderTarget(target);
+    this.context.gl.clearBufferfv(this.context.gl.COLOR, 0, EMPTY_LABEL);
+  }
+
+  /**
+   * Site id per texel for the current labels, resolved through the id map on first use after
+   * a flood (by the centroid pass, a readback or a view): a flood itself ends at positions,
+   * like the plainest jump flood.
+   */
+  private resolvedIds(): THREE.Texture {
+    if (this.idsStale) {
+      this.resolvePass.uniforms.labels.value = this.labelTargets[this.current].texture;
+      this.resolvePass.draw(this.renderer, this.idTarget);
+      this.idsStale = false;
+    }
+    return this.idTarget.texture;
   }
 
   /** Warm schedules depend only on their first step: built once each, so the loop allocates nothing. */
@@ -204,7 +224,7 @@ export class CcvtEngine {
 
   /** Sums (w*dx, w*dy, w, w*d²) per site over the current labels; result in `this.sums`. */
   computeSums(): Float32Array {
-    const labelTexture = this.idTarget.texture;
+    const labelTexture = this.resolvedIds();
     if (this.gather) {
       return this.gather.compute(labelTexture, this.sums, this.siteData, this.weightTexture.image.data as Float32Array);
     }
@@ -219,7 +239,7 @@ export class CcvtEngine {
 
   /** Waits for the GPU (a one-texel readback); used to time passes apart. */
   sync(): void {
-    readTargetRGBA(this.renderer, this.idTarget, this.syncPixel, 0, 0, 1, 1);
+    readTargetRGBA(this.renderer, this.labelTargets[this.current], this.syncPixel, 0, 0, 1, 1);
   }
 
   /** Reads the current labels: one site id (or -1) per texel, row-major. */
@@ -228,6 +248,7 @@ export class CcvtEngine {
     // Read in bands of rows so the RGBA staging buffer stays small on big grids.
     const rowsPerBand = Math.max(1, Math.floor((1 << 20) / width));
     const rgba = new Float32Array(width * Math.min(rowsPerBand, height) * 4);
+    this.resolvedIds();
     for (let y0 = 0; y0 < height; y0 += rowsPerBand) {
       const rows = Math.min(rowsPerBand, height - y0);
       readTargetRGBA(this.renderer, this.idTarget, rgba, 0, y0, width, rows);
@@ -244,11 +265,11 @@ export class CcvtEngine {
 
   /** Site id per texel after the last flood (R32F; for views that draw the diagram). */
   get labelTexture(): THREE.Texture {
-    return this.idTarget.texture;
+    return this.resolvedIds();
   }
 
   dispose(): void {
-    const passes = [this.clearPass, this.refreshPass, this.splatPass, this.idSplatPass, this.floodPass, this.resolvePass, this.centroidPass];
+    const passes = [this.refreshPass, this.splatPass, this.idSplatPass, this.floodPass, this.resolvePass, this.centroidPass];
     for (const pass of passes) pass?.dispose();
     for (const target of [...this.labelTargets, this.idMapTarget, this.idTarget, this.sumsTarget]) target.dispose();
     this.gather?.dispose();
