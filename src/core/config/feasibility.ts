@@ -1,0 +1,222 @@
+/** The grid a configuration implies, and the checks that need it (or several fields at once). */
+import type { Grid } from '../grid';
+import { ConfigError } from './validate';
+import type { ClosedConfig, ClosedSurfaceConfig, Config, SurfaceConfig } from './types';
+
+// ---------------------------------------------------------------------------------------------
+// Grid and feasibility
+// ---------------------------------------------------------------------------------------------
+
+/** The unrolled domain of a surface: its extents in µm and which axes wrap. */
+export interface UnrolledDomain {
+  lengthX: number;
+  lengthY: number;
+  periodicX: boolean;
+  periodicY: boolean;
+}
+
+export function unrolledDomain(surface: SurfaceConfig): UnrolledDomain {
+  if (surface.kind === 'tube') {
+    return { lengthX: 2 * Math.PI * surface.radius, lengthY: surface.length, periodicX: true, periodicY: false };
+  }
+  return { lengthX: surface.width, lengthY: surface.height, periodicX: surface.periodicX, periodicY: surface.periodicY };
+}
+
+/**
+ * The sampling grid: the longer side gets `resolution` texels, the other as many texels of the
+ * same size as fit (rounded, at least 1). Texel sizes are then recomputed from the texel counts
+ * so both lengths are exact; texels are square up to that rounding.
+ */
+export function makeGrid(config: Pick<Config, 'surface' | 'resolution'>): Grid {
+  const domain = unrolledDomain(config.surface);
+  const texel = Math.max(domain.lengthX, domain.lengthY) / config.resolution;
+  const width = domain.lengthX >= domain.lengthY ? config.resolution : Math.max(1, Math.round(domain.lengthX / texel));
+  const height = domain.lengthX >= domain.lengthY ? Math.max(1, Math.round(domain.lengthY / texel)) : config.resolution;
+  return {
+    width,
+    height,
+    texelX: domain.lengthX / width,
+    texelY: domain.lengthY / height,
+    periodicX: domain.periodicX,
+    periodicY: domain.periodicY,
+  };
+}
+
+/** Texels a cell needs at least for its centroid to mean something. */
+export const MIN_TEXELS_PER_CELL = 16;
+
+/** Area per point of the densest packing of points `spacing` apart (hexagonal lattice). */
+function hexagonalAreaPerPoint(spacing: number): number {
+  return (Math.sqrt(3) / 2) * spacing * spacing;
+}
+
+/**
+ * Rejects configurations that validate but cannot run sensibly on this grid. These checks need
+ * the grid (or several fields at once), which is why they are not in the schema.
+ */
+export function checkFeasible(config: Config, grid: Grid): void {
+  const texels = grid.width * grid.height;
+  if (config.cells * MIN_TEXELS_PER_CELL > texels) {
+    const need = config.cells * MIN_TEXELS_PER_CELL;
+    throw new ConfigError(
+      'cells',
+      `cells: ${config.cells} cells need at least ${need} texels (${MIN_TEXELS_PER_CELL} per cell) but the grid has ${texels}; lower cells or raise resolution`,
+    );
+  }
+
+  const domain = unrolledDomain(config.surface);
+  const d = config.minSpacing;
+  if (d > 0 && config.cells > 1) {
+    // Disks of diameter d around the sites do not overlap and stay within the domain grown by
+    // d/2 on each open side; their packing density is at most that of the hexagonal lattice.
+    // This is a necessary condition only: random dart throwing saturates well before it.
+    const areaX = domain.lengthX + (domain.periodicX ? 0 : d);
+    const areaY = domain.lengthY + (domain.periodicY ? 0 : d);
+    const available = areaX * areaY;
+    const needed = config.cells * hexagonalAreaPerPoint(d);
+    if (needed > available) {
+      const area = domain.lengthX * domain.lengthY;
+      const largest = Math.sqrt(area / (config.cells * (Math.sqrt(3) / 2)));
+      throw new ConfigError(
+        'minSpacing',
+        `minSpacing: ${config.cells} cells at least ${d} µm apart need ${fmt(needed)} µm² (hexagonal packing) but the surface has ${fmt(area)} µm²; lower minSpacing to at most ${fmt(largest)} µm or lower cells`,
+      );
+    }
+  }
+
+  checkSheet(config);
+
+  if (config.density.kind === 'gaussian') {
+    const [u, v] = config.density.center;
+    if (u < 0 || u > domain.lengthX || v < 0 || v > domain.lengthY) {
+      throw new ConfigError(
+        'density.center',
+        `density.center: [${u}, ${v}] µm is outside the domain [0, ${fmt(domain.lengthX)}] x [0, ${fmt(domain.lengthY)}] µm; move the centre inside`,
+      );
+    }
+  }
+}
+
+/** The other surface must exist: a ratio only on a tube, an inward offset short of the axis. */
+function checkSheet(config: Config): void {
+  const { sheet, surface } = config;
+  if (sheet.surfaceRatio !== null) {
+    if (surface.kind !== 'tube') {
+      throw new ConfigError(
+        'sheet.surfaceRatio',
+        `sheet.surfaceRatio: only a tube has a surface ratio (surface.kind is "${surface.kind}"); give sheet.thickness in µm instead`,
+      );
+    }
+    if (sheet.thickness !== 0) {
+      throw new ConfigError(
+        'sheet.thickness',
+        `sheet.thickness: give either sheet.thickness (${sheet.thickness} µm) or sheet.surfaceRatio (${sheet.surfaceRatio}), not both`,
+      );
+    }
+  }
+  if (surface.kind === 'tube' && sheet.direction === 'inward' && sheet.thickness >= surface.radius) {
+    throw new ConfigError(
+      'sheet.thickness',
+      `sheet.thickness: ${sheet.thickness} µm inward reaches the tube's axis (radius ${fmt(surface.radius)} µm); use less than ${fmt(surface.radius)} µm or direction "outward"`,
+    );
+  }
+}
+
+function fmt(value: number): string {
+  return Number(value.toPrecision(6)).toString();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Closed surfaces: cube-map size and feasibility
+// ---------------------------------------------------------------------------------------------
+
+/** The cube-map geometry image of a closed surface: n x n texels per face, 6 faces. */
+export interface CubeGrid {
+  /** Texels along each face edge (= config.resolution). */
+  readonly n: number;
+  readonly texels: number;
+}
+
+export function makeCubeGrid(config: Pick<ClosedConfig, 'resolution'>): CubeGrid {
+  return { n: config.resolution, texels: 6 * config.resolution * config.resolution };
+}
+
+/** Surface area of an ellipsoid (Knud Thomsen's formula, relative error below 1.1 %). */
+export function ellipsoidArea(a: number, b: number, c: number): number {
+  const p = 1.6075;
+  return 4 * Math.PI * (((a * b) ** p + (a * c) ** p + (b * c) ** p) / 3) ** (1 / p);
+}
+
+/**
+ * Smallest principal radius of curvature of an analytic closed surface (µm): R for a sphere;
+ * (smallest semi-axis)² / (largest semi-axis) for an ellipsoid (at the tips of the longest
+ * axis). null for a mesh (estimated from the mesh at run time).
+ */
+export function minCurvatureRadius(surface: ClosedSurfaceConfig): number | null {
+  if (surface.kind === 'sphere') return surface.radius;
+  if (surface.kind === 'ellipsoid') {
+    const lo = Math.min(surface.a, surface.b, surface.c);
+    const hi = Math.max(surface.a, surface.b, surface.c);
+    return (lo * lo) / hi;
+  }
+  return null;
+}
+
+/** The refusal of an inward offset that reaches a focal point of the surface. */
+export function inwardOffsetError(thickness: number, radius: number, where: string): ConfigError {
+  return new ConfigError(
+    'sheet.thickness',
+    `sheet.thickness: ${fmt(thickness)} µm inward reaches the smallest radius of curvature of the ${where} (${fmt(radius)} µm), where the offset surface folds over itself; use less than ${fmt(radius)} µm or direction "outward"`,
+  );
+}
+
+/**
+ * checkFeasible for closed surfaces: at most one cell per 16 texels of the 6 n² cube map,
+ * uniform density only, minSpacing within hexagonal packing of the surface area (analytic
+ * surfaces), no surfaceRatio, exact adjacency only on the sphere, and no inward offset at or
+ * beyond the smallest radius of curvature (sphere, ellipsoid; a mesh is checked once loaded).
+ */
+export function checkClosedFeasible(config: ClosedConfig, grid: CubeGrid = makeCubeGrid(config)): void {
+  if (config.cells * MIN_TEXELS_PER_CELL > grid.texels) {
+    const need = config.cells * MIN_TEXELS_PER_CELL;
+    throw new ConfigError(
+      'cells',
+      `cells: ${config.cells} cells need at least ${need} texels (${MIN_TEXELS_PER_CELL} per cell) but the cube map has ${grid.texels} (6 x ${grid.n}²); lower cells or raise resolution`,
+    );
+  }
+  if (config.density.kind !== 'uniform') {
+    throw new ConfigError(
+      'density.kind',
+      `density.kind: closed surfaces support only "uniform" density for now (got "${config.density.kind}")`,
+    );
+  }
+  const { surface, sheet } = config;
+  const d = config.minSpacing;
+  if (d > 0 && config.cells > 1 && surface.kind !== 'mesh') {
+    const area = surface.kind === 'sphere' ? 4 * Math.PI * surface.radius ** 2 : ellipsoidArea(surface.a, surface.b, surface.c);
+    const needed = config.cells * hexagonalAreaPerPoint(d);
+    if (needed > area) {
+      const largest = Math.sqrt(area / (config.cells * (Math.sqrt(3) / 2)));
+      throw new ConfigError(
+        'minSpacing',
+        `minSpacing: ${config.cells} cells at least ${d} µm apart need ${fmt(needed)} µm² (hexagonal packing) but the surface has ${fmt(area)} µm²; lower minSpacing to at most ${fmt(largest)} µm or lower cells`,
+      );
+    }
+  }
+  if (sheet.surfaceRatio !== null) {
+    throw new ConfigError(
+      'sheet.surfaceRatio',
+      `sheet.surfaceRatio: only a tube has a surface ratio (surface.kind is "${surface.kind}"); give sheet.thickness in µm instead`,
+    );
+  }
+  if (sheet.adjacency === 'exact' && surface.kind !== 'sphere') {
+    throw new ConfigError(
+      'sheet.adjacency',
+      `sheet.adjacency: "exact" exists only on a sphere (the spherical Delaunay); use "labels" or "both" on a ${surface.kind}`,
+    );
+  }
+  const radius = minCurvatureRadius(surface);
+  if (radius !== null && sheet.direction === 'inward' && sheet.thickness >= radius) {
+    throw inwardOffsetError(sheet.thickness, radius, surface.kind);
+  }
+}

@@ -1,0 +1,208 @@
+/** Validation of a configuration against the schema, with one-line errors naming the field. */
+import Ajv, { type ErrorObject } from 'ajv';
+import { configSchema } from './schema';
+import type { AnyConfig, Config } from './types';
+import { isClosedConfig } from './types';
+
+// ---------------------------------------------------------------------------------------------
+// Validation
+// ---------------------------------------------------------------------------------------------
+
+/** A configuration problem. `field` is a dotted path (`surface.radius`, `density.center[1]`). */
+export class ConfigError extends Error {
+  readonly field: string;
+  constructor(field: string, message: string) {
+    super(message);
+    this.name = 'ConfigError';
+    this.field = field;
+  }
+}
+
+type SchemaNode = Record<string, unknown>;
+
+// One compiled validator per module: compiling is the slow part, validating is cheap.
+// verbose: errors carry their schema node, which is where messages find ranges and units.
+const ajv = new Ajv({ useDefaults: true, allErrors: false, discriminator: true, verbose: true, strict: true, strictRequired: false });
+// strictRequired is off because the discriminator's `required: ['kind']` is defined in the branches.
+ajv.addVocabulary(['unit']);
+const validate = ajv.compile(configSchema as unknown as SchemaNode);
+
+/**
+ * Checks `input`, fills every default and returns a fresh object (the input is never modified).
+ * Throws ConfigError with a one-line message naming the field, the problem, the value given
+ * and what to change.
+ */
+export function validateAnyConfig(input: unknown): AnyConfig {
+  // Clone first: ajv writes defaults into the object it validates, and NaN/Infinity (which
+  // JSON cannot carry but JS objects can) must be caught with their path before ajv sees them.
+  const data = cloneJson(input, []);
+  if (!validate(data)) {
+    const error = validate.errors?.[0];
+    if (!error) throw new ConfigError('', 'config: invalid');
+    throw toConfigError(error);
+  }
+  return data as AnyConfig;
+}
+
+/**
+ * validateAnyConfig for the planar pipeline: a closed surface (sphere, ellipsoid, mesh) is
+ * refused here, because callers of this function read planar fields (width, radius, length);
+ * entry points that run closed surfaces too call validateAnyConfig and runSheet.
+ */
+export function validateConfig(input: unknown): Config {
+  const config = validateAnyConfig(input);
+  if (isClosedConfig(config)) {
+    throw new ConfigError(
+      'surface.kind',
+      `surface.kind: "${config.surface.kind}" is a closed surface, which this entry point does not run; use one of "plane", "tube" here (closed surfaces run through validateAnyConfig and runSheet)`,
+    );
+  }
+  return config;
+}
+
+function cloneJson(value: unknown, path: (string | number)[]): unknown {
+  if (value === null || typeof value === 'string' || typeof value === 'boolean') return value;
+  if (typeof value === 'number') {
+    if (!Number.isFinite(value)) {
+      const field = formatPath(path);
+      throw new ConfigError(field, `${label(field)}: must be a finite number (got ${String(value)}); give a finite value`);
+    }
+    return value;
+  }
+  if (Array.isArray(value)) return value.map((item, index) => cloneJson(item, [...path, index]));
+  if (typeof value === 'object' && (Object.getPrototypeOf(value) === Object.prototype || Object.getPrototypeOf(value) === null)) {
+    const out: Record<string, unknown> = {};
+    for (const [key, item] of Object.entries(value as Record<string, unknown>)) {
+      if (item === undefined) continue; // `{radius: undefined}` means "not given", as in JSON.
+      out[key] = cloneJson(item, [...path, key]);
+    }
+    return out;
+  }
+  const field = formatPath(path);
+  throw new ConfigError(field, `${label(field)}: must be JSON data (got a ${describeType(value)}); use numbers, strings, booleans, arrays and plain objects`);
+}
+
+function describeType(value: unknown): string {
+  if (typeof value === 'object' && value !== null) return (value as object).constructor?.name ?? 'object';
+  return typeof value;
+}
+
+function formatPath(path: (string | number)[]): string {
+  let out = '';
+  for (const part of path) {
+    if (typeof part === 'number') out += `[${part}]`;
+    else out += out === '' ? part : `.${part}`;
+  }
+  return out;
+}
+
+function label(field: string): string {
+  return field === '' ? 'config' : field;
+}
+
+/** ajv's JSON Pointer (`/surface/radius`, `/density/center/1`) as a path array. */
+function parsePointer(pointer: string): (string | number)[] {
+  if (pointer === '') return [];
+  return pointer
+    .slice(1)
+    .split('/')
+    .map((part) => part.replace(/~1/g, '/').replace(/~0/g, '~'))
+    .map((part) => (/^\d+$/.test(part) ? Number(part) : part));
+}
+
+function formatValue(value: unknown): string {
+  const text = typeof value === 'number' ? String(value) : JSON.stringify(value);
+  if (text === undefined) return String(value);
+  return text.length > 60 ? `${text.slice(0, 57)}...` : text;
+}
+
+/** "an integer from 16 to 16384", "a number > 0 µm", "one of "x", "y"": what a field accepts. */
+function expectation(schema: SchemaNode, withType: boolean): string {
+  // A nullable number (type ["number", "null"]): describe the number, and say null is allowed.
+  if (Array.isArray(schema.type) && schema.type.includes('null')) {
+    const type = schema.type.find((t) => t !== 'null');
+    return `${expectation({ ...schema, type }, withType)} or null`;
+  }
+  if (Array.isArray(schema.enum)) return `one of ${schema.enum.map((v) => JSON.stringify(v)).join(', ')}`;
+  if (schema.const !== undefined) return JSON.stringify(schema.const);
+  switch (schema.type) {
+    case 'boolean':
+      return 'true or false';
+    case 'string':
+      return schema.minLength ? 'a non-empty string' : 'a string';
+    case 'array':
+      return `an array of ${String(schema.minItems)} numbers${schema.unit ? ` (${String(schema.unit)})` : ''}`;
+    case 'object':
+      return 'an object';
+    case 'number':
+    case 'integer': {
+      const unit = schema.unit ? ` ${String(schema.unit)}` : '';
+      const lo = schema.minimum as number | undefined;
+      const hi = schema.maximum as number | undefined;
+      const base = schema.type === 'integer' ? 'an integer' : 'a number';
+      let range: string;
+      if (lo !== undefined && hi !== undefined) range = `from ${lo} to ${hi}${unit}`;
+      else if (schema.exclusiveMinimum !== undefined) range = `> ${String(schema.exclusiveMinimum)}${unit}`;
+      else if (lo !== undefined) range = `>= ${lo}${unit}`;
+      else if (hi !== undefined) range = `<= ${hi}${unit}`;
+      else return `${base}${unit ? ` in${unit}` : ''}`;
+      // "must be > 0 µm" reads better than "must be a number > 0 µm" once the type is right,
+      // except for integers, whose range alone would hide the integer requirement.
+      return withType || schema.type === 'integer' ? `${base} ${range}` : range;
+    }
+    default:
+      return 'valid';
+  }
+}
+
+function toConfigError(error: ErrorObject): ConfigError {
+  const path = parsePointer(error.instancePath);
+  const schema = (error.parentSchema ?? {}) as SchemaNode;
+  const got = formatValue(error.data);
+  switch (error.keyword) {
+    case 'additionalProperties': {
+      const extra = (error.params as { additionalProperty: string }).additionalProperty;
+      const field = formatPath([...path, extra]);
+      const allowed = Object.keys((schema.properties ?? {}) as object).join(', ');
+      return new ConfigError(field, `${field}: unknown field; allowed: ${allowed}`);
+    }
+    case 'required': {
+      const missing = (error.params as { missingProperty: string }).missingProperty;
+      const field = formatPath([...path, missing]);
+      const properties = (schema.properties ?? {}) as Record<string, SchemaNode>;
+      const kind = (properties.kind?.const as string | undefined) ?? undefined;
+      const where = kind !== undefined && missing !== 'kind' ? ` for kind ${JSON.stringify(kind)}` : '';
+      const what = missing === 'kind' ? kindChoices(path) : properties[missing] ? expectation(properties[missing], true) : 'a value';
+      return new ConfigError(field, `${field}: required${where}; add ${what}`);
+    }
+    case 'discriminator': {
+      const field = formatPath([...path, 'kind']);
+      const value = formatValue((error.params as { tagValue?: unknown }).tagValue);
+      return new ConfigError(field, `${field}: must be ${kindChoices(path)} (got ${value})`);
+    }
+    case 'type': {
+      const field = formatPath(path);
+      return new ConfigError(field, `${label(field)}: must be ${expectation(schema, true)} (got ${got})`);
+    }
+    case 'minItems':
+    case 'maxItems': {
+      const field = formatPath(path);
+      return new ConfigError(field, `${field}: must be ${expectation(schema, true)} (got ${got})`);
+    }
+    default: {
+      // minimum, maximum, exclusiveMinimum, enum, const, minLength: the field's expectation says it all.
+      const field = formatPath(path);
+      return new ConfigError(field, `${label(field)}: must be ${expectation(schema, false)} (got ${got})`);
+    }
+  }
+}
+
+/** `one of "plane", "tube"` for the union at `path` (surface or density). */
+function kindChoices(path: (string | number)[]): string {
+  const top = path[0];
+  const union = (configSchema.properties as Record<string, { oneOf?: readonly { properties: { kind: { const: string } } }[] }>)[
+    String(top)
+  ];
+  const kinds = union?.oneOf?.map((branch) => JSON.stringify(branch.properties.kind.const)) ?? [];
+  return `one of ${kinds.join(', ')}`;
+}
