@@ -3,7 +3,7 @@ import type { Grid } from '../src/core/grid';
 import { coldSchedule } from '../src/core/jumpSchedule';
 import { placeSites } from '../src/core/sites';
 import type { GpuContext } from '../src/gpu/context';
-import { CcvtEngine } from '../src/gpu/engine';
+import { CcvtEngine, type EngineOptions } from '../src/gpu/engine';
 import { LloydRun } from '../src/gpu/lloyd';
 import { cpuLloydIterations } from './cpuLloyd';
 import { FloorJumpFlood } from './floorJumpFlood';
@@ -11,6 +11,12 @@ import { FloorJumpFlood } from './floorJumpFlood';
 export interface BenchCase {
   readonly size: number;
   readonly sites: number;
+}
+
+export interface BenchOptions {
+  /** Site counts to try at every size (only where each cell gets >= 16 texels). */
+  readonly siteCounts: readonly number[];
+  readonly centroidPath: EngineOptions['centroidPath'];
 }
 
 export interface BenchRow {
@@ -61,6 +67,7 @@ export async function measure(
   environment: string,
   cases: readonly BenchCase[],
   budgetMs: number,
+  centroidPath: EngineOptions['centroidPath'],
   log: (line: string) => void = () => {},
 ): Promise<BenchRow[]> {
   const rows: BenchRow[] = [];
@@ -94,7 +101,7 @@ export async function measure(
     floor.dispose();
     context.renderer.resetState();
 
-    const engine = new CcvtEngine(context, grid, count, { variant: 'jfa+2', centroidPath: 'auto' });
+    const engine = new CcvtEngine(context, grid, count, { variant: 'jfa+2', centroidPath });
     try {
       engine.setSites(sites);
       engine.floodLabels();
@@ -172,10 +179,10 @@ export async function measure(
 }
 
 /** The cases the issue asks for: 200, 10k, 100k sites where each cell gets >= 16 texels. */
-export function benchCases(sizes: readonly number[]): BenchCase[] {
+export function benchCases(sizes: readonly number[], siteCounts: readonly number[] = [200, 10_000, 100_000]): BenchCase[] {
   const cases: BenchCase[] = [];
   for (const size of sizes) {
-    for (const sites of [200, 10_000, 100_000]) if (size * size >= 16 * sites) cases.push({ size, sites });
+    for (const sites of siteCounts) if (size * size >= 16 * sites) cases.push({ size, sites });
   }
   return cases;
 }

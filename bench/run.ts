@@ -1,13 +1,14 @@
 // `npm run bench`: times the engine in Node (headless-gl) and in headless Chromium, with the
 // hand-written WebGL2 floor and exact CPU Lloyd (d3-delaunay) in the same run. Prints a table
-// and writes bench/out/bench.json. Options: --sizes 512,1024,2048  --budget-s 120  --only node|chromium
+// and writes bench/out/bench.json. Options: --sizes 512,1024,2048  --sites 200,10000,100000
+// --budget-s 120  --only node|chromium  --centroid-path auto|blend|gather
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { chromium } from '@playwright/test';
 import { createServer } from 'vite';
 import { chromiumArgs } from '../playwright.config';
 import { createHeadlessContext } from '../src/node/headless';
 import { version } from '../src/version';
-import { benchCases, formatTable, measure, type BenchRow } from './measure';
+import { benchCases, formatTable, measure, type BenchOptions, type BenchRow } from './measure';
 
 function option(name: string, fallback: string): string {
   const index = process.argv.indexOf(`--${name}`);
@@ -17,13 +18,17 @@ function option(name: string, fallback: string): string {
 const sizes = option('sizes', '512,1024,2048').split(',').map(Number);
 const budgetMs = Number(option('budget-s', '120')) * 1000;
 const only = option('only', 'all');
+const benchOptions: BenchOptions = {
+  siteCounts: option('sites', '200,10000,100000').split(',').map(Number),
+  centroidPath: option('centroid-path', 'auto') as BenchOptions['centroidPath'],
+};
 const rows: BenchRow[] = [];
 
 if (only !== 'chromium') {
   const context = createHeadlessContext();
   const max = context.capabilities.maxTextureSize;
-  const cases = benchCases([...sizes.filter((s) => s < max), max]);
-  rows.push(...(await measure(context, 'node', cases, budgetMs, (line) => console.error(line))));
+  const cases = benchCases([...sizes.filter((s) => s < max), max], benchOptions.siteCounts);
+  rows.push(...(await measure(context, 'node', cases, budgetMs, benchOptions.centroidPath, (line) => console.error(line))));
   context.dispose();
 }
 
@@ -38,8 +43,9 @@ if (only !== 'node') {
     await page.waitForFunction(() => document.title === 'ready');
     page.setDefaultTimeout(0);
     const browserRows = await page.evaluate(
-      ([s, b]) => (window as unknown as { runBenchmark(s: number[], b: number): Promise<BenchRow[]> }).runBenchmark(s, b),
-      [sizes, budgetMs] as const,
+      ([s, b, o]) =>
+        (window as unknown as { runBenchmark(s: number[], b: number, o: BenchOptions): Promise<BenchRow[]> }).runBenchmark(s, b, o),
+      [sizes, budgetMs, benchOptions] as const,
     );
     rows.push(...browserRows);
   } finally {

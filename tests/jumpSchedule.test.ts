@@ -9,10 +9,10 @@ describe('jump flood schedules', () => {
     expect(coldSchedule(1, 1, 'jfa')).toEqual([1]);
   });
   it('starts a warm flood with steps that reach the largest displacement, then one extra step 1', () => {
-    expect(warmSchedule(512, 512, 0)).toEqual([1, 1]);
-    expect(warmSchedule(512, 512, 0.4)).toEqual([2, 1, 1]);
-    expect(warmSchedule(512, 512, 3)).toEqual([4, 2, 1, 1]);
-    expect(warmSchedule(512, 512, 10)).toEqual([8, 4, 2, 1, 1]);
+    expect(warmSchedule(512, 512, 0)).toEqual([1]);
+    expect(warmSchedule(512, 512, 0.4)).toEqual([2, 1]);
+    expect(warmSchedule(512, 512, 3)).toEqual([4, 2, 1]);
+    expect(warmSchedule(512, 512, 10)).toEqual([8, 4, 2, 1]);
     expect(warmSchedule(64, 64, 1000)[0]).toBe(32);
     expect(warmFirstStep(512, 512, 3)).toBe(warmSchedule(512, 512, 3)[0]);
   });

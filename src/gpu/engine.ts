@@ -118,7 +118,6 @@ export class CcvtEngine {
     const defines = { PERIODIC_X: grid.periodicX ? 1 : 0, PERIODIC_Y: grid.periodicY ? 1 : 0 };
     const labels = { value: this.labelTargets[0].texture as THREE.Texture };
     const idMap = { value: this.idMapTarget.texture };
-    const ids = { value: this.idTarget.texture };
     const weights = { value: this.weightTexture };
     this.refreshPass = new ShaderPass('triangles', fullscreenVert, refreshLabelsFrag, { ...metric, labels, idMap }, false, defines);
     this.splatPass = new ShaderPass('points', labelSplatVert, labelSplatFrag, { ...metric }, false, defines);
@@ -136,13 +135,13 @@ export class CcvtEngine {
       'points',
       centroidScatterVert,
       centroidScatterFrag,
-      { ...metric, labels: ids, weights, sumsSize: { value: new THREE.Vector2(this.siteTextureWidth, this.siteTextureHeight) } },
+      { ...metric, labels, idMap, weights, sumsSize: { value: new THREE.Vector2(this.siteTextureWidth, this.siteTextureHeight) } },
       true,
       defines,
     );
     this.gather =
       this.centroidPath === 'gather'
-        ? new GatherCentroids(this.renderer, grid, siteCount, this.siteTextureWidth, this.siteTextureHeight, { ...metric, labels: ids, weights }, defines)
+        ? new GatherCentroids(this.renderer, grid, siteCount, this.siteTextureWidth, this.siteTextureHeight, { ...metric, labels, idMap, weights }, defines)
         : null;
   }
 
@@ -224,7 +223,8 @@ export class CcvtEngine {
 
   /** Sums (w*dx, w*dy, w, w*d²) per site over the current labels; result in `this.sums`. */
   computeSums(): Float32Array {
-    const labelTexture = this.resolvedIds();
+    // Both paths read positions and the id map directly: no resolve pass in the Lloyd loop.
+    const labelTexture = this.labelTargets[this.current].texture;
     if (this.gather) {
       return this.gather.compute(labelTexture, this.sums, this.siteData, this.weightTexture.image.data as Float32Array);
     }

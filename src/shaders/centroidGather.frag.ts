@@ -1,4 +1,5 @@
 import gridMetric from './gridMetric.glsl';
+import siteTexel from './siteTexel.glsl';
 
 /**
  * Centroid pass, portable path (no float blending needed): each site's pixel in the sums
@@ -17,7 +18,9 @@ export default /* glsl */ `
 precision highp float;
 precision highp int;
 ${gridMetric}
+${siteTexel}
 uniform highp sampler2D labels;
+uniform highp sampler2D idMap;
 uniform highp sampler2D weights;
 uniform highp sampler2D previousSums;
 uniform bool firstTile;
@@ -33,9 +36,9 @@ void main() {
   int site = pixel.y * siteWidth + pixel.x;
   vec4 total = firstTile ? vec4(0.0) : texelFetch(previousSums, pixel, 0);
   if (site >= siteCount || total.z < 0.0) { sums = total; return; }
-  float id = float(site);
-  int radius = int(texelFetch(radii, pixel, 0).r);
   vec2 position = siteAt(site);
+  if (texelFetch(idMap, siteTexel(position), 0).r != float(site)) { sums = total; return; }
+  int radius = int(texelFetch(radii, pixel, 0).r);
   ivec2 origin = ivec2(floor(position));
   // On a periodic axis the window never covers more than the axis once (no texel twice);
   // an axis covered whole has no ring to touch.
@@ -61,7 +64,7 @@ void main() {
     for (int dx = from.x; dx <= to.x; ++dx) {
       ivec2 q = origin + ivec2(dx, dy);
       if (!wrapTexel(q)) continue;
-      if (texelFetch(labels, q, 0).r != id) continue;
+      if (texelFetch(labels, q, 0).xy != position) continue;
       if ((!whole.x && abs(dx) == radius) || (!whole.y && abs(dy) == radius)) touchesRing = true;
       vec2 d = gridDelta(position, vec2(q) + 0.5);
       vec2 dPhysical = d * texelSize;
