@@ -61,6 +61,8 @@ export class CcvtEngine {
   private readonly coldSteps: number[];
   private readonly warmSchedules = new Map<number, readonly number[]>();
   private readonly syncPixel = new Float32Array(4);
+  /** Largest distance (texels) any site moved since the last computeSums(). */
+  private movedSinceSums = Infinity;
 
   constructor(
     private readonly context: GpuContext,
@@ -148,10 +150,19 @@ export class CcvtEngine {
   /** Uploads site positions (interleaved x, y in texel units). */
   setSites(sites: ArrayLike<number>): void {
     const data = this.siteData;
+    const { width, height, periodicX, periodicY } = this.grid;
+    let moved = 0;
     for (let i = 0; i < this.siteCount; i++) {
+      let dx = sites[2 * i] - data[4 * i];
+      let dy = sites[2 * i + 1] - data[4 * i + 1];
+      if (periodicX) dx -= width * Math.round(dx / width);
+      if (periodicY) dy -= height * Math.round(dy / height);
+      moved = Math.max(moved, dx * dx + dy * dy);
       data[4 * i] = sites[2 * i];
       data[4 * i + 1] = sites[2 * i + 1];
     }
+    // Largest move since the last sums (sizes the gather windows); NaN-safe: unknown is infinite.
+    this.movedSinceSums += moved >= 0 ? Math.sqrt(moved) : Infinity;
     this.siteTexture.needsUpdate = true;
   }
 
@@ -226,7 +237,9 @@ export class CcvtEngine {
     // Both paths read positions and the id map directly: no resolve pass in the Lloyd loop.
     const labelTexture = this.labelTargets[this.current].texture;
     if (this.gather) {
-      return this.gather.compute(labelTexture, this.sums, this.siteData, this.weightTexture.image.data as Float32Array);
+      const moved = this.movedSinceSums;
+      this.movedSinceSums = 0;
+      return this.gather.compute(labelTexture, this.sums, this.siteData, this.weightTexture.image.data as Float32Array, moved);
     }
     const scatter = this.centroidPass!;
     scatter.uniforms.labels.value = labelTexture;
@@ -258,9 +271,9 @@ export class CcvtEngine {
     return out;
   }
 
-  /** Window half-sizes per site of the gather path (null on the blend path). */
-  get gatherRadii(): Float32Array | null {
-    return this.gather?.radii ?? null;
+  /** The gather path's windows and draws (null on the blend path). */
+  get gatherStats(): GatherCentroids | null {
+    return this.gather;
   }
 
   /** Site id per texel after the last flood (R32F; for views that draw the diagram). */

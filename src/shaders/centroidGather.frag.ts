@@ -34,11 +34,14 @@ out vec4 sums;
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   int site = pixel.y * siteWidth + pixel.x;
-  vec4 total = firstTile ? vec4(0.0) : texelFetch(previousSums, pixel, 0);
+  vec4 previous = texelFetch(previousSums, pixel, 0);
+  float radiusValue = texelFetch(radii, pixel, 0).r;
+  if (radiusValue < 0.0) { sums = previous; return; } // finished in an earlier attempt
+  vec4 total = firstTile ? vec4(0.0) : previous;
   if (site >= siteCount || total.z < 0.0) { sums = total; return; }
   vec2 position = siteAt(site);
   if (texelFetch(idMap, siteTexel(position), 0).r != float(site)) { sums = total; return; }
-  int radius = int(texelFetch(radii, pixel, 0).r);
+  int radius = int(radiusValue);
   ivec2 origin = ivec2(floor(position));
   // On a periodic axis the window never covers more than the axis once (no texel twice);
   // an axis covered whole has no ring to touch.
