@@ -77,7 +77,8 @@ function parse(kind: Kind, text: string): unknown {
  * element's meshFile) or the organoid sample.
  */
 export function configFromAttributes(element: Element, base: ConfigInput | null, meshName?: string): AnyConfig {
-  const input = structuredClone(base ?? APP_DEFAULTS) as Record<string, unknown>;
+  // Top-level fields the config property leaves out (the surface, say) come from the defaults.
+  const input = structuredClone({ ...APP_DEFAULTS, ...base }) as Record<string, unknown>;
   const surfaceKind = element.getAttribute('surface');
   if (surfaceKind !== null && surfaceKind !== (input.surface as { kind?: string } | undefined)?.kind) {
     // A different kind starts from that kind's required fields (an empty plane/tube is invalid).

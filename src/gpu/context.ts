@@ -7,6 +7,15 @@ export interface GpuCapabilities {
   readonly maxTextureSize: number;
   /** Additive blending into RGBA32F targets (the fast centroid path). */
   readonly floatBlend: boolean;
+  /** The renderer rasterizes on the CPU (SwiftShader, llvmpipe, ...), not on a GPU. */
+  readonly softwareRenderer: boolean;
+}
+
+/** Renderer strings of CPU rasterizers (Chromium's SwiftShader, Mesa's llvmpipe/softpipe, WARP). */
+const SOFTWARE_RENDERER = /swiftshader|llvmpipe|softpipe|software rasterizer|basic render driver/i;
+
+export function isSoftwareRenderer(rendererName: string): boolean {
+  return SOFTWARE_RENDERER.test(rendererName);
 }
 
 /** A three.js renderer bound to a WebGL2 context, in a page or in Node (headless-gl). */
@@ -55,6 +64,7 @@ export function wrapContext(
       renderer: rendererName,
       maxTextureSize: gl.getParameter(gl.MAX_TEXTURE_SIZE) as number,
       floatBlend,
+      softwareRenderer: isSoftwareRenderer(rendererName),
     },
     dispose() {
       renderer.dispose();

@@ -254,7 +254,7 @@ export const configSchema = {
       enum: ['auto', 'blend', 'gather'],
       default: 'auto',
       description:
-        'Centroid pass: "blend" (additive float blending, needs EXT_float_blend), "gather" (portable) or "auto" (blend when available). Default "auto".',
+        'Centroid pass: "blend" (additive float blending, needs EXT_float_blend), "gather" (portable) or "auto" (blend on a GPU with EXT_float_blend, gather elsewhere and on software renderers). Default "auto".',
     },
     sheet: {
       description:
