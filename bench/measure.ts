@@ -49,8 +49,9 @@ export interface BenchRow {
   };
 }
 
-// Lloyd iterations timed per case; the warm-start figures are medians over iterations 5 and
-// later, once sites move by a few texels at most (the regime of most of a run).
+// Lloyd iterations timed per case, from random sites; the warm-start figures are medians over
+// every iteration after the first (sites move by tens of texels in the first few, by a texel or
+// two from about the fifth on).
 const iterations = 12;
 
 function median(values: number[]): number {
@@ -92,27 +93,27 @@ export async function measure(
     const floor = new FloorJumpFlood(context.gl, size, size);
     floor.setSeeds(sites, count);
     floor.flood(steps); // warm-up: compile, first upload
-    const floorTimes: number[] = [];
-    for (let r = 0; r < 3; r++) {
-      const t = performance.now();
-      floor.flood(steps);
-      floorTimes.push(performance.now() - t);
-    }
-    floor.dispose();
     context.renderer.resetState();
-
     const engine = new CcvtEngine(context, grid, count, { variant: 'jfa+2', centroidPath });
     try {
       engine.setSites(sites);
       engine.floodLabels();
       engine.sync();
+      // Floor and engine alternate, so a slow spell of a shared machine hits both alike.
+      const floorTimes: number[] = [];
       const coldTimes: number[] = [];
       for (let r = 0; r < 3; r++) {
-        const t = performance.now();
+        let t = performance.now();
+        floor.flood(steps);
+        floorTimes.push(performance.now() - t);
+        context.renderer.resetState();
+        t = performance.now();
         engine.floodLabels();
         engine.sync();
         coldTimes.push(performance.now() - t);
       }
+      floor.dispose();
+      context.renderer.resetState();
       const coldJumpFloodMs = median(coldTimes);
 
       // Profiled run: jump flood and centroid pass timed apart.
@@ -120,10 +121,10 @@ export async function measure(
         maxIterations: iterations, tolerance: 0, overRelaxation: 1, warmStart: true, profile: true,
       });
       while (!profiled.done) profiled.step();
-      const later = profiled.iterations.slice(4);
+      const later = profiled.iterations.slice(1);
       const warmJumpFloodMs = median(later.map((r) => r.jumpFloodMs));
       const centroidMs = median(later.map((r) => r.centroidMs));
-      const warmPasses = later.at(-1)!.jumpFloodPasses;
+      const warmPasses = later.reduce((sum, r) => sum + r.jumpFloodPasses, 0) / later.length;
       let warmMislabeled: number | undefined;
       if (size <= 1024) {
         const reference = bruteForceLabels(grid, profiled.sites);
@@ -144,7 +145,7 @@ export async function measure(
         stepTimes.push(performance.now() - t);
       }
       const firstIterationMs = stepTimes[0];
-      const lloydIterationMs = median(stepTimes.slice(4));
+      const lloydIterationMs = median(stepTimes.slice(1));
 
       const cpuSites = Float64Array.from(sites);
       const cpuDelaunayIterationMs = cpuLloydIterations(cpuSites, size, size, Math.min(iterations, count > 50_000 ? 2 : iterations));
@@ -198,7 +199,7 @@ export function formatTable(rows: readonly BenchRow[]): string {
     }
     lines.push([
       r.environment, `${r.size}²`, r.sites, r.centroidPath, ms(r.floorJumpFloodMs), ms(r.coldJumpFloodMs),
-      r.ratios!.jumpFloodVsFloor.toFixed(2), `${ms(r.warmJumpFloodMs)} (${r.warmPasses})`, ms(r.centroidMs),
+      r.ratios!.jumpFloodVsFloor.toFixed(2), `${ms(r.warmJumpFloodMs)} (${r.warmPasses!.toFixed(1)})`, ms(r.centroidMs),
       ms(r.lloydIterationMs), r.ratios!.warmIterationVsColdJumpFlood.toFixed(2), ms(r.cpuDelaunayIterationMs),
       r.ratios!.cpuVsGpuIteration.toFixed(2), r.warmMislabeled === undefined ? '-' : r.warmMislabeled.toExponential(1),
     ].join(' | '));
