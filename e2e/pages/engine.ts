@@ -7,34 +7,40 @@ import { CcvtEngine } from '../../src/gpu/engine';
 
 const context = createCanvasContext(document.getElementById('gl') as HTMLCanvasElement);
 
-/** Largest centroid difference (texels) and energy difference between the blend and gather paths. */
+/**
+ * Largest centroid difference (texels) and relative energy difference between the blend path
+ * and each portable path (gather, readback), on the same sites in the same context.
+ */
 function compareCentroidPaths(grid: Grid, count: number, seed: number, weighted: boolean) {
   const sites = placeSites(grid, count, seed, 2 * grid.texelX);
   const weights = new Float32Array(grid.width * grid.height);
   for (let i = 0; i < weights.length; i++) {
     weights[i] = weighted ? 1 + 15 * (((i % grid.width) / grid.width) > 0.5 ? 1 : 0) : 1;
   }
-  const sums: Float32Array[] = [];
-  for (const centroidPath of ['blend', 'gather'] as const) {
+  const sumsOf = (centroidPath: 'blend' | 'gather' | 'readback') => {
     const engine = new CcvtEngine(context, grid, count, { variant: 'jfa+2', centroidPath });
     engine.setWeights(weights);
     engine.setSites(sites);
     engine.floodLabels();
-    sums.push(engine.computeSums().slice());
+    const sums = engine.computeSums().slice();
     engine.dispose();
-  }
-  const [blend, gather] = sums;
-  let worstCentroid = 0;
-  let worstEnergy = 0;
+    return sums;
+  };
+  const blend = sumsOf('blend');
   let emptyCells = 0;
-  for (let i = 0; i < count; i++) {
-    if (!(blend[4 * i + 2] > 0)) emptyCells++;
-    const dx = blend[4 * i] / blend[4 * i + 2] - gather[4 * i] / gather[4 * i + 2];
-    const dy = blend[4 * i + 1] / blend[4 * i + 2] - gather[4 * i + 1] / gather[4 * i + 2];
-    worstCentroid = Math.max(worstCentroid, Math.hypot(dx, dy));
-    worstEnergy = Math.max(worstEnergy, Math.abs(blend[4 * i + 3] - gather[4 * i + 3]) / gather[4 * i + 3]);
-  }
-  return { worstCentroid, worstEnergy, emptyCells, capabilities: context.capabilities };
+  for (let i = 0; i < count; i++) if (!(blend[4 * i + 2] > 0)) emptyCells++;
+  const against = (other: Float32Array) => {
+    let worstCentroid = 0;
+    let worstEnergy = 0;
+    for (let i = 0; i < count; i++) {
+      const dx = blend[4 * i] / blend[4 * i + 2] - other[4 * i] / other[4 * i + 2];
+      const dy = blend[4 * i + 1] / blend[4 * i + 2] - other[4 * i + 1] / other[4 * i + 2];
+      worstCentroid = Math.max(worstCentroid, Math.hypot(dx, dy));
+      worstEnergy = Math.max(worstEnergy, Math.abs(blend[4 * i + 3] - other[4 * i + 3]) / other[4 * i + 3]);
+    }
+    return { worstCentroid, worstEnergy };
+  };
+  return { gather: against(sumsOf('gather')), readback: against(sumsOf('readback')), emptyCells, capabilities: context.capabilities };
 }
 
 Object.assign(window, { tissueSheetTest: { compareCentroidPaths, capabilities: context.capabilities } });

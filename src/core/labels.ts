@@ -140,31 +140,79 @@ export function reduceCentroids(
   weight: Float32Array | null,
   out?: Float64Array,
 ): Float64Array {
-  const { width, height, texelX, texelY, periodicX, periodicY } = grid;
+  const { width, height } = grid;
   const count = Math.floor(sites.length / 2);
   const sums = out ?? new Float64Array(4 * count);
   if (sums.length < 4 * count) throw new Error(`reduceCentroids: out has ${sums.length} entries, ${4 * count} needed`);
   if (labels.length !== width * height) throw new Error(`reduceCentroids: ${labels.length} labels for ${width * height} texels`);
   if (weight && weight.length !== width * height) throw new Error(`reduceCentroids: ${weight.length} weights for ${width * height} texels`);
   sums.fill(0, 0, 4 * count);
-  for (let j = 0; j < height; j++) {
-    for (let i = 0; i < width; i++) {
-      const index = j * width + i;
-      const id = labels[index];
-      if (id < 0) continue;
-      if (id >= count) throw new Error(`reduceCentroids: label ${id} at texel (${i}, ${j}) but only ${count} sites`);
-      const w = weight ? weight[index] : 1;
-      const dx = wrapDelta(i + 0.5 - sites[2 * id], width, periodicX);
-      const dy = wrapDelta(j + 0.5 - sites[2 * id + 1], height, periodicY);
-      const ux = dx * texelX;
-      const uy = dy * texelY;
-      sums[4 * id] += w * dx;
-      sums[4 * id + 1] += w * dy;
-      sums[4 * id + 2] += w;
-      sums[4 * id + 3] += w * (ux * ux + uy * uy);
-    }
-  }
+  accumulateCentroidRows(grid, labels, 0, height, sites, 2, count, weight, sums);
   return sums;
+}
+
+/**
+ * The loop of reduceCentroids over a band of rows, added to `sums` (not cleared): `labels`
+ * holds the band's rows only (row firstRow at index 0), `sites` positions with `siteStride`
+ * floats per site. For callers that read labels back in bands (the GPU engine's readback
+ * centroid path); allocates nothing.
+ *
+ * A row crosses a cell in one run of equal labels, and within a run dy is constant, so a run
+ * sums only w, w·dx and w·dx² in local variables; Σw·dy and Σw·d² follow when it ends
+ * (d² = (dx·texelX)² + (dy·texelY)²). That keeps the per-texel work to a few additions.
+ */
+export function accumulateCentroidRows(
+  grid: Grid,
+  labels: ArrayLike<number>,
+  firstRow: number,
+  rows: number,
+  sites: Float32Array,
+  siteStride: number,
+  count: number,
+  weight: Float32Array | null,
+  sums: Float64Array,
+): void {
+  const { width, periodicX } = grid;
+  // Minimum image along x written out (as in wrapDelta): a call here costs twice the loop.
+  const halfWidth = periodicX ? width / 2 : Infinity;
+  for (let r = 0; r < rows; r++) {
+    const j = firstRow + r;
+    let run = -1;
+    let siteX = 0;
+    let sumW = 0;
+    let sumWdx = 0;
+    let sumWdx2 = 0;
+    for (let i = 0; i < width; i++) {
+      const id = labels[r * width + i];
+      if (id !== run) {
+        if (run >= 0) addRun(grid, sums, run, j, sites[siteStride * run + 1], sumW, sumWdx, sumWdx2);
+        if (id >= count) throw new Error(`reduceCentroids: label ${id} at texel (${i}, ${j}) but only ${count} sites`);
+        run = id;
+        siteX = id >= 0 ? sites[siteStride * id] : 0;
+        sumW = 0;
+        sumWdx = 0;
+        sumWdx2 = 0;
+      }
+      if (id < 0) continue;
+      const w = weight ? weight[j * width + i] : 1;
+      let dx = i + 0.5 - siteX;
+      if (dx > halfWidth) dx -= width;
+      else if (dx < -halfWidth) dx += width;
+      sumW += w;
+      sumWdx += w * dx;
+      sumWdx2 += w * dx * dx;
+    }
+    if (run >= 0) addRun(grid, sums, run, j, sites[siteStride * run + 1], sumW, sumWdx, sumWdx2);
+  }
+}
+
+/** Adds one run of a cell's texels in row j (its Σw, Σw·dx, Σw·dx²) to the cell's sums. */
+function addRun(grid: Grid, sums: Float64Array, id: number, j: number, siteY: number, sumW: number, sumWdx: number, sumWdx2: number): void {
+  const dy = wrapDelta(j + 0.5 - siteY, grid.height, grid.periodicY);
+  sums[4 * id] += sumWdx;
+  sums[4 * id + 1] += sumW * dy;
+  sums[4 * id + 2] += sumW;
+  sums[4 * id + 3] += grid.texelX * grid.texelX * sumWdx2 + grid.texelY * grid.texelY * dy * dy * sumW;
 }
 
 /**

@@ -12,7 +12,7 @@ export interface GpuCapabilities {
 }
 
 /** Renderer strings of CPU rasterizers (Chromium's SwiftShader, Mesa's llvmpipe/softpipe, WARP). */
-const SOFTWARE_RENDERER = /swiftshader|llvmpipe|softpipe|software rasterizer|basic render driver/i;
+const SOFTWARE_RENDERER = /swiftshader|llvmpipe|softpipe|swrast|software rasterizer|basic render driver/i;
 
 export function isSoftwareRenderer(rendererName: string): boolean {
   return SOFTWARE_RENDERER.test(rendererName);
@@ -39,6 +39,8 @@ export function wrapContext(
   gl: WebGL2RenderingContext,
   canvas: HTMLCanvasElement | OffscreenCanvas,
   onDispose: () => void = () => {},
+  /** The renderer's name where the context cannot tell it (headless-gl says only "ANGLE"). */
+  rendererName?: string,
 ): GpuContext {
   if (typeof WebGL2RenderingContext !== 'undefined' && !(gl instanceof WebGL2RenderingContext)) {
     // headless-gl has its own class; only a browser's WebGL1 context lands here.
@@ -54,17 +56,15 @@ export function wrapContext(
   const renderer = new THREE.WebGLRenderer({ canvas: canvas as HTMLCanvasElement, context: gl });
   renderer.autoClear = false;
   const debugInfo = gl.getExtension('WEBGL_debug_renderer_info');
-  const rendererName = String(
-    gl.getParameter(debugInfo ? debugInfo.UNMASKED_RENDERER_WEBGL : gl.RENDERER) ?? 'unknown',
-  );
+  const name = rendererName ?? String(gl.getParameter(debugInfo ? debugInfo.UNMASKED_RENDERER_WEBGL : gl.RENDERER) ?? 'unknown');
   return {
     renderer,
     gl,
     capabilities: {
-      renderer: rendererName,
+      renderer: name,
       maxTextureSize: gl.getParameter(gl.MAX_TEXTURE_SIZE) as number,
       floatBlend,
-      softwareRenderer: isSoftwareRenderer(rendererName),
+      softwareRenderer: isSoftwareRenderer(name),
     },
     dispose() {
       renderer.dispose();

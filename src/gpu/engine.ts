@@ -1,5 +1,6 @@
 import * as THREE from 'three';
 import type { Grid } from '../core/grid';
+import { accumulateCentroidRows } from '../core/labels';
 import { coldSchedule, warmFirstStep, warmSchedule, type JumpFloodVariant } from '../core/jumpSchedule';
 import centroidScatterFrag from '../shaders/centroidScatter.frag';
 import centroidScatterVert from '../shaders/centroidScatter.vert';
@@ -12,14 +13,18 @@ import labelSplatFrag from '../shaders/labelSplat.frag';
 import labelSplatVert from '../shaders/labelSplat.vert';
 import { GpuCapabilityError, type GpuCapabilities, type GpuContext } from './context';
 import { GatherCentroids } from './gatherCentroids';
+import { PackedLabels } from './packedLabels';
 import { ShaderPass } from './shaderPass';
 import { createFloatDataTexture, createFloatTarget, readTargetRGBA } from './textures';
 
 /** "No site" in a label (x < 0) and in an id map or id target (id < 0). */
 const EMPTY_LABEL = new Float32Array([-1, -1, -1, 0]);
 
-/** How centroids are summed: additive blending (needs EXT_float_blend) or a gather pass. */
-export type CentroidPath = 'blend' | 'gather';
+/**
+ * How centroids are summed: additive blending into float targets (needs EXT_float_blend), a
+ * gather pass on the GPU, or the ids read back and reduced on the CPU.
+ */
+export type CentroidPath = 'blend' | 'gather' | 'readback';
 
 export interface EngineOptions {
   readonly variant: JumpFloodVariant;
@@ -28,12 +33,14 @@ export interface EngineOptions {
 }
 
 /**
- * The centroid path "auto" picks: blend on a GPU with EXT_float_blend; gather without it, and
- * on software rasterizers, which draw one point per texel for the blend: there (SwiftShader,
- * 2048², 10,000 sites) the blend pass took 1.64 s and the gather 0.53 s (docs/benchmark.md).
+ * The centroid path "auto" picks: blend on a GPU with EXT_float_blend, gather on a GPU without
+ * it; readback on software rasterizers (SwiftShader, llvmpipe), where "GPU" memory is CPU memory
+ * and one pass over the packed ids beats both drawing a point per texel for the blend and
+ * walking per-site windows for the gather (docs/benchmark.md).
  */
 export function autoCentroidPath(capabilities: GpuCapabilities): CentroidPath {
-  return capabilities.floatBlend && !capabilities.softwareRenderer ? 'blend' : 'gather';
+  if (capabilities.softwareRenderer) return 'readback';
+  return capabilities.floatBlend ? 'blend' : 'gather';
 }
 
 /**
@@ -47,6 +54,8 @@ export class CcvtEngine {
   readonly siteTextureHeight: number;
   /** Sums per site after computeSums(): [w*dx, w*dy, w, w*d²] (texel units, µm²). */
   readonly sums: Float32Array;
+  /** The readback path's float64 accumulator (null on the other paths). */
+  private readonly readbackSums: Float64Array | null;
   /** Jump-flood passes run by the last floodLabels() call. */
   lastPassCount = 0;
 
@@ -61,6 +70,9 @@ export class CcvtEngine {
   private readonly idTarget: THREE.WebGLRenderTarget;
   private readonly sumsTarget: THREE.WebGLRenderTarget;
   private readonly gather: GatherCentroids | null;
+  private readonly packedLabels: PackedLabels;
+  /** The per-texel weights are all 1 (no setWeights yet): the CPU reduction skips them. */
+  private uniformWeights = true;
   private readonly refreshPass: ShaderPass;
   private readonly splatPass: ShaderPass;
   private readonly idSplatPass: ShaderPass;
@@ -154,6 +166,9 @@ export class CcvtEngine {
       this.centroidPath === 'gather'
         ? new GatherCentroids(this.renderer, grid, siteCount, this.siteTextureWidth, this.siteTextureHeight, { ...metric, labels, idMap, weights }, defines)
         : null;
+    // Used by readLabels on every path; three.js allocates the target on its first use.
+    this.packedLabels = new PackedLabels(this.renderer, grid, { ...metric, labels, idMap }, defines);
+    this.readbackSums = this.centroidPath === 'readback' ? new Float64Array(4 * siteCount) : null;
   }
 
   /** Uploads site positions (interleaved x, y in texel units). */
@@ -180,6 +195,7 @@ export class CcvtEngine {
     if (weights.length !== this.grid.width * this.grid.height) throw new RangeError('weights: wrong size');
     (this.weightTexture.image.data as Float32Array).set(weights);
     this.weightTexture.needsUpdate = true;
+    this.uniformWeights = false;
   }
 
   /**
@@ -250,6 +266,12 @@ export class CcvtEngine {
       this.movedSinceSums = 0;
       return this.gather.compute(labelTexture, this.sums, this.siteData, this.weightTexture.image.data as Float32Array, moved);
     }
+    if (this.readbackSums) {
+      this.readbackSums.fill(0);
+      this.packedLabels.read(labelTexture, this.accumulateBand);
+      this.sums.set(this.readbackSums);
+      return this.sums;
+    }
     const scatter = this.centroidPass!;
     scatter.uniforms.labels.value = labelTexture;
     this.renderer.setRenderTarget(this.sumsTarget);
@@ -266,19 +288,18 @@ export class CcvtEngine {
 
   /** Reads the current labels: one site id (or -1) per texel, row-major. */
   readLabels(out = new Int32Array(this.grid.width * this.grid.height)): Int32Array {
-    const { width, height } = this.grid;
-    // Read in bands of rows so the RGBA staging buffer stays small on big grids.
-    const rowsPerBand = Math.max(1, Math.floor((1 << 20) / width));
-    const rgba = new Float32Array(width * Math.min(rowsPerBand, height) * 4);
-    this.resolvedIds();
-    for (let y0 = 0; y0 < height; y0 += rowsPerBand) {
-      const rows = Math.min(rowsPerBand, height - y0);
-      readTargetRGBA(this.renderer, this.idTarget, rgba, 0, y0, width, rows);
-      const base = y0 * width;
-      for (let i = 0; i < rows * width; i++) out[base + i] = rgba[4 * i];
-    }
+    const { width } = this.grid;
+    this.packedLabels.read(this.labelTargets[this.current].texture, (ids, firstRow, rows) => {
+      out.set(ids.subarray(0, rows * width), firstRow * width);
+    });
     return out;
   }
+
+  /** The readback path's reduction of one band of packed ids (a field: no closure per call). */
+  private readonly accumulateBand = (ids: Int32Array, firstRow: number, rows: number): void => {
+    const weights = this.uniformWeights ? null : (this.weightTexture.image.data as Float32Array);
+    accumulateCentroidRows(this.grid, ids, firstRow, rows, this.siteData, 4, this.siteCount, weights, this.readbackSums!);
+  };
 
   /** The gather path's windows and draws (null on the blend path). */
   get gatherStats(): GatherCentroids | null {
@@ -295,6 +316,7 @@ export class CcvtEngine {
     for (const pass of passes) pass?.dispose();
     for (const target of [...this.labelTargets, this.idMapTarget, this.idTarget, this.sumsTarget]) target.dispose();
     this.gather?.dispose();
+    this.packedLabels.dispose();
     this.siteTexture.dispose();
     this.weightTexture.dispose();
   }

@@ -1,3 +1,4 @@
+import { readFileSync } from 'node:fs';
 import createGL from 'gl';
 import { GpuCapabilityError, wrapContext, type GpuContext } from '../gpu/context';
 
@@ -25,9 +26,34 @@ export function createHeadlessContext(): GpuContext {
   } as unknown as HTMLCanvasElement;
   // three.js reads gl.canvas (e.g. in resetState), which headless-gl leaves undefined.
   if (!context.canvas) Object.defineProperty(context, 'canvas', { value: canvas });
-  return wrapContext(context, canvas, () => {
-    (context.getExtension('STACKGL_destroy_context') as { destroy(): void } | null)?.destroy();
-  });
+  return wrapContext(
+    context,
+    canvas,
+    () => {
+      (context.getExtension('STACKGL_destroy_context') as { destroy(): void } | null)?.destroy();
+    },
+    headlessRendererName(),
+  );
+}
+
+/**
+ * headless-gl names its renderer "ANGLE" and nothing more; ANGLE draws through the system's
+ * OpenGL driver, whose library is mapped into this process once a context exists. Its name
+ * tells a CPU rasterizer (Mesa's swrast_dri.so: llvmpipe, the driver under Xvfb) from a GPU
+ * driver (iris_dri.so, radeonsi_dri.so, NVIDIA's libGLX_nvidia), which decides the centroid
+ * path "auto" takes. Linux only (/proc); elsewhere the name stays "ANGLE (headless-gl)".
+ */
+export function headlessRendererName(): string {
+  let maps = '';
+  try {
+    maps = readFileSync('/proc/self/maps', 'utf8');
+  } catch {
+    return 'ANGLE (headless-gl)';
+  }
+  const dri = /\/dri\/(\w+)_dri\.so/.exec(maps);
+  if (dri) return `ANGLE (headless-gl) on Mesa ${dri[1]}_dri${dri[1] === 'swrast' ? ' (software rasterizer)' : ''}`;
+  if (/libGLX_nvidia/.test(maps)) return 'ANGLE (headless-gl) on NVIDIA';
+  return 'ANGLE (headless-gl)';
 }
 
 function headlessError(detail: string): GpuCapabilityError {

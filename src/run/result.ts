@@ -78,10 +78,8 @@ export interface SheetResult {
   readonly grid: GridRecord;
   readonly gpu: {
     readonly renderer: string;
-    readonly centroidPath: 'blend' | 'gather';
+    readonly centroidPath: 'blend' | 'gather' | 'readback';
     readonly jumpFloodVariant: string;
-    /** Closed surfaces: how the portable path summed ("readback": labels reduced on the CPU). */
-    readonly centroidReduction?: 'gpu' | 'readback';
   };
   readonly lloyd: {
     readonly iterations: IterationRecord[];

@@ -36,7 +36,7 @@ describe('tissue-sheet run', () => {
     expect(result.software.name).toBe('tissue-sheet');
     expect(result.config.lloyd.overRelaxation).toBe(1); // defaults filled in
     expect(result.seed).toBe(9);
-    expect(['blend', 'gather']).toContain(result.gpu.centroidPath);
+    expect(['blend', 'gather', 'readback']).toContain(result.gpu.centroidPath);
     expect(result.lloyd.iterations).toHaveLength(3);
     expect(result.cells).toHaveLength(60);
     expect(result.surfaces.map((s: { name: string }) => s.name)).toEqual(['layer 1', 'apical']);

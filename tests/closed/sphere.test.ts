@@ -57,7 +57,7 @@ describe('sphere CCVT, uniform density, 1000 cells, n = 128 (~98 texels per cell
     ({ result } = await runSheet(config, context));
     expect(result.lloyd.finalEnergy).toBeLessThan(result.lloyd.iterations[0].energy * 0.95);
     expect(result.closed?.centroidPath).toBe('readback');
-    expect(result.gpu.centroidReduction).toBe('readback');
+    expect(result.gpu.centroidPath).toBe('readback');
     expect(result.lloyd.emptyCells).toBe(0);
   }, 30000);
 

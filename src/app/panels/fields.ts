@@ -214,7 +214,7 @@ export const FIELDS: FieldSpec[] = [
     label: 'Centroid pass',
     group: 'Lloyd',
     kind: 'select',
-    options: ['auto', 'blend', 'gather'].map((v) => ({ value: v, label: v })),
+    options: ['auto', 'blend', 'gather', 'readback'].map((v) => ({ value: v, label: v })),
   },
 
   {

@@ -251,10 +251,10 @@ export const configSchema = {
     },
     centroidPath: {
       type: 'string',
-      enum: ['auto', 'blend', 'gather'],
+      enum: ['auto', 'blend', 'gather', 'readback'],
       default: 'auto',
       description:
-        'Centroid pass: "blend" (additive float blending, needs EXT_float_blend), "gather" (portable) or "auto" (blend on a GPU with EXT_float_blend, gather elsewhere and on software renderers). Default "auto".',
+        'Centroid sums: "blend" (additive float blending, needs EXT_float_blend), "gather" (portable GPU pass), "readback" (site ids read back and summed on the CPU) or "auto" (blend on a GPU with EXT_float_blend, gather on one without, readback on software renderers). Default "auto".',
     },
     sheet: {
       description:

@@ -82,7 +82,7 @@ export type JumpFloodVariantName = 'jfa+2' | '1+jfa' | 'jfa';
 export interface JumpFloodConfig {
   variant: JumpFloodVariantName;
 }
-export type CentroidPathName = 'auto' | 'blend' | 'gather';
+export type CentroidPathName = 'auto' | 'blend' | 'gather' | 'readback';
 
 /** The sheet: which surface is seeded, and where the other surface and the layers lie. */
 export interface SheetConfig {

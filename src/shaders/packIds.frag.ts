@@ -1,0 +1,26 @@
+import gridMetric from './gridMetric.glsl';
+import siteTexel from './siteTexel.glsl';
+
+/**
+ * After a flood: each texel's site id packed into the four bytes of an RGBA8 target, least
+ * significant byte in red, so that a readback (RGBA / UNSIGNED_BYTE, 4 bytes a texel, a
+ * quarter of a float readback) viewed as a little-endian Int32Array is the id itself. An empty
+ * texel is 0xFFFFFFFF, which that view reads as -1. Each byte k is written as k / 255, which
+ * UNORM8 stores exactly.
+ */
+export default /* glsl */ `
+precision highp float;
+precision highp int;
+${gridMetric}
+${siteTexel}
+uniform highp sampler2D labels;
+uniform highp sampler2D idMap;
+out vec4 packedId;
+
+void main() {
+  vec2 site = texelFetch(labels, ivec2(gl_FragCoord.xy), 0).xy;
+  float id = site.x < 0.0 ? -1.0 : texelFetch(idMap, siteTexel(site), 0).r;
+  uint bits = id < 0.0 ? 0xFFFFFFFFu : uint(id);
+  packedId = vec4(uvec4(bits, bits >> 8u, bits >> 16u, bits >> 24u) & 255u) / 255.0;
+}
+`;
