@@ -37,6 +37,13 @@ export interface BenchRow {
   readonly centroidMs?: number;
   /** Whole Lloyd iteration after the first (warm-started), no profiling syncs. */
   readonly lloydIterationMs?: number;
+  /** Every iteration of the unprofiled run, and (profiled run) every flood, its passes, every centroid pass. */
+  readonly perIteration?: {
+    readonly iterationMs: number[];
+    readonly jumpFloodMs: number[];
+    readonly jumpFloodPasses: number[];
+    readonly centroidMs: number[];
+  };
   readonly firstIterationMs?: number;
   /** Exact Lloyd iteration on the CPU with d3-delaunay. */
   readonly cpuDelaunayIterationMs?: number;
@@ -99,10 +106,11 @@ export async function measure(
       engine.setSites(sites);
       engine.floodLabels();
       engine.sync();
-      // Floor and engine alternate, so a slow spell of a shared machine hits both alike.
+      // Floor and engine alternate, so a slow spell of a shared machine hits both alike; 9
+      // rounds (5 past 1024²), because single floods on SwiftShader vary by +-15%.
       const floorTimes: number[] = [];
       const coldTimes: number[] = [];
-      for (let r = 0; r < 3; r++) {
+      for (let r = 0; r < (size <= 1024 ? 9 : 5); r++) {
         let t = performance.now();
         floor.flood(steps);
         floorTimes.push(performance.now() - t);
@@ -161,6 +169,12 @@ export async function measure(
         warmPasses,
         centroidMs,
         lloydIterationMs,
+        perIteration: {
+          iterationMs: stepTimes,
+          jumpFloodMs: profiled.iterations.map((r) => r.jumpFloodMs),
+          jumpFloodPasses: profiled.iterations.map((r) => r.jumpFloodPasses),
+          centroidMs: profiled.iterations.map((r) => r.centroidMs),
+        },
         firstIterationMs,
         cpuDelaunayIterationMs,
         warmMislabeled,

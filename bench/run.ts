@@ -1,7 +1,7 @@
 // `npm run bench`: times the engine in Node (headless-gl) and in headless Chromium, with the
 // hand-written WebGL2 floor and exact CPU Lloyd (d3-delaunay) in the same run. Prints a table
 // and writes bench/out/bench.json. Options: --sizes 512,1024,2048  --sites 200,10000,100000
-// --budget-s 120  --only node|chromium  --centroid-path auto|blend|gather
+// --budget-s 120  --only node|chromium  --centroid-path auto|blend|gather|readback
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { chromium } from '@playwright/test';
 import { createServer } from 'vite';
