@@ -1,4 +1,5 @@
 import gridMetric from './gridMetric.glsl';
+import labelId from './labelId.glsl';
 import siteTexel from './siteTexel.glsl';
 
 /**
@@ -15,11 +16,11 @@ ${gridMetric}
 ${siteTexel}
 uniform highp sampler2D labels;
 uniform highp sampler2D idMap;
+${labelId}
 out vec4 packedId;
 
 void main() {
-  vec2 site = texelFetch(labels, ivec2(gl_FragCoord.xy), 0).xy;
-  float id = site.x < 0.0 ? -1.0 : texelFetch(idMap, siteTexel(site), 0).r;
+  float id = labelIdAt(ivec2(gl_FragCoord.xy));
   uint bits = id < 0.0 ? 0xFFFFFFFFu : uint(id);
   packedId = vec4(uvec4(bits, bits >> 8u, bits >> 16u, bits >> 24u) & 255u) / 255.0;
 }

@@ -1,4 +1,5 @@
 import gridMetric from './gridMetric.glsl';
+import labelId from './labelId.glsl';
 import siteTexel from './siteTexel.glsl';
 
 /**
@@ -13,11 +14,11 @@ ${gridMetric}
 ${siteTexel}
 uniform highp sampler2D labels;
 uniform highp sampler2D idMap;
+${labelId}
 out vec4 label;
 
 void main() {
-  vec2 previous = texelFetch(labels, ivec2(gl_FragCoord.xy), 0).xy;
-  float id = previous.x < 0.0 ? -1.0 : texelFetch(idMap, siteTexel(previous), 0).r;
+  float id = labelIdAt(ivec2(gl_FragCoord.xy));
   label = id < 0.0 ? vec4(-1.0, -1.0, 0.0, 0.0) : vec4(siteAt(int(id)), 0.0, 1.0);
 }
 `;

@@ -1,4 +1,5 @@
 import gridMetric from './gridMetric.glsl';
+import labelId from './labelId.glsl';
 import siteTexel from './siteTexel.glsl';
 
 /** After a flood: each texel's site id, looked up in the id map at its label's site texel. */
@@ -9,10 +10,10 @@ ${gridMetric}
 ${siteTexel}
 uniform highp sampler2D labels;
 uniform highp sampler2D idMap;
+${labelId}
 out vec4 id;
 
 void main() {
-  vec2 site = texelFetch(labels, ivec2(gl_FragCoord.xy), 0).xy;
-  id = vec4(site.x < 0.0 ? -1.0 : texelFetch(idMap, siteTexel(site), 0).r, 0.0, 0.0, 1.0);
+  id = vec4(labelIdAt(ivec2(gl_FragCoord.xy)), 0.0, 0.0, 1.0);
 }
 `;
