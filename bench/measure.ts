@@ -17,6 +17,10 @@ export interface BenchOptions {
   /** Site counts to try at every size (only where each cell gets >= 16 texels). */
   readonly siteCounts: readonly number[];
   readonly centroidPath: EngineOptions['centroidPath'];
+  /** Floor/cold flood alternations (default 9 up to 1024², 5 above). */
+  readonly rounds?: number;
+  /** Lloyd iterations per run (default 12). */
+  readonly iterations?: number;
 }
 
 export interface BenchRow {
@@ -31,6 +35,8 @@ export interface BenchRow {
   /** The engine's cold jump flood (jfa+2). */
   readonly coldJumpFloodMs?: number;
   readonly coldPasses?: number;
+  /** Floor/cold alternations the two medians above are over. */
+  readonly rounds?: number;
   /** Jump flood of a warm-started iteration (after the first few), and its passes. */
   readonly warmJumpFloodMs?: number;
   readonly warmPasses?: number;
@@ -56,10 +62,10 @@ export interface BenchRow {
   };
 }
 
-// Lloyd iterations timed per case, from random sites; the warm-start figures are medians over
-// every iteration after the first (sites move by tens of texels in the first few, by a texel or
-// two from about the fifth on).
-const iterations = 12;
+// Lloyd iterations timed per case by default, from random sites; the warm-start figures are
+// medians over every iteration after the first (sites move by tens of texels in the first few,
+// by a texel or two from about the fifth on).
+const defaultIterations = 12;
 
 function median(values: number[]): number {
   const sorted = [...values].sort((a, b) => a - b);
@@ -75,9 +81,11 @@ export async function measure(
   environment: string,
   cases: readonly BenchCase[],
   budgetMs: number,
-  centroidPath: EngineOptions['centroidPath'],
+  options: BenchOptions,
   log: (line: string) => void = () => {},
 ): Promise<BenchRow[]> {
+  const { centroidPath } = options;
+  const iterations = options.iterations ?? defaultIterations;
   const rows: BenchRow[] = [];
   const { renderer: rendererName, maxTextureSize } = context.capabilities;
   let msPerTexel = 0;
@@ -87,7 +95,10 @@ export async function measure(
       rows.push({ ...base, skipped: `larger than MAX_TEXTURE_SIZE ${maxTextureSize}` });
       continue;
     }
-    const predicted = msPerTexel * size * size * 30;
+    // Alternated floor and cold floods, then two Lloyd runs (a cold flood and ~4-pass warm ones).
+    const rounds = options.rounds ?? (size <= 1024 ? 9 : 5);
+    const coldPasses = coldSchedule(size, size, 'jfa+2').length;
+    const predicted = msPerTexel * size * size * (2 * rounds * coldPasses + 2 * (coldPasses + 4 * (iterations - 1)));
     if (predicted > budgetMs) {
       rows.push({ ...base, skipped: `predicted ${(predicted / 1000).toFixed(0)} s > budget ${(budgetMs / 1000).toFixed(0)} s` });
       continue;
@@ -107,10 +118,10 @@ export async function measure(
       engine.floodLabels();
       engine.sync();
       // Floor and engine alternate, so a slow spell of a shared machine hits both alike; 9
-      // rounds (5 past 1024²), because single floods on SwiftShader vary by +-15%.
+      // rounds by default (5 past 1024²), because single floods on SwiftShader vary by +-15%.
       const floorTimes: number[] = [];
       const coldTimes: number[] = [];
-      for (let r = 0; r < (size <= 1024 ? 9 : 5); r++) {
+      for (let r = 0; r < rounds; r++) {
         let t = performance.now();
         floor.flood(steps);
         floorTimes.push(performance.now() - t);
@@ -165,6 +176,7 @@ export async function measure(
         floorJumpFloodMs,
         coldJumpFloodMs,
         coldPasses: steps.length,
+        rounds,
         warmJumpFloodMs,
         warmPasses,
         centroidMs,

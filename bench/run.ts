@@ -2,6 +2,7 @@
 // hand-written WebGL2 floor and exact CPU Lloyd (d3-delaunay) in the same run. Prints a table
 // and writes bench/out/bench.json. Options: --sizes 512,1024,2048  --sites 200,10000,100000
 // --budget-s 120  --only node|chromium  --centroid-path auto|blend|gather|readback
+// --rounds N (floor/cold alternations)  --iterations N (Lloyd iterations per run)
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { chromium } from '@playwright/test';
 import { createServer } from 'vite';
@@ -21,6 +22,8 @@ const only = option('only', 'all');
 const benchOptions: BenchOptions = {
   siteCounts: option('sites', '200,10000,100000').split(',').map(Number),
   centroidPath: option('centroid-path', 'auto') as BenchOptions['centroidPath'],
+  rounds: process.argv.includes('--rounds') ? Number(option('rounds', '')) : undefined,
+  iterations: process.argv.includes('--iterations') ? Number(option('iterations', '')) : undefined,
 };
 const rows: BenchRow[] = [];
 
@@ -28,7 +31,7 @@ if (only !== 'chromium') {
   const context = createHeadlessContext();
   const max = context.capabilities.maxTextureSize;
   const cases = benchCases([...sizes.filter((s) => s < max), max], benchOptions.siteCounts);
-  rows.push(...(await measure(context, 'node', cases, budgetMs, benchOptions.centroidPath, (line) => console.error(line))));
+  rows.push(...(await measure(context, 'node', cases, budgetMs, benchOptions, (line) => console.error(line))));
   context.dispose();
 }
 

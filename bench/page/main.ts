@@ -8,7 +8,7 @@ async function run(sizes: number[], budgetMs: number, options: BenchOptions) {
   const context = createCanvasContext(document.createElement('canvas'));
   const max = context.capabilities.maxTextureSize;
   const allSizes = [...sizes.filter((s) => s < max), max];
-  return measure(context, 'chromium', benchCases(allSizes, options.siteCounts), budgetMs, options.centroidPath, (line) => (log.textContent += line + '\n'));
+  return measure(context, 'chromium', benchCases(allSizes, options.siteCounts), budgetMs, options, (line) => (log.textContent += line + '\n'));
 }
 
 Object.assign(window, { runBenchmark: run });
