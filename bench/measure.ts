@@ -97,8 +97,8 @@ export async function measure(
     }
     // Alternated floor and cold floods, then two Lloyd runs (a cold flood and ~4-pass warm ones).
     const rounds = options.rounds ?? (size <= 1024 ? 9 : 5);
-    const coldPasses = coldSchedule(size, size, 'jfa+2').length;
-    const predicted = msPerTexel * size * size * (2 * rounds * coldPasses + 2 * (coldPasses + 4 * (iterations - 1)));
+    const steps = coldSchedule(size, size, 'jfa+2');
+    const predicted = msPerTexel * size * size * (2 * rounds * steps.length + 2 * (steps.length + 4 * (iterations - 1)));
     if (predicted > budgetMs) {
       rows.push({ ...base, skipped: `predicted ${(predicted / 1000).toFixed(0)} s > budget ${(budgetMs / 1000).toFixed(0)} s` });
       continue;
@@ -106,7 +106,6 @@ export async function measure(
     log(`${environment}: ${size}² with ${count} sites`);
     const grid: Grid = { width: size, height: size, texelX: 1, texelY: 1, periodicX: false, periodicY: false };
     const sites = placeSites(grid, count, 42, 1.5);
-    const steps = coldSchedule(size, size, 'jfa+2');
 
     const floor = new FloorJumpFlood(context.gl, size, size);
     floor.setSeeds(sites, count);
