@@ -1,0 +1,22 @@
+/**
+ * The pipeline's public face: what its consumers (the CLI, `<tissue-sheet>`, the app) import.
+ * Consumers never reach into src/gpu or each other; they take the pipeline, its context
+ * factories and its result types from here.
+ */
+export { runSheet, type RunCallbacks } from './runSheet';
+export { SheetRunner, seededKey, sweepSummary } from './sheetRunner';
+export type { MeshFile } from './closedMesh';
+export type {
+  AnalysisRecord,
+  CellRecord,
+  CellStatisticsRecord,
+  ClosedSurfaceRecord,
+  GridRecord,
+  LabelImage,
+  NeighbourContact,
+  SheetOutput,
+  SheetResult,
+  SurfaceRecord,
+} from './result';
+export { createCanvasContext, GpuCapabilityError, type GpuCapabilities, type GpuContext } from '../gpu/context';
+export type { IterationRecord } from '../gpu/lloyd';
