@@ -87,6 +87,46 @@ export const BORDER_X1 = 8;
 
 /** Exact Voronoi diagram of `sites` (interleaved x, y in texel units) on `grid`. */
 export function exactVoronoi(grid: Grid, sites: Float32Array | Float64Array | ArrayLike<number>): ExactVoronoi {
+  const copies = periodicCopies(grid, sites);
+  const { n, px, py, box } = copies;
+  const delaunay = new Delaunay(copies.points);
+  const voronoi = delaunay.voronoi([box.x0, box.y0, box.x1, box.y1]);
+
+  const cells: ExactCell[] = [];
+  for (let i = 0; i < n; i++) {
+    const ring = n > 0 ? cellRing(voronoi.cellPolygon(i)) : null;
+    cells.push(ring ? measuredCell(grid, copies, delaunay, i, ring) : emptyCell(grid, i, px[i], py[i]));
+  }
+
+  const areas = new Float64Array(n);
+  const centroids = new Float64Array(2 * n);
+  const touches = new Uint8Array(n);
+  for (const cell of cells) {
+    areas[cell.id] = cell.area;
+    centroids[2 * cell.id] = cell.centroidX;
+    centroids[2 * cell.id + 1] = cell.centroidY;
+    touches[cell.id] = cell.touchesBorder ? 1 : 0;
+  }
+  return { grid, count: n, cells, adjacency: csrAdjacency(cells), areas, centroids, touchesBorder: touches };
+}
+
+/** The sites in µm and their periodic copies, ready for the triangulation. */
+interface PeriodicCopies {
+  /** Number of original sites. */
+  readonly n: number;
+  /** Physical coordinates of the originals (wrapped / clamped into the domain). */
+  readonly px: Float64Array;
+  readonly py: Float64Array;
+  /** Copy c of site i is point c * n + i (interleaved x, y); copy 0 is the original. */
+  readonly points: Float64Array;
+  /** Clip box: [0, L] along an open axis, [-L, 2L] along a periodic one. */
+  readonly box: { readonly x0: number; readonly x1: number; readonly y0: number; readonly y1: number };
+  /** Lengths below this are rounding (edges of zero length, vertices on the clip box). */
+  readonly eps: number;
+}
+
+/** Step 1: physical coordinates of the sites and their copies at -L, 0, +L along periodic axes. */
+function periodicCopies(grid: Grid, sites: Float32Array | Float64Array | ArrayLike<number>): PeriodicCopies {
   const n = Math.floor(sites.length / 2);
   const sx = grid.texelX;
   const sy = grid.texelY;
@@ -96,14 +136,12 @@ export function exactVoronoi(grid: Grid, sites: Float32Array | Float64Array | Ar
   const offsetsY = grid.periodicY ? [0, -H, H] : [0];
   const copies = offsetsX.length * offsetsY.length;
 
-  // Physical coordinates of the originals (wrapped / clamped into the domain).
   const px = new Float64Array(n);
   const py = new Float64Array(n);
   for (let i = 0; i < n; i++) {
     px[i] = wrapCoordinate(sites[2 * i], grid.width, grid.periodicX) * sx;
     py[i] = wrapCoordinate(sites[2 * i + 1], grid.height, grid.periodicY) * sy;
   }
-  // Copy c of site i is point c * n + i; copy 0 is the original.
   const points = new Float64Array(2 * n * copies);
   let c = 0;
   for (const oy of offsetsY) {
@@ -115,176 +153,197 @@ export function exactVoronoi(grid: Grid, sites: Float32Array | Float64Array | Ar
       c++;
     }
   }
-  const x0 = grid.periodicX ? -W : 0;
-  const x1 = grid.periodicX ? 2 * W : W;
-  const y0 = grid.periodicY ? -H : 0;
-  const y1 = grid.periodicY ? 2 * H : H;
-  const delaunay = new Delaunay(points);
-  const voronoi = delaunay.voronoi([x0, y0, x1, y1]);
-  const eps = 1e-9 * Math.max(W, H, 1);
+  const box = {
+    x0: grid.periodicX ? -W : 0,
+    x1: grid.periodicX ? 2 * W : W,
+    y0: grid.periodicY ? -H : 0,
+    y1: grid.periodicY ? 2 * H : H,
+  };
+  return { n, px, py, points, box, eps: 1e-9 * Math.max(W, H, 1) };
+}
 
-  const cells: ExactCell[] = [];
-  const areas = new Float64Array(n);
-  const centroids = new Float64Array(2 * n);
-  const touches = new Uint8Array(n);
-  const perCellNeighbours: Int32Array[] = [];
-  const perCellLengths: Float64Array[] = [];
+/** A cell's vertices in µm, not closed. */
+interface Ring {
+  vx: Float64Array;
+  vy: Float64Array;
+  m: number;
+}
 
-  for (let i = 0; i < n; i++) {
-    const raw = n > 0 ? voronoi.cellPolygon(i) : null;
-    const xi = px[i];
-    const yi = py[i];
-    if (!raw || raw.length < 4) {
-      const empty: ExactCell = {
-        id: i, polygon: new Float64Array(0), area: 0,
-        centroidX: xi / sx, centroidY: yi / sy,
-        neighbours: new Int32Array(0), lengths: new Float64Array(0),
-        selfContact: 0, edgeCount: 0, borderSides: 0, touchesBorder: false,
-      };
-      cells.push(empty);
-      centroids[2 * i] = empty.centroidX;
-      centroids[2 * i + 1] = empty.centroidY;
-      perCellNeighbours.push(empty.neighbours);
-      perCellLengths.push(empty.lengths);
-      continue;
-    }
-    // d3 closes the ring: drop the repeated last vertex.
-    let m = raw.length - 1;
-    const vx = new Float64Array(m);
-    const vy = new Float64Array(m);
-    for (let k = 0; k < m; k++) {
-      vx[k] = raw[k][0];
-      vy[k] = raw[k][1];
-    }
-    // Signed area and centroid (shoelace), in µm, relative to the site for precision.
-    let a2 = 0;
-    let cx = 0;
-    let cy = 0;
-    for (let k = 0; k < m; k++) {
-      const ax = vx[k] - xi;
-      const ay = vy[k] - yi;
-      const bx = vx[(k + 1) % m] - xi;
-      const by = vy[(k + 1) % m] - yi;
-      const cross = ax * by - bx * ay;
-      a2 += cross;
-      cx += (ax + bx) * cross;
-      cy += (ay + by) * cross;
-    }
-    if (a2 < 0) {
-      vx.reverse();
-      vy.reverse();
-      a2 = -a2;
-      cx = -cx;
-      cy = -cy;
-    }
-    const area = a2 / 2;
-    const centroidPhysX = area > 0 ? xi + cx / (3 * a2) : xi;
-    const centroidPhysY = area > 0 ? yi + cy / (3 * a2) : yi;
-
-    // Candidate neighbours from the Delaunay graph.
-    const candidates: number[] = [];
-    for (const j of delaunay.neighbors(i)) candidates.push(j);
-
-    const lengthById = new Map<number, number>();
-    let selfContact = 0;
-    let edgeCount = 0;
-    let borderSides = 0;
-    for (let k = 0; k < m; k++) {
-      const ax = vx[k];
-      const ay = vy[k];
-      const bx = vx[(k + 1) % m];
-      const by = vy[(k + 1) % m];
-      const len = Math.hypot(bx - ax, by - ay);
-      if (len <= eps) continue;
-      // Edges on the clip box: open domain edges.
-      if (Math.abs(ay - y0) <= eps && Math.abs(by - y0) <= eps) {
-        if (!grid.periodicY) borderSides |= BORDER_Y0;
-        continue;
-      }
-      if (Math.abs(ay - y1) <= eps && Math.abs(by - y1) <= eps) {
-        if (!grid.periodicY) borderSides |= BORDER_Y1;
-        continue;
-      }
-      if (Math.abs(ax - x0) <= eps && Math.abs(bx - x0) <= eps) {
-        if (!grid.periodicX) borderSides |= BORDER_X0;
-        continue;
-      }
-      if (Math.abs(ax - x1) <= eps && Math.abs(bx - x1) <= eps) {
-        if (!grid.periodicX) borderSides |= BORDER_X1;
-        continue;
-      }
-      // The site across this edge: the candidate whose bisector with i passes closest to the midpoint.
-      const mx = (ax + bx) / 2;
-      const my = (ay + by) / 2;
-      let best = -1;
-      let bestDist = Infinity;
-      for (const j of candidates) {
-        const qx = points[2 * j];
-        const qy = points[2 * j + 1];
-        const dx = qx - xi;
-        const dy = qy - yi;
-        const dl = Math.hypot(dx, dy);
-        if (dl === 0) continue;
-        const dist = Math.abs(dx * (mx - (xi + qx) / 2) + dy * (my - (yi + qy) / 2)) / dl;
-        if (dist < bestDist) {
-          bestDist = dist;
-          best = j;
-        }
-      }
-      if (best < 0) continue;
-      edgeCount++;
-      const id = best % n;
-      if (id === i) selfContact += len;
-      else lengthById.set(id, (lengthById.get(id) ?? 0) + len);
-    }
-
-    const ids = [...lengthById.keys()].sort((p, q) => p - q);
-    const neighbours = Int32Array.from(ids);
-    const lengths = Float64Array.from(ids.map((id) => lengthById.get(id)!));
-    const polygon = new Float64Array(2 * m);
-    for (let k = 0; k < m; k++) {
-      polygon[2 * k] = vx[k] / sx;
-      polygon[2 * k + 1] = vy[k] / sy;
-    }
-    const cell: ExactCell = {
-      id: i,
-      polygon,
-      area,
-      centroidX: wrapCoordinate(centroidPhysX / sx, grid.width, grid.periodicX),
-      centroidY: wrapCoordinate(centroidPhysY / sy, grid.height, grid.periodicY),
-      neighbours,
-      lengths,
-      selfContact,
-      edgeCount,
-      borderSides,
-      touchesBorder: borderSides !== 0,
-    };
-    cells.push(cell);
-    areas[i] = area;
-    centroids[2 * i] = cell.centroidX;
-    centroids[2 * i + 1] = cell.centroidY;
-    touches[i] = cell.touchesBorder ? 1 : 0;
-    perCellNeighbours.push(neighbours);
-    perCellLengths.push(lengths);
+/** Step 2: d3's clipped cell polygon as a ring (d3 repeats the first vertex last: dropped); null for no cell. */
+function cellRing(raw: ArrayLike<ArrayLike<number>> | null): Ring | null {
+  if (!raw || raw.length < 4) return null;
+  const m = raw.length - 1;
+  const vx = new Float64Array(m);
+  const vy = new Float64Array(m);
+  for (let k = 0; k < m; k++) {
+    vx[k] = raw[k][0];
+    vy[k] = raw[k][1];
   }
+  return { vx, vy, m };
+}
 
-  const offsets = new Int32Array(n + 1);
-  for (let i = 0; i < n; i++) offsets[i + 1] = offsets[i] + perCellNeighbours[i].length;
-  const flat = new Int32Array(offsets[n]);
-  const flatLengths = new Float64Array(offsets[n]);
-  for (let i = 0; i < n; i++) {
-    flat.set(perCellNeighbours[i], offsets[i]);
-    flatLengths.set(perCellLengths[i], offsets[i]);
+/** A site that has no cell (a later duplicate): empty polygon, area 0, centroid at the site. */
+function emptyCell(grid: Grid, i: number, xi: number, yi: number): ExactCell {
+  return {
+    id: i, polygon: new Float64Array(0), area: 0,
+    centroidX: xi / grid.texelX, centroidY: yi / grid.texelY,
+    neighbours: new Int32Array(0), lengths: new Float64Array(0),
+    selfContact: 0, edgeCount: 0, borderSides: 0, touchesBorder: false,
+  };
+}
+
+/** Steps 3 and 4: orient and measure the cell of site i, then sum its contacts. */
+function measuredCell(grid: Grid, copies: PeriodicCopies, delaunay: Delaunay<unknown>, i: number, ring: Ring): ExactCell {
+  const sx = grid.texelX;
+  const sy = grid.texelY;
+  const { area, centroidPhysX, centroidPhysY } = orientAndMeasure(ring, copies.px[i], copies.py[i]);
+  const contacts = contactLengths(grid, copies, Array.from(delaunay.neighbors(i)), i, ring);
+  const ids = [...contacts.lengthById.keys()].sort((p, q) => p - q);
+  const { vx, vy, m } = ring;
+  const polygon = new Float64Array(2 * m);
+  for (let k = 0; k < m; k++) {
+    polygon[2 * k] = vx[k] / sx;
+    polygon[2 * k + 1] = vy[k] / sy;
   }
   return {
-    grid,
-    count: n,
-    cells,
-    adjacency: { offsets, neighbours: flat, lengths: flatLengths },
-    areas,
-    centroids,
-    touchesBorder: touches,
+    id: i,
+    polygon,
+    area,
+    centroidX: wrapCoordinate(centroidPhysX / sx, grid.width, grid.periodicX),
+    centroidY: wrapCoordinate(centroidPhysY / sy, grid.height, grid.periodicY),
+    neighbours: Int32Array.from(ids),
+    lengths: Float64Array.from(ids.map((id) => contacts.lengthById.get(id)!)),
+    selfContact: contacts.selfContact,
+    edgeCount: contacts.edgeCount,
+    borderSides: contacts.borderSides,
+    touchesBorder: contacts.borderSides !== 0,
   };
+}
+
+/**
+ * Step 3: turns the ring counter-clockwise (in place) and gives its area and centroid in µm
+ * (shoelace, relative to the site (xi, yi) for precision).
+ */
+function orientAndMeasure(ring: Ring, xi: number, yi: number): { area: number; centroidPhysX: number; centroidPhysY: number } {
+  const { vx, vy, m } = ring;
+  let a2 = 0;
+  let cx = 0;
+  let cy = 0;
+  for (let k = 0; k < m; k++) {
+    const ax = vx[k] - xi;
+    const ay = vy[k] - yi;
+    const bx = vx[(k + 1) % m] - xi;
+    const by = vy[(k + 1) % m] - yi;
+    const cross = ax * by - bx * ay;
+    a2 += cross;
+    cx += (ax + bx) * cross;
+    cy += (ay + by) * cross;
+  }
+  if (a2 < 0) {
+    vx.reverse();
+    vy.reverse();
+    a2 = -a2;
+    cx = -cx;
+    cy = -cy;
+  }
+  const area = a2 / 2;
+  return {
+    area,
+    centroidPhysX: area > 0 ? xi + cx / (3 * a2) : xi,
+    centroidPhysY: area > 0 ? yi + cy / (3 * a2) : yi,
+  };
+}
+
+/** What the edges of one cell touch. */
+interface Contacts {
+  /** µm shared with each other original site (summed over its copies). */
+  lengthById: Map<number, number>;
+  selfContact: number;
+  edgeCount: number;
+  borderSides: number;
+}
+
+/**
+ * Step 4: walks the cell's edges: an edge on the clip box marks an open domain edge (bits of
+ * borderSides), any other edge is shared with the site across it, whose length is added to that
+ * site's contact (or to selfContact when it is a copy of the cell's own site).
+ */
+function contactLengths(grid: Grid, copies: PeriodicCopies, candidates: number[], i: number, ring: Ring): Contacts {
+  const { box, eps, n } = copies;
+  const { vx, vy, m } = ring;
+  const contacts: Contacts = { lengthById: new Map<number, number>(), selfContact: 0, edgeCount: 0, borderSides: 0 };
+  for (let k = 0; k < m; k++) {
+    const ax = vx[k];
+    const ay = vy[k];
+    const bx = vx[(k + 1) % m];
+    const by = vy[(k + 1) % m];
+    const len = Math.hypot(bx - ax, by - ay);
+    if (len <= eps) continue;
+    const border = clipBoxSide(grid, box, eps, ax, ay, bx, by);
+    if (border !== null) {
+      contacts.borderSides |= border;
+      continue;
+    }
+    const best = siteAcrossEdge(copies, candidates, i, (ax + bx) / 2, (ay + by) / 2);
+    if (best < 0) continue;
+    contacts.edgeCount++;
+    const id = best % n;
+    if (id === i) contacts.selfContact += len;
+    else contacts.lengthById.set(id, (contacts.lengthById.get(id) ?? 0) + len);
+  }
+  return contacts;
+}
+
+/**
+ * For an edge lying on the clip box: the border bit of that side (0 along a periodic axis,
+ * whose box side no original's cell reaches); null for an edge inside the box.
+ */
+function clipBoxSide(grid: Grid, box: PeriodicCopies['box'], eps: number, ax: number, ay: number, bx: number, by: number): number | null {
+  if (Math.abs(ay - box.y0) <= eps && Math.abs(by - box.y0) <= eps) return grid.periodicY ? 0 : BORDER_Y0;
+  if (Math.abs(ay - box.y1) <= eps && Math.abs(by - box.y1) <= eps) return grid.periodicY ? 0 : BORDER_Y1;
+  if (Math.abs(ax - box.x0) <= eps && Math.abs(bx - box.x0) <= eps) return grid.periodicX ? 0 : BORDER_X0;
+  if (Math.abs(ax - box.x1) <= eps && Math.abs(bx - box.x1) <= eps) return grid.periodicX ? 0 : BORDER_X1;
+  return null;
+}
+
+/**
+ * The point (copy) across the edge with midpoint (mx, my) from site i: among i's Delaunay
+ * neighbours, the one whose bisector with i passes closest to the midpoint; -1 if none.
+ */
+function siteAcrossEdge(copies: PeriodicCopies, candidates: number[], i: number, mx: number, my: number): number {
+  const { points } = copies;
+  const xi = copies.px[i];
+  const yi = copies.py[i];
+  let best = -1;
+  let bestDist = Infinity;
+  for (const j of candidates) {
+    const qx = points[2 * j];
+    const qy = points[2 * j + 1];
+    const dx = qx - xi;
+    const dy = qy - yi;
+    const dl = Math.hypot(dx, dy);
+    if (dl === 0) continue;
+    const dist = Math.abs(dx * (mx - (xi + qx) / 2) + dy * (my - (yi + qy) / 2)) / dl;
+    if (dist < bestDist) {
+      bestDist = dist;
+      best = j;
+    }
+  }
+  return best;
+}
+
+/** Step 5: every cell's neighbours and contact lengths in one CSR adjacency. */
+function csrAdjacency(cells: readonly ExactCell[]): CsrAdjacency {
+  const n = cells.length;
+  const offsets = new Int32Array(n + 1);
+  for (let i = 0; i < n; i++) offsets[i + 1] = offsets[i] + cells[i].neighbours.length;
+  const neighbours = new Int32Array(offsets[n]);
+  const lengths = new Float64Array(offsets[n]);
+  for (let i = 0; i < n; i++) {
+    neighbours.set(cells[i].neighbours, offsets[i]);
+    lengths.set(cells[i].lengths, offsets[i]);
+  }
+  return { offsets, neighbours, lengths };
 }
 
 /** True when the point (texel units) lies inside the cell polygon (texel units), tried at every periodic image. */
