@@ -1,4 +1,4 @@
-import { bruteForceLabels } from '../src/core/labels';
+import { bruteForceLabels } from '../tests/oracles/labels';
 import type { Grid } from '../src/core/grid';
 import { coldSchedule } from '../src/core/jumpSchedule';
 import { placeSites } from '../src/core/sites';

@@ -6,14 +6,10 @@ import {
   BORDER_X_START,
   BORDER_Y_END,
   BORDER_Y_START,
-  bruteForceLabels,
-  centroidSites,
-  cvtEnergy,
   labelAdjacency,
-  reduceCentroids,
-  sharedLength,
   type LabelAdjacency,
 } from '../../src/core/labels';
+import { bruteForceLabels, centroidSites, cvtEnergy, reduceCentroids, sharedLength } from '../oracles/labels';
 import { Random } from '../../src/core/random';
 
 /** The definition, in O(sites x texels): nearest site, ties to the smaller id. */

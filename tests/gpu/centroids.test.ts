@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import type { Grid } from '../../src/core/grid';
-import { bruteForceLabels, reduceCentroids } from '../../src/core/labels';
+import { bruteForceLabels, reduceCentroids } from '../oracles/labels';
 import { placeSites } from '../../src/core/sites';
 import { CcvtEngine } from '../../src/gpu/engine';
 import { useHeadlessContext } from './context';

@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import type { Grid } from '../../src/core/grid';
 import { coldSchedule } from '../../src/core/jumpSchedule';
-import { bruteForceLabels } from '../../src/core/labels';
+import { bruteForceLabels } from '../oracles/labels';
 import { placeSites } from '../../src/core/sites';
 import { CcvtEngine } from '../../src/gpu/engine';
 import { LloydRun } from '../../src/gpu/lloyd';

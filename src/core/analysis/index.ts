@@ -1,4 +1,3 @@
-/** Analysis of Voronoi sheets: adjacency, scutoid statistics, the tube model. */
+/** Analysis of Voronoi sheets: adjacency and scutoid statistics. */
 export * from './adjacency';
 export * from './scutoids';
-export * from './tubeModel';
