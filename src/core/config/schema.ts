@@ -16,10 +16,10 @@ export const DEFAULT_TUBE_RADIUS = 512 / (2 * Math.PI);
  * `unit` is an annotation keyword of ours (registered with ajv below): error messages print it
  * after numbers. Everything else is plain draft-07.
  */
-const positiveUm = (description: string) => ({ type: 'number', exclusiveMinimum: 0, unit: 'µm', description });
-const positive = (description: string) => ({ type: 'number', exclusiveMinimum: 0, description });
-const axis = (description: string) => ({ type: 'string', enum: ['x', 'y'], description });
-const kindConst = (kind: string, description: string) => ({ type: 'string', const: kind, description });
+const positiveUm = (description: string) => ({ type: 'number', exclusiveMinimum: 0, unit: 'µm', description }) as const;
+const positive = (description: string) => ({ type: 'number', exclusiveMinimum: 0, description }) as const;
+const axis = (description: string) => ({ type: 'string', enum: ['x', 'y'], description }) as const;
+const kindConst = <K extends string>(kind: K, description: string) => ({ type: 'string', const: kind, description }) as const;
 
 export const configSchema = {
   $schema: 'http://json-schema.org/draft-07/schema#',

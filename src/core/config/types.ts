@@ -1,149 +1,66 @@
-/** The run configuration's TypeScript types: what `validateAnyConfig` returns, fully defaulted. */
-// ---------------------------------------------------------------------------------------------
-// Types
-// ---------------------------------------------------------------------------------------------
+/**
+ * The run configuration's TypeScript types, computed from configSchema (schema.ts): a field
+ * added, removed or retyped there changes these types with no second edit. `Config` and its
+ * parts are what `validateAnyConfig` returns, every default filled in; `ConfigInput` is what a
+ * user may write.
+ */
+import type { FromSchema } from './fromSchema';
+import type { configSchema } from './schema';
 
-export interface PlaneSurface {
-  kind: 'plane';
-  width: number;
-  height: number;
-  periodicX: boolean;
-  periodicY: boolean;
-}
-export interface TubeSurface {
-  kind: 'tube';
-  radius: number;
-  length: number;
-}
+/** Any validated configuration, its surface any kind (the schema's own reading). */
+type SchemaConfig = FromSchema<typeof configSchema>;
+
+/** Every surface kind the schema knows. */
+export type AnySurfaceConfig = SchemaConfig['surface'];
+export type PlaneSurface = Extract<AnySurfaceConfig, { kind: 'plane' }>;
+export type TubeSurface = Extract<AnySurfaceConfig, { kind: 'tube' }>;
 /** Surfaces unrolled to a rectangle (the planar pipeline: plane, tube). */
 export type SurfaceConfig = PlaneSurface | TubeSurface;
 
 /** A sphere of the given radius (µm), centred at the origin. */
-export interface SphereSurface {
-  kind: 'sphere';
-  radius: number;
-}
+export type SphereSurface = Extract<AnySurfaceConfig, { kind: 'sphere' }>;
 /** An ellipsoid x²/a² + y²/b² + z²/c² = 1 (semi-axes in µm), centred at the origin. */
-export interface EllipsoidSurface {
-  kind: 'ellipsoid';
-  a: number;
-  b: number;
-  c: number;
-}
+export type EllipsoidSurface = Extract<AnySurfaceConfig, { kind: 'ellipsoid' }>;
 /** A closed genus-0 triangle mesh (OBJ, PLY, STL), coordinates times `scale` in µm. */
-export interface MeshSurface {
-  kind: 'mesh';
-  src: string;
-  scale: number;
-  geodesic: boolean;
-}
-/** Closed surfaces, sampled on a cube-map geometry image (src/run/closedSheet.ts). */
-export type ClosedSurfaceConfig = SphereSurface | EllipsoidSurface | MeshSurface;
+export type MeshSurface = Extract<AnySurfaceConfig, { kind: 'mesh' }>;
+/** Closed surfaces, sampled on a cube-map geometry image: every kind that is not unrolled. */
+export type ClosedSurfaceConfig = Exclude<AnySurfaceConfig, SurfaceConfig>;
 
-export type Axis = 'x' | 'y';
-export interface UniformDensity {
-  kind: 'uniform';
-}
-export interface LinearDensity {
-  kind: 'linear';
-  axis: Axis;
-  from: number;
-  to: number;
-}
-export interface GaussianDensity {
-  kind: 'gaussian';
-  center: [number, number];
-  sigma: number;
-  peak: number;
-}
-export interface StripesDensity {
-  kind: 'stripes';
-  axis: Axis;
-  period: number;
-  low: number;
-  high: number;
-}
-export interface ImageDensity {
-  kind: 'image';
-  src: string;
-  low: number;
-  high: number;
-  invert: boolean;
-}
-export type DensitySpec = UniformDensity | LinearDensity | GaussianDensity | StripesDensity | ImageDensity;
+export type DensitySpec = SchemaConfig['density'];
+export type UniformDensity = Extract<DensitySpec, { kind: 'uniform' }>;
+export type LinearDensity = Extract<DensitySpec, { kind: 'linear' }>;
+export type GaussianDensity = Extract<DensitySpec, { kind: 'gaussian' }>;
+export type StripesDensity = Extract<DensitySpec, { kind: 'stripes' }>;
+export type ImageDensity = Extract<DensitySpec, { kind: 'image' }>;
+export type Axis = LinearDensity['axis'];
 
-export interface LloydConfig {
-  maxIterations: number;
-  tolerance: number;
-  overRelaxation: number;
-  warmStart: boolean;
-}
-export type JumpFloodVariantName = 'jfa+2' | '1+jfa' | 'jfa';
-export interface JumpFloodConfig {
-  variant: JumpFloodVariantName;
-}
-export type CentroidPathName = 'auto' | 'blend' | 'gather' | 'readback';
-
+export type LloydConfig = SchemaConfig['lloyd'];
+export type JumpFloodConfig = SchemaConfig['jumpFlood'];
+export type JumpFloodVariantName = JumpFloodConfig['variant'];
+export type CentroidPathName = SchemaConfig['centroidPath'];
 /** The sheet: which surface is seeded, and where the other surface and the layers lie. */
-export interface SheetConfig {
-  seeded: 'basal' | 'apical';
-  direction: 'outward' | 'inward';
-  thickness: number;
-  surfaceRatio: number | null;
-  layers: number;
-  adjacency: 'labels' | 'exact' | 'both';
-  minContactLength: number | null;
-}
+export type SheetConfig = SchemaConfig['sheet'];
 
-/** A validated configuration: every field present, every default filled in. */
-export interface Config {
+/** A validated configuration on a plane or a tube: every field present, every default filled in. */
+export interface Config extends Omit<SchemaConfig, 'surface'> {
   surface: SurfaceConfig;
-  resolution: number;
-  cells: number;
-  seed: number;
-  minSpacing: number;
-  density: DensitySpec;
-  lloyd: LloydConfig;
-  jumpFlood: JumpFloodConfig;
-  centroidPath: CentroidPathName;
-  sheet: SheetConfig;
 }
-
 /** A validated configuration on a closed surface (sphere, ellipsoid, mesh). */
-export interface ClosedConfig extends Omit<Config, 'surface'> {
+export interface ClosedConfig extends Omit<SchemaConfig, 'surface'> {
   surface: ClosedSurfaceConfig;
 }
 /** Any validated configuration: planar (Config) or closed (ClosedConfig). */
 export type AnyConfig = Config | ClosedConfig;
 
-export const CLOSED_SURFACE_KINDS = ['sphere', 'ellipsoid', 'mesh'] as const;
+/** The closed kinds as a value (for runtime checks); the compiler keeps it equal to ClosedSurfaceConfig's kinds. */
+export const CLOSED_SURFACE_KINDS = ['sphere', 'ellipsoid', 'mesh'] as const satisfies readonly ClosedSurfaceConfig['kind'][];
+// A closed kind added to the schema but missing from the list above fails to compile here.
+const closedKindsListed: Exclude<ClosedSurfaceConfig['kind'], (typeof CLOSED_SURFACE_KINDS)[number]> extends never ? true : never = true;
+void closedKindsListed;
 
 export function isClosedConfig(config: AnyConfig): config is ClosedConfig {
   return (CLOSED_SURFACE_KINDS as readonly string[]).includes(config.surface.kind);
 }
 
-type Optional<T, K extends keyof T> = Omit<T, K> & Partial<Pick<T, K>>;
-
 /** What a user may write: any field with a default may be left out. */
-export interface ConfigInput {
-  surface?:
-    | Optional<PlaneSurface, 'periodicX' | 'periodicY'>
-    | TubeSurface
-    | SphereSurface
-    | EllipsoidSurface
-    | Optional<MeshSurface, 'scale' | 'geodesic'>;
-  resolution?: number;
-  cells?: number;
-  seed?: number;
-  minSpacing?: number;
-  density?:
-    | UniformDensity
-    | LinearDensity
-    | GaussianDensity
-    | StripesDensity
-    | Optional<ImageDensity, 'low' | 'high' | 'invert'>;
-  lloyd?: Partial<LloydConfig>;
-  jumpFlood?: Partial<JumpFloodConfig>;
-  centroidPath?: CentroidPathName;
-  sheet?: Partial<SheetConfig>;
-}
+export type ConfigInput = FromSchema<typeof configSchema, 'input'>;

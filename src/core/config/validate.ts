@@ -25,7 +25,7 @@ type SchemaNode = Record<string, unknown>;
 const ajv = new Ajv({ useDefaults: true, allErrors: false, discriminator: true, verbose: true, strict: true, strictRequired: false });
 // strictRequired is off because the discriminator's `required: ['kind']` is defined in the branches.
 ajv.addVocabulary(['unit']);
-const validate = ajv.compile(configSchema as unknown as SchemaNode);
+const validate = ajv.compile<AnyConfig>(configSchema);
 
 /**
  * Checks `input`, fills every default and returns a fresh object (the input is never modified).
@@ -41,7 +41,7 @@ export function validateAnyConfig(input: unknown): AnyConfig {
     if (!error) throw new ConfigError('', 'config: invalid');
     throw toConfigError(error);
   }
-  return data as AnyConfig;
+  return data;
 }
 
 /**
@@ -172,13 +172,13 @@ function toConfigError(error: ErrorObject): ConfigError {
       const properties = (schema.properties ?? {}) as Record<string, SchemaNode>;
       const kind = (properties.kind?.const as string | undefined) ?? undefined;
       const where = kind !== undefined && missing !== 'kind' ? ` for kind ${JSON.stringify(kind)}` : '';
-      const what = missing === 'kind' ? kindChoices(path) : properties[missing] ? expectation(properties[missing], true) : 'a value';
+      const what = missing === 'kind' ? kindChoices(schema) : properties[missing] ? expectation(properties[missing], true) : 'a value';
       return new ConfigError(field, `${field}: required${where}; add ${what}`);
     }
     case 'discriminator': {
       const field = formatPath([...path, 'kind']);
       const value = formatValue((error.params as { tagValue?: unknown }).tagValue);
-      return new ConfigError(field, `${field}: must be ${kindChoices(path)} (got ${value})`);
+      return new ConfigError(field, `${field}: must be ${kindChoices(schema)} (got ${value})`);
     }
     case 'type': {
       const field = formatPath(path);
@@ -197,12 +197,9 @@ function toConfigError(error: ErrorObject): ConfigError {
   }
 }
 
-/** `one of "plane", "tube"` for the union at `path` (surface or density). */
-function kindChoices(path: (string | number)[]): string {
-  const top = path[0];
-  const union = (configSchema.properties as Record<string, { oneOf?: readonly { properties: { kind: { const: string } } }[] }>)[
-    String(top)
-  ];
-  const kinds = union?.oneOf?.map((branch) => JSON.stringify(branch.properties.kind.const)) ?? [];
+/** `one of "plane", "tube"`: the kinds of the union `schema` (surface or density), from its branches. */
+function kindChoices(schema: SchemaNode): string {
+  const branches = Array.isArray(schema.oneOf) ? (schema.oneOf as SchemaNode[]) : [];
+  const kinds = branches.map((branch) => JSON.stringify(((branch.properties ?? {}) as Record<string, SchemaNode>).kind?.const));
   return `one of ${kinds.join(', ')}`;
 }
