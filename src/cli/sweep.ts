@@ -3,7 +3,7 @@ import { join } from 'node:path';
 import { validateAnyConfig, type AnyConfig } from '../core/config';
 import { aggregateRows, aggregateToCsv, aggregateToJson, expandSweep, runSweep, variedFields, type SweepSpec } from '../core/sweep';
 import { createHeadlessContext } from '../node/headless';
-import { SheetRunner, seededKey, sweepSummary } from '../run/sheetRunner';
+import { SheetRunner, seededKey, sweepSummary } from '../run';
 import { version } from '../version';
 
 /**

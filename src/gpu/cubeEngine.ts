@@ -8,6 +8,7 @@ import cubeJumpFloodFrag from '../shaders/cubeJumpFlood.frag';
 import cubeSplatVert from '../shaders/cubeSplat.vert';
 import fullscreenVert from '../shaders/fullscreen.vert';
 import splatFrag from '../shaders/splat.frag';
+import { chooseCentroidPath, type RequestedCentroidPath } from './centroidPolicy';
 import { GpuCapabilityError, type GpuContext } from './context';
 import { ShaderPass } from './shaderPass';
 import { createFloatDataTexture, createFloatTarget, readTargetRGBA } from './textures';
@@ -21,8 +22,8 @@ export type CubeCentroidPath = 'blend' | 'readback';
 
 export interface CubeEngineOptions {
   readonly variant: JumpFloodVariant;
-  /** 'auto': blend where EXT_float_blend exists, readback elsewhere ('gather' means readback here). */
-  readonly centroidPath: 'auto' | 'blend' | 'gather' | 'readback';
+  /** 'auto' and the other choices: see chooseCentroidPath ('gather' means readback here). */
+  readonly centroidPath: RequestedCentroidPath;
 }
 
 /** Values per site in `CubeCcvtEngine.sums`: w·dx, w·dy, w·dz, w, w·|d|² (d = texel point - site). */
@@ -68,7 +69,7 @@ export class CubeCcvtEngine {
     readonly siteCount: number,
     options: CubeEngineOptions,
   ) {
-    const { maxTextureSize, floatBlend } = context.capabilities;
+    const { maxTextureSize } = context.capabilities;
     this.width = n;
     this.height = 6 * n;
     if (this.height > maxTextureSize) {
@@ -76,12 +77,7 @@ export class CubeCcvtEngine {
         `resolution: the cube map is ${n} x ${6 * n} texels (6 faces of ${n}²) but this GPU allows at most ${maxTextureSize} per side; lower resolution to at most ${Math.floor(maxTextureSize / 6)}`,
       );
     }
-    if (options.centroidPath === 'blend' && !floatBlend) {
-      throw new GpuCapabilityError(
-        'centroidPath: "blend" needs EXT_float_blend, which this WebGL2 context lacks; use "auto" or "gather"',
-      );
-    }
-    this.centroidPath = options.centroidPath === 'blend' || (options.centroidPath === 'auto' && floatBlend) ? 'blend' : 'readback';
+    this.centroidPath = chooseCentroidPath('cube map', options.centroidPath, context.capabilities).path as CubeCentroidPath;
     this.renderer = context.renderer;
 
     this.siteTextureWidth = Math.min(siteCount, maxTextureSize);

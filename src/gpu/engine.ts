@@ -11,7 +11,8 @@ import fullscreenVert from '../shaders/fullscreen.vert';
 import jumpFloodFrag from '../shaders/jumpFlood.frag';
 import labelSplatFrag from '../shaders/labelSplat.frag';
 import labelSplatVert from '../shaders/labelSplat.vert';
-import { GpuCapabilityError, type GpuCapabilities, type GpuContext } from './context';
+import { chooseCentroidPath, type CentroidPath, type RequestedCentroidPath } from './centroidPolicy';
+import { GpuCapabilityError, type GpuContext } from './context';
 import { GatherCentroids } from './gatherCentroids';
 import { PackedLabels } from './packedLabels';
 import { ShaderPass } from './shaderPass';
@@ -20,27 +21,12 @@ import { createFloatDataTexture, createFloatTarget, readTargetRGBA } from './tex
 /** "No site" in a label (x < 0) and in an id map or id target (id < 0). */
 const EMPTY_LABEL = new Float32Array([-1, -1, -1, 0]);
 
-/**
- * How centroids are summed: additive blending into float targets (needs EXT_float_blend), a
- * gather pass on the GPU, or the ids read back and reduced on the CPU.
- */
-export type CentroidPath = 'blend' | 'gather' | 'readback';
+export type { CentroidPath } from './centroidPolicy';
 
 export interface EngineOptions {
   readonly variant: JumpFloodVariant;
-  /** 'auto': see autoCentroidPath. */
-  readonly centroidPath: CentroidPath | 'auto';
-}
-
-/**
- * The centroid path "auto" picks: blend on a GPU with EXT_float_blend, gather on a GPU without
- * it; readback on software rasterizers (SwiftShader, llvmpipe), where "GPU" memory is CPU memory
- * and one pass over the packed ids beats both drawing a point per texel for the blend and
- * walking per-site windows for the gather (docs/benchmark.md).
- */
-export function autoCentroidPath(capabilities: GpuCapabilities): CentroidPath {
-  if (capabilities.softwareRenderer) return 'readback';
-  return capabilities.floatBlend ? 'blend' : 'gather';
+  /** 'auto' and the other choices: see chooseCentroidPath. */
+  readonly centroidPath: RequestedCentroidPath;
 }
 
 /**
@@ -91,19 +77,14 @@ export class CcvtEngine {
     readonly siteCount: number,
     private readonly options: EngineOptions,
   ) {
-    const { maxTextureSize, floatBlend } = context.capabilities;
+    const { maxTextureSize } = context.capabilities;
     if (grid.width > maxTextureSize || grid.height > maxTextureSize) {
       throw new GpuCapabilityError(
         `resolution: the grid is ${grid.width} x ${grid.height} texels but this GPU allows at most ` +
           `${maxTextureSize} per side; lower resolution`,
       );
     }
-    if (options.centroidPath === 'blend' && !floatBlend) {
-      throw new GpuCapabilityError(
-        'centroidPath: "blend" needs EXT_float_blend, which this WebGL2 context lacks; use "auto" or "gather"',
-      );
-    }
-    this.centroidPath = options.centroidPath === 'auto' ? autoCentroidPath(context.capabilities) : options.centroidPath;
+    this.centroidPath = chooseCentroidPath('planar grid', options.centroidPath, context.capabilities).path;
     this.renderer = context.renderer;
 
     this.siteTextureWidth = Math.min(siteCount, maxTextureSize);

@@ -3,8 +3,9 @@
  * Consumers never reach into src/gpu or each other; they take the pipeline, its context
  * factories and its result types from here.
  */
-export { runSheet, type RunCallbacks } from './runSheet';
-export { SheetRunner, seededKey, sweepSummary } from './sheetRunner';
+export { runSheet, SheetRunner, seededKey, type RunCallbacks } from './runSheet';
+export { sweepSummary } from './sweepSummary';
+export type { EngineChoice } from './enginePolicy';
 export type { MeshFile } from './closedMesh';
 export type {
   AnalysisRecord,

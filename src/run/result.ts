@@ -1,8 +1,9 @@
 import type { ScutoidSummary } from '../core/analysis';
-import type { Config } from '../core/config';
+import type { AnyConfig } from '../core/config';
 import type { Grid } from '../core/grid';
 import type { Vec3 } from '../core/surface';
 import type { IterationRecord } from '../gpu/lloyd';
+import type { EngineChoice } from './enginePolicy';
 
 /** A neighbour of a cell and the length (µm) of the boundary they share. */
 export interface NeighbourContact {
@@ -73,7 +74,7 @@ export interface AnalysisRecord {
 export interface SheetResult {
   readonly software: { readonly name: 'tissue-sheet'; readonly version: string };
   /** The configuration with every default filled in: rerunning it reproduces this result. */
-  readonly config: Config;
+  readonly config: AnyConfig;
   readonly seed: number;
   readonly grid: GridRecord;
   readonly gpu: {
@@ -81,6 +82,8 @@ export interface SheetResult {
     readonly centroidPath: 'blend' | 'gather' | 'readback';
     readonly jumpFloodVariant: string;
   };
+  /** The engine that ran, chosen by the engine policy (src/run/enginePolicy.ts), and why. */
+  readonly engine: EngineChoice;
   readonly lloyd: {
     readonly iterations: IterationRecord[];
     readonly converged: boolean;
@@ -147,6 +150,11 @@ export interface LabelImage {
   readonly grid: Grid;
   /** Site id per texel, row-major (index y * width + x), -1 for none. */
   readonly labels: Int32Array;
+  /**
+   * Closed surfaces: the geometry image of this surface, x, y, z (µm) per texel in the order of
+   * `labels` (the n x 6n cube-map atlas), so views draw the cells without re-deriving geometry.
+   */
+  readonly positions?: Float32Array;
 }
 
 /** What runSheet returns: the JSON result and, for views, the label image of every surface. */

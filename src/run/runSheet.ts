@@ -1,58 +1,93 @@
 import { isClosedConfig, type AnyConfig } from '../core/config';
 import type { GpuContext } from '../gpu/context';
 import { version } from '../version';
+import { cubeMapFamily } from './cubeMapFamily';
+import { chooseEngine } from './enginePolicy';
+import type { RunCallbacks, StackLayer, SurfaceFamily } from './family';
+import { planarFamily } from './planarFamily';
+import { relaxSeededSurface, type SeededSurface } from './relax';
 import type { SheetOutput } from './result';
-import { relaxSeededSurface, type RunCallbacks, type SeededSurface } from './seededSurface';
-import { analyzeStack } from './sheetStack';
-import { runClosedSheet, type ClosedRunCallbacks } from './closedSheet';
+import { analyzeStack } from './stack';
 
-export type { RunCallbacks } from './seededSurface';
+export type { RunCallbacks } from './family';
 
 /**
- * The whole computation of one sheet: validated config -> grid -> density -> sites -> Lloyd on
- * the GPU (seeded surface) -> projection onto layers and the other surface -> labels ->
- * adjacency -> statistics -> the documented result. Same config, same result.
+ * The whole computation of one sheet, for every surface: validated config -> surface family
+ * (planar grid for planes and tubes, cube map for closed surfaces) -> engine policy -> seeded
+ * surface and Lloyd -> projection onto layers and the other surface -> labels -> adjacency ->
+ * statistics -> the documented result. Same config, same result.
  */
-export async function runSheet(
-  config: AnyConfig,
-  context: GpuContext,
-  callbacks: RunCallbacks & { seeded?: SeededSurface } & Pick<ClosedRunCallbacks, 'meshFile'> = {},
-): Promise<SheetOutput> {
-  // Closed surfaces (sphere, ellipsoid, mesh) run on a cube-map geometry image: src/run/closedSheet.ts.
-  // A static import (not import()): the library build stays one self-contained module.
-  if (isClosedConfig(config)) return runClosedSheet(config, context, callbacks);
-  const start = performance.now();
-  // A seeded surface relaxed earlier for the same config (see SheetRunner) is reused as is.
-  const seeded = callbacks.seeded ?? (await relaxSeededSurface(config, context, callbacks));
-  const stack = await analyzeStack(config, seeded, context, callbacks.signal);
-  return {
-    result: {
-      software: { name: 'tissue-sheet', version },
-      config,
-      seed: config.seed,
-      grid: { ...seeded.grid },
-      gpu: {
-        renderer: context.capabilities.renderer,
-        centroidPath: seeded.centroidPath,
-        jumpFloodVariant: config.jumpFlood.variant,
+export function runSheet(config: AnyConfig, context: GpuContext, callbacks: RunCallbacks = {}): Promise<SheetOutput> {
+  return new SheetRunner(context).run(config, callbacks);
+}
+
+/**
+ * Runs sheets one after another and reuses the converged seeded surface when only `sheet.*`
+ * changed (a sweep over surface ratios or thickness relaxes each realization once).
+ */
+export class SheetRunner {
+  private cached: { key: string; seeded: Promise<SeededSurface<unknown, unknown>> } | null = null;
+
+  constructor(private readonly context: GpuContext) {}
+
+  /** The one place a run's surface family is decided. */
+  run(config: AnyConfig, callbacks: RunCallbacks = {}): Promise<SheetOutput> {
+    return isClosedConfig(config) ? this.runOn(cubeMapFamily, config, callbacks) : this.runOn(planarFamily, config, callbacks);
+  }
+
+  private async runOn<C extends AnyConfig, G, S, L extends StackLayer, P>(
+    family: SurfaceFamily<C, G, S, L, P>,
+    config: C,
+    callbacks: RunCallbacks,
+  ): Promise<SheetOutput> {
+    const start = performance.now();
+    const key = seededKey(config);
+    if (this.cached?.key !== key) {
+      const engine = chooseEngine(config, family.name, this.context.capabilities);
+      this.cached = { key, seeded: relaxSeededSurface(family, config, this.context, engine, callbacks) };
+    }
+    let seeded: SeededSurface<G, S>;
+    try {
+      // The key holds the surface, so a cached seeded surface is of this family.
+      seeded = (await this.cached.seeded) as SeededSurface<G, S>;
+    } catch (error) {
+      this.cached = null;
+      throw error;
+    }
+    const stack = await analyzeStack(family, config, seeded, this.context, callbacks.signal);
+    const { closed, labelImages } = stack;
+    return {
+      result: {
+        software: { name: 'tissue-sheet', version },
+        config,
+        seed: config.seed,
+        grid: family.gridRecord(seeded.geometry),
+        gpu: {
+          renderer: this.context.capabilities.renderer,
+          centroidPath: seeded.engine.centroidPath,
+          jumpFloodVariant: config.jumpFlood.variant,
+        },
+        engine: { ...seeded.engine },
+        lloyd: {
+          iterations: seeded.iterations,
+          converged: seeded.converged,
+          finalEnergy: seeded.finalEnergy,
+          emptyCells: seeded.emptyCells,
+        },
+        adjacency: { method: 'labels' },
+        timings: { setupMs: seeded.setupMs, lloydMs: seeded.lloydMs, adjacencyMs: stack.adjacencyMs, totalMs: performance.now() - start },
+        cells: stack.seededCells,
+        surfaces: stack.surfaces,
+        analyses: stack.analyses,
+        ...(closed ? { closed } : {}),
       },
-      lloyd: {
-        iterations: seeded.iterations,
-        converged: seeded.converged,
-        finalEnergy: seeded.finalEnergy,
-        emptyCells: seeded.emptyCells,
-      },
-      adjacency: { method: 'labels' },
-      timings: {
-        setupMs: seeded.setupMs,
-        lloydMs: seeded.lloydMs,
-        adjacencyMs: stack.adjacencyMs,
-        totalMs: performance.now() - start,
-      },
-      cells: stack.seededCells,
-      surfaces: stack.surfaces,
-      analyses: stack.analyses,
-    },
-    labelImages: stack.labelImages,
-  };
+      labelImages,
+    };
+  }
+}
+
+/** Everything the seeded surface depends on: the config without its `sheet` section. */
+export function seededKey(config: AnyConfig): string {
+  const { sheet: _sheet, ...rest } = config;
+  return JSON.stringify(rest);
 }

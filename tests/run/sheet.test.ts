@@ -3,10 +3,11 @@ import { validateConfig, type ConfigInput } from '../../src/core/config';
 import { exactVoronoi } from '../../src/core/exact';
 import { filterShortContacts } from '../../src/core/analysis';
 import { labelAdjacency } from '../../src/core/labels';
-import { analyzeStack, defaultMinContactLength } from '../../src/run/sheetStack';
-import { relaxSeededSurface, type SeededSurface } from '../../src/run/seededSurface';
-import { runSheet } from '../../src/run/runSheet';
-import { SheetRunner } from '../../src/run/sheetRunner';
+import { chooseEngine } from '../../src/run/enginePolicy';
+import { defaultMinContactLength, planarFamily, type PlanarGeometry } from '../../src/run/planarFamily';
+import { relaxSeededSurface, type SeededSurface } from '../../src/run/relax';
+import { runSheet, SheetRunner } from '../../src/run/runSheet';
+import { analyzeStack } from '../../src/run/stack';
 import { CcvtEngine } from '../../src/gpu/engine';
 import { useHeadlessContext } from '../gpu/context';
 
@@ -91,12 +92,13 @@ describe('a hand-built exchange: rhombi of four sites whose shared edge flips wh
     const engine = new CcvtEngine(context, grid, columns * rows, { variant: 'jfa+2', centroidPath: 'auto' });
     engine.setSites(sites);
     engine.floodLabels();
-    const seeded: SeededSurface = {
-      grid, sites, labels: engine.readLabels(), centroidPath: engine.centroidPath, iterations: [], converged: false,
+    const seeded: SeededSurface<PlanarGeometry, Float32Array> = {
+      geometry: { grid, density: new Float32Array(width * height).fill(1) }, sites, labels: engine.readLabels(),
+      engine: chooseEngine(config, 'planar grid', context.capabilities), iterations: [], converged: false,
       finalEnergy: 0, emptyCells: 0, setupMs: 0, lloydMs: 0,
     };
     engine.dispose();
-    return analyzeStack(config, seeded, context);
+    return analyzeStack(planarFamily, config, seeded, context);
   }
 
   for (const method of ['exact', 'labels'] as const) {
@@ -152,10 +154,11 @@ describe('pixel adjacency against exact adjacency at the default resolution', ()
   for (const [name, input] of cases) {
     it(`${name}: >= 98 % of neighbour pairs agree`, async () => {
       const config = validateConfig(input);
-      const seeded = await relaxSeededSurface(config, context);
-      const labels = labelAdjacency(seeded.grid, seeded.labels, config.cells);
-      const pixel = filterShortContacts(labels, defaultMinContactLength(seeded.grid, config.cells));
-      const exact = exactVoronoi(seeded.grid, seeded.sites).adjacency;
+      const seeded = await relaxSeededSurface(planarFamily, config, context, chooseEngine(config, 'planar grid', context.capabilities));
+      const { grid } = seeded.geometry;
+      const labels = labelAdjacency(grid, seeded.labels, config.cells);
+      const pixel = filterShortContacts(labels, defaultMinContactLength(grid, config.cells));
+      const exact = exactVoronoi(grid, seeded.sites).adjacency;
       const p = pairSet(pixel.offsets, pixel.neighbours);
       const e = pairSet(exact.offsets, exact.neighbours);
       let both = 0;

@@ -1,0 +1,190 @@
+import { checkClosedFeasible, makeCubeGrid, type ClosedConfig } from '../core/config';
+import {
+  cubeLabelAdjacency,
+  offsetSurface,
+  placeClosedSites,
+  texelNeighbours,
+  type ClosedSites,
+  type CubeSurfaceSample,
+} from '../core/closed/geometry';
+import { sphericalVoronoi } from '../core/closed/sphericalDelaunay';
+import type { Grid } from '../core/grid';
+import type { EngineChoice } from './enginePolicy';
+import type { GpuContext } from '../gpu/context';
+import { CubeCcvtEngine } from '../gpu/cubeEngine';
+import { ClosedLloydRun } from '../gpu/cubeLloyd';
+import { closedSection } from './closedRecord';
+import { checkOffsets, prepareClosedSurface, type ClosedSurface } from './closedSurface';
+import type { Labeller, Relaxation, StackLayer, SurfaceFamily } from './family';
+
+/** A closed surface on its cube map, with the texel neighbour table every surface of its stack shares. */
+export interface CubeMapGeometry extends ClosedSurface {
+  /** Four edge-neighbour texels per texel, across face edges. */
+  readonly neighbours: Int32Array;
+}
+
+/** A surface of a closed sheet's stack: the seeded geometry image offset along its normals. */
+export interface CubeMapLayer extends StackLayer {
+  readonly sample: CubeSurfaceSample;
+}
+
+/** Sites moved onto a layer: their 3D positions, and the texels they were seeded in. */
+export interface CubeMapProjected {
+  readonly positions: Float64Array;
+  readonly texels: Int32Array;
+}
+
+/**
+ * Sphere, ellipsoid and genus-0 meshes on a cube-map geometry image (docs/closed-surfaces.md):
+ * 6 n² texels holding the surface's 3D points and area elements; a jump flood with 3D distances
+ * across face edges; Lloyd moves each site to the closest surface point of its cell's centroid.
+ * Other surfaces of the stack are the parallel surfaces, sampled on the same cube map. The
+ * sphere has an exact method (the convex hull of the sites).
+ */
+export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedSites, CubeMapLayer, CubeMapProjected> = {
+  name: 'cube map',
+
+  async prepare(config, callbacks) {
+    checkClosedFeasible(config, makeCubeGrid(config));
+    const surface = await prepareClosedSurface(config, callbacks);
+    return { ...surface, neighbours: texelNeighbours(surface.image.n) };
+  },
+
+  checkSheet: (config, geometry) => checkOffsets(config, geometry),
+
+  relax(context, config, geometry, choice) {
+    const { image, projector } = geometry;
+    const sites = placeClosedSites(image, projector, config.cells, config.seed, config.minSpacing);
+    const engine = new CubeCcvtEngine(context, image.n, config.cells, { variant: config.jumpFlood.variant, centroidPath: choice.centroidPath });
+    try {
+      engine.setGeometry(image.position, image.area);
+      const run = new ClosedLloydRun(engine, projector, sites, config.lloyd, minTexelSpacing(geometry));
+      return { sites, relaxation: cubeMapRelaxation(engine, run) };
+    } catch (error) {
+      engine.dispose();
+      throw error;
+    }
+  },
+
+  stack(config, geometry) {
+    const { sheet } = config;
+    const other = (sheet.direction === 'outward' ? 1 : -1) * sheet.thickness;
+    const count = sheet.layers + 2;
+    return Array.from({ length: count }, (_, k) => {
+      const role = k === 0 ? 'seeded' : k === count - 1 ? 'other' : 'layer';
+      const name = role === 'seeded' ? sheet.seeded : role === 'other' ? (sheet.seeded === 'basal' ? 'apical' : 'basal') : `layer ${k}`;
+      const offset = (other * k) / (count - 1);
+      return { name, role, offset, sample: offsetSurface(geometry.image, offset, geometry.neighbours) };
+    });
+  },
+
+  project(_geometry, layer, sites) {
+    const positions = new Float64Array(3 * sites.count);
+    for (let k = 0; k < positions.length; k++) positions[k] = sites.positions[k] + layer.offset * sites.normals[k];
+    return { positions, texels: sites.texels };
+  },
+
+  labeller: (context, config, geometry, choice) => cubeMapLabeller(context, config, geometry.image.n, choice),
+
+  labelImage: (geometry, layer, labels) => ({
+    name: layer.name,
+    grid: atlasGrid(geometry.image.n, layer.sample.totalArea),
+    labels,
+    positions: layer.sample.position,
+  }),
+
+  labelAdjacency(geometry, layer, labels, count) {
+    const a = cubeLabelAdjacency(layer.sample, labels, count, geometry.neighbours);
+    return {
+      count: a.count,
+      adjacency: { offsets: a.offsets, neighbours: a.neighbours, lengths: a.lengths },
+      areas: a.area,
+      touchesBorder: a.touchesBorder,
+      label: layer.name,
+    };
+  },
+
+  minContactLengths(config, geometry, layers) {
+    const { totalArea } = geometry.image;
+    const length = config.sheet.minContactLength ?? (6 / 102.4) * Math.sqrt(totalArea / config.cells);
+    // Every surface has the same cube map (n² texels per face), so the threshold, like the
+    // lab's pixels, scales with each surface's linear size (sqrt of its area ratio).
+    return { reported: length, perLayer: layers.map((layer) => length * Math.sqrt(layer.sample.totalArea / totalArea)) };
+  },
+
+  exactAdjacency(config, _geometry, layer, sites) {
+    if (config.surface.kind !== 'sphere') return null;
+    const v = sphericalVoronoi(sites.directions, config.cells, config.surface.radius + layer.offset);
+    return { count: config.cells, adjacency: v.adjacency, areas: v.areas, touchesBorder: v.touchesBorder, label: layer.name };
+  },
+
+  cellPlacement(_config, _layer, sites, projected, id) {
+    const deg = 180 / Math.PI;
+    const dx = sites.directions[3 * id], dy = sites.directions[3 * id + 1], dz = sites.directions[3 * id + 2];
+    return {
+      position: [projected.positions[3 * id], projected.positions[3 * id + 1], projected.positions[3 * id + 2]],
+      // [longitude, latitude] (degrees) of the site's parameter direction.
+      surface: [Math.atan2(dy, dx) * deg, Math.asin(Math.max(-1, Math.min(1, dz))) * deg],
+    };
+  },
+
+  layerRatio: (geometry, layer) => Math.sqrt(layer.sample.totalArea / geometry.image.totalArea),
+
+  gridRecord: (geometry) => ({ ...atlasGrid(geometry.image.n, geometry.image.totalArea) }),
+
+  resultSection: (config, geometry, seeded, labeller) => ({ closed: closedSection(config, geometry, seeded, labeller) }),
+};
+
+/** The n x 6n atlas as a grid record: square texels of the mean texel area. */
+function atlasGrid(n: number, totalArea: number): Grid {
+  const texel = Math.sqrt(totalArea / (6 * n * n));
+  return { width: n, height: 6 * n, texelX: texel, texelY: texel, periodicX: false, periodicY: false };
+}
+
+/** Smallest distance between edge-neighbouring texel centres (µm), > 0. */
+function minTexelSpacing(geometry: CubeMapGeometry): number {
+  const P = geometry.image.position;
+  const neighbours = geometry.neighbours;
+  let min = Infinity;
+  const count = 6 * geometry.image.n * geometry.image.n;
+  for (let k = 0; k < count; k++) {
+    for (let s = 1; s < 4; s += 2) {
+      const l = neighbours[4 * k + s];
+      const d = Math.hypot(P[3 * k] - P[3 * l], P[3 * k + 1] - P[3 * l + 1], P[3 * k + 2] - P[3 * l + 2]);
+      if (d > 0 && d < min) min = d;
+    }
+  }
+  return Number.isFinite(min) ? min : 1;
+}
+
+function cubeMapRelaxation(engine: CubeCcvtEngine, run: ClosedLloydRun): Relaxation {
+  return {
+    get done() {
+      return run.done;
+    },
+    get converged() {
+      return run.converged;
+    },
+    iterations: run.iterations,
+    step: () => run.step(),
+    finish() {
+      const final = run.finish();
+      return { ...final, labels: engine.readLabels() };
+    },
+    dispose: () => engine.dispose(),
+  };
+}
+
+/** Every surface of the stack has the same cube map: one engine labels them all (setGeometry). */
+function cubeMapLabeller(context: GpuContext, config: ClosedConfig, n: number, choice: EngineChoice): Labeller<CubeMapLayer, CubeMapProjected> {
+  const engine = new CubeCcvtEngine(context, n, config.cells, { variant: config.jumpFlood.variant, centroidPath: choice.centroidPath });
+  return {
+    label(layer, sites) {
+      engine.setGeometry(layer.sample.position, layer.sample.area);
+      engine.setSites(sites.positions, sites.texels);
+      engine.floodLabels();
+      return engine.readLabels();
+    },
+    dispose: () => engine.dispose(),
+  };
+}

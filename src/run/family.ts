@@ -1,0 +1,101 @@
+import type { SurfaceAdjacency } from '../core/analysis';
+import type { AnyConfig } from '../core/config';
+import type { GrayImage } from '../core/density';
+import type { Vec3 } from '../core/surface';
+import type { SurfaceFamilyName } from '../gpu/centroidPolicy';
+import type { GpuContext } from '../gpu/context';
+import type { IterationRecord } from '../gpu/lloyd';
+import type { MeshFile } from './closedMesh';
+import type { EngineChoice } from './enginePolicy';
+import type { ClosedSurfaceRecord, GridRecord, LabelImage } from './result';
+
+/** What a caller can hand the pipeline besides the config. */
+export interface RunCallbacks {
+  /** Called after each Lloyd iteration. */
+  onIteration?(record: IterationRecord, maxIterations: number): void;
+  /** Aborting stops the run between iterations with an AbortError; nothing is half-written. */
+  signal?: AbortSignal;
+  /** A decoded grayscale image for `density.kind = "image"`. */
+  densityImage?: GrayImage;
+  /** The mesh file itself (e.g. a user's File read in the browser) instead of reading surface.src. */
+  meshFile?: MeshFile;
+}
+
+/** One surface of the sheet's stack: the seeded surface, a layer, or the other surface. */
+export interface StackLayer {
+  /** "basal", "apical" or "layer k" (k = 1 next to the seeded surface). */
+  readonly name: string;
+  readonly role: 'seeded' | 'layer' | 'other';
+  /** Signed distance from the seeded surface along its normal, µm (outward > 0). */
+  readonly offset: number;
+}
+
+/** Lloyd's method on the seeded surface, one iteration at a time (GPU passes, CPU moves). */
+export interface Relaxation {
+  readonly done: boolean;
+  readonly converged: boolean;
+  readonly iterations: IterationRecord[];
+  step(): IterationRecord;
+  /** The final sites' CVT energy, empty cells and label image (site id per texel). */
+  finish(): { energy: number; emptyCells: number; labels: Int32Array };
+  dispose(): void;
+}
+
+/** Labels surfaces of the stack with a jump flood each (no Lloyd: the sites stay put). */
+export interface Labeller<Layer, Projected> {
+  label(layer: Layer, sites: Projected): Int32Array;
+  dispose(): void;
+}
+
+/** A surface's neighbours from its label image: CSR with contact lengths (µm) per contact. */
+export interface LabelSurfaceAdjacency extends SurfaceAdjacency {
+  readonly adjacency: { readonly offsets: Int32Array; readonly neighbours: Int32Array; readonly lengths: Float64Array };
+  readonly areas: Float64Array;
+  readonly touchesBorder: Uint8Array;
+}
+
+/** Where a cell's site lies, for its record. */
+export interface CellPlacement {
+  /** Site position in 3D, µm. */
+  readonly position: Vec3;
+  /** Unrolled coordinates (µm) on planes and tubes; [longitude, latitude] (degrees) on closed surfaces. */
+  readonly surface: [number, number];
+}
+
+/**
+ * A surface family: how one layout of geometry image (a planar grid for planes and tubes, a
+ * cube map for closed surfaces) is sampled, relaxed, stacked and measured. The pipeline
+ * (runSheet) runs the same steps over either; a family only answers its own questions.
+ *
+ * C: the configs it runs; Geometry: the prepared seeded surface; Sites: the seeded sites as the family keeps them;
+ * Layer: one surface of the stack; Projected: the sites moved onto a layer.
+ */
+export interface SurfaceFamily<C extends AnyConfig, Geometry, Sites, Layer extends StackLayer, Projected> {
+  readonly name: SurfaceFamilyName;
+  /** Checks what can be checked before any work, then builds the seeded surface. */
+  prepare(config: C, callbacks: RunCallbacks): Promise<Geometry>;
+  /** Checks the sheet (offsets, thickness) against the prepared surface; throws ConfigError. */
+  checkSheet(config: C, geometry: Geometry): void;
+  /** Places the initial sites and sets up Lloyd on the chosen engine. */
+  relax(context: GpuContext, config: C, geometry: Geometry, engine: EngineChoice): { sites: Sites; relaxation: Relaxation };
+  /** The stack [seeded, layers..., other]. */
+  stack(config: C, geometry: Geometry): Layer[];
+  /** The seeded sites moved along the normal onto a layer. */
+  project(geometry: Geometry, layer: Layer, sites: Sites): Projected;
+  labeller(context: GpuContext, config: C, geometry: Geometry, engine: EngineChoice): Labeller<Layer, Projected>;
+  labelImage(geometry: Geometry, layer: Layer, labels: Int32Array): LabelImage;
+  /** Neighbours, contact lengths (µm), areas and border contacts from a layer's label image. */
+  labelAdjacency(geometry: Geometry, layer: Layer, labels: Int32Array, count: number): LabelSurfaceAdjacency;
+  /** The shortest contact (µm) the labels method counts on each layer, and the value reported. */
+  minContactLengths(config: C, geometry: Geometry, layers: Layer[]): { reported: number; perLayer: number[] };
+  /** The exact adjacency of a layer, or null where this surface has no exact method. */
+  exactAdjacency(config: C, geometry: Geometry, layer: Layer, sites: Sites, projected: Projected): SurfaceAdjacency | null;
+  cellPlacement(config: C, layer: Layer, sites: Sites, projected: Projected, id: number): CellPlacement;
+  /** Size of a layer relative to the seeded surface (R / R_seeded on a tube; 1 on a plane). */
+  layerRatio(geometry: Geometry, layer: Layer): number;
+  /** The texel grid of the seeded surface, as the result reports it. */
+  gridRecord(geometry: Geometry): GridRecord;
+  /** What this family adds to the result (the `closed` section), computed last. */
+  resultSection(config: C, geometry: Geometry, seeded: { sites: Sites; engine: EngineChoice }, labeller: Labeller<Layer, Projected>): { closed?: ClosedSurfaceRecord };
+}
+

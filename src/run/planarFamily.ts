@@ -1,0 +1,146 @@
+import { labMinBoundaryLength, surfaceFromExact } from '../core/analysis';
+import { checkFeasible, makeGrid, type Config } from '../core/config';
+import { densityField } from '../core/density';
+import { exactVoronoi } from '../core/exact';
+import type { Grid } from '../core/grid';
+import { labelAdjacency } from '../core/labels';
+import { projectSites, surfaceStack, type StackSurface } from '../core/sheetGeometry';
+import { placeSites } from '../core/sites';
+import { embed, surfaceCoordinates } from '../core/surface';
+import type { EngineChoice } from './enginePolicy';
+import type { GpuContext } from '../gpu/context';
+import { CcvtEngine } from '../gpu/engine';
+import { LloydRun } from '../gpu/lloyd';
+import type { Labeller, Relaxation, RunCallbacks, SurfaceFamily } from './family';
+
+/** A plane or tube, unrolled: its texel grid and the density per texel. */
+export interface PlanarGeometry {
+  readonly grid: Grid;
+  readonly density: Float32Array;
+}
+
+/** Sites of a planar surface: interleaved x, y in texel units of its grid. */
+type PlanarSites = Float32Array;
+
+/**
+ * Planes and tubes: one rectangular texel grid per surface of the stack (a tube's surfaces are
+ * the same strip with the circumference scaled), square texels, periodic edges where the
+ * surface wraps. Exact adjacency is the Delaunay of the unrolled sites (src/core/exact.ts).
+ */
+export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, StackSurface, PlanarSites> = {
+  name: 'planar grid',
+
+  async prepare(config, callbacks: RunCallbacks) {
+    const grid = makeGrid(config);
+    checkFeasible(config, grid);
+    return { grid, density: densityField(config.density, grid, callbacks.densityImage) };
+  },
+
+  // checkFeasible (in prepare) and validation cover the sheet of a plane or tube.
+  checkSheet() {},
+
+  relax(context, config, geometry, choice) {
+    const { grid, density } = geometry;
+    const sites = placeSites(grid, config.cells, config.seed, config.minSpacing, placementDensity(config, density));
+    const engine = new CcvtEngine(context, grid, config.cells, { variant: config.jumpFlood.variant, centroidPath: choice.centroidPath });
+    try {
+      // Planar-family texels all cover the same area, so the weight is the density alone.
+      engine.setWeights(density);
+      return { sites, relaxation: planarRelaxation(engine, new LloydRun(engine, grid, sites, config.lloyd)) };
+    } catch (error) {
+      engine.dispose();
+      throw error;
+    }
+  },
+
+  stack: (config, geometry) => surfaceStack(config, geometry.grid),
+
+  project: (geometry, layer, sites) => (layer.role === 'seeded' ? sites : projectSites(geometry.grid, layer.grid, sites)),
+
+  labeller: (context, config, _geometry, choice) => planarLabeller(context, config, choice),
+
+  labelImage: (_geometry, layer, labels) => ({ name: layer.name, grid: layer.grid, labels }),
+
+  labelAdjacency(_geometry, layer, labels, count) {
+    const a = labelAdjacency(layer.grid, labels, count);
+    return {
+      count: a.count,
+      adjacency: { offsets: a.offsets, neighbours: a.neighbours, lengths: a.lengths },
+      areas: a.area,
+      touchesBorder: a.touchesBorder,
+      label: layer.name,
+    };
+  },
+
+  // The lab's threshold scaled to this sheet's mean cell size, the same on every surface.
+  minContactLengths(config, geometry, layers) {
+    const length = config.sheet.minContactLength ?? defaultMinContactLength(geometry.grid, config.cells);
+    return { reported: length, perLayer: layers.map(() => length) };
+  },
+
+  exactAdjacency: (_config, _geometry, layer, _sites, projected) => surfaceFromExact(exactVoronoi(layer.grid, projected), layer.name),
+
+  cellPlacement(config, layer, _sites, projected, id) {
+    const x = projected[2 * id];
+    const y = projected[2 * id + 1];
+    return { position: embed(config.surface, layer.grid, x, y, layer.offset).position, surface: surfaceCoordinates(layer.grid, x, y) };
+  },
+
+  layerRatio: (_geometry, layer) => layer.ratio,
+
+  gridRecord: (geometry) => ({ ...geometry.grid }),
+
+  resultSection: () => ({}),
+};
+
+/** The lab's threshold scaled to this sheet's mean cell size (see labMinBoundaryLength). */
+export function defaultMinContactLength(grid: Grid, cells: number): number {
+  return labMinBoundaryLength(grid.width * grid.texelX * grid.height * grid.texelY, cells);
+}
+
+/**
+ * Initial sites follow the point density a CVT converges to, rho^(d/(d+2)) = sqrt(rho) in 2D
+ * (Gersho; Du et al.), not rho itself: Lloyd then has little mass to move across the sheet.
+ */
+function placementDensity(config: Config, density: Float32Array): Float32Array | undefined {
+  if (config.density.kind === 'uniform') return undefined;
+  return density.map(Math.sqrt);
+}
+
+function planarRelaxation(engine: CcvtEngine, run: LloydRun): Relaxation {
+  return {
+    get done() {
+      return run.done;
+    },
+    get converged() {
+      return run.converged;
+    },
+    iterations: run.iterations,
+    step: () => run.step(),
+    finish() {
+      // Label the final sites with a cold flood, as every other surface of the stack is
+      // labelled: identical surfaces then get identical labels (no warm-start residue at s = 1).
+      engine.floodLabels();
+      const final = run.finish();
+      return { ...final, labels: engine.readLabels() };
+    },
+    dispose: () => engine.dispose(),
+  };
+}
+
+/** A tube's surfaces differ in width, so each gets an engine of its own grid. */
+function planarLabeller(context: GpuContext, config: Config, choice: EngineChoice): Labeller<StackSurface, PlanarSites> {
+  return {
+    label(layer, sites) {
+      const engine = new CcvtEngine(context, layer.grid, config.cells, { variant: config.jumpFlood.variant, centroidPath: choice.centroidPath });
+      try {
+        engine.setSites(sites);
+        engine.floodLabels();
+        return engine.readLabels();
+      } finally {
+        engine.dispose();
+      }
+    },
+    dispose() {},
+  };
+}

@@ -1,0 +1,71 @@
+import type { AnyConfig } from '../core/config';
+import type { GpuContext } from '../gpu/context';
+import type { IterationRecord } from '../gpu/lloyd';
+import type { EngineChoice } from './enginePolicy';
+import type { RunCallbacks, StackLayer, SurfaceFamily } from './family';
+
+/** The converged seeded surface: what every other surface of the sheet is projected from. */
+export interface SeededSurface<Geometry, Sites> {
+  readonly geometry: Geometry;
+  /** The final sites, as the family keeps them. */
+  readonly sites: Sites;
+  /** Label image of the final sites (site id per texel). */
+  readonly labels: Int32Array;
+  readonly engine: EngineChoice;
+  readonly iterations: IterationRecord[];
+  readonly converged: boolean;
+  readonly finalEnergy: number;
+  readonly emptyCells: number;
+  readonly setupMs: number;
+  readonly lloydMs: number;
+}
+
+/**
+ * Prepares the seeded surface, places the sites and runs Lloyd's method on it, one iteration at
+ * a time (a page yields between iterations; a signal cancels). Depends only on the config's
+ * fields other than `sheet`, so runs that differ only in the sheet reuse it (SheetRunner).
+ */
+export async function relaxSeededSurface<C extends AnyConfig, G, S, L extends StackLayer, P>(
+  family: SurfaceFamily<C, G, S, L, P>,
+  config: C,
+  context: GpuContext,
+  engine: EngineChoice,
+  callbacks: RunCallbacks = {},
+): Promise<SeededSurface<G, S>> {
+  const start = performance.now();
+  const geometry = await family.prepare(config, callbacks);
+  family.checkSheet(config, geometry);
+  const { sites, relaxation } = family.relax(context, config, geometry, engine);
+  try {
+    const setupMs = performance.now() - start;
+    while (!relaxation.done) {
+      throwIfAborted(callbacks.signal);
+      const record = relaxation.step();
+      callbacks.onIteration?.(record, config.lloyd.maxIterations);
+      await yieldToEventLoop();
+    }
+    const final = relaxation.finish();
+    return {
+      geometry,
+      sites,
+      labels: final.labels,
+      engine,
+      iterations: relaxation.iterations,
+      converged: relaxation.converged,
+      finalEnergy: final.energy,
+      emptyCells: final.emptyCells,
+      setupMs,
+      lloydMs: performance.now() - start - setupMs,
+    };
+  } finally {
+    relaxation.dispose();
+  }
+}
+
+export function throwIfAborted(signal: AbortSignal | undefined): void {
+  if (signal?.aborted) throw new DOMException('The run was cancelled', 'AbortError');
+}
+
+export function yieldToEventLoop(): Promise<void> {
+  return new Promise((resolve) => setTimeout(resolve, 0));
+}
