@@ -2,55 +2,69 @@
  * The element's kebab-case attributes and how they map onto the configuration. Attributes
  * override the `config` property, which overrides the defaults (the app's small default tube).
  * Numbers are parsed as given; a bad value reaches validation, which names the field.
+ *
+ * Which config fields are attributes is listed here; how each one parses (number, nullable
+ * number, string, boolean) and which surface kinds take it are read from the config schema.
  */
-import { CLOSED_RESOLUTION, densityPreset, surfaceOfKind } from '../app/panels/fields';
-import { APP_DEFAULTS } from '../app/model/settings';
-import { isClosedConfig, validateAnyConfig, type AnyConfig, type ConfigInput } from '../core/config';
+import { CLOSED_SURFACE_KINDS, isClosedConfig, validateAnyConfig, type AnyConfig, type ConfigInput } from '../core/config';
+import { APP_DEFAULTS, CLOSED_RESOLUTION, densityPreset, surfaceOfKind } from '../core/config/presets';
+import { kindsWithField, schemaField } from '../core/config/schemaFields';
 import { setPath } from '../core/sweep';
 
 type Kind = 'number' | 'string' | 'boolean' | 'nullable-number';
 
-/** attribute -> [config path, kind]. */
-export const ATTRIBUTES: Record<string, [string, Kind]> = {
-  surface: ['surface.kind', 'string'],
-  radius: ['surface.radius', 'number'],
-  a: ['surface.a', 'number'],
-  b: ['surface.b', 'number'],
-  c: ['surface.c', 'number'],
-  src: ['surface.src', 'string'],
-  scale: ['surface.scale', 'number'],
-  length: ['surface.length', 'number'],
-  width: ['surface.width', 'number'],
-  height: ['surface.height', 'number'],
-  'periodic-x': ['surface.periodicX', 'boolean'],
-  'periodic-y': ['surface.periodicY', 'boolean'],
-  resolution: ['resolution', 'number'],
-  cells: ['cells', 'number'],
-  seed: ['seed', 'number'],
-  'min-spacing': ['minSpacing', 'number'],
-  iterations: ['lloyd.maxIterations', 'number'],
-  tolerance: ['lloyd.tolerance', 'number'],
-  'over-relaxation': ['lloyd.overRelaxation', 'number'],
-  'jump-flood': ['jumpFlood.variant', 'string'],
-  'centroid-path': ['centroidPath', 'string'],
-  seeded: ['sheet.seeded', 'string'],
-  direction: ['sheet.direction', 'string'],
-  thickness: ['sheet.thickness', 'number'],
-  'surface-ratio': ['sheet.surfaceRatio', 'nullable-number'],
-  layers: ['sheet.layers', 'number'],
-  adjacency: ['sheet.adjacency', 'string'],
-  'min-contact-length': ['sheet.minContactLength', 'nullable-number'],
-  density: ['density.kind', 'string'],
-};
+/** Config paths that are attributes, named by the kebab-case of their last part unless renamed here. */
+const ATTRIBUTE_PATHS: (string | [attribute: string, path: string])[] = [
+  ['surface', 'surface.kind'],
+  'surface.radius',
+  'surface.a',
+  'surface.b',
+  'surface.c',
+  'surface.src',
+  'surface.scale',
+  'surface.length',
+  'surface.width',
+  'surface.height',
+  'surface.periodicX',
+  'surface.periodicY',
+  'resolution',
+  'cells',
+  'seed',
+  'minSpacing',
+  ['iterations', 'lloyd.maxIterations'],
+  'lloyd.tolerance',
+  'lloyd.overRelaxation',
+  ['jump-flood', 'jumpFlood.variant'],
+  'centroidPath',
+  'sheet.seeded',
+  'sheet.direction',
+  'sheet.thickness',
+  'sheet.surfaceRatio',
+  'sheet.layers',
+  'sheet.adjacency',
+  'sheet.minContactLength',
+  ['density', 'density.kind'],
+];
 
-/** Surface fields each kind takes: other surface attributes are ignored (switching kind keeps them harmless). */
-const SURFACE_FIELDS: Record<string, string[]> = {
-  plane: ['width', 'height', 'periodicX', 'periodicY'],
-  tube: ['radius', 'length'],
-  sphere: ['radius'],
-  ellipsoid: ['a', 'b', 'c'],
-  mesh: ['src', 'scale'],
-};
+function kebabCase(name: string): string {
+  return name.replace(/[A-Z]/g, (letter) => `-${letter.toLowerCase()}`);
+}
+
+/** How an attribute's text parses, from the schema type of its field. */
+function attributeKind(path: string): Kind {
+  const field = schemaField(path);
+  if (field.type === 'boolean') return 'boolean';
+  if (field.type === 'number' || field.type === 'integer') return field.nullable ? 'nullable-number' : 'number';
+  return 'string';
+}
+
+/** attribute -> [config path, kind]. */
+export const ATTRIBUTES: Record<string, [string, Kind]> = Object.fromEntries(
+  ATTRIBUTE_PATHS.map((entry) => {
+    const [attribute, path] = typeof entry === 'string' ? [kebabCase(entry.split('.').pop() ?? entry), entry] : entry;
+    return [attribute, [path, attributeKind(path)]];
+  }),
+);
 
 /** Attributes that are not configuration. */
 export const OTHER_ATTRIBUTES = ['manual'];
@@ -82,9 +96,9 @@ export function configFromAttributes(element: Element, base: ConfigInput | null,
   const surfaceKind = element.getAttribute('surface');
   if (surfaceKind !== null && surfaceKind !== (input.surface as { kind?: string } | undefined)?.kind) {
     // A different kind starts from that kind's required fields (an empty plane/tube is invalid).
-    if (['sphere', 'ellipsoid', 'mesh'].includes(surfaceKind)) {
+    if (CLOSED_SURFACE_KINDS.some((closed) => closed === surfaceKind)) {
       input.surface = surfaceOfKind({ kind: 'tube', radius: 1, length: 1 }, surfaceKind);
-      if (!element.hasAttribute('resolution')) input.resolution = Math.min(Number(input.resolution ?? 512), CLOSED_RESOLUTION);
+      if (!element.hasAttribute('resolution')) input.resolution = Math.min(Number(input.resolution ?? schemaField('resolution').default), CLOSED_RESOLUTION);
     } else {
       input.surface = surfaceKind === 'plane' ? { kind: 'plane', width: 512, height: 512 } : { kind: surfaceKind, radius: 256 / (2 * Math.PI), length: 512 };
     }
@@ -96,7 +110,8 @@ export function configFromAttributes(element: Element, base: ConfigInput | null,
     if (text === null || attribute === 'surface') continue;
     if (attribute === 'density') continue;
     const currentKind = (input.surface as { kind?: string } | undefined)?.kind ?? '';
-    if (path.startsWith('surface.') && !(SURFACE_FIELDS[currentKind] ?? []).includes(path.slice('surface.'.length))) continue;
+    // Surface fields the current kind does not take are ignored (switching kind keeps them harmless).
+    if (path.startsWith('surface.') && !kindsWithField(path).includes(currentKind)) continue;
     setPath(input, path, parse(kind, text));
   }
   const sheet = (input.sheet ?? {}) as Record<string, unknown>;

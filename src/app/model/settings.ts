@@ -5,17 +5,11 @@
  * Closed surfaces are part of it; a mesh is its sample URL (/meshes/<name>) or, for a user's
  * file, only its name (see meshFiles.ts).
  */
-import { validateAnyConfig, type AnyConfig, type ConfigInput } from '../../core/config';
+import { validateAnyConfig, type AnyConfig } from '../../core/config';
+import { APP_DEFAULTS } from '../../core/config/presets';
 
-/** The app's default sheet: a short tube, 150 cells, surface ratio 1.5. */
-export const APP_DEFAULTS: ConfigInput = {
-  surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 },
-  resolution: 256,
-  cells: 150,
-  seed: 1,
-  lloyd: { maxIterations: 5 },
-  sheet: { surfaceRatio: 1.5 },
-};
+/** The app's default sheet (shared with the element): a short tube, 150 cells, surface ratio 1.5. */
+export { APP_DEFAULTS } from '../../core/config/presets';
 
 const STORAGE_KEY = 'tissue-sheet:last-config';
 const URL_PARAM = 'config';

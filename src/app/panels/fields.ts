@@ -1,14 +1,32 @@
 /**
  * Every control of the configuration panel, as data: the config path it edits, its label, its
- * kind and range, and when it shows. The panel (controls.ts) renders and binds them; changing
- * the list is all it takes to add a field. Closed surfaces: sphere (radius), ellipsoid (a, b,
- * c), mesh (a sample from public/meshes/ or a user's file; see model/meshFiles.ts).
+ * kind and range, and when it shows. The panel (controls.ts) renders and binds them.
+ *
+ * What a field is comes from the config schema (core/config/schemaFields.ts): its input kind
+ * (number, integer, checkbox, select), unit, range, choices and description, and, for a field
+ * of the surface or density union, the kinds that show it. This file only adds presentation:
+ * the label, the group, the step, labels for choices, and the few fields whose control differs
+ * from what the schema implies (sliders, files, fields that exist only in the panel). Closed
+ * surfaces: sphere (radius), ellipsoid (a, b, c), mesh (a sample from public/meshes/ or a
+ * user's file; see model/meshFiles.ts).
  */
-import { DEFAULT_TUBE_RADIUS, isClosedConfig, unrolledDomain, type AnyConfig, type DensitySpec, type SurfaceConfig } from '../../core/config';
+import { isClosedConfig, type AnyConfig } from '../../core/config';
+import { CLOSED_RESOLUTION, PLANAR_RESOLUTION, densityPreset, surfaceOfKind } from '../../core/config/presets';
+import { kindsWithField, schemaField, schemaUnion } from '../../core/config/schemaFields';
 import { SAMPLE_MESHES, sampleName, sampleUrl } from '../model/meshFiles';
 
+// The presets moved to core/config/presets.ts (the element needs them too); kept here for importers.
+export {
+  CLOSED_RESOLUTION,
+  DEFAULT_ELLIPSOID,
+  DEFAULT_MESH_SCALE,
+  DEFAULT_MESH_SRC,
+  DEFAULT_SPHERE_RADIUS,
+  densityPreset,
+  surfaceOfKind,
+} from '../../core/config/presets';
+
 type Config = AnyConfig;
-type AnySurface = AnyConfig['surface'];
 
 export interface Option {
   value: string;
@@ -16,18 +34,23 @@ export interface Option {
   disabled?: boolean;
 }
 
+export type Group = 'Surface' | 'Cells' | 'Density' | 'Lloyd' | 'Sheet';
+export type FieldKind = 'number' | 'integer' | 'range' | 'select' | 'checkbox' | 'optional-number' | 'file' | 'mesh-file';
+
 export interface FieldSpec {
   /** Dotted config path, or a virtual field handled by `get`/`set`. */
   path: string;
   label: string;
-  group: 'Surface' | 'Cells' | 'Density' | 'Lloyd' | 'Sheet';
-  kind: 'number' | 'integer' | 'range' | 'select' | 'checkbox' | 'optional-number' | 'file' | 'mesh-file';
+  group: Group;
+  kind: FieldKind;
   min?: number;
   max?: number | ((c: Config) => number);
   step?: number;
   unit?: string;
   options?: Option[];
   note?: string;
+  /** The schema's description of the field (for the surface's kind when it depends on it). */
+  description?: (c: Config) => string;
   /** Re-run live while dragging (debounced). */
   live?: boolean;
   show?: (c: Config) => boolean;
@@ -36,27 +59,69 @@ export interface FieldSpec {
   set?: (c: Config, value: unknown) => Config;
 }
 
+/** What the panel adds to a schema field; everything else is read from the schema. */
+interface Presentation {
+  label: string;
+  group: Group;
+  step?: number;
+  /** A control other than the schema's type implies (a slider, a file picker). */
+  kind?: FieldKind;
+  /** Labels of the choices, in the order shown; choices not listed follow under their own name. */
+  labels?: Record<string, string>;
+  /** Upper end of a slider where the schema has none, or one that follows the config. */
+  max?: number | ((c: Config) => number);
+  note?: string;
+  live?: boolean;
+  /** An extra condition; a field of a union shows only for the kinds whose branch has it anyway. */
+  show?: (c: Config) => boolean;
+  set?: (c: Config, value: unknown) => Config;
+}
+
 const isTube = (c: Config) => c.surface.kind === 'tube';
-const isPlane = (c: Config) => c.surface.kind === 'plane';
-const isKind = (kind: AnySurface['kind']) => (c: Config) => c.surface.kind === kind;
-const isMesh = isKind('mesh');
 
-/** Closed surfaces start small enough for a software GPU: n texels per cube face. */
-export const CLOSED_RESOLUTION = 64;
-const PLANAR_RESOLUTION = 256;
-export const DEFAULT_SPHERE_RADIUS = 60;
-export const DEFAULT_ELLIPSOID = { a: 90, b: 45, c: 45 } as const;
-/** The samples are about unit size: µm per unit. */
-export const DEFAULT_MESH_SCALE = 50;
-export const DEFAULT_MESH_SRC = sampleUrl('organoid.ply');
+/** The value of the union (surface or density) a path belongs to. */
+function unionKindOf(c: Config, path: string): string {
+  return path.startsWith('surface.') ? c.surface.kind : c.density.kind;
+}
 
-/** A surface of `kind` with default dimensions (closed kinds), or keeping the unrolled size (plane, tube). */
-export function surfaceOfKind(current: AnySurface, kind: string): AnySurface {
-  if (kind === 'sphere') return { kind: 'sphere', radius: current.kind === 'sphere' ? current.radius : DEFAULT_SPHERE_RADIUS };
-  if (kind === 'ellipsoid') return { kind: 'ellipsoid', ...DEFAULT_ELLIPSOID };
-  if (kind === 'mesh') return { kind: 'mesh', src: DEFAULT_MESH_SRC, scale: DEFAULT_MESH_SCALE, geodesic: false };
-  if (current.kind === 'plane' || current.kind === 'tube') return planarOfKind(current, kind);
-  return planarOfKind({ kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 }, kind);
+/** A union's kinds as choices: the listed labels first, in their order, then any other kind. */
+function choices(values: readonly string[], labels: Record<string, string> = {}): Option[] {
+  const listed = Object.keys(labels).filter((value) => values.includes(value));
+  const rest = values.filter((value) => !listed.includes(value));
+  return [...listed, ...rest].map((value) => ({ value, label: labels[value] ?? value }));
+}
+
+/** A panel field for the schema field at `path`: kind, unit, range, choices and visibility from the schema. */
+function field(path: string, p: Presentation): FieldSpec {
+  const isKindField = /^(surface|density)\.kind$/.test(path);
+  const inUnion = /^(surface|density)\./.test(path) && !isKindField;
+  const schema = schemaField(path);
+  const values = isKindField ? schemaUnion(path.split('.')[0]).branches.map((b) => b.kind) : schema.values;
+  let kind: FieldKind;
+  if (p.kind) kind = p.kind;
+  else if (values) kind = 'select';
+  else if (schema.type === 'boolean') kind = 'checkbox';
+  else if (schema.type === 'integer') kind = 'integer';
+  else if (schema.type === 'number') kind = schema.nullable ? 'optional-number' : 'number';
+  else throw new Error(`fields: "${path}" (${schema.type}) needs an explicit control kind`);
+  const spec: FieldSpec = { path, label: p.label, group: p.group, kind };
+  const min = schema.minimum ?? schema.exclusiveMinimum;
+  if (min !== undefined) spec.min = min;
+  const max = p.max ?? schema.maximum;
+  if (max !== undefined) spec.max = max;
+  if (p.step !== undefined) spec.step = p.step;
+  if (schema.unit) spec.unit = schema.unit;
+  if (values && kind === 'select') spec.options = choices(values, p.labels);
+  if (p.note) spec.note = p.note;
+  if (p.live) spec.live = true;
+  if (p.set) spec.set = p.set;
+  const kinds = inUnion ? kindsWithField(path) : null;
+  spec.description = kinds ? (c) => schemaField(path, kinds.includes(unionKindOf(c, path)) ? unionKindOf(c, path) : kinds[0]).description : () => schema.description;
+  const extra = p.show;
+  if (kinds && extra) spec.show = (c) => kinds.includes(unionKindOf(c, path)) && extra(c);
+  else if (kinds) spec.show = (c) => kinds.includes(unionKindOf(c, path));
+  else if (extra) spec.show = extra;
+  return spec;
 }
 
 /** Switching kind: closed kinds get a cube-map resolution, planar ones a planar one; no surface ratio off a tube; uniform density on closed surfaces. */
@@ -88,156 +153,73 @@ function maxThickness(c: Config): number {
   if (s.kind === 'mesh') return Math.max(1, Math.round(s.scale * (inward ? 0.5 : 1)));
   return 400;
 }
-const densityIs = (...kinds: DensitySpec['kind'][]) => (c: Config) => kinds.includes(c.density.kind);
-
-/** Switching between plane and tube keeps the unrolled size: circumference <-> width, length <-> height. */
-function planarOfKind(current: SurfaceConfig, kind: string): SurfaceConfig {
-  const d = unrolledDomain(current);
-  if (kind === 'plane') return { kind: 'plane', width: d.lengthX, height: d.lengthY, periodicX: false, periodicY: false };
-  if (kind === 'tube') return { kind: 'tube', radius: d.lengthX / (2 * Math.PI) || DEFAULT_TUBE_RADIUS, length: d.lengthY };
-  throw new Error(`surface.kind: unknown surface "${kind}"; use plane, tube, sphere, ellipsoid or mesh`);
-}
-
-/** Density presets: parameters that suit the current domain. */
-export function densityPreset(kind: string, c: Config): DensitySpec {
-  // Closed surfaces take uniform density only: validation says so for any other preset.
-  const d = isClosedConfig(c) ? { lengthX: 1, lengthY: 1 } : unrolledDomain(c.surface);
-  switch (kind) {
-    case 'linear':
-      return { kind: 'linear', axis: 'y', from: 1, to: 4 };
-    case 'gaussian':
-      return { kind: 'gaussian', center: [d.lengthX / 2, d.lengthY / 2], sigma: Math.min(d.lengthX, d.lengthY) / 4, peak: 6 };
-    case 'stripes':
-      return { kind: 'stripes', axis: 'y', period: d.lengthY / 2, low: 1, high: 4 };
-    case 'image':
-      return c.density.kind === 'image' ? c.density : { kind: 'image', src: '', low: 1, high: 16, invert: false };
-    default:
-      return { kind: 'uniform' };
-  }
-}
-
-const AXES: Option[] = [
-  { value: 'x', label: 'x (around / across)' },
-  { value: 'y', label: 'y (along)' },
-];
 
 const UPLOAD_NOTE = 'An uploaded file cannot travel in a link: the link and the saved session keep only its name, and ask for the file again.';
 
 export const FIELDS: FieldSpec[] = [
-  {
-    path: 'surface.kind',
+  field('surface.kind', {
     label: 'Surface',
     group: 'Surface',
-    kind: 'select',
-    options: [
-      { value: 'tube', label: 'tube' },
-      { value: 'plane', label: 'plane' },
-      { value: 'sphere', label: 'sphere' },
-      { value: 'ellipsoid', label: 'ellipsoid' },
-      { value: 'mesh', label: 'mesh (sample or upload)' },
-    ],
+    labels: { tube: 'tube', plane: 'plane', sphere: 'sphere', ellipsoid: 'ellipsoid', mesh: 'mesh (sample or upload)' },
     set: (c, v) => withSurfaceKind(c, String(v)),
-  },
-  { path: 'surface.radius', label: 'Radius', unit: 'µm', group: 'Surface', kind: 'number', min: 0, step: 1, show: (c) => isTube(c) || c.surface.kind === 'sphere' },
-  { path: 'surface.a', label: 'Semi-axis a (x)', unit: 'µm', group: 'Surface', kind: 'number', min: 0, step: 1, show: isKind('ellipsoid') },
-  { path: 'surface.b', label: 'Semi-axis b (y)', unit: 'µm', group: 'Surface', kind: 'number', min: 0, step: 1, show: isKind('ellipsoid') },
-  { path: 'surface.c', label: 'Semi-axis c (z)', unit: 'µm', group: 'Surface', kind: 'number', min: 0, step: 1, show: isKind('ellipsoid') },
+  }),
+  field('surface.radius', { label: 'Radius', group: 'Surface', step: 1 }),
+  field('surface.a', { label: 'Semi-axis a (x)', group: 'Surface', step: 1 }),
+  field('surface.b', { label: 'Semi-axis b (y)', group: 'Surface', step: 1 }),
+  field('surface.c', { label: 'Semi-axis c (z)', group: 'Surface', step: 1 }),
   {
+    // Panel only: picks a sample mesh, which sets surface.src.
     path: 'surface.sample',
     label: 'Mesh',
     group: 'Surface',
     kind: 'select',
     options: [...SAMPLE_MESHES.map((m) => ({ value: m.name, label: m.label })), { value: '', label: 'uploaded file', disabled: true }],
-    show: isMesh,
+    show: (c) => c.surface.kind === 'mesh',
     get: (c) => (c.surface.kind === 'mesh' ? (sampleName(c.surface.src) ?? '') : ''),
     set: (c, v) => (c.surface.kind === 'mesh' && v ? { ...c, surface: { ...c.surface, src: sampleUrl(String(v)) } } : c),
   },
-  {
-    path: 'surface.src',
-    label: 'Mesh file (.ply, .obj, .stl)',
-    group: 'Surface',
-    kind: 'mesh-file',
-    note: UPLOAD_NOTE,
-    show: isMesh,
-  },
-  { path: 'surface.scale', label: 'Scale', unit: 'µm per mesh unit', group: 'Surface', kind: 'number', min: 0, step: 1, show: isMesh },
-  { path: 'surface.geodesic', label: 'Compare with the geodesic (heat-method) Voronoi', group: 'Surface', kind: 'checkbox', show: isMesh },
-  { path: 'surface.length', label: 'Length', unit: 'µm', group: 'Surface', kind: 'number', min: 0, step: 1, show: isTube },
-  { path: 'surface.width', label: 'Width', unit: 'µm', group: 'Surface', kind: 'number', min: 0, step: 1, show: isPlane },
-  { path: 'surface.height', label: 'Height', unit: 'µm', group: 'Surface', kind: 'number', min: 0, step: 1, show: isPlane },
-  { path: 'surface.periodicX', label: 'Periodic in x', group: 'Surface', kind: 'checkbox', show: isPlane },
-  { path: 'surface.periodicY', label: 'Periodic in y', group: 'Surface', kind: 'checkbox', show: isPlane },
-  { path: 'resolution', label: 'Resolution (texels: longer side; closed: per cube-face edge)', group: 'Surface', kind: 'integer', min: 16, max: 16384, step: 1 },
+  field('surface.src', { label: 'Mesh file (.ply, .obj, .stl)', group: 'Surface', kind: 'mesh-file', note: UPLOAD_NOTE }),
+  field('surface.scale', { label: 'Scale', group: 'Surface', step: 1 }),
+  field('surface.geodesic', { label: 'Compare with the geodesic (heat-method) Voronoi', group: 'Surface' }),
+  field('surface.length', { label: 'Length', group: 'Surface', step: 1 }),
+  field('surface.width', { label: 'Width', group: 'Surface', step: 1 }),
+  field('surface.height', { label: 'Height', group: 'Surface', step: 1 }),
+  field('surface.periodicX', { label: 'Periodic in x', group: 'Surface' }),
+  field('surface.periodicY', { label: 'Periodic in y', group: 'Surface' }),
+  field('resolution', { label: 'Resolution (texels: longer side; closed: per cube-face edge)', group: 'Surface', step: 1 }),
 
-  { path: 'cells', label: 'Cells', group: 'Cells', kind: 'integer', min: 1, step: 1 },
-  { path: 'seed', label: 'Random seed', group: 'Cells', kind: 'integer', min: 0, step: 1 },
-  { path: 'minSpacing', label: 'Minimum initial spacing', unit: 'µm', group: 'Cells', kind: 'number', min: 0, step: 0.5 },
+  field('cells', { label: 'Cells', group: 'Cells', step: 1 }),
+  field('seed', { label: 'Random seed', group: 'Cells', step: 1 }),
+  field('minSpacing', { label: 'Minimum initial spacing', group: 'Cells', step: 0.5 }),
 
-  {
-    path: 'density.kind',
+  field('density.kind', {
     label: 'Density preset',
     group: 'Density',
-    kind: 'select',
-    options: [
-      { value: 'uniform', label: 'uniform' },
-      { value: 'linear', label: 'gradient (linear)' },
-      { value: 'gaussian', label: 'dense patch (gaussian)' },
-      { value: 'stripes', label: 'stripes' },
-      { value: 'image', label: 'grayscale image' },
-    ],
+    labels: { uniform: 'uniform', linear: 'gradient (linear)', gaussian: 'dense patch (gaussian)', stripes: 'stripes', image: 'grayscale image' },
     set: (c, v) => ({ ...c, density: densityPreset(String(v), c) }),
-  },
-  { path: 'density.axis', label: 'Axis', group: 'Density', kind: 'select', options: AXES, show: densityIs('linear', 'stripes') },
-  { path: 'density.from', label: 'Density at start', group: 'Density', kind: 'number', min: 0, step: 0.1, show: densityIs('linear') },
-  { path: 'density.to', label: 'Density at end', group: 'Density', kind: 'number', min: 0, step: 0.1, show: densityIs('linear') },
-  { path: 'density.sigma', label: 'Patch size σ', unit: 'µm', group: 'Density', kind: 'number', min: 0, step: 1, show: densityIs('gaussian') },
-  { path: 'density.peak', label: 'Peak density', group: 'Density', kind: 'number', min: 0, step: 0.5, show: densityIs('gaussian') },
-  { path: 'density.period', label: 'Period', unit: 'µm', group: 'Density', kind: 'number', min: 0, step: 1, show: densityIs('stripes') },
-  { path: 'density.low', label: 'Low density', group: 'Density', kind: 'number', min: 0, step: 0.1, show: densityIs('stripes', 'image') },
-  { path: 'density.high', label: 'High density', group: 'Density', kind: 'number', min: 0, step: 0.1, show: densityIs('stripes', 'image') },
-  { path: 'density.invert', label: 'Invert image', group: 'Density', kind: 'checkbox', show: densityIs('image') },
-  { path: 'density.src', label: 'Grayscale image (white = dense)', group: 'Density', kind: 'file', show: densityIs('image') },
+  }),
+  field('density.axis', { label: 'Axis', group: 'Density', labels: { x: 'x (around / across)', y: 'y (along)' } }),
+  field('density.from', { label: 'Density at start', group: 'Density', step: 0.1 }),
+  field('density.to', { label: 'Density at end', group: 'Density', step: 0.1 }),
+  field('density.sigma', { label: 'Patch size σ', group: 'Density', step: 1 }),
+  field('density.peak', { label: 'Peak density', group: 'Density', step: 0.5 }),
+  field('density.period', { label: 'Period', group: 'Density', step: 1 }),
+  field('density.low', { label: 'Low density', group: 'Density', step: 0.1 }),
+  field('density.high', { label: 'High density', group: 'Density', step: 0.1 }),
+  field('density.invert', { label: 'Invert image', group: 'Density' }),
+  field('density.src', { label: 'Grayscale image (white = dense)', group: 'Density', kind: 'file' }),
 
-  { path: 'lloyd.maxIterations', label: 'Lloyd iterations', group: 'Lloyd', kind: 'integer', min: 0, max: 100000, step: 1 },
-  { path: 'lloyd.tolerance', label: 'Stop when sites move less than', unit: 'µm', group: 'Lloyd', kind: 'number', min: 0, step: 0.05 },
-  { path: 'lloyd.overRelaxation', label: 'Over-relaxation ω', group: 'Lloyd', kind: 'number', min: 1, max: 1.95, step: 0.05 },
-  { path: 'lloyd.warmStart', label: 'Warm-start jump flood', group: 'Lloyd', kind: 'checkbox' },
-  {
-    path: 'jumpFlood.variant',
-    label: 'Jump flood',
-    group: 'Lloyd',
-    kind: 'select',
-    options: ['jfa+2', '1+jfa', 'jfa'].map((v) => ({ value: v, label: v })),
-  },
-  {
-    path: 'centroidPath',
-    label: 'Centroid pass',
-    group: 'Lloyd',
-    kind: 'select',
-    options: ['auto', 'blend', 'gather', 'readback'].map((v) => ({ value: v, label: v })),
-  },
+  field('lloyd.maxIterations', { label: 'Lloyd iterations', group: 'Lloyd', step: 1 }),
+  field('lloyd.tolerance', { label: 'Stop when sites move less than', group: 'Lloyd', step: 0.05 }),
+  field('lloyd.overRelaxation', { label: 'Over-relaxation ω', group: 'Lloyd', step: 0.05 }),
+  field('lloyd.warmStart', { label: 'Warm-start jump flood', group: 'Lloyd' }),
+  field('jumpFlood.variant', { label: 'Jump flood', group: 'Lloyd' }),
+  field('centroidPath', { label: 'Centroid pass', group: 'Lloyd' }),
 
+  field('sheet.seeded', { label: 'Seeded surface', group: 'Sheet' }),
+  field('sheet.direction', { label: 'Other surface lies', group: 'Sheet' }),
   {
-    path: 'sheet.seeded',
-    label: 'Seeded surface',
-    group: 'Sheet',
-    kind: 'select',
-    options: [
-      { value: 'basal', label: 'basal' },
-      { value: 'apical', label: 'apical' },
-    ],
-  },
-  {
-    path: 'sheet.direction',
-    label: 'Other surface lies',
-    group: 'Sheet',
-    kind: 'select',
-    options: [
-      { value: 'outward', label: 'outward' },
-      { value: 'inward', label: 'inward' },
-    ],
-  },
-  {
+    // Panel only: a tube's other surface is set by the surface ratio or by the thickness.
     path: 'sheet.geometry',
     label: 'Set the other surface by',
     group: 'Sheet',
@@ -250,48 +232,30 @@ export const FIELDS: FieldSpec[] = [
     get: (c) => (c.sheet.surfaceRatio === null ? 'thickness' : 'ratio'),
     set: (c, v) => ({ ...c, sheet: { ...c.sheet, surfaceRatio: v === 'ratio' ? 2 : null, thickness: 0 } }),
   },
-  {
-    path: 'sheet.surfaceRatio',
+  field('sheet.surfaceRatio', {
     label: 'Surface ratio R_outer / R_inner',
     group: 'Sheet',
     kind: 'range',
-    min: 1,
+    // The ratios the published tube model studies.
     max: 10,
     step: 0.05,
     live: true,
     show: (c) => isTube(c) && c.sheet.surfaceRatio !== null,
-  },
-  {
-    path: 'sheet.thickness',
+  }),
+  field('sheet.thickness', {
     label: 'Thickness',
-    unit: 'µm',
     group: 'Sheet',
     kind: 'range',
-    min: 0,
     max: maxThickness,
     step: 1,
     live: true,
     show: (c) => !isTube(c) || c.sheet.surfaceRatio === null,
-  },
-  { path: 'sheet.layers', label: 'Intermediate layers', group: 'Sheet', kind: 'integer', min: 0, max: 64, step: 1 },
-  {
-    path: 'sheet.adjacency',
+  }),
+  field('sheet.layers', { label: 'Intermediate layers', group: 'Sheet', step: 1 }),
+  field('sheet.adjacency', {
     label: 'Neighbours from',
     group: 'Sheet',
-    kind: 'select',
-    options: [
-      { value: 'both', label: 'labels and exact' },
-      { value: 'labels', label: 'labels (pixels)' },
-      { value: 'exact', label: 'exact (Delaunay)' },
-    ],
-  },
-  {
-    path: 'sheet.minContactLength',
-    label: 'Ignore contacts shorter than (empty: lab default)',
-    unit: 'µm',
-    group: 'Sheet',
-    kind: 'optional-number',
-    min: 0,
-    step: 0.5,
-  },
+    labels: { both: 'labels and exact', labels: 'labels (pixels)', exact: 'exact (Delaunay)' },
+  }),
+  field('sheet.minContactLength', { label: 'Ignore contacts shorter than (empty: lab default)', group: 'Sheet', step: 0.5 }),
 ];

@@ -92,6 +92,7 @@ export const configSchema = {
             scale: {
               type: 'number',
               exclusiveMinimum: 0,
+              unit: 'µm per mesh unit',
               default: 1,
               description: 'µm per mesh coordinate unit, > 0. Default 1.',
             },

@@ -1,0 +1,65 @@
+/**
+ * Starting points shared by the app and the element (neither imports the other): the small
+ * default sheet they open with, and the parameters a surface or density kind gets when the
+ * user switches to it. These are presentation defaults, sized to run in seconds on a software
+ * GPU; the schema's own defaults (the published tube) stay what an empty config means.
+ */
+import { DEFAULT_TUBE_RADIUS } from './schema';
+import { unrolledDomain } from './feasibility';
+import { isClosedConfig, type AnyConfig, type AnySurfaceConfig, type ConfigInput, type DensitySpec, type SurfaceConfig } from './types';
+
+/** The app's and the element's default sheet: a short tube, 150 cells, surface ratio 1.5. */
+export const APP_DEFAULTS: ConfigInput = {
+  surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 },
+  resolution: 256,
+  cells: 150,
+  seed: 1,
+  lloyd: { maxIterations: 5 },
+  sheet: { surfaceRatio: 1.5 },
+};
+
+/** Closed surfaces start small enough for a software GPU: n texels per cube face. */
+export const CLOSED_RESOLUTION = 64;
+/** Resolution a planar surface gets when the user switches to it from a closed one. */
+export const PLANAR_RESOLUTION = 256;
+export const DEFAULT_SPHERE_RADIUS = 60;
+export const DEFAULT_ELLIPSOID = { a: 90, b: 45, c: 45 } as const;
+/** The sample meshes are about unit size: µm per unit. */
+export const DEFAULT_MESH_SCALE = 50;
+/** The organoid-like sample, served from public/meshes/ (the app's sample list: app/model/meshFiles.ts). */
+export const DEFAULT_MESH_SRC = '/meshes/organoid.ply';
+
+/** A surface of `kind` with default dimensions (closed kinds), or keeping the unrolled size (plane, tube). */
+export function surfaceOfKind(current: AnySurfaceConfig, kind: string): AnySurfaceConfig {
+  if (kind === 'sphere') return { kind: 'sphere', radius: current.kind === 'sphere' ? current.radius : DEFAULT_SPHERE_RADIUS };
+  if (kind === 'ellipsoid') return { kind: 'ellipsoid', ...DEFAULT_ELLIPSOID };
+  if (kind === 'mesh') return { kind: 'mesh', src: DEFAULT_MESH_SRC, scale: DEFAULT_MESH_SCALE, geodesic: false };
+  if (current.kind === 'plane' || current.kind === 'tube') return planarOfKind(current, kind);
+  return planarOfKind({ kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 }, kind);
+}
+
+/** Switching between plane and tube keeps the unrolled size: circumference <-> width, length <-> height. */
+export function planarOfKind(current: SurfaceConfig, kind: string): SurfaceConfig {
+  const d = unrolledDomain(current);
+  if (kind === 'plane') return { kind: 'plane', width: d.lengthX, height: d.lengthY, periodicX: false, periodicY: false };
+  if (kind === 'tube') return { kind: 'tube', radius: d.lengthX / (2 * Math.PI) || DEFAULT_TUBE_RADIUS, length: d.lengthY };
+  throw new Error(`surface.kind: unknown surface "${kind}"; use plane, tube, sphere, ellipsoid or mesh`);
+}
+
+/** Density presets: parameters that suit the current domain. */
+export function densityPreset(kind: string, c: AnyConfig): DensitySpec {
+  // Closed surfaces take uniform density only: validation says so for any other preset.
+  const d = isClosedConfig(c) ? { lengthX: 1, lengthY: 1 } : unrolledDomain(c.surface);
+  switch (kind) {
+    case 'linear':
+      return { kind: 'linear', axis: 'y', from: 1, to: 4 };
+    case 'gaussian':
+      return { kind: 'gaussian', center: [d.lengthX / 2, d.lengthY / 2], sigma: Math.min(d.lengthX, d.lengthY) / 4, peak: 6 };
+    case 'stripes':
+      return { kind: 'stripes', axis: 'y', period: d.lengthY / 2, low: 1, high: 4 };
+    case 'image':
+      return c.density.kind === 'image' ? c.density : { kind: 'image', src: '', low: 1, high: 16, invert: false };
+    default:
+      return { kind: 'uniform' };
+  }
+}
