@@ -4,10 +4,10 @@
  * errors are shown in words and leave the previous result on screen.
  */
 import { ConfigError, validateAnyConfig, type AnyConfig as Config } from '../core/config';
-import { GpuCapabilityError } from '../gpu/context';
-import { computeContext, isAbort, LatestRunner, type PageOutput } from './model/runner';
+import { GpuCapabilityError, type SheetOutput } from '../run';
+import { computeContext, isAbort, LatestRunner } from '../view/pageRunner';
 import { initialConfig, saveConfig, urlWithConfig } from './model/settings';
-import { viewStack, type ViewStack } from './model/stack';
+import { viewStack, type ViewStack } from '../view/stack';
 import { Charts } from './panels/charts';
 import { ConfigControls } from './panels/controls';
 import { bindExports } from './panels/exports';
@@ -67,7 +67,7 @@ bindExports($('.exports'), {
   onError: showError,
 });
 
-function show(output: PageOutput): void {
+function show(output: SheetOutput): void {
   stack = viewStack(output);
   try {
     viewPanel.show(stack);

@@ -7,11 +7,10 @@
 import type { AnyConfig, ConfigInput } from '../core/config';
 import type { GrayImage } from '../core/density';
 import { ConfigError } from '../core/config';
-import type { MeshFile } from '../app/model/meshFiles';
-import { isAbort, LatestRunner } from '../app/model/runner';
-import { primaryAnalysis, viewStack } from '../app/model/stack';
-import { SheetView3D } from '../app/view/sheetView3d';
-import type { SheetResult } from '../run/result';
+import type { MeshFile, SheetResult } from '../run';
+import { isAbort, LatestRunner } from '../view/pageRunner';
+import { SheetView3D } from '../view/sheetView3d';
+import { primaryAnalysis, viewStack } from '../view/stack';
 import { ATTRIBUTES, OTHER_ATTRIBUTES, configFromAttributes } from './attributes';
 import type { TissueSheetErrorDetail, TissueSheetEventMap, TissueSheetProgressDetail, TissueSheetResultDetail } from './events';
 import { TEMPLATE } from './template';

@@ -1,5 +1,5 @@
 /** The element's events and their typed `detail`. */
-import type { SheetResult } from '../run/result';
+import type { SheetResult } from '../run';
 
 export interface TissueSheetProgressDetail {
   /** 1-based Lloyd iteration just finished. */

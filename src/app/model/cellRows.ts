@@ -3,7 +3,7 @@
  * the file and the screen always agree.
  */
 import { formatCsv } from '../../core/sweep';
-import type { ViewStack } from './stack';
+import type { ViewStack } from '../../view/stack';
 
 export interface CellTable {
   header: string[];

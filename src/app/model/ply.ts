@@ -1,3 +1,4 @@
+import { isClosedConfig } from '../../core/config';
 /**
  * The cells as a mesh: an ASCII PLY with one polygon per cell per surface. Cell polygons are
  * the exact Voronoi cells (d3-delaunay, periodic copies around a tube) of the sites on each
@@ -6,16 +7,17 @@
  * scutoid and valid flags.
  *
  * Closed surfaces (sphere, ellipsoid, mesh): every surface of the stack as the triangle mesh the
- * 3D view draws, each vertex carrying the data of the cell of its nearest site on that surface.
+ * 3D view draws (a vertex per texel of its cube-map geometry image), each vertex carrying the
+ * data of its texel's cell.
  */
 import { exactVoronoi } from '../../core/exact';
 import { embed } from '../../core/surface';
-import { closedSurfaceMesh } from '../view/closedGeometry';
-import type { ViewStack } from './stack';
+import { closedSurfaceMesh } from '../../view/cubeAtlasMesh';
+import type { ViewStack } from '../../view/stack';
 
 export function cellsPly(stack: ViewStack): string {
-  if (stack.closed) return closedCellsPly(stack);
   const { config } = stack.result;
+  if (stack.closed || isClosedConfig(config)) return closedCellsPly(stack);
   const vertices: string[] = [];
   const faces: string[] = [];
   for (const surface of stack.surfaces) {
@@ -46,7 +48,7 @@ function closedCellsPly(stack: ViewStack): string {
   const vertices: string[] = [];
   const faces: string[] = [];
   for (const surface of stack.surfaces) {
-    const mesh = closedSurfaceMesh(stack, surface);
+    const mesh = closedSurfaceMesh(surface.image);
     const first = vertices.length;
     for (let v = 0; v < mesh.cells.length; v++) {
       const id = mesh.cells[v];
@@ -56,7 +58,7 @@ function closedCellsPly(stack: ViewStack): string {
     const t = mesh.indices;
     for (let f = 0; f < t.length; f += 3) faces.push(`3 ${first + t[f]} ${first + t[f + 1]} ${first + t[f + 2]}`);
   }
-  return plyDocument(stack, 'closed surfaces (0 = seeded) as triangle meshes, each vertex labelled with the cell of its nearest site, µm', vertices, faces);
+  return plyDocument(stack, 'closed surfaces (0 = seeded) as triangle meshes, a vertex per texel of the cube-map geometry image labelled with its cell, µm', vertices, faces);
 }
 
 function plyDocument(stack: ViewStack, comment: string, vertices: string[], faces: string[]): string {

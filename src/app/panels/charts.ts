@@ -5,8 +5,8 @@
  */
 import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
-import type { ViewStack } from '../model/stack';
-import { SIDE_LABELS } from '../view/sideColors';
+import { SIDE_LABELS } from '../../view/sideColors';
+import type { ViewStack } from '../../view/stack';
 
 const SURFACE_COLORS = ['#1f5fa8', '#c0392b', '#7f8c8d', '#16a085', '#8e44ad', '#d35400'];
 

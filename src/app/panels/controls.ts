@@ -5,8 +5,9 @@
  */
 import type { AnyConfig as Config } from '../../core/config';
 import { getPath, setPath } from '../../core/sweep';
-import { imageFileToDataUrl } from '../model/densityImage';
-import { isUploadName, rememberUpload, sampleName } from '../model/meshFiles';
+import { imageFileToDataUrl } from '../../view/densityImage';
+import { isUploadName, rememberUpload } from '../../view/meshFiles';
+import { sampleName } from '../model/meshFiles';
 import { FIELDS, type FieldSpec } from './fields';
 
 export interface ControlsEvents {

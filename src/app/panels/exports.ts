@@ -5,7 +5,7 @@
  */
 import { cellCsv } from '../model/cellRows';
 import { cellsPly } from '../model/ply';
-import type { ViewStack } from '../model/stack';
+import type { ViewStack } from '../../view/stack';
 
 export function download(name: string, data: Blob | string, type = 'text/plain'): void {
   const blob = typeof data === 'string' ? new Blob([data], { type }) : data;

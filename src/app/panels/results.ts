@@ -4,7 +4,7 @@
  * table. Every number carries its full value in `data-value` for tests and copy-paste.
  */
 import { cellTable } from '../model/cellRows';
-import { analysisByMethod, type ViewStack } from '../model/stack';
+import { analysisByMethod, type ViewStack } from '../../view/stack';
 
 const fmt = (value: number, digits = 2) => (Number.isFinite(value) ? value.toFixed(digits) : '–');
 

@@ -7,8 +7,8 @@
  */
 import { validateAnyConfig, type AnyConfig as Config } from '../../core/config';
 import { aggregateRows, expandSweep, runSweep } from '../../core/sweep';
-import { isAbort, runInPage } from '../model/runner';
-import { primaryAnalysis } from '../model/stack';
+import { isAbort, runInPage } from '../../view/pageRunner';
+import { primaryAnalysis } from '../../view/stack';
 
 export interface SweepPanelEvents {
   config(): Config;

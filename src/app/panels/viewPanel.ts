@@ -3,9 +3,9 @@
  * cut slider, the scutoid highlight and a camera reset. Without WebGL for the view, the card
  * says so and the rest of the page still works.
  */
-import type { ViewStack } from '../model/stack';
+import { SheetView3D } from '../../view/sheetView3d';
+import type { ViewStack } from '../../view/stack';
 import { drawUnrolled } from '../view/unrolled';
-import { SheetView3D } from '../view/sheetView3d';
 
 export class ViewPanel {
   readonly view: SheetView3D | null;

@@ -1,5 +1,5 @@
 /** The legend of side colours, and of the scutoid and border-cell marks. */
-import { SIDE_COLORS, SIDE_LABELS } from './sideColors';
+import { SIDE_COLORS, SIDE_LABELS } from '../../view/sideColors';
 
 export function renderLegend(container: HTMLElement): void {
   container.replaceChildren();

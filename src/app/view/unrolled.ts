@@ -8,8 +8,8 @@
  * face as stored: i to the right, j down), one strip per surface.
  */
 import { FACE_NAMES } from '../../core/cubemap/cubemap';
-import type { ViewStack, ViewSurface } from '../model/stack';
-import { flipRows, paintSurface } from './sideColors';
+import { flipRows, paintSurface } from '../../view/sideColors';
+import type { ViewStack, ViewSurface } from '../../view/stack';
 
 export function drawUnrolled(container: HTMLElement, stack: ViewStack, highlightScutoids: boolean): void {
   container.replaceChildren();

@@ -4,7 +4,7 @@
  * saved session carry it and a shared link reproduces the run. Decoding gives the GrayImage
  * runSheet needs.
  */
-import type { GrayImage } from '../../core/density';
+import type { GrayImage } from '../core/density';
 
 const MAX_SIDE = 128;
 

@@ -3,8 +3,7 @@
  * each with its label image, its cells and the number of sides of every cell there, plus the
  * per-cell flags (valid, scutoid) of the analysis shown. Pure data; no DOM.
  */
-import type { AnalysisRecord, CellRecord, LabelImage, SheetOutput, SheetResult } from '../../run/result';
-import type { MeshFile } from './meshFiles';
+import type { AnalysisRecord, CellRecord, LabelImage, SheetOutput, SheetResult } from '../run';
 
 export interface ViewSurface {
   readonly index: number;
@@ -31,8 +30,6 @@ export interface ViewStack {
   readonly scutoid: Uint8Array;
   /** Closed surfaces (sphere, ellipsoid, mesh): label images are n x 6n cube-map atlases. */
   readonly closed: boolean;
-  /** A mesh surface: the file it ran on (the 3D view draws the mesh itself). */
-  readonly meshFile: MeshFile | null;
 }
 
 /** The analysis the page reports: labels (the lab's method) when present, else the first. */
@@ -45,7 +42,7 @@ export function analysisByMethod(result: SheetResult, method: 'labels' | 'exact'
   return (result.analyses ?? []).find((a) => a.method === method) ?? null;
 }
 
-export function viewStack(output: SheetOutput & { meshFile?: MeshFile | null }): ViewStack {
+export function viewStack(output: SheetOutput): ViewStack {
   const { result, labelImages } = output;
   const analysis = primaryAnalysis(result);
   const n = result.cells.length;
@@ -76,5 +73,5 @@ export function viewStack(output: SheetOutput & { meshFile?: MeshFile | null }):
     valid[i] = stats ? (stats.valid ? 1 : 0) : result.cells[i]?.touchesBorder ? 0 : 1;
     scutoid[i] = stats?.scutoid ? 1 : 0;
   }
-  return { result, analysis, surfaces, valid, scutoid, closed: result.closed !== undefined, meshFile: output.meshFile ?? null };
+  return { result, analysis, surfaces, valid, scutoid, closed: result.closed !== undefined };
 }

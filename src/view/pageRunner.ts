@@ -1,22 +1,19 @@
 /**
- * Runs sheets in the page: one compute context (an off-screen WebGL2 canvas) shared by every
- * caller on the page, runs queued one at a time on it, a newer request cancelling the one it
- * replaces, density images decoded and mesh files fetched on the way. The page stays responsive
+ * Runs sheets in the page, for the app and `<tissue-sheet>` alike: one compute context (an
+ * off-screen WebGL2 canvas) shared by every caller on the page, runs queued one at a time on
+ * it, a newer request cancelling the one it replaces, density images decoded and mesh files
+ * fetched on the way. The page stays responsive
  * because runSheet yields to the event loop between Lloyd iterations.
  *
  * Planar runs go through one SheetRunner: when only `sheet.*` changed (the live surface-ratio and
  * thickness sliders, a sweep's points) the converged seeded surface is reused and Lloyd is not
  * run again. Closed surfaces (sphere, ellipsoid, mesh) run whole through runSheet.
  */
-import { isClosedConfig, type AnyConfig } from '../../core/config';
-import type { GrayImage } from '../../core/density';
-import { createCanvasContext, type GpuContext } from '../../gpu/context';
-import type { IterationRecord } from '../../gpu/lloyd';
-import type { SheetOutput } from '../../run/result';
-import { runSheet } from '../../run/runSheet';
-import { SheetRunner } from '../../run/sheetRunner';
+import { isClosedConfig, type AnyConfig } from '../core/config';
+import type { GrayImage } from '../core/density';
+import { createCanvasContext, runSheet, SheetRunner, type GpuContext, type IterationRecord, type MeshFile, type SheetOutput } from '../run';
 import { decodeGrayImage } from './densityImage';
-import { meshFileFor, type MeshFile } from './meshFiles';
+import { meshFileFor } from './meshFiles';
 
 let sharedContext: GpuContext | null = null;
 let sharedRunner: SheetRunner | null = null;
@@ -26,11 +23,6 @@ let queue: Promise<unknown> = Promise.resolve();
 export function computeContext(): GpuContext {
   sharedContext ??= createCanvasContext(document.createElement('canvas'));
   return sharedContext;
-}
-
-/** What a run in the page gives: the engine's output and, for a mesh, the file it ran on (the 3D view draws it). */
-export interface PageOutput extends SheetOutput {
-  readonly meshFile?: MeshFile | null;
 }
 
 export interface RunRequest {
@@ -57,15 +49,14 @@ async function densityImageFor(config: AnyConfig, given?: GrayImage): Promise<Gr
 }
 
 /** One run, queued behind any run already on the shared context. */
-export function runInPage(request: RunRequest): Promise<PageOutput> {
-  const job = queue.then(async (): Promise<PageOutput> => {
+export function runInPage(request: RunRequest): Promise<SheetOutput> {
+  const job = queue.then(async (): Promise<SheetOutput> => {
     if (request.signal?.aborted) throw new DOMException('The run was cancelled', 'AbortError');
     const context = computeContext();
     const { config, signal, onIteration } = request;
     if (isClosedConfig(config)) {
       const meshFile = await meshFileFor(config, request.meshFile);
-      const output = await runSheet(config, context, { signal, onIteration, ...(meshFile ? { meshFile } : {}) });
-      return { ...output, meshFile };
+      return runSheet(config, context, { signal, onIteration, ...(meshFile ? { meshFile } : {}) });
     }
     const densityImage = await densityImageFor(config, request.densityImage);
     sharedRunner ??= new SheetRunner(context);
@@ -97,7 +88,7 @@ export class LatestRunner {
     this.controller = null;
   }
 
-  async start(request: Omit<RunRequest, 'signal'>): Promise<PageOutput> {
+  async start(request: Omit<RunRequest, 'signal'>): Promise<SheetOutput> {
     this.cancel();
     const controller = new AbortController();
     this.controller = controller;

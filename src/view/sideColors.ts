@@ -3,7 +3,7 @@
  * cell colour by sides, dark boundaries, scutoids striped, border cells (excluded from the
  * statistics) faded. Shared by the 3D view, the unrolled diagrams, the legend and the element.
  */
-import type { ViewSurface } from '../model/stack';
+import type { ViewSurface } from './stack';
 
 /** Side classes 3..9 and 10+, as in the polygon distribution. */
 export const SIDE_LABELS = ['3', '4', '5', '6', '7', '8', '9', '10+'] as const;

@@ -1,15 +1,16 @@
+import { isClosedConfig } from '../core/config';
 /**
  * The 3D view of the sheet: every surface of the stack as a mesh textured with its painted label
  * image (tube: coaxial cylinders; plane: parallel sheets) or, on closed surfaces (sphere,
- * ellipsoid, mesh), a triangle mesh of each surface coloured per vertex by the cell of the
- * nearest site (closedGeometry.ts); orbit controls, per-surface visibility, and a cut (a
+ * ellipsoid, mesh), the triangle mesh of each surface's geometry image coloured per vertex by
+ * its texel's cell (cubeAtlasMesh.ts); orbit controls, per-surface visibility, and a cut (a
  * clipping plane) to see inside. Renders on demand only (no loop), so screenshots are stable and
  * an idle page costs nothing.
  */
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import type { ViewStack, ViewSurface } from '../model/stack';
-import { closedSurfaceMesh, edgeLength } from './closedGeometry';
+import type { ViewStack, ViewSurface } from './stack';
+import { closedSurfaceMesh } from './cubeAtlasMesh';
 import { paintSurface, RGB, sideColorIndex } from './sideColors';
 import { surfaceGeometry } from './surfaceGeometry';
 
@@ -151,7 +152,7 @@ export class SheetView3D {
     this.clearMeshes();
     const config = stack.result.config;
     for (const surface of stack.surfaces) {
-      if (stack.closed) {
+      if (stack.closed || isClosedConfig(config)) {
         const mesh = new THREE.Mesh(this.closedGeometry(stack, surface), new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide, clippingPlanes: [this.clip] }));
         mesh.name = surface.name;
         mesh.visible = visible[surface.index] ?? true;
@@ -189,10 +190,10 @@ export class SheetView3D {
 
   /** A closed surface: colours by sides, dark cell boundaries, striped scutoids, a baked light. */
   private closedGeometry(stack: ViewStack, surface: ViewSurface): THREE.BufferGeometry {
-    const built = closedSurfaceMesh(stack, surface);
+    const built = closedSurfaceMesh(surface.image);
     const { positions, normals, cells, boundary } = built;
     const colors = new Float32Array(positions.length);
-    const period = Math.max(1e-6, 3 * edgeLength(stack));
+    const period = Math.max(1e-6, 3 * built.edgeLength);
     const color = new THREE.Color();
     for (let v = 0; v < cells.length; v++) {
       const id = cells[v];

@@ -6,9 +6,9 @@
  * Closed surfaces (sphere, ellipsoid, meshes) will add their own builder here.
  */
 import * as THREE from 'three';
-import type { SurfaceConfig } from '../../core/config';
-import type { Grid } from '../../core/grid';
-import { embed } from '../../core/surface';
+import type { SurfaceConfig } from '../core/config';
+import type { Grid } from '../core/grid';
+import { embed } from '../core/surface';
 
 export function surfaceGeometry(surface: SurfaceConfig, grid: Grid, offset: number): THREE.BufferGeometry {
   const segmentsX = surface.kind === 'tube' ? 128 : 1;

@@ -1,0 +1,63 @@
+/**
+ * Mesh files for runs in the page. A mesh `surface.src` is a URL (fetched once and kept) or
+ * the name of a file the user uploaded: such a file cannot live in a URL, so its bytes stay in
+ * memory here, under its name, and the config keeps only the name (`surface.src` without a
+ * "/"); a link or a later visit with such a name asks for the file again.
+ */
+import { ConfigError, type AnyConfig } from '../core/config';
+import type { MeshFile } from '../run';
+
+/** A src without a "/" (and not a data: URL) names a file the user uploaded. */
+export function isUploadName(src: string): boolean {
+  return !src.includes('/') && !src.startsWith('data:');
+}
+
+const uploaded = new Map<string, ArrayBuffer>();
+
+/** Keeps an uploaded file's bytes for runs of `surface.src = name`. */
+export function rememberUpload(file: MeshFile & { name: string; data: ArrayBuffer }): void {
+  uploaded.set(file.name, file.data);
+}
+
+function uploadedMesh(name: string): MeshFile | null {
+  const data = uploaded.get(name);
+  return data ? { data, name } : null;
+}
+
+const fetched = new Map<string, Promise<MeshFile>>();
+
+async function fetchMesh(src: string): Promise<MeshFile> {
+  let response: Response;
+  try {
+    response = await fetch(src);
+  } catch (error) {
+    throw new ConfigError('surface.src', `surface.src: cannot fetch "${src}" (${(error as Error).message}); give a reachable URL of an .obj, .ply or .stl file`);
+  }
+  if (!response.ok) throw new ConfigError('surface.src', `surface.src: fetching "${src}" gave HTTP ${response.status}; give a reachable URL of an .obj, .ply or .stl file`);
+  return { data: await response.arrayBuffer(), name: src };
+}
+
+/**
+ * The mesh file of a mesh config: `given` (the element's meshFile property), an uploaded file
+ * of that name, or the URL fetched once and kept. Null for other surfaces.
+ */
+export async function meshFileFor(config: AnyConfig, given?: MeshFile | null): Promise<MeshFile | null> {
+  if (config.surface.kind !== 'mesh') return null;
+  if (given) return given;
+  const { src } = config.surface;
+  if (isUploadName(src)) {
+    const file = uploadedMesh(src);
+    if (file) return file;
+    throw new ConfigError(
+      'surface.src',
+      `surface.src: "${src}" is a file uploaded from a computer; a link or a saved session keeps only its name, not the file: upload it again (Mesh file) or choose a sample mesh`,
+    );
+  }
+  if (!fetched.has(src)) {
+    if (fetched.size > 8) fetched.clear();
+    const job = fetchMesh(src);
+    job.catch(() => fetched.delete(src));
+    fetched.set(src, job);
+  }
+  return fetched.get(src)!;
+}
