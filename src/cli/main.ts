@@ -32,6 +32,7 @@ export async function main(argv: string[]): Promise<number> {
       return 0;
     }
     if (command === 'run') return await runCommand(rest);
+    if (command === 'measure') return await (await import('./measure')).measureCommand(rest);
     if (command === 'sweep') {
       const { input, out } = parseInputAndOut(rest, 'sweep SWEEP.json --out DIR');
       await sweepCommand(input, out, (line) => process.stderr.write(line + '\n'));

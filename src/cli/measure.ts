@@ -1,0 +1,128 @@
+/**
+ * `tissue-sheet measure LAYER_FILE... --out RESULT.json [--pixel-size µm] [--periodic-x]
+ * [--min-contact µm] [--ratio s] [--compare [--realizations N] [--seed N]]` (docs/measure.md).
+ *
+ * Returns the exit code: 0 done, 2 bad input (one line `tissue-sheet: FILE: problem`). Other
+ * errors are thrown to the caller (exit 1).
+ */
+import { writeFileSync } from 'node:fs';
+import { resolve } from 'node:path';
+import { compareWithModel, MeasureInputError, measureTissue, type MeasuredResult } from '../core/measure';
+import { labelFileFromPath } from '../node/labelImages';
+import { version } from '../version';
+
+const FORM = 'measure LAYER_FILE... --out RESULT.json [--pixel-size µm] [--periodic-x] [--min-contact µm] [--compare]';
+
+interface MeasureArgs {
+  files: string[];
+  out: string;
+  pixelSize?: number;
+  periodicX: boolean;
+  minContact?: number;
+  ratio?: number;
+  compare: boolean;
+  realizations: number;
+  seed: number;
+}
+
+/** A problem with the command line itself: reported like a file problem, naming the option. */
+function optionError(option: string, problem: string): MeasureInputError {
+  return new MeasureInputError(option, `${problem}; usage: tissue-sheet ${FORM}`);
+}
+
+function positiveNumber(option: string, text: string | undefined, allowZero = false): number {
+  const value = Number(text);
+  if (text === undefined || text.trim() === '' || !Number.isFinite(value) || value < 0 || (!allowZero && value === 0)) {
+    throw optionError(option, `needs a number ${allowZero ? '>= 0' : '> 0'} (got ${text === undefined ? 'nothing' : JSON.stringify(text)})`);
+  }
+  return value;
+}
+
+function integer(option: string, text: string | undefined, min: number, max: number): number {
+  const value = Number(text);
+  if (!Number.isInteger(value) || value < min || value > max) throw optionError(option, `needs an integer ${min}..${max} (got ${text ?? 'nothing'})`);
+  return value;
+}
+
+export function parseMeasureArgs(args: string[]): MeasureArgs {
+  const parsed: MeasureArgs = { files: [], out: '', periodicX: false, compare: false, realizations: 10, seed: 1 };
+  for (let i = 0; i < args.length; i++) {
+    const arg = args[i];
+    const eq = arg.startsWith('--') ? arg.indexOf('=') : -1;
+    const name = eq > 0 ? arg.slice(0, eq) : arg;
+    const value = () => (eq > 0 ? arg.slice(eq + 1) : args[++i]);
+    if (name === '--out' || name === '-o') parsed.out = value() ?? '';
+    else if (name === '--pixel-size') parsed.pixelSize = positiveNumber(name, value());
+    else if (name === '--min-contact') parsed.minContact = positiveNumber(name, value(), true);
+    else if (name === '--ratio') parsed.ratio = positiveNumber(name, value());
+    else if (name === '--realizations') parsed.realizations = integer(name, value(), 1, 1000);
+    else if (name === '--seed') parsed.seed = integer(name, value(), 0, 2 ** 31 - 1);
+    else if (name === '--periodic-x') parsed.periodicX = true;
+    else if (name === '--compare') parsed.compare = true;
+    else if (arg.startsWith('-')) throw optionError(arg, 'unknown option');
+    else parsed.files.push(arg);
+  }
+  if (parsed.files.length === 0) throw optionError('LAYER_FILE', 'missing: give one 3D TIFF or two or more 2D label images');
+  if (!parsed.out) throw optionError('--out', 'missing');
+  const out = resolve(parsed.out);
+  const clash = parsed.files.find((f) => resolve(f) === out);
+  if (clash) throw new MeasureInputError(clash, 'is also --out; write the result to another file');
+  return parsed;
+}
+
+export async function measureCommand(args: string[], log: (line: string) => void = (l) => process.stderr.write(l + '\n')): Promise<number> {
+  try {
+    const a = parseMeasureArgs(args);
+    let result: MeasuredResult = measureTissue(a.files.map(labelFileFromPath), {
+      pixelSize: a.pixelSize,
+      periodicX: a.periodicX,
+      minContact: a.minContact,
+      surfaceRatio: a.ratio,
+      version,
+      onProgress: log,
+    });
+    for (const w of result.warnings) log(`warning: ${w}`);
+    if (a.compare) result = withComparison(result, a, log);
+    writeFileSync(a.out, JSON.stringify(result, null, 2) + '\n');
+    const s = result.analyses[0].summary;
+    log(
+      `done: ${s.cells} cells, ${s.validCells} valid, ${s.percentScutoids.toFixed(1)} % scutoids over ${s.surfaces} layers, ` +
+        `min contact ${result.analyses[0].minContactLength.toPrecision(3)} µm, ${result.timings.totalMs.toFixed(0)} ms -> ${a.out}`,
+    );
+    return 0;
+  } catch (error) {
+    if (error instanceof MeasureInputError) {
+      console.error(`tissue-sheet: ${error.message}`);
+      return 2;
+    }
+    throw error;
+  }
+}
+
+function withComparison(result: MeasuredResult, a: MeasureArgs, log: (line: string) => void): MeasuredResult {
+  const basal = result.inputs.layers[0];
+  const distribution = result.analyses[0].summary.perSurface[0].polygonDistribution;
+  if (result.analyses[0].summary.validCells === 0 || basal.labels < 3) {
+    log('warning: no comparison with the model: the basal layer has no valid cell');
+    return { ...result, warnings: [...result.warnings, 'no comparison with the model: the basal layer has no valid cell'] };
+  }
+  const comparison = compareWithModel({
+    width: basal.width,
+    height: basal.height,
+    pixelSize: result.inputs.pixelSize.value,
+    periodicX: result.inputs.options.periodicX,
+    cells: basal.labels,
+    distribution,
+    layers: result.inputs.layers.length,
+    surfaceRatio: result.surfaceRatio.value,
+    realizations: a.realizations,
+    seed: a.seed,
+    onProgress: log,
+  });
+  log(
+    `model: Voronoi ${comparison.bestK} matches best (L1 ${comparison.candidates[comparison.bestK - 1].distance.toFixed(3)}); ` +
+      `at ratio ${comparison.surfaceRatio.toFixed(3)} it gives ${comparison.meanPercentScutoids.toFixed(1)} ± ${comparison.sdPercentScutoids.toFixed(1)} % scutoids ` +
+      `(measured ${result.analyses[0].summary.percentScutoids.toFixed(1)} %)`,
+  );
+  return { ...result, comparison };
+}

@@ -1,0 +1,118 @@
+/**
+ * The JSON shape of `tissue-sheet measure` (docs/measure.md, "Result"). `analyses[0]` has the
+ * shape of a simulated result's AnalysisRecord (src/run/result.ts; a test checks that the types
+ * agree), so charts and exports read measured and simulated statistics alike.
+ */
+import type { ScutoidSummary } from '../analysis';
+import type { PixelSizeSource } from './labelImage';
+import type { ModelComparison } from './compare';
+
+export interface MeasuredFileRecord {
+  readonly name: string;
+  readonly bytes: number;
+  readonly format: 'png' | 'tiff';
+  readonly pages: number;
+}
+
+export interface MeasuredLayerRecord {
+  /** "basal", "layer k", "apical". */
+  readonly name: string;
+  readonly file: string;
+  /** Page in the file, 0-based. */
+  readonly page: number;
+  readonly width: number;
+  readonly height: number;
+  readonly bitsPerSample: 8 | 16;
+  /** Distinct non-zero labels on this layer. */
+  readonly labels: number;
+  readonly labelledPixels: number;
+  /** Pairs of labels sharing at least one pixel edge (before min-contact). */
+  readonly contactPairs: number;
+}
+
+export interface MeasuredInputs {
+  readonly files: MeasuredFileRecord[];
+  readonly layers: MeasuredLayerRecord[];
+  readonly pixelSize: { readonly value: number; readonly source: PixelSizeSource; readonly file: string | null; readonly detail: string };
+  readonly layerSpacing: number | null;
+  readonly options: {
+    readonly periodicX: boolean;
+    /** --min-contact as given (µm), or null. */
+    readonly minContact: number | null;
+    readonly minContactSource: 'option' | 'default';
+  };
+}
+
+/** The per-cell statistics of analyses[0].cells, with the original label. */
+export interface MeasuredCellStatistics {
+  readonly id: number;
+  readonly label: number;
+  readonly valid: boolean;
+  readonly scutoid: boolean;
+  readonly won: number;
+  readonly lost: number;
+  readonly transitions: number;
+  readonly neighbours3D: number;
+  readonly sides: number[];
+}
+
+export interface MeasuredAnalysis {
+  readonly method: 'labels';
+  readonly minContactLength: number;
+  readonly summary: ScutoidSummary;
+  readonly cells: MeasuredCellStatistics[];
+}
+
+export interface ContactRecord {
+  readonly label: number;
+  /** 4-connected pixel edges shared. */
+  readonly edges: number;
+  /** edges x pixel size, µm. */
+  readonly length: number;
+}
+
+export interface BorderTouch {
+  readonly layer: number;
+  readonly sides: ('left' | 'right' | 'top' | 'bottom')[];
+}
+
+export interface CellExclusion {
+  /** Layers (0-based) where the label has no pixel. */
+  readonly missingFrom: number[];
+  readonly touchesBorder: BorderTouch[];
+  /** The same in words. */
+  readonly reason: string;
+}
+
+export interface MeasuredCellRecord {
+  readonly id: number;
+  readonly label: number;
+  readonly valid: boolean;
+  readonly scutoid: boolean;
+  /** µm² per layer (0 where missing). */
+  readonly areas: number[];
+  readonly sides: number[];
+  /** Labels of the neighbours per layer (contacts >= min-contact), ascending. */
+  readonly neighbours: number[][];
+  /** Every contact per layer, also those below min-contact. */
+  readonly contacts: ContactRecord[][];
+  readonly won: number;
+  readonly lost: number;
+  readonly transitions: number;
+  readonly neighbours3D: number;
+  readonly exclusion: CellExclusion | null;
+}
+
+export interface MeasuredResult {
+  readonly kind: 'measured';
+  readonly software: { readonly name: 'tissue-sheet'; readonly version: string };
+  readonly inputs: MeasuredInputs;
+  readonly analyses: MeasuredAnalysis[];
+  readonly cells: MeasuredCellRecord[];
+  readonly exclusions: { readonly touchesBorder: number; readonly missing: number; readonly total: number };
+  /** Apical over basal size around the tube. */
+  readonly surfaceRatio: { readonly value: number; readonly source: 'widths' | 'areas' | 'option' };
+  readonly comparison: ModelComparison | null;
+  readonly warnings: string[];
+  readonly timings: { readonly readMs: number; readonly contactsMs: number; readonly analysisMs: number; readonly totalMs: number };
+}
