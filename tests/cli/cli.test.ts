@@ -68,7 +68,7 @@ describe('tissue-sheet run', () => {
     ['unknown field', { ...small, cels: 3 }, /^tissue-sheet: cels: unknown field/],
     ['negative size', { ...small, surface: { kind: 'tube', radius: -3, length: 10 } }, /surface\.radius: must be > 0 µm \(got -3\)/],
     ['too many cells', { ...small, cells: 100000 }, /^tissue-sheet: cells: .* lower cells or raise resolution/],
-    ['texture too large', { ...small, surface: { kind: 'tube', radius: 40, length: 400000 }, resolution: 16384 * 2 }, /resolution: must be an integer from 16 to 16384/],
+    ['resolution above the largest texture side (16384)', { ...small, surface: { kind: 'tube', radius: 40, length: 400000 }, resolution: 16384 * 2 }, /resolution: must be an integer from 16 to 16384/],
     ['s < 1', { ...small, sheet: { surfaceRatio: 0.5 } }, /sheet\.surfaceRatio: must be >= 1 or null \(got 0\.5\)/],
     ['thickness beyond the radius', { ...small, sheet: { direction: 'inward', thickness: 50 } }, /sheet\.thickness: 50 µm inward reaches the tube's axis/],
     ['negative layers', { ...small, sheet: { layers: -1 } }, /sheet\.layers: must be an integer/],
