@@ -86,7 +86,18 @@ test('closed surfaces are offered: sphere, ellipsoid and mesh (sample or upload)
   await page.goto('/');
   const surface = page.getByLabel('Surface', { exact: true });
   for (const kind of ['sphere', 'ellipsoid', 'mesh']) await expect(surface.locator(`option[value="${kind}"]`)).toBeEnabled();
-  await expect(page.locator('.note', { hasText: 'coming with closed surfaces' })).toHaveCount(0);
+  // Choosing one shows its own fields in place of the tube's.
+  const fields: Record<string, string[]> = {
+    sphere: ['Radius (µm)'],
+    ellipsoid: ['Semi-axis a (x) (µm)', 'Semi-axis b (y) (µm)', 'Semi-axis c (z) (µm)'],
+    mesh: ['Mesh', 'Mesh file (.ply, .obj, .stl)'],
+  };
+  for (const [kind, labels] of Object.entries(fields)) {
+    await surface.selectOption(kind);
+    for (const label of labels) await expect(page.getByLabel(label, { exact: true })).toBeVisible();
+    await expect(page.getByLabel('Surface ratio R_outer / R_inner')).toBeHidden();
+    await expect(page.getByLabel('Thickness (µm)')).toBeVisible();
+  }
 });
 
 test('a plane runs, with thickness instead of a surface ratio', async ({ page }) => {

@@ -1,4 +1,4 @@
-import { describe, expect, it } from 'vitest';
+import { beforeAll, describe, expect, it } from 'vitest';
 import { validateAnyConfig, type ClosedConfig, type ConfigInput } from '../../src/core/config';
 import { sphericalVoronoi } from '../../src/core/closed/sphericalDelaunay';
 import { runSheet } from '../../src/run/runSheet';
@@ -44,8 +44,9 @@ describe('concentric spheres', () => {
 });
 
 describe('sphere CCVT, uniform density, 1000 cells, n = 128 (~98 texels per cell)', () => {
+  // One run, read (never changed) by every test below; each test checks one property of it.
   let result: SheetResult;
-  it('runs (over-relaxed, omega = 1.9): energy falls, no empty cell, the path is recorded', async () => {
+  beforeAll(async () => {
     const config = closed({
       surface: { kind: 'sphere', radius: 100 },
       resolution: 128,
@@ -55,11 +56,15 @@ describe('sphere CCVT, uniform density, 1000 cells, n = 128 (~98 texels per cell
       sheet: { thickness: 0 },
     });
     ({ result } = await runSheet(config, context));
+    Object.freeze(result);
+  }, 30000);
+
+  it('runs (over-relaxed, omega = 1.9): energy falls, no empty cell, the path is recorded', () => {
     expect(result.lloyd.finalEnergy).toBeLessThan(result.lloyd.iterations[0].energy * 0.95);
     expect(result.closed?.centroidPath).toBe('readback');
     expect(result.gpu.centroidPath).toBe('readback');
     expect(result.lloyd.emptyCells).toBe(0);
-  }, 30000);
+  });
 
   // Statistic: exact spherical Voronoi areas of the final sites, over their mean. A converged
   // Lloyd CVT keeps its 5-7 defects, and Lewis's law holds there too (5-sided cells ~7 %
