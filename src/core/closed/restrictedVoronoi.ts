@@ -1,0 +1,103 @@
+/**
+ * Exact neighbours on a closed surface: the restricted Voronoi diagram (RVD) of sites on a
+ * triangle mesh or on the analytic ellipsoid / sphere, with true contact lengths in µm and
+ * cell areas in µm² — the fields `SurfaceAdjacency` takes (src/core/analysis).
+ *
+ *   restrictedVoronoi(surface, sites, count, options?) → { count, adjacency, areas,
+ *     touchesBorder, stats }
+ *
+ * - Mesh: restrictedMesh.ts (geogram's per-seed triangle clipping, radius of security,
+ *   coverage repair for cells in several pieces).
+ * - Ellipsoid / sphere: restrictedEllipsoid.ts (bisector-plane ∩ ellipsoid conic arcs,
+ *   clipped analytically; lengths and areas by adaptive quadrature).
+ *
+ * Sites are 3D points (x, y, z per site, µm). On an ellipsoid they must lie on it (the
+ * radius-of-security proof uses that); on a mesh they may be anywhere (the cells are the
+ * surface points nearest to each site). A contact is a neighbour when its length exceeds
+ * `lengthTolerance` (default 1e-9 × sqrt(area / count), i.e. rounding level): the result is
+ * the exact diagram, no minimum contact length applied — `filterShortContacts` does that.
+ */
+import type { CsrAdjacency } from '../analysis/adjacency';
+import { ellipsoidArea } from './conicArc';
+import { KdTree3 } from './kdTree';
+import { ContactRecorder, type RestrictedAdjacency } from './restrictedContacts';
+import { EllipsoidRestrictedVoronoi, type EllipsoidRvdStats } from './restrictedEllipsoid';
+import { MeshRestrictedVoronoi, type MeshRvdStats } from './restrictedMesh';
+import { checkRestrictedSurface, type RestrictedSurface } from './restrictedSurface';
+
+export interface RestrictedVoronoiOptions {
+  /** Contacts at or below this length (µm) are rounding, not neighbours. */
+  lengthTolerance?: number;
+}
+
+export interface RestrictedVoronoi {
+  readonly count: number;
+  readonly adjacency: RestrictedAdjacency & CsrAdjacency;
+  /** Cell areas on the surface, µm². */
+  readonly areas: Float64Array;
+  /** All 0: a closed surface has no border. */
+  readonly touchesBorder: Uint8Array;
+  /** Surface area, µm² (sum of triangle areas, or the ellipsoid's). */
+  readonly surfaceArea: number;
+  readonly stats: { method: 'mesh'; mesh: MeshRvdStats; ms: number } | { method: 'ellipsoid'; ellipsoid: EllipsoidRvdStats; ms: number };
+}
+
+/** Relative distance off the ellipsoid a site may have (float32 round trips). */
+const ON_SURFACE_TOLERANCE = 1e-6;
+
+export function restrictedVoronoi(
+  surface: RestrictedSurface,
+  sites: ArrayLike<number>,
+  count: number,
+  options: RestrictedVoronoiOptions = {},
+): RestrictedVoronoi {
+  const start = performance.now();
+  checkRestrictedSurface(surface);
+  if (!(Number.isInteger(count) && count >= 1)) throw new Error(`count: ${count} is not a positive whole number of sites`);
+  if (sites.length < 3 * count) throw new Error(`sites: ${sites.length} values for ${count} sites; give x, y, z per site (${3 * count} values)`);
+  const xyz = new Float64Array(3 * count);
+  for (let k = 0; k < 3 * count; k++) {
+    const v = sites[k];
+    if (!Number.isFinite(v)) throw new Error(`sites: value ${k} (site ${Math.floor(k / 3)}) is ${v}; give finite coordinates in µm`);
+    xyz[k] = v;
+  }
+  const surfaceArea = surface.kind === 'ellipsoid' ? ellipsoidArea(surface.a, surface.b, surface.c) : meshArea(surface.positions, surface.indices);
+  const tolerance = options.lengthTolerance ?? 1e-9 * Math.sqrt(surfaceArea / count);
+  const tree = new KdTree3(xyz, count);
+  const recorder = new ContactRecorder(count);
+  const areas = new Float64Array(count);
+  let stats: RestrictedVoronoi['stats'];
+  if (surface.kind === 'ellipsoid') {
+    const { a, b, c } = surface;
+    for (let i = 0; i < count; i++) {
+      const x = xyz[3 * i] / a, y = xyz[3 * i + 1] / b, z = xyz[3 * i + 2] / c;
+      const off = Math.abs(Math.hypot(x, y, z) - 1);
+      if (off > ON_SURFACE_TOLERANCE) {
+        throw new Error(
+          `sites: site ${i} (${xyz[3 * i]}, ${xyz[3 * i + 1]}, ${xyz[3 * i + 2]}) is not on the ellipsoid (${a}, ${b}, ${c}) (relative ${off.toExponential(2)}); move the sites onto the surface first (closestPointOnEllipsoid)`,
+        );
+      }
+    }
+    const rvd = new EllipsoidRestrictedVoronoi(surface, xyz, count, tree, recorder, areas, tolerance);
+    rvd.run();
+    stats = { method: 'ellipsoid', ellipsoid: rvd.stats, ms: 0 };
+  } else {
+    const rvd = new MeshRestrictedVoronoi(surface, xyz, count, tree, recorder, areas);
+    rvd.run();
+    stats = { method: 'mesh', mesh: rvd.stats, ms: 0 };
+  }
+  const adjacency = recorder.finish(tolerance);
+  stats.ms = performance.now() - start;
+  return { count, adjacency, areas, touchesBorder: new Uint8Array(count), surfaceArea, stats };
+}
+
+function meshArea(p: ArrayLike<number>, t: ArrayLike<number>): number {
+  let s = 0;
+  for (let f = 0; f < t.length; f += 3) {
+    const a = 3 * t[f], b = 3 * t[f + 1], c = 3 * t[f + 2];
+    const ux = p[b] - p[a], uy = p[b + 1] - p[a + 1], uz = p[b + 2] - p[a + 2];
+    const vx = p[c] - p[a], vy = p[c + 1] - p[a + 1], vz = p[c + 2] - p[a + 2];
+    s += 0.5 * Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
+  }
+  return s;
+}
