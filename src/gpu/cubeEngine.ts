@@ -10,6 +10,7 @@ import fullscreenVert from '../shaders/fullscreen.vert';
 import splatFrag from '../shaders/splat.frag';
 import { chooseCentroidPath, type RequestedCentroidPath } from './centroidPolicy';
 import { GpuCapabilityError, type GpuContext } from './context';
+import { floodPingPong } from './pingPong';
 import { ShaderPass } from './shaderPass';
 import { createFloatDataTexture, createFloatTarget, readTargetRGBA } from './textures';
 
@@ -171,12 +172,7 @@ export class CubeCcvtEngine {
     const steps = warmFromTexels === undefined ? this.coldSteps : warmSchedule(this.n, this.n, warmFromTexels);
     if (warmFromTexels === undefined) this.clearPass.draw(this.renderer, this.labelTargets[this.current]);
     this.splatPass.draw(this.renderer, this.labelTargets[this.current], this.siteCount);
-    for (const step of steps) {
-      this.floodPass.uniforms.labels.value = this.labelTargets[this.current].texture;
-      this.floodPass.uniforms.stepSize.value = step;
-      this.current = 1 - this.current;
-      this.floodPass.draw(this.renderer, this.labelTargets[this.current]);
-    }
+    this.current = floodPingPong(this.renderer, this.floodPass, this.labelTargets, this.current, steps);
     this.lastPassCount = steps.length;
   }
 

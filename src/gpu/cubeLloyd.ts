@@ -1,6 +1,7 @@
 import { PROJECTION_STRIDE, type ClosedProjector } from '../core/closed/projector';
 import { storeProjection, type ClosedSites } from '../core/closed/geometry';
-import type { LloydOptions, IterationRecord } from './lloyd';
+import type { LloydOptions } from './lloyd';
+import { LloydLoop, type MoveSummary } from './lloydLoop';
 import { CUBE_SUMS_STRIDE, type CubeCcvtEngine } from './cubeEngine';
 
 /**
@@ -11,12 +12,9 @@ import { CUBE_SUMS_STRIDE, type CubeCcvtEngine } from './cubeEngine';
  * cell's energy over the surface (it equals M |z - c|² + const), and relabelling can only
  * lower it. `sites` is updated in place; the loop allocates nothing.
  */
-export class ClosedLloydRun {
-  readonly iterations: IterationRecord[] = [];
-  converged = false;
-  private lastFloodMs: number;
-  private lastPasses: number;
+export class ClosedLloydRun extends LloydLoop {
   private readonly buffer = new Float64Array(PROJECTION_STRIDE);
+  private readonly summary: MoveSummary = { energy: 0, maxDisplacement: 0, warmFrom: 0 };
 
   /**
    * @param texelSpacing smallest distance (µm) between neighbouring texel centres: converts a
@@ -26,26 +24,24 @@ export class ClosedLloydRun {
     private readonly engine: CubeCcvtEngine,
     private readonly projector: ClosedProjector,
     readonly sites: ClosedSites,
-    private readonly options: LloydOptions,
+    options: LloydOptions,
     private readonly texelSpacing: number,
   ) {
-    const start = performance.now();
-    engine.setSites(sites.positions, sites.texels);
-    engine.floodLabels();
-    if (options.profile) engine.sync();
-    this.lastFloodMs = performance.now() - start;
-    this.lastPasses = engine.lastPassCount;
+    super(engine, options);
+    this.flood();
   }
 
-  get done(): boolean {
-    return this.converged || this.iterations.length >= this.options.maxIterations;
+  protected uploadSites(): void {
+    this.engine.setSites(this.sites.positions, this.sites.texels);
   }
 
-  step(): IterationRecord {
-    const start = performance.now();
-    const sums = this.engine.computeSums();
-    const centroidMs = performance.now() - start;
+  protected computeSums(): void {
+    this.engine.computeSums();
+  }
+
+  protected moveSites(): MoveSummary {
     const { sites, engine, buffer } = this;
+    const sums = engine.sums;
     const omega = this.options.overRelaxation;
     let energy = 0;
     let maxSquared = 0;
@@ -64,25 +60,11 @@ export class ClosedLloydRun {
       if (d2 > maxSquared) maxSquared = d2;
       storeProjection(sites, i, buffer, 0, engine.n);
     }
-    const maxDisplacement = Math.sqrt(maxSquared);
-    const record: IterationRecord = {
-      iteration: this.iterations.length + 1,
-      energy,
-      maxDisplacement,
-      jumpFloodPasses: this.lastPasses,
-      jumpFloodMs: this.lastFloodMs,
-      centroidMs,
-    };
-    this.iterations.push(record);
-    if (maxDisplacement < this.options.tolerance) this.converged = true;
-
-    const floodStart = performance.now();
-    engine.setSites(sites.positions, sites.texels);
-    engine.floodLabels(this.options.warmStart ? Math.min(engine.n, maxDisplacement / this.texelSpacing) : undefined);
-    if (this.options.profile) engine.sync();
-    this.lastFloodMs = performance.now() - floodStart;
-    this.lastPasses = engine.lastPassCount;
-    return record;
+    const summary = this.summary;
+    summary.energy = energy;
+    summary.maxDisplacement = Math.sqrt(maxSquared);
+    summary.warmFrom = Math.min(engine.n, summary.maxDisplacement / this.texelSpacing);
+    return summary;
   }
 
   /** Energy and empty cells of the final sites (their labels are current in the engine). */

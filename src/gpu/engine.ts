@@ -15,6 +15,7 @@ import { chooseCentroidPath, type CentroidPath, type RequestedCentroidPath } fro
 import { GpuCapabilityError, type GpuContext } from './context';
 import { GatherCentroids } from './gatherCentroids';
 import { PackedLabels } from './packedLabels';
+import { floodPingPong } from './pingPong';
 import { ShaderPass } from './shaderPass';
 import { createFloatDataTexture, createFloatTarget, readTargetRGBA } from './textures';
 
@@ -197,12 +198,7 @@ export class CcvtEngine {
     this.idSplatPass.draw(this.renderer, this.idMapTarget, this.siteCount);
     // Splatting on top of old labels makes sure every site owns at least its own texel.
     this.splatPass.draw(this.renderer, this.labelTargets[this.current], this.siteCount);
-    for (const step of steps) {
-      this.floodPass.uniforms.labels.value = this.labelTargets[this.current].texture;
-      this.floodPass.uniforms.stepSize.value = step;
-      this.current = 1 - this.current;
-      this.floodPass.draw(this.renderer, this.labelTargets[this.current]);
-    }
+    this.current = floodPingPong(this.renderer, this.floodPass, this.labelTargets, this.current, steps);
     this.idsStale = true;
     this.lastPassCount = steps.length;
   }

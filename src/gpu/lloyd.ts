@@ -1,6 +1,7 @@
 import type { Grid } from '../core/grid';
 import { moveSitesToCentroids, type LloydMove } from '../core/lloydUpdate';
 import type { CcvtEngine } from './engine';
+import { LloydLoop, type MoveSummary } from './lloydLoop';
 
 export interface LloydOptions {
   readonly maxIterations: number;
@@ -28,58 +29,39 @@ export interface IterationRecord {
 }
 
 /**
- * Lloyd's method driven one iteration at a time, so a page can yield between iterations
- * and a user can cancel. `sites` (interleaved x, y, texel units) is updated in place.
+ * Lloyd's method on a planar-family grid (plane, tube), one iteration at a time. `sites`
+ * (interleaved x, y, texel units) is updated in place.
  */
-export class LloydRun {
-  readonly iterations: IterationRecord[] = [];
-  converged = false;
+export class LloydRun extends LloydLoop {
   private readonly move: LloydMove = { energy: 0, maxDisplacement: 0, maxDisplacementTexels: 0, emptyCells: 0 };
-  private lastFloodMs: number;
-  private lastPasses: number;
+  private readonly summary: MoveSummary = { energy: 0, maxDisplacement: 0, warmFrom: 0 };
+  private sums: Float32Array;
 
   constructor(
     private readonly engine: CcvtEngine,
     private readonly grid: Grid,
     readonly sites: Float32Array,
-    private readonly options: LloydOptions,
+    options: LloydOptions,
   ) {
-    const start = performance.now();
-    engine.setSites(sites);
-    engine.floodLabels();
-    if (options.profile) engine.sync();
-    this.lastFloodMs = performance.now() - start;
-    this.lastPasses = engine.lastPassCount;
+    super(engine, options);
+    this.sums = engine.sums;
+    this.flood();
   }
 
-  get done(): boolean {
-    return this.converged || this.iterations.length >= this.options.maxIterations;
-  }
-
-  /** Centroids of the current labels, move, then label the moved sites. */
-  step(): IterationRecord {
-    const start = performance.now();
-    const sums = this.engine.computeSums();
-    const centroidMs = performance.now() - start;
-    const move = moveSitesToCentroids(this.grid, this.sites, sums, this.engine.siteCount, this.options.overRelaxation, this.move);
-    const record: IterationRecord = {
-      iteration: this.iterations.length + 1,
-      energy: move.energy,
-      maxDisplacement: move.maxDisplacement,
-      jumpFloodPasses: this.lastPasses,
-      jumpFloodMs: this.lastFloodMs,
-      centroidMs,
-    };
-    this.iterations.push(record);
-    if (move.maxDisplacement < this.options.tolerance) this.converged = true;
-
-    const floodStart = performance.now();
+  protected uploadSites(): void {
     this.engine.setSites(this.sites);
-    this.engine.floodLabels(this.options.warmStart ? move.maxDisplacementTexels : undefined);
-    if (this.options.profile) this.engine.sync();
-    this.lastFloodMs = performance.now() - floodStart;
-    this.lastPasses = this.engine.lastPassCount;
-    return record;
+  }
+
+  protected computeSums(): void {
+    this.sums = this.engine.computeSums();
+  }
+
+  protected moveSites(): MoveSummary {
+    const move = moveSitesToCentroids(this.grid, this.sites, this.sums, this.engine.siteCount, this.options.overRelaxation, this.move);
+    this.summary.energy = move.energy;
+    this.summary.maxDisplacement = move.maxDisplacement;
+    this.summary.warmFrom = move.maxDisplacementTexels;
+    return this.summary;
   }
 
   /** Energy and empty cells of the final sites (their labels are current in the engine). */

@@ -15,7 +15,8 @@ import { CubeCcvtEngine } from '../gpu/cubeEngine';
 import { ClosedLloydRun } from '../gpu/cubeLloyd';
 import { closedSection } from './closedRecord';
 import { checkOffsets, prepareClosedSurface, type ClosedSurface } from './closedSurface';
-import type { Labeller, Relaxation, StackLayer, SurfaceFamily } from './family';
+import type { Labeller, StackLayer, SurfaceFamily } from './family';
+import { gpuRelaxation } from './relax';
 
 /** A closed surface on its cube map, with the texel neighbour table every surface of its stack shares. */
 export interface CubeMapGeometry extends ClosedSurface {
@@ -59,7 +60,7 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
     try {
       engine.setGeometry(image.position, image.area);
       const run = new ClosedLloydRun(engine, projector, sites, config.lloyd, minTexelSpacing(geometry));
-      return { sites, relaxation: cubeMapRelaxation(engine, run) };
+      return { sites, relaxation: gpuRelaxation(run, engine) };
     } catch (error) {
       engine.dispose();
       throw error;
@@ -155,24 +156,6 @@ function minTexelSpacing(geometry: CubeMapGeometry): number {
     }
   }
   return Number.isFinite(min) ? min : 1;
-}
-
-function cubeMapRelaxation(engine: CubeCcvtEngine, run: ClosedLloydRun): Relaxation {
-  return {
-    get done() {
-      return run.done;
-    },
-    get converged() {
-      return run.converged;
-    },
-    iterations: run.iterations,
-    step: () => run.step(),
-    finish() {
-      const final = run.finish();
-      return { ...final, labels: engine.readLabels() };
-    },
-    dispose: () => engine.dispose(),
-  };
 }
 
 /** Every surface of the stack has the same cube map: one engine labels them all (setGeometry). */

@@ -11,7 +11,8 @@ import type { EngineChoice } from './enginePolicy';
 import type { GpuContext } from '../gpu/context';
 import { CcvtEngine } from '../gpu/engine';
 import { LloydRun } from '../gpu/lloyd';
-import type { Labeller, Relaxation, RunCallbacks, SurfaceFamily } from './family';
+import type { Labeller, RunCallbacks, SurfaceFamily } from './family';
+import { gpuRelaxation } from './relax';
 
 /** A plane or tube, unrolled: its texel grid and the density per texel. */
 export interface PlanarGeometry {
@@ -46,7 +47,10 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
     try {
       // Planar-family texels all cover the same area, so the weight is the density alone.
       engine.setWeights(density);
-      return { sites, relaxation: planarRelaxation(engine, new LloydRun(engine, grid, sites, config.lloyd)) };
+      const run = new LloydRun(engine, grid, sites, config.lloyd);
+      // Label the final sites with a cold flood, as every other surface of the stack is
+      // labelled: identical surfaces then get identical labels (no warm-start residue at s = 1).
+      return { sites, relaxation: gpuRelaxation(run, engine, () => engine.floodLabels()) };
     } catch (error) {
       engine.dispose();
       throw error;
@@ -105,27 +109,6 @@ export function defaultMinContactLength(grid: Grid, cells: number): number {
 function placementDensity(config: Config, density: Float32Array): Float32Array | undefined {
   if (config.density.kind === 'uniform') return undefined;
   return density.map(Math.sqrt);
-}
-
-function planarRelaxation(engine: CcvtEngine, run: LloydRun): Relaxation {
-  return {
-    get done() {
-      return run.done;
-    },
-    get converged() {
-      return run.converged;
-    },
-    iterations: run.iterations,
-    step: () => run.step(),
-    finish() {
-      // Label the final sites with a cold flood, as every other surface of the stack is
-      // labelled: identical surfaces then get identical labels (no warm-start residue at s = 1).
-      engine.floodLabels();
-      const final = run.finish();
-      return { ...final, labels: engine.readLabels() };
-    },
-    dispose: () => engine.dispose(),
-  };
 }
 
 /** A tube's surfaces differ in width, so each gets an engine of its own grid. */

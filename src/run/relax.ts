@@ -2,7 +2,8 @@ import type { AnyConfig } from '../core/config';
 import type { GpuContext } from '../gpu/context';
 import type { IterationRecord } from '../gpu/lloyd';
 import type { EngineChoice } from './enginePolicy';
-import type { RunCallbacks, StackLayer, SurfaceFamily } from './family';
+import type { LloydLoop } from '../gpu/lloydLoop';
+import type { Relaxation, RunCallbacks, StackLayer, SurfaceFamily } from './family';
 
 /** The converged seeded surface: what every other surface of the sheet is projected from. */
 export interface SeededSurface<Geometry, Sites> {
@@ -60,6 +61,33 @@ export async function relaxSeededSurface<C extends AnyConfig, G, S, L extends St
   } finally {
     relaxation.dispose();
   }
+}
+
+/**
+ * A GPU engine's Lloyd loop as the pipeline drives it. `beforeFinish` runs before the final
+ * sums (the planar family re-labels the final sites with a cold flood there).
+ */
+export function gpuRelaxation(
+  run: LloydLoop & { finish(): { energy: number; emptyCells: number } },
+  engine: { readLabels(): Int32Array; dispose(): void },
+  beforeFinish: () => void = () => {},
+): Relaxation {
+  return {
+    get done() {
+      return run.done;
+    },
+    get converged() {
+      return run.converged;
+    },
+    iterations: run.iterations,
+    step: () => run.step(),
+    finish() {
+      beforeFinish();
+      const final = run.finish();
+      return { ...final, labels: engine.readLabels() };
+    },
+    dispose: () => engine.dispose(),
+  };
 }
 
 export function throwIfAborted(signal: AbortSignal | undefined): void {

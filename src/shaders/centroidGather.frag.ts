@@ -1,5 +1,4 @@
-import gridMetric from './gridMetric.glsl';
-import siteTexel from './siteTexel.glsl';
+import labelId from './labelId.glsl';
 
 /**
  * Centroid pass, portable path (no float blending needed): each site's pixel in the sums
@@ -15,12 +14,7 @@ import siteTexel from './siteTexel.glsl';
  * small is never a silent wrong centroid.
  */
 export default /* glsl */ `
-precision highp float;
-precision highp int;
-${gridMetric}
-${siteTexel}
-uniform highp sampler2D labels;
-uniform highp sampler2D idMap;
+${labelId}
 uniform highp sampler2D weights;
 uniform highp sampler2D previousSums;
 uniform bool firstTile;

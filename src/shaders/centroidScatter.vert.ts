@@ -1,5 +1,4 @@
-import gridMetric from './gridMetric.glsl';
-import siteTexel from './siteTexel.glsl';
+import labelId from './labelId.glsl';
 
 /**
  * Centroid pass, fast path (Rong et al., procedure 2 of the seed): one point per texel
@@ -14,12 +13,7 @@ import siteTexel from './siteTexel.glsl';
  * the target pixel, is looked up here in the id map rather than in a separate resolve pass.
  */
 export default /* glsl */ `
-precision highp float;
-precision highp int;
-${gridMetric}
-${siteTexel}
-uniform highp sampler2D labels;
-uniform highp sampler2D idMap;
+${labelId}
 uniform highp sampler2D weights;
 uniform ivec2 sumsSize;
 out vec4 contribution;

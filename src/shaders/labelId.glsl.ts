@@ -1,9 +1,20 @@
+import gridMetric from './gridMetric.glsl';
+import siteTexel from './siteTexel.glsl';
+
 /**
- * Shared GLSL: the site id of a texel's flood label (-1 for none), found through the id map at
- * the label's site texel. Needs siteTexel.glsl and the uniforms `labels` and `idMap` declared
- * before it. Used by the id resolve, the id packing and the warm-start refresh passes.
+ * Shared GLSL preamble of every pass that reads flood labels: precision, the grid metric, the
+ * site texel lookup, the \`labels\` (each texel's nearest site position) and \`idMap\` (each
+ * site's id at its splat texel) samplers, and labelIdAt: the site id of a texel's flood label
+ * (-1 for none). Used by the id resolve, id packing, warm-start refresh and centroid passes.
  */
 export default /* glsl */ `
+precision highp float;
+precision highp int;
+${gridMetric}
+${siteTexel}
+uniform highp sampler2D labels;
+uniform highp sampler2D idMap;
+
 float labelIdAt(ivec2 texel) {
   vec2 site = texelFetch(labels, texel, 0).xy;
   return site.x < 0.0 ? -1.0 : texelFetch(idMap, siteTexel(site), 0).r;

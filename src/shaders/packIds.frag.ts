@@ -1,6 +1,4 @@
-import gridMetric from './gridMetric.glsl';
 import labelId from './labelId.glsl';
-import siteTexel from './siteTexel.glsl';
 
 /**
  * After a flood: each texel's site id packed into the four bytes of an RGBA8 target, least
@@ -10,12 +8,6 @@ import siteTexel from './siteTexel.glsl';
  * UNORM8 stores exactly.
  */
 export default /* glsl */ `
-precision highp float;
-precision highp int;
-${gridMetric}
-${siteTexel}
-uniform highp sampler2D labels;
-uniform highp sampler2D idMap;
 ${labelId}
 out vec4 packedId;
 

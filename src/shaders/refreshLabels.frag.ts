@@ -1,6 +1,4 @@
-import gridMetric from './gridMetric.glsl';
 import labelId from './labelId.glsl';
-import siteTexel from './siteTexel.glsl';
 
 /**
  * Warm start: the previous iteration's labels hold the sites' previous positions. Each is
@@ -8,12 +6,6 @@ import siteTexel from './siteTexel.glsl';
  * position from the site texture.
  */
 export default /* glsl */ `
-precision highp float;
-precision highp int;
-${gridMetric}
-${siteTexel}
-uniform highp sampler2D labels;
-uniform highp sampler2D idMap;
 ${labelId}
 out vec4 label;
 

@@ -1,15 +1,7 @@
-import gridMetric from './gridMetric.glsl';
 import labelId from './labelId.glsl';
-import siteTexel from './siteTexel.glsl';
 
 /** After a flood: each texel's site id, looked up in the id map at its label's site texel. */
 export default /* glsl */ `
-precision highp float;
-precision highp int;
-${gridMetric}
-${siteTexel}
-uniform highp sampler2D labels;
-uniform highp sampler2D idMap;
 ${labelId}
 out vec4 id;
 
