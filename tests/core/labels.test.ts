@@ -96,12 +96,11 @@ describe('bruteForceLabels', () => {
     expect(() => bruteForceLabels(grid, sites, new Int32Array(3))).toThrow(/out/);
   });
 
-  it('labels 512 x 512 texels with 2000 sites in well under a second', () => {
+  // Its speed is a measurement: bench/cpuReferences.ts.
+  it('labels 512 x 512 texels with 2000 sites as the definition does (300 random texels)', () => {
     const grid: Grid = { width: 512, height: 512, texelX: 1, texelY: 1, periodicX: true, periodicY: false };
     const sites = randomSites(grid, 2000, 3);
-    const start = performance.now();
     const labels = bruteForceLabels(grid, sites);
-    expect(performance.now() - start).toBeLessThan(1000);
     // Spot-check rows against the definition.
     const random = new Random(4);
     for (let k = 0; k < 300; k++) {

@@ -96,23 +96,14 @@ describe('heat method geodesics', () => {
     expect(agree / nv).toBeGreaterThan(0.95);
   });
 
-  it('14-site geodesic Voronoi on the shipped ~9,000-vertex mesh is well under 1 s per site', () => {
+  // Its speed is a measurement: bench/cpuReferences.ts.
+  it('14-site geodesic Voronoi on the shipped ~9,000-vertex mesh gives every site a cell', () => {
     const mesh = loadShipped('level-set-blob.ply');
     const nv = mesh.positions.length / 3;
     expect(nv).toBeGreaterThan(8000);
-    const t0 = performance.now();
     const solver = new HeatGeodesics(mesh);
-    const t1 = performance.now();
     const sites = Array.from({ length: 14 }, (_, k) => Math.floor(((k + 0.5) * nv) / 14));
     const { labels } = geodesicVoronoi(mesh, sites, solver);
-    const t2 = performance.now();
-    const perSite = (t2 - t1) / 14;
-    console.log(
-      `heat method, ${nv} vertices: factorization ${(t1 - t0).toFixed(0)} ms (factor nonzeros ${solver.factorNonzeros}), ` +
-        `14-site Voronoi ${(t2 - t1).toFixed(0)} ms (${perSite.toFixed(1)} ms per site), total ${(t2 - t0).toFixed(0)} ms`,
-    );
     expect(new Set(labels).size).toBe(14);
-    expect(perSite).toBeLessThan(200);
-    expect((t2 - t0) / 14).toBeLessThan(500);
   });
 });
