@@ -359,7 +359,7 @@ export function cellContains(grid: Grid, polygon: Float64Array, x: number, y: nu
 }
 
 /** Even-odd point-in-polygon test; polygon interleaved x, y. */
-export function pointInPolygon(polygon: Float64Array, x: number, y: number): boolean {
+function pointInPolygon(polygon: Float64Array, x: number, y: number): boolean {
   const m = polygon.length / 2;
   let inside = false;
   for (let k = 0, l = m - 1; k < m; l = k++) {

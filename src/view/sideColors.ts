@@ -17,10 +17,6 @@ export function sideColorIndex(sides: number): number {
   return Math.max(0, Math.min(sides, 10) - 3);
 }
 
-export function sideColor(sides: number): string {
-  return SIDE_COLORS[sideColorIndex(sides)];
-}
-
 export interface PaintOptions {
   /** Stripe scutoids (default true). */
   highlightScutoids?: boolean;

@@ -13,7 +13,7 @@ export const SAMPLE_MESHES = [
   { name: 'open-sphere.ply', label: 'sphere with a hole (shows the message)' },
 ] as const;
 
-export const SAMPLE_PREFIX = '/meshes/';
+const SAMPLE_PREFIX = '/meshes/';
 
 export function sampleUrl(name: string): string {
   return `${SAMPLE_PREFIX}${name}`;

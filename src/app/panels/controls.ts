@@ -27,7 +27,7 @@ export class ConfigControls {
   private readonly bound: Bound[] = [];
 
   constructor(
-    private readonly root: HTMLElement,
+    root: HTMLElement,
     initial: Config,
     private readonly events: ControlsEvents,
   ) {
