@@ -6,7 +6,7 @@
  */
 import { configSchema } from './schema';
 
-type SchemaNode = Record<string, unknown>;
+export type SchemaNode = Record<string, unknown>;
 
 export type FieldType = 'number' | 'integer' | 'string' | 'boolean' | 'array' | 'object';
 
@@ -24,8 +24,9 @@ export interface SchemaField {
   exclusiveMinimum?: number;
   /** The accepted values of a string field (enum), or the one value of a union's `kind`. */
   values?: readonly string[];
-  /** Length of a fixed-length array. */
+  /** Length of a fixed-length array, and the type of its items. */
   items?: number;
+  itemType?: FieldType;
   minLength?: number;
   /** Whether the field must be given (within its union branch); false when it has a default. */
   required: boolean;
@@ -43,8 +44,6 @@ export interface SchemaUnion {
   default: unknown;
   branches: { kind: string; description: string; fields: SchemaField[] }[];
 }
-
-const root: SchemaNode = configSchema;
 
 function propertiesOf(node: SchemaNode): [string, SchemaNode][] {
   return Object.entries((node.properties ?? {}) as Record<string, SchemaNode>);
@@ -75,6 +74,7 @@ function readField(path: string, node: SchemaNode, required: boolean, kind: stri
   if (typeof node.exclusiveMinimum === 'number') field.exclusiveMinimum = node.exclusiveMinimum;
   if (values) field.values = values;
   if (typeof node.minItems === 'number' && node.minItems === node.maxItems) field.items = node.minItems;
+  if (node.items && typeof node.items === 'object') field.itemType = (node.items as SchemaNode).type as FieldType;
   if (typeof node.minLength === 'number') field.minLength = node.minLength;
   if ('default' in node) field.default = node.default;
   if (type === 'object' && !node.oneOf) {
@@ -101,10 +101,15 @@ function readUnion(path: string, node: SchemaNode): SchemaUnion {
 /** A top-level entry of the schema: a plain field (scalar or object) or a union chosen by kind. */
 export type TopLevelEntry = { name: string; field: SchemaField; union?: undefined } | { name: string; union: SchemaUnion; field?: undefined };
 
+/** Every top-level entry of a configuration schema (configSchema, or a variant of it in tests), in schema order. */
+export function readSchemaEntries(schema: SchemaNode): TopLevelEntry[] {
+  return propertiesOf(schema).map(([name, node]) =>
+    Array.isArray(node.oneOf) ? { name, union: readUnion(name, node) } : { name, field: readField(name, node, false, null) },
+  );
+}
+
 /** Every top-level entry of configSchema, in schema order. */
-export const SCHEMA_ENTRIES: readonly TopLevelEntry[] = propertiesOf(root).map(([name, node]) =>
-  Array.isArray(node.oneOf) ? { name, union: readUnion(name, node) } : { name, field: readField(name, node, false, null) },
-);
+export const SCHEMA_ENTRIES: readonly TopLevelEntry[] = readSchemaEntries(configSchema);
 
 /** The union at `path` (`surface`, `density`). Throws for any other path: a typo in a caller's table is a bug. */
 export function schemaUnion(path: string): SchemaUnion {
