@@ -5,13 +5,13 @@
  * Returns the exit code: 0 done, 2 bad input (one line `tissue-sheet: FILE: problem`). Other
  * errors are thrown to the caller (exit 1).
  */
-import { writeFileSync } from 'node:fs';
-import { resolve } from 'node:path';
+import { closeSync, lstatSync, openSync, readSync, renameSync, rmSync, writeFileSync } from 'node:fs';
+import { basename, dirname, join, resolve } from 'node:path';
 import { compareWithModel, MeasureInputError, measureTissue, type MeasuredResult } from '../core/measure';
 import { labelFileFromPath } from '../node/labelImages';
 import { version } from '../version';
 
-const FORM = 'measure LAYER_FILE... --out RESULT.json [--pixel-size µm] [--periodic-x] [--min-contact µm] [--compare]';
+const FORM = 'measure LAYER_FILE... --out RESULT.json [--pixel-size µm] [--periodic-x] [--min-contact µm] [--compare] [--force]';
 
 interface MeasureArgs {
   files: string[];
@@ -21,6 +21,7 @@ interface MeasureArgs {
   minContact?: number;
   ratio?: number;
   compare: boolean;
+  force: boolean;
   realizations: number;
   seed: number;
 }
@@ -45,7 +46,7 @@ function integer(option: string, text: string | undefined, min: number, max: num
 }
 
 export function parseMeasureArgs(args: string[]): MeasureArgs {
-  const parsed: MeasureArgs = { files: [], out: '', periodicX: false, compare: false, realizations: 10, seed: 1 };
+  const parsed: MeasureArgs = { files: [], out: '', periodicX: false, compare: false, force: false, realizations: 10, seed: 1 };
   for (let i = 0; i < args.length; i++) {
     const arg = args[i];
     const eq = arg.startsWith('--') ? arg.indexOf('=') : -1;
@@ -59,6 +60,7 @@ export function parseMeasureArgs(args: string[]): MeasureArgs {
     else if (name === '--seed') parsed.seed = integer(name, value(), 0, 2 ** 31 - 1);
     else if (name === '--periodic-x') parsed.periodicX = true;
     else if (name === '--compare') parsed.compare = true;
+    else if (name === '--force') parsed.force = true;
     else if (arg.startsWith('-')) throw optionError(arg, 'unknown option');
     else parsed.files.push(arg);
   }
@@ -67,7 +69,45 @@ export function parseMeasureArgs(args: string[]): MeasureArgs {
   const out = resolve(parsed.out);
   const clash = parsed.files.find((f) => resolve(f) === out);
   if (clash) throw new MeasureInputError(clash, 'is also --out; write the result to another file');
+  checkOut(parsed.out, parsed.force);
   return parsed;
+}
+
+/** A result of ours starts with its software record (as `tissue-sheet run` writes it). */
+function isOurResult(path: string): boolean {
+  const fd = openSync(path, 'r');
+  try {
+    const buffer = Buffer.alloc(256);
+    const n = readSync(fd, buffer, 0, buffer.length, 0);
+    return /^\{\s*"software":\s*\{\s*"name":\s*"tissue-sheet"/.test(buffer.subarray(0, n).toString('utf8'));
+  } finally {
+    closeSync(fd);
+  }
+}
+
+/** --out may replace only a previous tissue-sheet result (or anything with --force), never through a link. */
+function checkOut(out: string, force: boolean): void {
+  let stat;
+  try {
+    stat = lstatSync(out);
+  } catch {
+    return; // a new file
+  }
+  if (stat.isSymbolicLink()) throw new MeasureInputError(`--out ${out}`, 'is a symbolic link, which is never followed; give the path of a regular file');
+  if (stat.isDirectory()) throw new MeasureInputError(`--out ${out}`, 'is a directory; give a file path');
+  if (!force && !isOurResult(out)) throw new MeasureInputError(`--out ${out}`, 'exists and is not a tissue-sheet result; pass --force to overwrite it, or give another path');
+}
+
+/** Through a temporary file and a rename: a reader never sees half a result. */
+function writeAtomic(path: string, text: string): void {
+  const temp = join(dirname(path), `.${basename(path)}.${process.pid}.tmp`);
+  try {
+    writeFileSync(temp, text);
+    renameSync(temp, path);
+  } catch (error) {
+    rmSync(temp, { force: true });
+    throw error;
+  }
 }
 
 export async function measureCommand(args: string[], log: (line: string) => void = (l) => process.stderr.write(l + '\n')): Promise<number> {
@@ -83,7 +123,7 @@ export async function measureCommand(args: string[], log: (line: string) => void
     });
     for (const w of result.warnings) log(`warning: ${w}`);
     if (a.compare) result = withComparison(result, a, log);
-    writeFileSync(a.out, JSON.stringify(result, null, 2) + '\n');
+    writeAtomic(a.out, JSON.stringify(result, null, 2) + '\n');
     const s = result.analyses[0].summary;
     log(
       `done: ${s.cells} cells, ${s.validCells} valid, ${s.percentScutoids.toFixed(1)} % scutoids over ${s.surfaces} layers, ` +

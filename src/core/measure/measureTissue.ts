@@ -168,8 +168,9 @@ function assemble(plan: LayerPlan, contacts: LayerContacts[], options: MeasureOp
         : { value: last.labelledPixels / first.labelledPixels, source: 'areas' as const };
 
   return {
-    kind: 'measured',
+    // software first: the CLI recognizes its own results by how they start.
     software: { name: 'tissue-sheet', version: options.version },
+    kind: 'measured',
     inputs: {
       files: plan.files.map((f) => ({ name: f.name, bytes: f.bytes, format: f.header.format, pages: f.header.pages.length })),
       layers,

@@ -104,8 +104,8 @@ export interface MeasuredCellRecord {
 }
 
 export interface MeasuredResult {
-  readonly kind: 'measured';
   readonly software: { readonly name: 'tissue-sheet'; readonly version: string };
+  readonly kind: 'measured';
   readonly inputs: MeasuredInputs;
   readonly analyses: MeasuredAnalysis[];
   readonly cells: MeasuredCellRecord[];
