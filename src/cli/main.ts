@@ -1,10 +1,6 @@
-import { existsSync, readFileSync, writeFileSync } from 'node:fs';
-import { dirname, resolve } from 'node:path';
-import { ConfigError, isClosedConfig, validateAnyConfig, type AnyConfig } from '../core/config';
-import { GpuCapabilityError } from '../gpu/context';
-import { loadGrayImage } from '../node/image';
-import { createHeadlessContext } from '../node/headless';
-import { runSheet } from '../run/runSheet';
+import { parseArgs } from './args';
+import { errorLine, EXIT, exitCodeFor, InputError } from './errors';
+import { runCommand } from './run';
 import { sweepCommand } from './sweep';
 import { version } from '../version';
 
@@ -15,113 +11,66 @@ Usage:
   tissue-sheet sweep SWEEP.json --out DIR          a grid of runs; resumes when rerun (docs/sweep.md)
   tissue-sheet --version | --help
 
-Progress goes to stderr. Exit codes: 0 done, 2 bad input, 3 no usable GPU context, 1 other.`;
+Options:
+  --force           overwrite an existing --out that is not a previous tissue-sheet result
+  --allow-network   fetch http(s) mesh and density sources (default: file paths only)
+  --allow-large     lift the work and memory limits (GPU texture limits still apply)
+  --max-runs N      sweep: accept up to N runs (default 100000)
 
-/** A problem with what the user gave us: printed as one line, exit code 2. */
-class UsageError extends Error {}
+Progress goes to stderr. Exit codes:
+  0    done
+  1    unexpected failure (a bug: rerun with TISSUE_SHEET_DEBUG=1 and report it)
+  2    bad input: config, sweep spec, mesh, image, runs.csv or arguments
+       (one line naming the field or file and what to change)
+  3    environment: no usable GPU context or X display, output directory locked
+       by another sweep, an output that cannot be written
+  130  interrupted (Ctrl-C); rerun the same sweep to resume`;
+
+type Command = (args: string[], signal: AbortSignal, log: (line: string) => void) => Promise<number | void>;
+
+const commands: Record<string, Command> = {
+  run: (args, signal, log) => runCommand(parseArgs(args, 'run CONFIG.json --out RESULT.json [--force] [--allow-network] [--allow-large]'), signal, log),
+  sweep: (args, signal, log) =>
+    sweepCommand(parseArgs(args, 'sweep SWEEP.json --out DIR [--force] [--allow-network] [--allow-large] [--max-runs N]', true), signal, log),
+  measure: async (args, _signal, log) => (await import('./measure')).measureCommand(args, log),
+};
 
 export async function main(argv: string[]): Promise<number> {
+  const log = (line: string) => process.stderr.write(line + '\n');
+  // Ctrl-C (or SIGTERM) stops the work at the next safe point; a second one exits at once.
+  const controller = new AbortController();
+  const onSignal = () => {
+    if (controller.signal.aborted) process.exit(EXIT.interrupted);
+    log('tissue-sheet: interrupting after the current step (Ctrl-C again to stop now)');
+    controller.abort();
+  };
+  process.on('SIGINT', onSignal);
+  process.on('SIGTERM', onSignal);
   try {
     const [command, ...rest] = argv;
     if (command === undefined || command === '--help' || command === '-h') {
       console.log(usage);
-      return command === undefined ? 2 : 0;
+      return command === undefined ? EXIT.input : EXIT.ok;
     }
     if (command === '--version') {
       console.log(version);
-      return 0;
+      return EXIT.ok;
     }
-    if (command === 'run') return await runCommand(rest);
-    if (command === 'measure') return await (await import('./measure')).measureCommand(rest);
-    if (command === 'sweep') {
-      const { input, out } = parseInputAndOut(rest, 'sweep SWEEP.json --out DIR');
-      await sweepCommand(input, out, (line) => process.stderr.write(line + '\n'));
-      return 0;
-    }
-    throw new UsageError(`unknown command "${command}"; try: tissue-sheet run CONFIG.json --out RESULT.json`);
+    const handler = Object.prototype.hasOwnProperty.call(commands, command) ? commands[command] : undefined;
+    if (!handler) throw new InputError(`unknown command "${command}"; commands: ${Object.keys(commands).join(', ')} (tissue-sheet --help)`);
+    const code = await handler(rest, controller.signal, log);
+    return typeof code === 'number' ? code : EXIT.ok;
   } catch (error) {
     return report(error);
-  }
-}
-
-async function runCommand(args: string[]): Promise<number> {
-  const { input, out } = parseInputAndOut(args, 'run CONFIG.json --out RESULT.json');
-  const config = readConfig(input);
-  const densityImage =
-    config.density.kind === 'image' ? loadGrayImage(resolve(dirname(input), config.density.src)) : undefined;
-  const meshFile = meshNextToConfig(config, input);
-  const context = createHeadlessContext();
-  try {
-    const { result } = await runSheet(config, context, {
-      densityImage,
-      meshFile,
-      onIteration(record, total) {
-        process.stderr.write(
-          `iteration ${record.iteration}/${total}  energy ${record.energy.toPrecision(8)}  ` +
-            `max displacement ${record.maxDisplacement.toPrecision(4)} µm\n`,
-        );
-      },
-    });
-    writeFileSync(out, JSON.stringify(result, null, 2) + '\n');
-    process.stderr.write(
-      `done: ${result.cells.length} cells, ${result.lloyd.iterations.length} iterations, ` +
-        `centroid path ${result.gpu.centroidPath}, ${result.timings.totalMs.toFixed(0)} ms -> ${out}\n`,
-    );
-    return 0;
   } finally {
-    context.dispose();
+    process.off('SIGINT', onSignal);
+    process.off('SIGTERM', onSignal);
   }
-}
-
-export function parseInputAndOut(args: string[], form: string): { input: string; out: string } {
-  let input: string | undefined;
-  let out: string | undefined;
-  for (let i = 0; i < args.length; i++) {
-    if (args[i] === '--out' || args[i] === '-o') out = args[++i];
-    else if (args[i].startsWith('--out=')) out = args[i].slice('--out='.length);
-    else if (args[i].startsWith('-')) throw new UsageError(`unknown option ${args[i]}; usage: tissue-sheet ${form}`);
-    else if (input === undefined) input = args[i];
-    else throw new UsageError(`unexpected argument ${args[i]}; usage: tissue-sheet ${form}`);
-  }
-  if (!input) throw new UsageError(`missing input file; usage: tissue-sheet ${form}`);
-  if (!out) throw new UsageError(`missing --out; usage: tissue-sheet ${form}`);
-  return { input, out };
-}
-
-/** A mesh `src` relative to the config file is read from there (else runSheet searches cwd and public/meshes). */
-function meshNextToConfig(config: AnyConfig, configPath: string) {
-  if (!isClosedConfig(config) || config.surface.kind !== 'mesh') return undefined;
-  const path = resolve(dirname(configPath), config.surface.src);
-  if (!existsSync(path)) return undefined;
-  const bytes = readFileSync(path);
-  return { data: bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength) as ArrayBuffer, name: path };
-}
-
-export function readConfig(path: string): AnyConfig {
-  let text: string;
-  try {
-    text = readFileSync(path, 'utf8');
-  } catch {
-    throw new UsageError(`${path}: cannot read the file`);
-  }
-  let json: unknown;
-  try {
-    json = JSON.parse(text);
-  } catch (error) {
-    throw new UsageError(`${path}: not valid JSON (${(error as Error).message})`);
-  }
-  return validateAnyConfig(json);
 }
 
 function report(error: unknown): number {
-  if (error instanceof UsageError || error instanceof ConfigError) {
-    console.error(`tissue-sheet: ${error.message}`);
-    return 2;
-  }
-  if (error instanceof GpuCapabilityError) {
-    console.error(`tissue-sheet: ${error.message}`);
-    return 3;
-  }
-  console.error(`tissue-sheet: ${error instanceof Error ? error.message : String(error)}`);
-  return 1;
+  const code = exitCodeFor(error);
+  console.error(`tissue-sheet: ${errorLine(error)}`);
+  if (code === EXIT.failure && process.env.TISSUE_SHEET_DEBUG && error instanceof Error && error.stack) console.error(error.stack);
+  return code;
 }

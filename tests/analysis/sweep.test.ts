@@ -103,7 +103,7 @@ describe('CSV', () => {
 
 describe('aggregation', () => {
   it('computes mean and sample SD per grid point', () => {
-    expect(meanSd([1, 2, 3, 4])).toEqual({ mean: 2.5, sd: Math.sqrt(5 / 3), n: 4 });
+    expect(meanSd([1, 2, 3, 4])).toEqual({ mean: 2.5, sd: Math.sqrt(5 / 3), se: Math.sqrt(5 / 3) / 2, n: 4, missing: 0 });
     expect(meanSd([5, NaN]).n).toBe(1);
     expect(Number.isNaN(meanSd([5]).sd)).toBe(true);
     const rows = [
@@ -117,9 +117,9 @@ describe('aggregation', () => {
     expect(agg.points.map((p) => p.point.s)).toEqual(['1', '2']);
     expect(agg.points[0].stats.pct.mean).toBe(15);
     expect(agg.points[0].stats.pct.sd).toBeCloseTo(Math.SQRT2 * 5);
-    expect(agg.points[1].stats.pct).toEqual({ mean: 50, sd: NaN, n: 1 });
+    expect(agg.points[1].stats.pct).toEqual({ mean: 50, sd: NaN, se: NaN, n: 1, missing: 1 });
     const csv = readCsvTable(aggregateToCsv(agg));
-    expect(csv.header).toEqual(['s', 'runs', 'pct.mean', 'pct.sd']);
+    expect(csv.header).toEqual(['s', 'runs', 'pct.mean', 'pct.sd', 'pct.se', 'pct.n']);
     expect(csv.rows[0]['pct.mean']).toBe('15');
     const json = aggregateToJson(agg) as { stats: { pct: { sd: number | null } } }[];
     expect(json[1].stats.pct.sd).toBeNull();
@@ -147,7 +147,7 @@ describe('runSweep', () => {
     expect(progress[progress.length - 1]).toBe('done:12/12');
     const agg = aggregateRows(table.rows, fields);
     expect(agg.points.length).toBe(6);
-    expect(agg.points[0].stats.pct).toEqual({ mean: 10, sd: 0, n: 2 });
+    expect(agg.points[0].stats.pct).toEqual({ mean: 10, sd: 0, se: 0, n: 2, missing: 0 });
   });
 
   it('resumes an interrupted sweep, running only what remains', async () => {

@@ -6,7 +6,13 @@
  *   row never needs to look at the previous one).
  * - Cells: null/undefined -> empty; numbers -> String(n) (NaN -> "NaN", Infinity -> "Infinity");
  *   booleans -> "true"/"false"; objects -> JSON.
- * - `parseCsv` accepts CRLF or LF, quoted fields with embedded separators, quotes and newlines.
+ * - Formula injection (OWASP "CSV injection"): a text cell starting with =, +, -, @, tab or CR
+ *   would open as a formula in a spreadsheet, so it is written with a leading apostrophe
+ *   ("'=cmd"); a text cell that already starts with an apostrophe followed by one of those gets
+ *   one more, so reading (`parseCsv` removes exactly one) gives back the original text. Numbers,
+ *   and text that is a plain decimal number ("-3", "1e-5"), are never altered.
+ * - `parseCsv` accepts CRLF or LF, quoted fields with embedded separators, quotes and newlines,
+ *   and reports where each record starts (offset and line) so a bad one can be named.
  * - `readCsvTable` reads a header + rows, and reports a truncated tail: text after the last
  *   record terminator is an incomplete record (a write was interrupted); it is not returned as a
  *   row, and `validLength` is the length of the text up to the last complete record. Records
@@ -15,10 +21,23 @@
  *   joined with ".", e.g. `perSurface.0.polygonDistribution.3`.
  */
 
+const FORMULA_START = /^'*[=+\-@\t\r]/;
+const PLAIN_NUMBER = /^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$/;
+
+/** A text cell made safe to open in a spreadsheet (see the module comment). */
+export function neutralizeFormula(text: string): string {
+  return FORMULA_START.test(text) && !PLAIN_NUMBER.test(text) ? `'${text}` : text;
+}
+
+/** The inverse of neutralizeFormula, applied to every cell read. */
+export function restoreFormula(text: string): string {
+  return text.startsWith("'") && FORMULA_START.test(text) && !PLAIN_NUMBER.test(text.slice(1)) ? text.slice(1) : text;
+}
+
 export function csvField(value: unknown): string {
   if (value === null || value === undefined) return '';
   let text: string;
-  if (typeof value === 'string') text = value;
+  if (typeof value === 'string') text = neutralizeFormula(value);
   else if (typeof value === 'number' || typeof value === 'boolean' || typeof value === 'bigint') text = String(value);
   else text = JSON.stringify(value);
   if (/[",\r\n]/.test(text) || /^\s|\s$/.test(text)) return `"${text.replace(/"/g, '""')}"`;
@@ -37,6 +56,10 @@ export function formatCsv(header: readonly string[], rows: readonly (readonly un
 export interface ParsedCsv {
   /** Complete records. */
   records: string[][];
+  /** Offset in the text where each record starts. */
+  offsets: number[];
+  /** 1-based line number where each record starts. */
+  lines: number[];
   /** Length of the text up to the end of the last complete record. */
   validLength: number;
   /** True when text follows the last record terminator (an incomplete record). */
@@ -46,14 +69,32 @@ export interface ParsedCsv {
 /** RFC 4180 parser (CRLF or LF). An unterminated last record is reported, not returned. */
 export function parseCsv(text: string): ParsedCsv {
   const records: string[][] = [];
+  const offsets: number[] = [0];
+  const lines: number[] = [1];
+  let line = 1;
   let field = '';
   let record: string[] = [];
   let inQuotes = false;
   let validLength = 0;
   let i = 0;
+  const endField = () => {
+    record.push(restoreFormula(field));
+    field = '';
+  };
+  const endRecord = (next: number) => {
+    endField();
+    records.push(record);
+    record = [];
+    i = next;
+    validLength = i;
+    line++;
+    offsets.push(i);
+    lines.push(line);
+  };
   while (i < text.length) {
     const ch = text[i];
     if (inQuotes) {
+      if (ch === '\n') line++;
       if (ch === '"') {
         if (text[i + 1] === '"') {
           field += '"';
@@ -72,29 +113,20 @@ export function parseCsv(text: string): ParsedCsv {
       inQuotes = true;
       i++;
     } else if (ch === ',') {
-      record.push(field);
-      field = '';
+      endField();
       i++;
     } else if (ch === '\r' && text[i + 1] === '\n') {
-      record.push(field);
-      records.push(record);
-      record = [];
-      field = '';
-      i += 2;
-      validLength = i;
+      endRecord(i + 2);
     } else if (ch === '\n') {
-      record.push(field);
-      records.push(record);
-      record = [];
-      field = '';
-      i++;
-      validLength = i;
+      endRecord(i + 1);
     } else {
       field += ch;
       i++;
     }
   }
-  return { records, validLength, truncated: validLength < text.length };
+  offsets.length = records.length;
+  lines.length = records.length;
+  return { records, offsets, lines, validLength, truncated: validLength < text.length };
 }
 
 export interface CsvTable {

@@ -19,7 +19,8 @@
  *   realizations. The base seed is `spec.seed`, else a number at `seedPath` in the base config,
  *   else 0. The run's seed is written into the config at `seedPath` (default "seed").
  * - Config: a deep copy (structuredClone) of the base with each varied value set at its path
- *   (intermediate objects are created when missing).
+ *   (intermediate objects are created when missing; see setPath: no path reaches a prototype).
+ * - Size: `countRuns` gives the number of runs without expanding; callers cap it first.
  */
 
 export type Config = Record<string, unknown>;
@@ -62,28 +63,59 @@ export function hash32(text: string): number {
   return h >>> 0;
 }
 
-/** Reads a dotted path ("a.b.c") from an object; undefined when missing. */
+/**
+ * Keys that reach an object's prototype when assigned (`obj.__proto__ = x` replaces it;
+ * `constructor.prototype` leads to a shared one). No config field has these names, so a path or
+ * a key using one is refused rather than followed.
+ */
+export const FORBIDDEN_KEYS: ReadonlySet<string> = new Set(['__proto__', 'constructor', 'prototype']);
+
+const hasOwn = (obj: object, key: string): boolean => Object.prototype.hasOwnProperty.call(obj, key);
+
+function pathParts(path: string): string[] {
+  const parts = path.split('.');
+  if (parts.some((p) => p === '')) throw new Error(`invalid field path "${path}"`);
+  const bad = parts.find((p) => FORBIDDEN_KEYS.has(p));
+  if (bad !== undefined) throw new Error(`field path "${path}" uses "${bad}", which is not a config field`);
+  return parts;
+}
+
+/** Reads a dotted path ("a.b.c") from an object's own properties; undefined when missing. */
 export function getPath(obj: unknown, path: string): unknown {
   let cur: unknown = obj;
-  for (const part of path.split('.')) {
-    if (cur === null || typeof cur !== 'object') return undefined;
+  for (const part of pathParts(path)) {
+    if (cur === null || typeof cur !== 'object' || !hasOwn(cur, part)) return undefined;
     cur = (cur as Record<string, unknown>)[part];
   }
   return cur;
 }
 
-/** Sets a dotted path in place, creating intermediate objects. */
+/**
+ * Sets a dotted path in place, creating intermediate objects. Only own properties are followed
+ * and forbidden keys are refused, so no path reaches a prototype; the value is defined as an
+ * own data property (never through a setter).
+ */
 export function setPath(obj: Record<string, unknown>, path: string, value: unknown): void {
-  const parts = path.split('.');
-  if (parts.some((p) => p === '')) throw new Error(`invalid field path "${path}"`);
+  const parts = pathParts(path);
   let cur: Record<string, unknown> = obj;
   for (let k = 0; k < parts.length - 1; k++) {
-    const next = cur[parts[k]];
-    if (next === undefined || next === null) cur[parts[k]] = {};
+    const next = hasOwn(cur, parts[k]) ? cur[parts[k]] : undefined;
+    if (next === undefined || next === null) defineOwn(cur, parts[k], {});
     else if (typeof next !== 'object' || Array.isArray(next)) throw new Error(`field path "${path}" crosses a non-object at "${parts[k]}"`);
     cur = cur[parts[k]] as Record<string, unknown>;
   }
-  cur[parts[parts.length - 1]] = value;
+  defineOwn(cur, parts[parts.length - 1], value);
+}
+
+function defineOwn(obj: Record<string, unknown>, key: string, value: unknown): void {
+  Object.defineProperty(obj, key, { value, writable: true, enumerable: true, configurable: true });
+}
+
+/** The number of runs a spec expands to, computed without expanding it. */
+export function countRuns(spec: SweepSpec): number {
+  let n = spec.realizations ?? 1;
+  for (const values of Object.values(spec.vary ?? {})) n *= Array.isArray(values) ? values.length : 0;
+  return n;
 }
 
 /** The text form of a varied value in keys and CSV cells: JSON for objects, String otherwise. */
@@ -104,6 +136,7 @@ export function expandSweep<C extends Config>(spec: SweepSpec<C>): SweepRun<C>[]
   if (!Number.isInteger(realizations) || realizations < 1) throw new Error(`realizations must be a positive integer, got ${realizations}`);
   if (fields.includes(seedPath)) throw new Error(`"${seedPath}" is the seed path and cannot be varied`);
   for (const f of fields) {
+    pathParts(f);
     const values = spec.vary![f];
     if (!Array.isArray(values) || values.length === 0) throw new Error(`vary["${f}"] must be a non-empty array`);
   }
@@ -121,10 +154,14 @@ export function expandSweep<C extends Config>(spec: SweepSpec<C>): SweepRun<C>[]
 
   const runs: SweepRun<C>[] = [];
   const used = new Set<number>();
+  // Seeds are de-duplicated through Sets: O(1) per seed, so a million realizations take
+  // a million hashes, not a trillion comparisons.
   const realizationSeeds: number[] = [];
+  const realizationSeen = new Set<number>();
   for (let r = 0; r < realizations; r++) {
     let s = hash32(`${baseSeed}|r=${r}`);
-    while (realizationSeeds.includes(s)) s = hash32(`${s}|again`);
+    while (realizationSeen.has(s)) s = hash32(`${s}|again`);
+    realizationSeen.add(s);
     realizationSeeds.push(s);
   }
   for (const point of points) {

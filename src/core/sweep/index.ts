@@ -1,5 +1,8 @@
-/** Parameter sweeps: expansion, tidy CSV, aggregation, resumable loop. */
+/** Parameter sweeps: spec validation, expansion, columns, tidy CSV, resume, aggregation, loop. */
+export * from './spec';
 export * from './expand';
+export * from './columns';
 export * from './csv';
+export * from './resume';
 export * from './aggregate';
 export * from './runner';

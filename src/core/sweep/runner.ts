@@ -3,10 +3,12 @@
  * tidy CSV row per run as soon as it completes, so an interrupted sweep resumes where it stopped.
  *
  * Row layout: `key`, the varied fields (CSV text of the value), `realization`, `seed`, then the
- * summary columns. Summary columns are `options.summaryColumns`, else the header of the existing
- * CSV when resuming, else the flattened keys (see `flattenSummary`) of the first summary to
- * complete; the header is appended together with the first row. A later summary missing a
- * column leaves the cell empty; extra keys are not written.
+ * summary columns. Summary columns are `options.summaryColumns` (the CLI passes the union every
+ * grid point produces, see columns.ts, and an existing header must equal it), else the header
+ * of the existing CSV when resuming, else the flattened keys (see `flattenSummary`) of the
+ * first summary to complete; the header is appended together with the first row when the file
+ * has none. A summary missing a column leaves the cell empty; a summary with a column the
+ * header lacks fails its run (never a silently dropped value).
  *
  * Resume: `existingCsv` is what the output already holds. Runs whose key appears in it are
  * skipped (`remainingRuns`). If it ends with an incomplete record (a write was cut off), the loop
@@ -91,18 +93,31 @@ export function remainingRuns<C extends Config>(runs: readonly SweepRun<C>[], ro
   return { remaining, done, mismatched };
 }
 
-/** The CSV cells of one run's row, in `header` order. */
-export function runRow<C extends Config>(run: SweepRun<C>, fields: readonly string[], summary: unknown, header: readonly string[]): Record<string, string> {
+/**
+ * The cells of one run's row in `header` order, typed (numbers stay numbers, so the CSV writer
+ * never treats them as text), and the same row as the text a reader gets back. A summary
+ * column missing from the header is an error: the header is fixed before the first run and
+ * must cover every column (see columns.ts), and a dropped column would be a silent lie.
+ */
+export function runCells<C extends Config>(run: SweepRun<C>, fields: readonly string[], summary: unknown, header: readonly string[]): { cells: unknown[]; row: Record<string, string> } {
   const flat = flattenSummary(summary);
+  const base = new Map<string, unknown>([['key', run.key], ['realization', run.realization], ['seed', run.seed]]);
+  for (const f of fields) base.set(f, valueText(run.point[f]));
+  const known = new Set(header);
+  const extra = Object.keys(flat).find((c) => !known.has(c) && !base.has(c));
+  if (extra !== undefined) throw new Error(`run ${run.key}: its summary has a column "${extra}" that the sweep's header lacks`);
+  const cells = header.map((h) => (base.has(h) ? base.get(h) : Object.prototype.hasOwnProperty.call(flat, h) ? flat[h] : undefined));
   const row: Record<string, string> = {};
-  const base: Record<string, unknown> = { key: run.key, realization: run.realization, seed: run.seed };
-  for (const f of fields) base[f] = valueText(run.point[f]);
-  for (const h of header) {
-    const v = h in base ? base[h] : flat[h];
-    // the text a reader gets back (unquoted)
+  header.forEach((h, k) => {
+    const v = cells[k];
     row[h] = v === null || v === undefined ? '' : typeof v === 'string' ? v : typeof v === 'object' ? JSON.stringify(v) : String(v);
-  }
-  return row;
+  });
+  return { cells, row };
+}
+
+/** The text cells of one run's row (see runCells). */
+export function runRow<C extends Config>(run: SweepRun<C>, fields: readonly string[], summary: unknown, header: readonly string[]): Record<string, string> {
+  return runCells(run, fields, summary, header).row;
 }
 
 export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, S>): Promise<RunSweepResult<C>> {
@@ -112,6 +127,12 @@ export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, 
   if (header) {
     const missing = baseColumns(fields).filter((c) => !header!.includes(c));
     if (missing.length > 0) throw new Error(`existing sweep CSV lacks columns: ${missing.join(', ')}`);
+    if (options.summaryColumns) {
+      const expected = [...baseColumns(fields), ...options.summaryColumns];
+      if (expected.length !== header.length || expected.some((c, k) => header![k] !== c)) {
+        throw new Error('existing sweep CSV has another header than this sweep writes');
+      }
+    }
   }
   if (existing.truncated) {
     if (!options.truncate) throw new Error(`existing sweep CSV ends with an incomplete row; truncate it to ${existing.validLength} characters`);
@@ -143,8 +164,8 @@ export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, 
         header = [...baseColumns(fields), ...summaryColumns];
         text += formatCsvRow(header);
       }
-      const row = runRow(run, fields, summary, header);
-      text += formatCsvRow(header.map((h) => row[h]));
+      const { cells, row } = runCells(run, fields, summary, header);
+      text += formatCsvRow(cells);
       await options.append(text);
       rows.push(row);
     });

@@ -1,0 +1,46 @@
+/** Command-line arguments of `run` and `sweep`: one input, --out, and the opt-in flags. */
+import { InputError } from './errors';
+
+export interface CliOptions {
+  input: string;
+  out: string;
+  /** Overwrite an existing --out that is not a previous result of ours. */
+  force: boolean;
+  /** Fetch http(s) mesh and density sources (off: file paths only). */
+  allowNetwork: boolean;
+  /** Lift the work and memory budget (texture limits still apply). */
+  allowLarge: boolean;
+  /** Sweeps: the largest number of runs accepted. */
+  maxRuns?: number;
+}
+
+export function parseArgs(args: string[], form: string, sweep = false): CliOptions {
+  let input: string | undefined;
+  let out: string | undefined;
+  const options = { force: false, allowNetwork: false, allowLarge: false, maxRuns: undefined as number | undefined };
+  const usage = `usage: tissue-sheet ${form}`;
+  for (let i = 0; i < args.length; i++) {
+    const arg = args[i];
+    const [name, inline] = arg.startsWith('--') && arg.includes('=') ? [arg.slice(0, arg.indexOf('=')), arg.slice(arg.indexOf('=') + 1)] : [arg, undefined];
+    const value = (): string => {
+      const v = inline ?? args[++i];
+      if (v === undefined || v === '') throw new InputError(`${name} needs a value; ${usage}`);
+      return v;
+    };
+    if (name === '--out' || name === '-o') out = value();
+    else if (name === '--force') options.force = true;
+    else if (name === '--allow-network' || name === '--allow-fetch') options.allowNetwork = true;
+    else if (name === '--allow-large') options.allowLarge = true;
+    else if (sweep && name === '--max-runs') {
+      const v = value();
+      const n = Number(v);
+      if (!Number.isInteger(n) || n < 1) throw new InputError(`--max-runs: must be a positive integer (got ${JSON.stringify(v)})`);
+      options.maxRuns = n;
+    } else if (arg.startsWith('-') && arg !== '-') throw new InputError(`unknown option ${name}; ${usage}`);
+    else if (input === undefined) input = arg;
+    else throw new InputError(`unexpected argument ${arg}; ${usage}`);
+  }
+  if (!input) throw new InputError(`missing input file; ${usage}`);
+  if (!out) throw new InputError(`missing --out; ${usage}`);
+  return { input, out, ...options };
+}

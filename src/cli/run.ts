@@ -1,0 +1,53 @@
+/**
+ * `tissue-sheet run CONFIG.json --out RESULT.json`: one sheet. Everything that can be refused is
+ * refused before the GPU computes anything: the schema, feasibility, scale guards and budget
+ * (with this GPU's texture limit), the density image or mesh; then --out is checked (never the
+ * input, never through a link, never over someone else's file without --force) and the result
+ * written atomically.
+ */
+import { dirname } from 'node:path';
+import { ConfigError, validateAnyConfig } from '../core/config';
+import { createHeadlessContext } from '../node/headless';
+import { runSheet } from '../run/index';
+import { InterruptedError } from './errors';
+import type { CliOptions } from './args';
+import { checkOutFile, writeFileAtomic } from './output';
+import { checkRunnable, computeBudget, loadInputs, readJsonFile } from './prepare';
+import { Sources } from './sources';
+
+export async function runCommand(options: CliOptions, signal: AbortSignal, log: (line: string) => void): Promise<void> {
+  const json = readJsonFile(options.input, 'config');
+  const config = validateAnyConfig(json);
+  checkOutFile(options.out, [options.input], options.force);
+  // Schema-level scale checks first (no GPU needed), then the texture limit once a context exists.
+  checkRunnable(config, computeBudget(Number.MAX_SAFE_INTEGER, options.allowLarge));
+  const sources = new Sources({ baseDir: dirname(options.input), allowNetwork: options.allowNetwork });
+  const inputs = await loadInputs(config, sources);
+  const context = createHeadlessContext();
+  try {
+    checkRunnable(config, computeBudget(context.capabilities.maxTextureSize, options.allowLarge));
+    const { result } = await runSheet(config, context, {
+      ...inputs,
+      signal,
+      onIteration(record, total) {
+        log(`iteration ${record.iteration}/${total}  energy ${record.energy.toPrecision(8)}  max displacement ${record.maxDisplacement.toPrecision(4)} µm`);
+      },
+    });
+    if (signal.aborted) throw new InterruptedError('interrupted; nothing was written');
+    checkFinite(result.lloyd.finalEnergy);
+    writeFileAtomic(options.out, JSON.stringify(result, null, 2) + '\n');
+    log(
+      `done: ${result.cells.length} cells, ${result.lloyd.iterations.length} iterations, ` +
+        `centroid path ${result.gpu.centroidPath}, ${result.timings.totalMs.toFixed(0)} ms -> ${options.out}`,
+    );
+  } finally {
+    context.dispose();
+  }
+}
+
+/** A last guard: a run whose energy overflowed is not reported as a result. */
+function checkFinite(energy: number): void {
+  if (!Number.isFinite(energy)) {
+    throw new ConfigError('surface', `surface: the Lloyd energy is ${String(energy)} (out of single-precision range); rescale the surface`);
+  }
+}

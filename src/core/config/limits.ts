@@ -1,0 +1,196 @@
+/**
+ * Scale guards and a compute budget: what a validated configuration would cost, and refusals
+ * (one-line ConfigErrors naming the field) for what cannot be computed honestly or affordably.
+ * Pure: the caller supplies the GPU's texture limit and the budget (bytes, work).
+ *
+ * - Extents: every length (plane width/height, tube radius/length, sphere radius, ellipsoid
+ *   semi-axes, sheet thickness) must lie in [MIN_EXTENT_UM, MAX_EXTENT_UM]. Beyond them float32
+ *   arithmetic on the GPU breaks down: a plane 1e20 µm wide gives an infinite Lloyd energy
+ *   (µm⁴ overflows float32), one 1e-20 µm wide an exact Delaunay with no neighbours.
+ * - Texels per side: every surface of the stack needs at least MIN_TEXELS_PER_SIDE texels along
+ *   each side; a tube with one texel around has every cell touching itself across the seam.
+ * - Texture size: every surface's grid (a tube's other surface is wider by the surface ratio;
+ *   a closed surface's cube map is n x 6n) must fit the GPU's largest texture.
+ * - Work: texel-floods = seeded texels x lloyd.maxIterations + the texels of every surface
+ *   labelled once (one jump flood each); bytes: see estimateRun. Both are estimated before
+ *   anything is allocated and compared with the caller's budget.
+ */
+import type { Grid } from '../grid';
+import { surfaceStack } from '../sheetGeometry';
+import { makeCubeGrid, makeGrid, unrolledDomain } from './feasibility';
+import { isClosedConfig, type AnyConfig, type Config } from './types';
+import { ConfigError } from './validate';
+
+export const MIN_EXTENT_UM = 1e-3;
+export const MAX_EXTENT_UM = 1e7;
+export const MIN_TEXELS_PER_SIDE = 8;
+/** Default work budget: 2^34 texel-floods (a 16384² plane for 64 iterations). */
+export const DEFAULT_MAX_WORK = 2 ** 34;
+
+/**
+ * Bytes per texel of the surface being computed (GPU targets: two RG32F label targets, R32F id
+ * map, id and weight textures; CPU: density, weights, label readback and adjacency) and per
+ * texel of every surface kept until the result is written (Int32 labels + adjacency).
+ */
+const ACTIVE_BYTES_PER_TEXEL = 64;
+const KEPT_BYTES_PER_TEXEL = 8;
+/** A closed surface adds its cube-map geometry image (positions, normals, areas in float32/64). */
+const CUBE_EXTRA_BYTES_PER_TEXEL = 48;
+
+export interface ComputeBudget {
+  /** The GPU's MAX_TEXTURE_SIZE. */
+  maxTextureSize: number;
+  /** Texel-floods at most (see the module comment). */
+  maxWork: number;
+  /** Estimated bytes at most. */
+  maxBytes: number;
+}
+
+export interface RunEstimate {
+  /** Width x height of every surface of the stack, seeded first. */
+  grids: { width: number; height: number }[];
+  /** Texels of the seeded surface. */
+  texels: number;
+  surfaces: number;
+  iterations: number;
+  /** Texel-floods (see the module comment). */
+  work: number;
+  bytes: number;
+}
+
+/** Texel sizes of every surface of the stack (planar: unrolled grids; closed: n x 6n cube maps). */
+export function stackGrids(config: AnyConfig): { width: number; height: number }[] {
+  if (isClosedConfig(config)) {
+    const { n } = makeCubeGrid(config);
+    return Array.from({ length: config.sheet.layers + 2 }, () => ({ width: n, height: 6 * n }));
+  }
+  const seeded: Grid = makeGrid(config);
+  return surfaceStack(config, seeded).map((s) => ({ width: s.grid.width, height: s.grid.height }));
+}
+
+export function estimateRun(config: AnyConfig): RunEstimate {
+  const grids = stackGrids(config);
+  const sizes = grids.map((g) => g.width * g.height);
+  const texels = sizes[0];
+  const iterations = config.lloyd.maxIterations;
+  const total = sizes.reduce((a, b) => a + b, 0);
+  const perActive = ACTIVE_BYTES_PER_TEXEL + (isClosedConfig(config) ? CUBE_EXTRA_BYTES_PER_TEXEL : 0);
+  return {
+    grids,
+    texels,
+    surfaces: grids.length,
+    iterations,
+    work: texels * iterations + total,
+    bytes: perActive * Math.max(...sizes) + KEPT_BYTES_PER_TEXEL * total,
+  };
+}
+
+/** Refuses lengths outside [MIN_EXTENT_UM, MAX_EXTENT_UM] (see the module comment). */
+export function checkExtents(config: AnyConfig): void {
+  const lengths: [string, number][] = [];
+  const s = config.surface;
+  if (s.kind === 'plane') lengths.push(['surface.width', s.width], ['surface.height', s.height]);
+  else if (s.kind === 'tube') lengths.push(['surface.radius', s.radius], ['surface.length', s.length]);
+  else if (s.kind === 'sphere') lengths.push(['surface.radius', s.radius]);
+  else if (s.kind === 'ellipsoid') lengths.push(['surface.a', s.a], ['surface.b', s.b], ['surface.c', s.c]);
+  for (const [field, value] of lengths) {
+    if (value < MIN_EXTENT_UM || value > MAX_EXTENT_UM) {
+      throw new ConfigError(
+        field,
+        `${field}: ${value} µm is outside ${MIN_EXTENT_UM} to ${MAX_EXTENT_UM} µm, where single-precision GPU arithmetic stays meaningful; rescale the surface into that range (results scale with it)`,
+      );
+    }
+  }
+  if (config.sheet.thickness > MAX_EXTENT_UM) {
+    throw new ConfigError('sheet.thickness', `sheet.thickness: ${config.sheet.thickness} µm is above ${MAX_EXTENT_UM} µm; use a smaller thickness`);
+  }
+}
+
+/** Refuses grids with fewer than MIN_TEXELS_PER_SIDE texels along a side, naming the cause. */
+export function checkTexelsPerSide(config: AnyConfig): void {
+  if (isClosedConfig(config)) return; // the cube map is resolution² per face, and resolution >= 16
+  const grids = stackGrids(config);
+  const [seeded] = grids;
+  const short = Math.min(seeded.width, seeded.height);
+  if (short < MIN_TEXELS_PER_SIDE) {
+    // The long side gets `resolution` texels, the short one resolution x short/long (rounded).
+    const d = unrolledDomain(config.surface);
+    const need = Math.ceil((MIN_TEXELS_PER_SIDE * Math.max(d.lengthX, d.lengthY)) / Math.min(d.lengthX, d.lengthY));
+    throw new ConfigError(
+      'resolution',
+      `resolution: the grid is ${seeded.width} x ${seeded.height} texels, so its short side has ${short} (at least ${MIN_TEXELS_PER_SIDE} are needed to resolve cells); ${
+        need <= 16384 ? `raise resolution to at least ${need}, or make the surface less elongated` : `the surface is too elongated (${fmt(Math.max(d.lengthX, d.lengthY) / Math.min(d.lengthX, d.lengthY))}:1) for any resolution up to 16384: make it shorter or wider`
+      }`,
+    );
+  }
+  const field = sheetField(config);
+  grids.forEach((g, k) => {
+    if (k > 0 && Math.min(g.width, g.height) < MIN_TEXELS_PER_SIDE) {
+      throw new ConfigError(
+        field,
+        `${field}: the ${k === grids.length - 1 ? 'other surface' : `layer ${k}`} is ${g.width} x ${g.height} texels, fewer than ${MIN_TEXELS_PER_SIDE} along a side; use a smaller inward ${field === 'sheet.surfaceRatio' ? 'ratio' : 'thickness'} or raise resolution`,
+      );
+    }
+  });
+}
+
+/** Refuses a grid wider than the GPU's texture limit, naming the field that made it so. */
+export function checkTextureSize(config: AnyConfig, maxTextureSize: number): void {
+  const grids = stackGrids(config);
+  grids.forEach((g, k) => {
+    if (g.width <= maxTextureSize && g.height <= maxTextureSize) return;
+    if (k === 0 || isClosedConfig(config)) {
+      const max = isClosedConfig(config) ? Math.floor(maxTextureSize / 6) : maxTextureSize;
+      throw new ConfigError(
+        'resolution',
+        `resolution: the ${isClosedConfig(config) ? 'cube map' : 'grid'} would be ${g.width} x ${g.height} texels but this GPU allows at most ${maxTextureSize} per side; lower resolution to at most ${max}`,
+      );
+    }
+    const field = sheetField(config);
+    throw new ConfigError(
+      field,
+      `${field}: the ${k === grids.length - 1 ? 'other surface' : `layer ${k}`} would be ${g.width} x ${g.height} texels (the seeded grid widened by the surface ratio) but this GPU allows at most ${maxTextureSize} per side; lower ${field}${field === 'sheet.surfaceRatio' ? ` to at most about ${fmt((maxTextureSize / grids[0].width) * 0.99)}` : ''} (or resolution)`,
+    );
+  });
+}
+
+/** Refuses a run whose estimated work or memory exceeds the budget (before allocating anything). */
+export function checkBudget(config: AnyConfig, budget: ComputeBudget, raiseHint: string): RunEstimate {
+  const e = estimateRun(config);
+  // Name what made the run large: the seeded grid (resolution) or a wider other surface.
+  const largest = e.grids.reduce((k, g, i) => (g.width * g.height > e.grids[k].width * e.grids[k].height ? i : k), 0);
+  const field = largest > 0 && !isClosedConfig(config) ? sheetField(config) : 'resolution';
+  if (e.work > budget.maxWork) {
+    throw new ConfigError(
+      field,
+      `${field}: this run is ${fmt(e.work)} texel-floods (${e.texels} texels x ${e.iterations} iterations + ${e.surfaces} surfaces of ${e.grids.map((g) => `${g.width}x${g.height}`).join(', ')} texels), above the limit of ${fmt(budget.maxWork)}; lower ${field === 'resolution' ? 'resolution, lloyd.maxIterations or sheet.layers' : field}, or ${raiseHint}`,
+    );
+  }
+  if (e.bytes > budget.maxBytes) {
+    throw new ConfigError(
+      field,
+      `${field}: this run needs about ${gib(e.bytes)} of memory (surfaces of ${e.grids.map((g) => `${g.width}x${g.height}`).join(', ')} texels), above the limit of ${gib(budget.maxBytes)}; lower ${field === 'resolution' ? 'resolution or sheet.layers' : field}, or ${raiseHint}`,
+    );
+  }
+  return e;
+}
+
+/** Every check of this module, in the order a user would fix them. */
+export function checkLimits(config: AnyConfig, budget: ComputeBudget, raiseHint: string): RunEstimate {
+  checkExtents(config);
+  checkTexelsPerSide(config);
+  checkTextureSize(config, budget.maxTextureSize);
+  return checkBudget(config, budget, raiseHint);
+}
+
+function sheetField(config: AnyConfig): string {
+  return (config as Config).sheet.surfaceRatio !== null ? 'sheet.surfaceRatio' : 'sheet.thickness';
+}
+
+function fmt(value: number): string {
+  return value >= 1e6 ? value.toExponential(2) : Number(value.toPrecision(4)).toString();
+}
+
+function gib(bytes: number): string {
+  return bytes >= 2 ** 30 ? `${(bytes / 2 ** 30).toFixed(1)} GiB` : `${Math.ceil(bytes / 2 ** 20)} MiB`;
+}

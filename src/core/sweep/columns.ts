@@ -1,0 +1,75 @@
+/**
+ * The summary columns a configuration's run writes to runs.csv, known before it runs, so the
+ * header of a sweep is the union over every grid point (fixed from the spec before the first
+ * run, never from whichever run finished first).
+ *
+ * It mirrors the pipeline's sweep summary (src/run/sweepSummary.ts), flattened with "." (see
+ * flattenSummary): `iterations`, `finalEnergy`, `centroidPath`, then for each adjacency method
+ * the config produces ("labels" unless sheet.adjacency is "exact"; "exact" unless it is
+ * "labels", and on closed surfaces only on a sphere): `<method>.percentScutoids`,
+ * `.meanTransitions`, `.meanNeighbours3D`, `.validCells`, `.excludedCells`, and per surface of
+ * the stack (seeded, "layer k" without its space, other) `<method>.<surface>.meanSides` and
+ * `<method>.<surface>.polygons.<3..10+>`. A CLI test checks a real run's summary against this.
+ */
+import { SIDE_CLASSES } from '../analysis';
+import { isClosedConfig, type AnyConfig } from '../config';
+
+export const TOP_COLUMNS = ['iterations', 'finalEnergy', 'centroidPath'] as const;
+/** Summary columns holding text; every other summary column holds a number ("NaN" included). */
+export const TEXT_COLUMNS: ReadonlySet<string> = new Set(['centroidPath']);
+export const METHOD_METRICS = ['percentScutoids', 'meanTransitions', 'meanNeighbours3D', 'validCells', 'excludedCells'] as const;
+export const METHODS = ['labels', 'exact'] as const;
+
+/** Adjacency methods whose statistics a run of `config` reports. */
+export function runMethods(config: AnyConfig): (typeof METHODS)[number][] {
+  const { adjacency } = config.sheet;
+  const methods: (typeof METHODS)[number][] = [];
+  if (adjacency !== 'exact') methods.push('labels');
+  if (adjacency !== 'labels' && (!isClosedConfig(config) || config.surface.kind === 'sphere')) methods.push('exact');
+  return methods;
+}
+
+/** Surface names of the stack as they appear in column names (no spaces). */
+export function surfaceColumnNames(config: AnyConfig): string[] {
+  const { seeded, layers } = config.sheet;
+  const other = seeded === 'basal' ? 'apical' : 'basal';
+  return [seeded, ...Array.from({ length: layers }, (_, k) => `layer${k + 1}`), other];
+}
+
+function surfaceColumns(method: string, surface: string): string[] {
+  return [`${method}.${surface}.meanSides`, ...SIDE_CLASSES.map((c) => `${method}.${surface}.polygons.${c}`)];
+}
+
+/** The summary columns one run of `config` fills, in order. */
+export function summaryColumns(config: AnyConfig): string[] {
+  const columns: string[] = [...TOP_COLUMNS];
+  for (const method of runMethods(config)) {
+    columns.push(...METHOD_METRICS.map((m) => `${method}.${m}`));
+    for (const surface of surfaceColumnNames(config)) columns.push(...surfaceColumns(method, surface));
+  }
+  return columns;
+}
+
+/**
+ * The union of summaryColumns over `configs`, in a canonical order that does not depend on the
+ * order of the configs' methods: top columns, then per method (labels, exact) its metrics and
+ * its surfaces in order of first appearance.
+ */
+export function sweepColumns(configs: Iterable<AnyConfig>): string[] {
+  const surfaces = new Map<string, string[]>(METHODS.map((m) => [m, []]));
+  const used = new Set<string>();
+  for (const config of configs) {
+    for (const method of runMethods(config)) {
+      used.add(method);
+      const list = surfaces.get(method)!;
+      for (const s of surfaceColumnNames(config)) if (!list.includes(s)) list.push(s);
+    }
+  }
+  const columns: string[] = [...TOP_COLUMNS];
+  for (const method of METHODS) {
+    if (!used.has(method)) continue;
+    columns.push(...METHOD_METRICS.map((m) => `${method}.${m}`));
+    for (const s of surfaces.get(method)!) columns.push(...surfaceColumns(method, s));
+  }
+  return columns;
+}

@@ -1,0 +1,134 @@
+/**
+ * Resuming a sweep from the runs file it already wrote, without trusting it.
+ *
+ * The header must equal the one this spec produces (else ResumeError: the file belongs to
+ * another spec or version). Every record is then checked and rejected, with its line and the
+ * reason, when:
+ * - it has another number of fields than the header (hand-edited, or a cut-off write),
+ * - its key is not a run of this spec, or repeats a key already accepted (kept: the first),
+ * - its realization, seed or varied values differ from that run's,
+ * - a column the run fills is empty or not a number (text columns excepted), or a column it
+ *   does not fill is not empty.
+ * An incomplete last record (an interrupted write) is rejected too. Rejected runs are simply
+ * not done: the sweep recomputes them. `rewrite` says the file must be rewritten with the
+ * accepted rows only (`cleanText`), so that it never holds two rows for a key.
+ */
+import { formatCsvRow, parseCsv } from './csv';
+import type { Config, SweepRun } from './expand';
+import { valueText } from './expand';
+
+export class ResumeError extends Error {
+  override name = 'ResumeError';
+}
+
+export interface RejectedRow {
+  /** 1-based line of the record in the file. */
+  line: number;
+  reason: string;
+  /** The record's raw text (to keep it aside). */
+  text: string;
+}
+
+export interface ResumePlan {
+  /** Accepted rows, one per key, in file order. */
+  rows: Record<string, string>[];
+  rejected: RejectedRow[];
+  /** True when the file must be replaced by `cleanText`. */
+  rewrite: boolean;
+  /** Header + accepted rows. */
+  cleanText: string;
+}
+
+export interface ResumeSpec<C extends Config> {
+  header: readonly string[];
+  fields: readonly string[];
+  runs: readonly SweepRun<C>[];
+  /** Summary columns a run fills (the others must be empty). */
+  filledColumns: (run: SweepRun<C>) => ReadonlySet<string>;
+  textColumns: ReadonlySet<string>;
+}
+
+const isNumberText = (cell: string): boolean => cell === 'NaN' || (cell.trim() === cell && cell !== '' && !Number.isNaN(Number(cell)));
+
+export function planResume<C extends Config>(text: string, spec: ResumeSpec<C>, fileName = 'runs.csv'): ResumePlan {
+  const headerText = formatCsvRow(spec.header);
+  if (text === '') return { rows: [], rejected: [], rewrite: true, cleanText: headerText };
+  const parsed = parseCsv(text);
+  const [header, ...records] = parsed.records;
+  if (!header || header.length !== spec.header.length || header.some((h, k) => h !== spec.header[k])) {
+    const k = header ? spec.header.findIndex((h, i) => header[i] !== h) : 0;
+    const detail = !header
+      ? 'it has no complete header line'
+      : k === -1
+        ? `it has ${header.length} columns, this spec writes ${spec.header.length}`
+        : `column ${k + 1} is ${JSON.stringify(header[k] ?? '')}, this spec writes ${JSON.stringify(spec.header[k])}`;
+    throw new ResumeError(
+      `${fileName}: written for another spec or version (${detail}); give a new --out directory, or move ${fileName} away to start over`,
+    );
+  }
+  const byKey = new Map(spec.runs.map((r) => [r.key, r]));
+  const firstLine = new Map<string, number>();
+  const rows: Record<string, string>[] = [];
+  const rejected: RejectedRow[] = [];
+  records.forEach((record, k) => {
+    const index = k + 1;
+    const line = parsed.lines[index];
+    const raw = text.slice(parsed.offsets[index], parsed.offsets[index + 1] ?? parsed.validLength);
+    const reason = checkRecord(record, spec, byKey, firstLine);
+    if (reason) {
+      rejected.push({ line, reason, text: raw });
+      return;
+    }
+    const row: Record<string, string> = {};
+    spec.header.forEach((h, i) => (row[h] = record[i]));
+    firstLine.set(row.key, line);
+    rows.push(row);
+  });
+  if (parsed.truncated) {
+    const line = countLines(text.slice(0, parsed.validLength)) + 1;
+    rejected.push({ line, reason: 'incomplete last line (an interrupted write)', text: text.slice(parsed.validLength) });
+  }
+  const cleanText = headerText + rows.map((r) => formatCsvRow(spec.header.map((h) => r[h]))).join('');
+  return { rows, rejected, rewrite: rejected.length > 0, cleanText };
+}
+
+function countLines(text: string): number {
+  let n = 0;
+  for (const ch of text) if (ch === '\n') n++;
+  return n;
+}
+
+function checkRecord<C extends Config>(
+  record: string[],
+  spec: ResumeSpec<C>,
+  byKey: Map<string, SweepRun<C>>,
+  firstLine: Map<string, number>,
+): string | undefined {
+  if (record.length !== spec.header.length) return `${record.length} fields where the header has ${spec.header.length}`;
+  const cell = (name: string) => record[spec.header.indexOf(name)];
+  const key = cell('key');
+  const run = byKey.get(key);
+  if (!run) return `key ${JSON.stringify(key.length > 80 ? `${key.slice(0, 77)}...` : key)} is not a run of this spec`;
+  const seen = firstLine.get(key);
+  if (seen !== undefined) return `duplicate of line ${seen} (key ${key})`;
+  if (cell('realization') !== String(run.realization)) return `realization ${JSON.stringify(cell('realization'))} but run ${key} is realization ${run.realization}`;
+  if (cell('seed') !== String(run.seed)) return `seed ${JSON.stringify(cell('seed'))} but run ${key} has seed ${run.seed}`;
+  for (const f of spec.fields) {
+    if (cell(f) !== valueText(run.point[f])) return `${f} is ${JSON.stringify(cell(f))} but run ${key} has ${valueText(run.point[f])}`;
+  }
+  const filled = spec.filledColumns(run);
+  const fixed = new Set(['key', 'realization', 'seed', ...spec.fields]);
+  for (let i = 0; i < spec.header.length; i++) {
+    const name = spec.header[i];
+    if (fixed.has(name)) continue;
+    const value = record[i];
+    if (!filled.has(name)) {
+      if (value !== '') return `${name} should be empty for this run (got ${JSON.stringify(value)})`;
+    } else if (value === '') {
+      return `${name} is empty`;
+    } else if (!spec.textColumns.has(name) && !isNumberText(value)) {
+      return `${name}: ${JSON.stringify(value.length > 40 ? `${value.slice(0, 37)}...` : value)} is not a number`;
+    }
+  }
+  return undefined;
+}

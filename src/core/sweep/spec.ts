@@ -1,0 +1,198 @@
+/**
+ * The sweep spec: its JSON Schema and its validation, done before any run.
+ *
+ * { "base": config, "vary": { "dotted.path": [values] }, "realizations": n, "seed": s,
+ *   "seedMode": "per-realization" | "per-run" }
+ *
+ * - The shape (types, ranges, enums, no unknown field) is checked by ajv against sweepSpecSchema.
+ * - No key anywhere may be `__proto__`, `constructor` or `prototype` (they reach prototypes).
+ * - `base` is validated against the config schema (validateAnyConfig).
+ * - Every varied path must name a field of the config schema (through either branch of a union:
+ *   `surface.radius` exists for tubes and spheres), and every value is validated at its path
+ *   by validating the base with that value set.
+ * - The number of runs (product of the value counts x realizations) is computed and capped
+ *   before anything is expanded.
+ * Errors are SweepSpecErrors whose message is one line starting with the field
+ * (`realizations`, `vary["sheet.layers"][1]`, `base.cells`).
+ */
+import Ajv from 'ajv';
+import { configSchema, ConfigError, validateAnyConfig, type AnyConfig } from '../config';
+import { countRuns, FORBIDDEN_KEYS, setPath, type SweepSpec } from './expand';
+
+export class SweepSpecError extends Error {
+  readonly field: string;
+  constructor(field: string, message: string) {
+    super(message);
+    this.name = 'SweepSpecError';
+    this.field = field;
+  }
+}
+
+export const DEFAULT_MAX_RUNS = 100_000;
+export const MAX_REALIZATIONS = 1_000_000;
+export const MAX_VALUES_PER_FIELD = 100_000;
+export const SEED_MODES = ['per-realization', 'per-run'] as const;
+
+export const sweepSpecSchema = {
+  $schema: 'http://json-schema.org/draft-07/schema#',
+  title: 'tissue-sheet sweep spec',
+  type: 'object',
+  additionalProperties: false,
+  required: ['base'],
+  properties: {
+    base: { type: 'object', description: 'The configuration every run starts from (docs/config.md).' },
+    vary: {
+      type: 'object',
+      description: 'Dotted config paths, each with a non-empty array of values; the runs are their Cartesian product.',
+      additionalProperties: { type: 'array', minItems: 1, maxItems: MAX_VALUES_PER_FIELD },
+    },
+    realizations: {
+      type: 'integer',
+      minimum: 1,
+      maximum: MAX_REALIZATIONS,
+      default: 1,
+      description: `Runs per grid point with different seeds, integer 1..${MAX_REALIZATIONS}. Default 1.`,
+    },
+    seed: { type: 'integer', minimum: 0, maximum: 4294967295, description: 'Base seed, integer 0..4294967295. Default: base.seed.' },
+    seedMode: {
+      type: 'string',
+      enum: SEED_MODES,
+      default: 'per-realization',
+      description: '"per-realization": every grid point of a realization shares its sites; "per-run": every run its own. Default "per-realization".',
+    },
+  },
+} as const;
+
+const ajv = new Ajv({ useDefaults: true, allErrors: false, strict: true });
+const validateShape = ajv.compile(sweepSpecSchema);
+
+export type ValidSweepSpec = SweepSpec<AnyConfig & Record<string, unknown>> & { realizations: number; seedMode: 'per-run' | 'per-realization' };
+
+export interface SweepSpecOptions {
+  /** Largest number of runs accepted (default DEFAULT_MAX_RUNS). */
+  maxRuns?: number;
+  /** How to raise the run cap, appended to its error (e.g. "pass --max-runs N"). */
+  raiseHint?: string;
+}
+
+export function validateSweepSpec(input: unknown, options: SweepSpecOptions = {}): ValidSweepSpec {
+  if (typeof input !== 'object' || input === null || Array.isArray(input)) {
+    throw new SweepSpecError('', 'sweep spec: must be a JSON object with "base" (a config) and usually "vary" and "realizations"');
+  }
+  const forbidden = findForbiddenKey(input, []);
+  if (forbidden) {
+    throw new SweepSpecError(forbidden, `${forbidden}: "${forbidden.split(/[.[\]"]+/).filter(Boolean).pop()}" is not allowed as a key (it would reach an object prototype); remove it`);
+  }
+  const spec = structuredClone(input) as Record<string, unknown>;
+  if (!validateShape(spec)) throw shapeError(validateShape.errors?.[0]);
+  const vary = (spec.vary ?? {}) as Record<string, unknown[]>;
+
+  let base: AnyConfig;
+  try {
+    base = validateAnyConfig(spec.base);
+  } catch (error) {
+    if (error instanceof ConfigError) throw new SweepSpecError(`base.${error.field}`, `base.${error.message}`);
+    throw error;
+  }
+  for (const path of Object.keys(vary)) checkVariedPath(path);
+
+  const maxRuns = options.maxRuns ?? DEFAULT_MAX_RUNS;
+  const runs = countRuns(spec as unknown as SweepSpec);
+  if (runs > maxRuns) {
+    const sizes = Object.entries(vary).map(([p, v]) => `${v.length} ${p}`);
+    throw new SweepSpecError(
+      'vary',
+      `vary: this spec expands to ${runs} runs (${[...sizes, `${spec.realizations} realizations`].join(' x ')}), above the limit of ${maxRuns}; use fewer values or realizations${options.raiseHint ? `, or ${options.raiseHint}` : ''}`,
+    );
+  }
+
+  // Every value alone at its path: the error names the value, not a later grid point.
+  for (const [path, values] of Object.entries(vary)) {
+    values.forEach((value, index) => {
+      const config = structuredClone(spec.base) as Record<string, unknown>;
+      setPath(config, path, structuredClone(value));
+      try {
+        validateAnyConfig(config);
+      } catch (error) {
+        if (!(error instanceof ConfigError)) throw error;
+        const field = `vary["${path}"][${index}]`;
+        const detail = error.field === path ? error.message.slice(path.length + 2) : error.message;
+        throw new SweepSpecError(field, `${field}: ${detail}`);
+      }
+    });
+  }
+  void base;
+  return spec as unknown as ValidSweepSpec;
+}
+
+/** The first key named __proto__, constructor or prototype, as a path; undefined when none. */
+export function findForbiddenKey(value: unknown, path: string[]): string | undefined {
+  if (value === null || typeof value !== 'object') return undefined;
+  for (const key of Object.keys(value)) {
+    const here = Array.isArray(value) ? `${path.join('.')}[${key}]` : [...path, key].join('.');
+    if (!Array.isArray(value) && FORBIDDEN_KEYS.has(key)) return here;
+    // vary's keys are dotted paths: check their parts too.
+    if (path.length === 1 && path[0] === 'vary' && key.split('.').some((p) => FORBIDDEN_KEYS.has(p))) return `vary["${key}"]`;
+    const found = findForbiddenKey((value as Record<string, unknown>)[key], Array.isArray(value) ? [`${path.join('.')}[${key}]`] : [...path, key]);
+    if (found) return found;
+  }
+  return undefined;
+}
+
+type SchemaNode = { properties?: Record<string, SchemaNode>; oneOf?: readonly SchemaNode[] };
+
+/** Refuses a varied path that names no field of the config schema, listing the fields there. */
+export function checkVariedPath(path: string): void {
+  const field = `vary["${path}"]`;
+  if (path === 'seed') {
+    throw new SweepSpecError(field, `${field}: the seed is derived per run from "seed" and "seedMode"; vary "realizations" instead`);
+  }
+  let nodes: SchemaNode[] = [configSchema as unknown as SchemaNode];
+  const parts = path.split('.');
+  for (let k = 0; k < parts.length; k++) {
+    const part = parts[k];
+    const branches = nodes.flatMap((n) => [n, ...(n.oneOf ?? [])]);
+    const next = branches.map((n) => n.properties?.[part]).filter((n): n is SchemaNode => n !== undefined);
+    if (part === '' || next.length === 0) {
+      const here = parts.slice(0, k).join('.');
+      const allowed = [...new Set(branches.flatMap((n) => Object.keys(n.properties ?? {})))];
+      const where = here === '' ? 'the config' : `"${here}"`;
+      throw new SweepSpecError(
+        field,
+        allowed.length > 0
+          ? `${field}: "${part}" is not a field of ${where}; fields there: ${allowed.join(', ')}`
+          : `${field}: "${here}" has no fields inside; vary "${here}" itself`,
+      );
+    }
+    nodes = next;
+  }
+}
+
+function shapeError(error: { instancePath: string; keyword: string; params: Record<string, unknown>; message?: string } | undefined): SweepSpecError {
+  if (!error) return new SweepSpecError('', 'sweep spec: invalid');
+  const parts = error.instancePath.split('/').slice(1).map((p) => p.replace(/~1/g, '/').replace(/~0/g, '~'));
+  const field = parts.length === 0 ? '' : parts[0] === 'vary' && parts.length > 1 ? `vary["${parts[1]}"]` : parts.join('.');
+  const where = field === '' ? 'sweep spec' : field;
+  switch (error.keyword) {
+    case 'additionalProperties': {
+      const extra = String(error.params.additionalProperty);
+      return new SweepSpecError(extra, `${extra}: unknown field of a sweep spec; allowed: ${Object.keys(sweepSpecSchema.properties).join(', ')}`);
+    }
+    case 'required':
+      return new SweepSpecError(String(error.params.missingProperty), `${String(error.params.missingProperty)}: required; add the base config object`);
+    case 'enum':
+      return new SweepSpecError(field, `${where}: must be one of ${SEED_MODES.map((m) => JSON.stringify(m)).join(', ')}`);
+    case 'type':
+      if (parts[0] === 'vary' && parts.length > 1) return new SweepSpecError(field, `${where}: must be an array of values`);
+      return new SweepSpecError(field, `${where}: must be ${error.params.type === 'integer' ? 'an integer' : `of type ${String(error.params.type)}`}`);
+    case 'minItems':
+      return new SweepSpecError(field, `${where}: must list at least one value`);
+    case 'maxItems':
+      return new SweepSpecError(field, `${where}: lists more than ${MAX_VALUES_PER_FIELD} values; use fewer`);
+    case 'minimum':
+    case 'maximum':
+      return new SweepSpecError(field, `${where}: must be an integer from ${field === 'seed' ? '0 to 4294967295' : `1 to ${MAX_REALIZATIONS}`}`);
+    default:
+      return new SweepSpecError(field, `${where}: ${error.message ?? 'invalid'}`);
+  }
+}
