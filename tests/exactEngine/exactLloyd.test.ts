@@ -168,7 +168,7 @@ describe('density integration', () => {
   });
 
   it('a gaussian by quadrature agrees with a fine per-texel midpoint sum (1e-3)', () => {
-    const density = { kind: 'gaussian', center: [40, 200], sigma: 18, peak: 5 } as const;
+    const density: ExactDensity & { kind: 'gaussian' } = { kind: 'gaussian', center: [40, 200], sigma: 18, peak: 5 };
     const exact = sumsFor(density);
     // Reference: the field sampled at the centres of an 8x finer grid, integrated per texel (midpoint rule).
     const fine: Grid = { ...tube, width: tube.width * 8, height: tube.height * 8, texelX: tube.texelX / 8, texelY: tube.texelY / 8 };

@@ -1,0 +1,261 @@
+/**
+ * The "Flintstones law" of Gómez-Gálvez et al. 2022 (Cell Systems 13:631–643): the mean number
+ * of 3D neighbours n3D of a cell in a tube grows with the surface ratio s and saturates.
+ *
+ * Functional form (as fitted in the lab's released code, Epithelia3D,
+ * InSilicoModels/TubularModel/src/lib/fittingLogFunc.m):
+ *
+ *   n3D(s) = Nmax · (b + e^{s/c}) / (d + e^{s/c}),
+ *
+ * with the anchor n3D(1) = n1 (6 in the lab's fit: a cell of a planar tessellation has 6
+ * neighbours on average) fixing b = (n1·d − e^{1/c}(Nmax − n1)) / Nmax. Free parameters: Nmax
+ * (the saturation value), c (> 0, the ratio scale) and d (< 0 with d + e^{1/c} > 0, so the
+ * curve is finite for s >= 1), as in that script's constraints. With `anchor: null`, b is a
+ * fourth free parameter.
+ *
+ * Fit: nonlinear least squares (Levenberg–Marquardt from a few starting points, numerical
+ * Jacobian by central differences), weights 1/σ² when σ is given. Standard errors from the
+ * covariance s²·(JᵀWJ)⁻¹ with s² = χ²/(m − p) (the convention of scipy's curve_fit and MATLAB's
+ * fit: residual scatter sets the scale).
+ */
+
+export interface FlintstonesPoint {
+  /** Surface ratio. */
+  readonly s: number;
+  /** Mean number of 3D neighbours at s (one realization, or a mean over several). */
+  readonly n: number;
+  /** Standard deviation of n (optional; weights the fit by 1/σ²). */
+  readonly sigma?: number;
+}
+
+export interface FlintstonesParameters {
+  readonly nMax: number;
+  readonly c: number;
+  readonly d: number;
+  readonly b: number;
+}
+
+export interface FlintstonesFit {
+  readonly parameters: FlintstonesParameters;
+  /** Standard errors of nMax, c, d (and b when it was free; NaN when anchored). */
+  readonly standardErrors: FlintstonesParameters;
+  /** Covariance of the free parameters, row-major, in the order nMax, c, d[, b]. */
+  readonly covariance: number[];
+  readonly anchor: number | null;
+  /** Sum of weighted squared residuals. */
+  readonly chiSquared: number;
+  readonly degreesOfFreedom: number;
+  readonly rSquared: number;
+  readonly iterations: number;
+  readonly converged: boolean;
+}
+
+export interface FlintstonesOptions {
+  /** n3D(1); null makes b a free parameter. Default 6 (the lab's fit). */
+  readonly anchor?: number | null;
+  readonly maxIterations?: number;
+}
+
+/** b from the anchor n3D(1) = n1. */
+export function anchoredB(nMax: number, c: number, d: number, n1: number): number {
+  return (n1 * d - Math.exp(1 / c) * (nMax - n1)) / nMax;
+}
+
+/** n3D(s) for the given parameters. */
+export function flintstonesLaw(s: number, p: FlintstonesParameters): number {
+  const e = Math.exp(s / p.c);
+  return (p.nMax * (p.b + e)) / (p.d + e);
+}
+
+function parametersOf(theta: number[], anchor: number | null): FlintstonesParameters {
+  const [nMax, c, d] = theta;
+  const b = anchor === null ? theta[3] : anchoredB(nMax, c, d, anchor);
+  return { nMax, c, d, b };
+}
+
+/** The constraints of the lab's fit (fittingLogFunc.m): c > 0, d < 0, d > b, d + e^{1/c} > 0. */
+function admissible(theta: number[], anchor: number | null, sMin: number): boolean {
+  const p = parametersOf(theta, anchor);
+  return p.c > 0.02 && p.d < 0 && p.d > p.b && p.d + Math.exp(sMin / p.c) > 0 && p.nMax > 0 && Number.isFinite(p.b);
+}
+
+function residuals(theta: number[], points: readonly FlintstonesPoint[], anchor: number | null, out: number[]): number {
+  const p = parametersOf(theta, anchor);
+  let chi = 0;
+  for (let k = 0; k < points.length; k++) {
+    const w = points[k].sigma ? 1 / points[k].sigma! : 1;
+    const r = (points[k].n - flintstonesLaw(points[k].s, p)) * w;
+    out[k] = r;
+    chi += r * r;
+  }
+  return chi;
+}
+
+function jacobian(theta: number[], points: readonly FlintstonesPoint[], anchor: number | null): number[][] {
+  const m = points.length;
+  const J: number[][] = Array.from({ length: m }, () => new Array(theta.length).fill(0));
+  const plus: number[] = new Array(m);
+  const minus: number[] = new Array(m);
+  for (let j = 0; j < theta.length; j++) {
+    const h = 1e-6 * Math.max(1, Math.abs(theta[j]));
+    const tp = theta.slice();
+    const tm = theta.slice();
+    tp[j] += h;
+    tm[j] -= h;
+    residuals(tp, points, anchor, plus);
+    residuals(tm, points, anchor, minus);
+    // Residuals are (data - model): the model's derivative is minus their derivative.
+    for (let k = 0; k < m; k++) J[k][j] = -(plus[k] - minus[k]) / (2 * h);
+  }
+  return J;
+}
+
+/** Solves A x = y for a small symmetric positive definite A (Cholesky); null when singular. */
+function solveSpd(A: number[][], y: number[]): number[] | null {
+  const n = y.length;
+  const L = Array.from({ length: n }, () => new Array(n).fill(0));
+  for (let i = 0; i < n; i++) {
+    for (let j = 0; j <= i; j++) {
+      let sum = A[i][j];
+      for (let k = 0; k < j; k++) sum -= L[i][k] * L[j][k];
+      if (i === j) {
+        if (!(sum > 0)) return null;
+        L[i][i] = Math.sqrt(sum);
+      } else L[i][j] = sum / L[j][j];
+    }
+  }
+  const z = new Array(n).fill(0);
+  for (let i = 0; i < n; i++) {
+    let sum = y[i];
+    for (let k = 0; k < i; k++) sum -= L[i][k] * z[k];
+    z[i] = sum / L[i][i];
+  }
+  const x = new Array(n).fill(0);
+  for (let i = n - 1; i >= 0; i--) {
+    let sum = z[i];
+    for (let k = i + 1; k < n; k++) sum -= L[k][i] * x[k];
+    x[i] = sum / L[i][i];
+  }
+  return x;
+}
+
+function normalEquations(J: number[][], r: number[]): { A: number[][]; g: number[] } {
+  const p = J[0].length;
+  const A = Array.from({ length: p }, () => new Array(p).fill(0));
+  const g = new Array(p).fill(0);
+  for (let k = 0; k < J.length; k++) {
+    for (let i = 0; i < p; i++) {
+      g[i] += J[k][i] * r[k];
+      for (let j = 0; j < p; j++) A[i][j] += J[k][i] * J[k][j];
+    }
+  }
+  return { A, g };
+}
+
+function levenbergMarquardt(start: number[], points: readonly FlintstonesPoint[], anchor: number | null, sMin: number, maxIterations: number) {
+  let theta = start.slice();
+  const r: number[] = new Array(points.length);
+  const trial: number[] = new Array(points.length);
+  let chi = residuals(theta, points, anchor, r);
+  let lambda = 1e-3;
+  let iterations = 0;
+  let converged = false;
+  for (; iterations < maxIterations; iterations++) {
+    const J = jacobian(theta, points, anchor);
+    const { A, g } = normalEquations(J, r);
+    let improved = false;
+    while (lambda < 1e12) {
+      const damped = A.map((row, i) => row.map((v, j) => (i === j ? v * (1 + lambda) + 1e-15 : v)));
+      const step = solveSpd(damped, g);
+      if (step) {
+        const next = theta.map((t, i) => t + step[i]);
+        if (admissible(next, anchor, sMin)) {
+          const chiNext = residuals(next, points, anchor, trial);
+          if (chiNext < chi) {
+            const relative = (chi - chiNext) / Math.max(chi, 1e-300);
+            theta = next;
+            chi = chiNext;
+            for (let k = 0; k < r.length; k++) r[k] = trial[k];
+            lambda = Math.max(lambda / 10, 1e-12);
+            improved = true;
+            if (relative < 1e-12) converged = true;
+            break;
+          }
+        }
+      }
+      lambda *= 10;
+    }
+    if (!improved) {
+      converged = true;
+      break;
+    }
+    if (converged) break;
+  }
+  return { theta, chi, iterations, converged };
+}
+
+/** Fits the law to points (s, n3D) of one Voronoi k; see the module comment. */
+export function fitFlintstones(points: readonly FlintstonesPoint[], options: FlintstonesOptions = {}): FlintstonesFit {
+  const anchor = options.anchor === undefined ? 6 : options.anchor;
+  const p = anchor === null ? 4 : 3;
+  if (points.length <= p) throw new Error(`fitFlintstones: ${points.length} points cannot fit ${p} parameters; give more ratios`);
+  for (const q of points) {
+    if (!(Number.isFinite(q.s) && q.s > 0 && Number.isFinite(q.n))) throw new Error(`fitFlintstones: point (${q.s}, ${q.n}) is not a finite ratio > 0 and n3D`);
+    if (q.sigma !== undefined && !(q.sigma > 0)) throw new Error(`fitFlintstones: sigma ${q.sigma} at s = ${q.s} must be > 0`);
+  }
+  const sMin = Math.min(...points.map((q) => q.s));
+  const sMax = Math.max(...points.map((q) => q.s));
+  const nTop = Math.max(...points.map((q) => q.n));
+  const n1 = anchor ?? Math.min(...points.map((q) => q.n));
+  const maxIterations = options.maxIterations ?? 500;
+
+  let best: ReturnType<typeof levenbergMarquardt> | null = null;
+  for (const cScale of [0.1, 0.25, 0.5, 1]) {
+    for (const dFraction of [0.2, 0.6, 0.95]) {
+      const c = cScale * sMax;
+      const d = -dFraction * Math.exp(sMin / c);
+      const nMax = nTop + 0.3;
+      const start = anchor === null ? [nMax, c, d, anchoredB(nMax, c, d, n1)] : [nMax, c, d];
+      if (!admissible(start, anchor, sMin)) continue;
+      const fit = levenbergMarquardt(start, points, anchor, sMin, maxIterations);
+      if (!best || fit.chi < best.chi) best = fit;
+    }
+  }
+  if (!best) throw new Error('fitFlintstones: no admissible starting point; check that n3D grows with s');
+
+  const J = jacobian(best.theta, points, anchor);
+  const { A } = normalEquations(J, new Array(points.length).fill(0));
+  const dof = points.length - p;
+  const scale = best.chi / dof;
+  const covariance: number[] = [];
+  const columns: number[][] = [];
+  for (let j = 0; j < p; j++) {
+    const unit = new Array(p).fill(0);
+    unit[j] = 1;
+    columns.push(solveSpd(A, unit)?.map((v) => v * scale) ?? new Array(p).fill(NaN));
+  }
+  for (let i = 0; i < p; i++) for (let j = 0; j < p; j++) covariance.push(columns[j][i]);
+  const se = (j: number) => Math.sqrt(columns[j][j]);
+
+  const parameters = parametersOf(best.theta, anchor);
+  let mean = 0;
+  for (const q of points) mean += q.n;
+  mean /= points.length;
+  let total = 0;
+  let residual = 0;
+  for (const q of points) {
+    total += (q.n - mean) ** 2;
+    residual += (q.n - flintstonesLaw(q.s, parameters)) ** 2;
+  }
+  return {
+    parameters,
+    standardErrors: { nMax: se(0), c: se(1), d: se(2), b: anchor === null ? se(3) : NaN },
+    covariance,
+    anchor,
+    chiSquared: best.chi,
+    degreesOfFreedom: dof,
+    rSquared: total > 0 ? 1 - residual / total : NaN,
+    iterations: best.iterations,
+    converged: best.converged,
+  };
+}

@@ -1,0 +1,59 @@
+import { describe, expect, it } from 'vitest';
+import { Random } from '../../src/core/random';
+import { anchoredB, fitFlintstones, flintstonesLaw, type FlintstonesPoint } from '../../src/core/analysis/flintstones';
+
+const RATIOS = [1, 1.25, 1.5, 1.75, 2, 2.5, 3, 4, 5, 6, 8, 10];
+
+function gaussian(random: Random): number {
+  const u = Math.max(random.next(), 1e-12);
+  return Math.sqrt(-2 * Math.log(u)) * Math.cos(2 * Math.PI * random.next());
+}
+
+function synthetic(truth: { nMax: number; c: number; d: number }, noise: number, seed: number, repeats = 3): FlintstonesPoint[] {
+  const p = { ...truth, b: anchoredB(truth.nMax, truth.c, truth.d, 6) };
+  const random = new Random(seed);
+  const points: FlintstonesPoint[] = [];
+  for (const s of RATIOS) for (let r = 0; r < repeats; r++) points.push({ s, n: flintstonesLaw(s, p) + noise * gaussian(random) });
+  return points;
+}
+
+describe('Flintstones law fit', () => {
+  const truth = { nMax: 8, c: 2.5, d: -1.2 };
+
+  it('the anchored law passes through n3D(1) = 6 and saturates at nMax', () => {
+    const p = { ...truth, b: anchoredB(truth.nMax, truth.c, truth.d, 6) };
+    expect(flintstonesLaw(1, p)).toBeCloseTo(6, 12);
+    expect(flintstonesLaw(200, p)).toBeCloseTo(8, 6);
+  });
+
+  it('recovers known parameters within 3 standard errors', () => {
+    const fit = fitFlintstones(synthetic(truth, 0.05, 7));
+    expect(fit.converged).toBe(true);
+    for (const key of ['nMax', 'c', 'd'] as const) {
+      expect(fit.standardErrors[key]).toBeGreaterThan(0);
+      expect(Math.abs(fit.parameters[key] - truth[key])).toBeLessThan(3 * fit.standardErrors[key]);
+    }
+    expect(fit.rSquared).toBeGreaterThan(0.95);
+  });
+
+  it('standard errors are calibrated: about 68 % of 120 fits land within 1 SE of the truth', () => {
+    const within = { nMax: 0, c: 0, d: 0 };
+    const trials = 120;
+    for (let seed = 1; seed <= trials; seed++) {
+      const fit = fitFlintstones(synthetic(truth, 0.05, 1000 + seed));
+      for (const key of ['nMax', 'c', 'd'] as const) if (Math.abs(fit.parameters[key] - truth[key]) <= fit.standardErrors[key]) within[key]++;
+    }
+    for (const key of ['nMax', 'c', 'd'] as const) {
+      expect(within[key] / trials).toBeGreaterThan(0.55);
+      expect(within[key] / trials).toBeLessThan(0.82);
+    }
+  });
+
+  it('exact data give a near-zero residual; bad input names the problem', () => {
+    const fit = fitFlintstones(synthetic(truth, 0, 1, 1));
+    expect(fit.parameters.nMax).toBeCloseTo(8, 4);
+    expect(fit.parameters.c).toBeCloseTo(2.5, 3);
+    expect(() => fitFlintstones([{ s: 1, n: 6 }, { s: 2, n: 6.5 }])).toThrow(/points/);
+    expect(() => fitFlintstones([...synthetic(truth, 0, 1, 1), { s: Number.NaN, n: 6 }])).toThrow(/finite/);
+  });
+});
