@@ -1,0 +1,183 @@
+/**
+ * The surface of the stack at signed offset t (µm, along the outward normal) and the sites on
+ * it, for the restricted Voronoi diagram (restrictedVoronoi.ts).
+ *
+ * `offset: "normal"` (today's rule, the default): the parallel surface.
+ * - mesh: every vertex moved t along its area-weighted vertex normal (the normal the cube-map
+ *   geometry image interpolates; src/core/mesh/types.ts vertexNormals), topology shared, so
+ *   `triangleNeighbours` carries over; sites moved t along their normals (as offsetSites in
+ *   src/run/closedSheet.ts).
+ * - sphere: the concentric sphere R + t, sites moved radially (analytic).
+ * - ellipsoid: the parallel surface of an ellipsoid is not an ellipsoid; it is triangulated:
+ *   an icosphere mapped onto the ellipsoid, every vertex moved t along the exact normal, fine
+ *    enough that the chord deviation h² / (6 ρ) (h the longest edge, ρ = smallest radius of
+ *   curvature of the parallel surface = reach + t) stays below `maxDeviation`. Sites:
+ *   s + t n(s), on the exact parallel surface.
+ *
+ * `offset: "axes"` (the lab's spheroid model; sphere and ellipsoid only): the ellipsoid with
+ * semi-axes a + t, b + t, c + t (analytic), every site moved to its closest point on it.
+ */
+import { closestPointOnEllipsoid } from '../cubemap/sample';
+import { icosphere } from '../mesh/generate';
+import type { EllipsoidSurface, MeshSurface, RestrictedSurface } from './restrictedSurface';
+import { triangleNeighbours } from './restrictedSurface';
+
+export type OffsetMode = 'normal' | 'axes';
+
+export interface OffsetOptions {
+  /** Largest distance (µm) a triangulated parallel surface may deviate from the exact one. */
+  maxDeviation?: number;
+  /** Largest triangle count a triangulated parallel surface may have (work bound). */
+  maxTriangles?: number;
+}
+
+export interface OffsetSurface {
+  readonly surface: RestrictedSurface;
+  /** Sites on the offset surface, x, y, z per site (µm). */
+  readonly sites: Float64Array;
+  /** Unit outward normal at each moved site. */
+  readonly normals: Float64Array;
+  /** 'analytic' (sphere, ellipsoid, "axes"), 'mesh' (an offset input mesh) or 'triangulated'. */
+  readonly representation: 'analytic' | 'mesh' | 'triangulated';
+  /** Bound on the triangulation's distance to the exact parallel surface (0 when exact). */
+  readonly deviation: number;
+}
+
+/**
+ * `surface` at t = 0, `sites` and their unit outward `normals` on it (x, y, z per site);
+ * t > 0 is outward. Throws one line naming the field when the offset is impossible.
+ */
+export function offsetClosedSurface(
+  surface: RestrictedSurface,
+  sites: ArrayLike<number>,
+  normals: ArrayLike<number>,
+  count: number,
+  t: number,
+  mode: OffsetMode = 'normal',
+  options: OffsetOptions = {},
+): OffsetSurface {
+  if (!Number.isFinite(t)) throw new Error(`sheet.thickness: offset ${t} µm is not a finite number`);
+  if (mode !== 'normal' && mode !== 'axes') throw new Error(`sheet.offset: "${mode}" is not "normal" or "axes"`);
+  if (surface.kind === 'mesh') {
+    if (mode === 'axes') throw new Error('sheet.offset: "axes" (semi-axes a + t, b + t, c + t) is defined for a sphere or an ellipsoid only; use "normal" for a mesh');
+    return { surface: offsetMesh(surface, t), sites: moveAlong(sites, normals, count, t), normals: Float64Array.from({ length: 3 * count }, (_, k) => normals[k]), representation: 'mesh', deviation: 0 };
+  }
+  const { a, b, c } = surface;
+  const sphere = a === b && b === c;
+  if (mode === 'axes' || sphere) {
+    const A = a + t, B = b + t, C = c + t;
+    if (!(Math.min(A, B, C) > 0)) throw new Error(`sheet.thickness: an inward offset of ${-t} µm reaches the smallest semi-axis (${Math.min(a, b, c)} µm); use less`);
+    const out = new Float64Array(3 * count), nrm = new Float64Array(3 * count);
+    for (let i = 0; i < count; i++) {
+      const p = closestPointOnEllipsoid([sites[3 * i], sites[3 * i + 1], sites[3 * i + 2]], A, B, C);
+      for (let k = 0; k < 3; k++) out[3 * i + k] = p[k];
+      ellipsoidNormal(p[0], p[1], p[2], A, B, C, nrm, 3 * i);
+    }
+    return { surface: { kind: 'ellipsoid', a: A, b: B, c: C }, sites: out, normals: nrm, representation: 'analytic', deviation: 0 };
+  }
+  return parallelEllipsoid(surface, sites, count, t, options);
+}
+
+function ellipsoidNormal(x: number, y: number, z: number, a: number, b: number, c: number, out: Float64Array, o: number): void {
+  const nx = x / (a * a), ny = y / (b * b), nz = z / (c * c);
+  const l = Math.hypot(nx, ny, nz) || 1;
+  out[o] = nx / l;
+  out[o + 1] = ny / l;
+  out[o + 2] = nz / l;
+}
+
+function moveAlong(sites: ArrayLike<number>, normals: ArrayLike<number>, count: number, t: number): Float64Array {
+  if (normals.length < 3 * count) throw new Error(`normals: ${normals.length} values for ${count} sites; give a unit normal (x, y, z) per site`);
+  const out = new Float64Array(3 * count);
+  for (let k = 0; k < 3 * count; k++) out[k] = sites[k] + t * normals[k];
+  return out;
+}
+
+/** Area-weighted vertex normals (sum of the incident faces' cross products), unit length. */
+export function areaWeightedVertexNormals(positions: ArrayLike<number>, indices: ArrayLike<number>): Float64Array {
+  const p = positions, n = new Float64Array(positions.length);
+  for (let f = 0; f < indices.length; f += 3) {
+    const a = 3 * indices[f], b = 3 * indices[f + 1], c = 3 * indices[f + 2];
+    const ux = p[b] - p[a], uy = p[b + 1] - p[a + 1], uz = p[b + 2] - p[a + 2];
+    const vx = p[c] - p[a], vy = p[c + 1] - p[a + 1], vz = p[c + 2] - p[a + 2];
+    const cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
+    for (const v of [a, b, c]) {
+      n[v] += cx;
+      n[v + 1] += cy;
+      n[v + 2] += cz;
+    }
+  }
+  for (let v = 0; v < n.length; v += 3) {
+    const l = Math.hypot(n[v], n[v + 1], n[v + 2]) || 1;
+    n[v] /= l;
+    n[v + 1] /= l;
+    n[v + 2] /= l;
+  }
+  return n;
+}
+
+/** The mesh's vertices moved t along their area-weighted normals (t = 0: the mesh itself). */
+export function offsetMesh(mesh: MeshSurface, t: number): MeshSurface {
+  const neighbours = mesh.triangleNeighbours ?? triangleNeighbours(mesh.indices, mesh.positions.length / 3);
+  if (t === 0) return { ...mesh, triangleNeighbours: neighbours };
+  const normals = areaWeightedVertexNormals(mesh.positions, mesh.indices);
+  const positions = new Float64Array(mesh.positions.length);
+  for (let k = 0; k < positions.length; k++) positions[k] = mesh.positions[k] + t * normals[k];
+  return { kind: 'mesh', positions, indices: mesh.indices, triangleNeighbours: neighbours };
+}
+
+/** Triangulated parallel surface of an ellipsoid at offset t, and the sites moved onto the exact one. */
+function parallelEllipsoid(surface: EllipsoidSurface, sites: ArrayLike<number>, count: number, t: number, options: OffsetOptions): OffsetSurface {
+  const { a, b, c } = surface;
+  const lo = Math.min(a, b, c), hi = Math.max(a, b, c);
+  const rho = (lo * lo) / hi + t; // smallest radius of curvature of the parallel surface
+  if (!(rho > 0)) throw new Error(`sheet.thickness: an inward offset of ${-t} µm reaches the smallest radius of curvature of the ellipsoid (${((lo * lo) / hi).toPrecision(4)} µm), where the offset surface folds over itself; use less or direction "outward"`);
+  const maxDeviation = options.maxDeviation ?? 1e-3 * Math.sqrt((4 * Math.PI * (hi + Math.abs(t)) ** 2) / Math.max(1, count));
+  const maxTriangles = options.maxTriangles ?? 2_000_000;
+  if (!(maxDeviation > 0)) throw new Error(`maxDeviation: ${maxDeviation} µm is not a positive distance`);
+  // Longest edge of an icosphere of frequency f on the unit sphere is about 1.15 / f rad;
+  // start from that estimate, then check the measured edges of the built mesh.
+  const stretch = (hi + Math.max(0, t)) * (hi / lo);
+  let f = Math.max(2, Math.ceil((1.15 * stretch) / Math.sqrt(6 * rho * maxDeviation)));
+  for (;;) {
+    if (20 * f * f > maxTriangles) {
+      throw new Error(`maxDeviation: ${maxDeviation} µm would need about ${20 * f * f} triangles for the parallel surface at ${t} µm (more than maxTriangles ${maxTriangles}); allow a larger deviation`);
+    }
+    const mesh = icosphere(f);
+    const P = new Float64Array(mesh.positions.length);
+    const N = new Float64Array(3);
+    for (let v = 0; v < P.length; v += 3) {
+      // Normalise in float64 (icosphere stores float32).
+      const ux = mesh.positions[v], uy = mesh.positions[v + 1], uz = mesh.positions[v + 2];
+      const l = Math.hypot(ux, uy, uz);
+      const x = (a * ux) / l, y = (b * uy) / l, z = (c * uz) / l;
+      ellipsoidNormal(x, y, z, a, b, c, N, 0);
+      P[v] = x + t * N[0];
+      P[v + 1] = y + t * N[1];
+      P[v + 2] = z + t * N[2];
+    }
+    let h = 0;
+    const T = mesh.indices;
+    for (let k = 0; k < T.length; k += 3) {
+      for (let e = 0; e < 3; e++) {
+        const u = 3 * T[k + e], w = 3 * T[k + ((e + 1) % 3)];
+        h = Math.max(h, Math.hypot(P[w] - P[u], P[w + 1] - P[u + 1], P[w + 2] - P[u + 2]));
+      }
+    }
+    // A triangle with longest edge h has circumradius ≤ h / √3 (acute) or its farthest point
+    // at the longest edge's midpoint (obtuse): its distance to the surface ≤ h² / (6 ρ).
+    const deviation = (h * h) / (6 * rho);
+    if (deviation <= maxDeviation) {
+      const out = new Float64Array(3 * count), nrm = new Float64Array(3 * count);
+      for (let i = 0; i < count; i++) {
+        // Sites are expected on the ellipsoid; their closest point makes that exact.
+        const p = closestPointOnEllipsoid([sites[3 * i], sites[3 * i + 1], sites[3 * i + 2]], a, b, c);
+        ellipsoidNormal(p[0], p[1], p[2], a, b, c, nrm, 3 * i);
+        for (let k = 0; k < 3; k++) out[3 * i + k] = p[k] + t * nrm[3 * i + k];
+      }
+      const triangulated: MeshSurface = { kind: 'mesh', positions: P, indices: T, triangleNeighbours: triangleNeighbours(T, P.length / 3) };
+      return { surface: triangulated, sites: out, normals: nrm, representation: 'triangulated', deviation };
+    }
+    f = Math.ceil(f * Math.sqrt(deviation / maxDeviation) * 1.05);
+  }
+}
