@@ -1,0 +1,64 @@
+// Test page: the pipeline in its Web Worker against the same pipeline on the page, and the
+// page's longest task while the worker computes.
+import { validateAnyConfig, type ConfigInput } from '../../src/core/config';
+import { createCanvasContext, SheetRunner } from '../../src/run';
+import { WorkerSheetRunner } from '../../src/run/worker/workerRunner';
+
+const pageContext = () => createCanvasContext(document.createElement('canvas'));
+
+/** Long tasks (> 50 ms) the page saw while `work` ran, in ms. */
+async function longTasksDuring<T>(work: () => Promise<T>): Promise<{ value: T; longTasks: number[] }> {
+  const longTasks: number[] = [];
+  const observer = new PerformanceObserver((list) => list.getEntries().forEach((entry) => longTasks.push(entry.duration)));
+  observer.observe({ type: 'longtask' });
+  const value = await work();
+  await new Promise((resolve) => setTimeout(resolve, 50));
+  observer.disconnect();
+  return { value, longTasks };
+}
+
+/** The result without timings (which differ run to run). */
+function comparable(result: unknown): string {
+  return JSON.stringify(result, (key, value) => (/Ms$/.test(key) || key === 'timings' ? undefined : value));
+}
+
+async function compareWorkerAndPage(input: ConfigInput) {
+  const config = validateAnyConfig(input);
+  const worker = new WorkerSheetRunner(pageContext);
+  const iterations: number[] = [];
+  const inWorker = await longTasksDuring(() => worker.run(config, { onIteration: (record) => iterations.push(record.iteration) }));
+  const site = worker.site;
+  worker.dispose();
+  const onPage = await new SheetRunner(pageContext()).run(config);
+  return {
+    site,
+    iterations,
+    longTasks: inWorker.longTasks,
+    same: comparable(inWorker.value.result) === comparable(onPage.result),
+    labelsSame: inWorker.value.labelImages.every((image, k) => image.labels.join() === onPage.labelImages[k].labels.join()),
+  };
+}
+
+/** A worker that cannot start: the runner must fall back to the page and say why. */
+async function fallBack(input: ConfigInput) {
+  const runner = new WorkerSheetRunner(pageContext, () => {
+    throw new Error('no workers in this test');
+  });
+  const output = await runner.run(validateAnyConfig(input));
+  return { site: runner.site, cells: output.result.cells.length };
+}
+
+/** Cancelling answers at once with an AbortError, and the worker keeps serving later runs. */
+async function cancelThenRun(input: ConfigInput) {
+  const runner = new WorkerSheetRunner(pageContext);
+  const controller = new AbortController();
+  const first = runner.run(validateAnyConfig({ ...input, lloyd: { maxIterations: 200, tolerance: 0 } }), { signal: controller.signal });
+  setTimeout(() => controller.abort(), 20);
+  const firstError = await first.then(() => 'finished', (error: Error) => error.name);
+  const second = await runner.run(validateAnyConfig(input));
+  runner.dispose();
+  return { firstError, cells: second.result.cells.length };
+}
+
+(window as unknown as Record<string, unknown>).tissueSheetWorkerTest = { compareWorkerAndPage, fallBack, cancelThenRun };
+document.title = 'ready';
