@@ -9,7 +9,7 @@
  */
 import { exactVoronoi } from '../exact';
 import type { Grid } from '../grid';
-import { neighbourSet, toCsr } from './adjacency';
+import { neighbourSet, toCsr, type CsrAdjacency } from './adjacency';
 import { analyzeSurfaces, surfaceFromExact, type ScutoidAnalysis, type SurfaceAdjacency } from './scutoids';
 import { invalidOnAnySurface, labLayerRatios, LAB_PROTOCOL, validityRatios, type LabProtocolSettings } from './protocol';
 
@@ -179,6 +179,10 @@ export function labTubeTable(
   const validityTop = Math.max(...targetLayer, Math.round((settings.validityMaxRatio - 1) / settings.layerStep));
   const invalid = invalidOnAnySurface(surfaces.slice(0, validityTop + 1), count);
   const csr = surfaces.map((s) => toCsr(s.adjacency));
+  // exactSurface and exactVoronoi list neighbours ascending, once, never the cell itself: read
+  // them in place (no copy per cell and layer); anything else goes through neighbourSet.
+  const canonical = csr.map(isCanonical);
+  const setOf = (k: number, i: number) => (canonical[k] ? csr[k].neighbours.subarray(csr[k].offsets[i], csr[k].offsets[i + 1]) : neighbourSet(csr[k], i));
 
   const lastTarget = Math.max(...targetLayer);
   const sums = targetLayer.map(() => ({ scutoids: 0, transitions: 0, n3D: 0, sides: 0 }));
@@ -192,10 +196,10 @@ export function labTubeTable(
     union.length = 0;
     won.length = 0;
     lost.length = 0;
-    let previous = neighbourSet(csr[0], i);
+    let previous = setOf(0, i);
     for (const v of previous) union.push(v);
     for (let k = 0; k <= lastTarget; k++) {
-      const current = k === 0 ? previous : neighbourSet(csr[k], i);
+      const current = k === 0 ? previous : setOf(k, i);
       if (k > 0) {
         addDifference(previous, current, lost);
         addDifference(current, previous, won);
@@ -222,4 +226,15 @@ export function labTubeTable(
     meanNeighbours3D: mean(sums[t].n3D),
     meanSides: mean(sums[t].sides),
   }));
+}
+
+/** Every list strictly ascending and without the cell itself. */
+function isCanonical(adj: CsrAdjacency): boolean {
+  const count = adj.offsets.length - 1;
+  for (let i = 0; i < count; i++) {
+    for (let k = adj.offsets[i]; k < adj.offsets[i + 1]; k++) {
+      if (adj.neighbours[k] === i || (k > adj.offsets[i] && adj.neighbours[k] <= adj.neighbours[k - 1])) return false;
+    }
+  }
+  return true;
 }
