@@ -64,8 +64,58 @@ function measureCurves(
     else runs.push({ c, lo: param[k], hi: param[k], loOut: param[k] - step, hiOut: param[k] + step });
   }
   for (const r of runs) r.hiOut = r.hi + step;
+  // Contacts shorter than the sample spacing: G(u) = |p - s_i| - |p - s_nearest| is 0 on the
+  // contact and > 0 elsewhere; at every local minimum of G between samples (G > 0 there) a
+  // golden-section search looks for a point where G reaches 0 (a short contact).
+  const G = (k: number) => {
+    const { i, j } = curves[owner[k]], n = labels[k];
+    if (n === i || n === j) return 0;
+    const x = pts[3 * k], y = pts[3 * k + 1], z = pts[3 * k + 2];
+    return Math.hypot(x - sites[3 * i], y - sites[3 * i + 1], z - sites[3 * i + 2]) - Math.hypot(x - sites[3 * n], y - sites[3 * n + 1], z - sites[3 * n + 2]);
+  };
+  const seeds: { c: number; lo: number; hi: number }[] = [];
+  for (let k = 1; k + 1 < owner.length; k++) {
+    if (owner[k - 1] !== owner[k] || owner[k + 1] !== owner[k]) continue;
+    if (Math.abs(param[k + 1] - param[k - 1] - 2 * step) > 1e-12) continue;
+    const g = G(k);
+    if (g > 0 && g <= G(k - 1) && g <= G(k + 1)) seeds.push({ c: owner[k], lo: param[k - 1], hi: param[k + 1] });
+  }
+  if (seeds.length > 0) {
+    const ratio = (Math.sqrt(5) - 1) / 2;
+    const lo = seeds.map((q) => q.lo), hi = seeds.map((q) => q.hi);
+    const best = seeds.map(() => -1);
+    for (let round = 0; round < 60; round++) {
+      const q: number[] = [];
+      for (let s = 0; s < seeds.length; s++) {
+        for (const u of [hi[s] - ratio * (hi[s] - lo[s]), lo[s] + ratio * (hi[s] - lo[s])]) {
+          curves[seeds[s].c].at(u, p);
+          q.push(...p);
+        }
+      }
+      const l = label(q, sites, count);
+      for (let s = 0; s < seeds.length; s++) {
+        const { i, j } = curves[seeds[s].c];
+        const u1 = hi[s] - ratio * (hi[s] - lo[s]), u2 = lo[s] + ratio * (hi[s] - lo[s]);
+        const g = (m: number) => {
+          const x = q[3 * m], y = q[3 * m + 1], z = q[3 * m + 2], n = l[m];
+          if (n === i || n === j) return 0;
+          return Math.hypot(x - sites[3 * i], y - sites[3 * i + 1], z - sites[3 * i + 2]) - Math.hypot(x - sites[3 * n], y - sites[3 * n + 1], z - sites[3 * n + 2]);
+        };
+        const g1 = g(2 * s), g2 = g(2 * s + 1);
+        if (best[s] < 0 && g1 === 0) best[s] = u1;
+        else if (best[s] < 0 && g2 === 0) best[s] = u2;
+        if (g1 <= g2) hi[s] = u2;
+        else lo[s] = u1;
+      }
+    }
+    for (let s = 0; s < seeds.length; s++) {
+      if (best[s] < 0) continue;
+      runs.push({ c: seeds[s].c, lo: best[s], hi: best[s], loOut: seeds[s].lo, hiOut: seeds[s].hi });
+    }
+  }
   // Bisection of both ends of every run at once: 40 rounds.
   const loIn = runs.map((r) => r.lo), loOut = runs.map((r) => Math.max(0, r.loOut));
+  // (A short contact found by the search keeps its neighbouring samples as outside points.)
   const hiIn = runs.map((r) => r.hi), hiOut = runs.map((r) => Math.min(1, r.hiOut));
   for (let round = 0; round < 40; round++) {
     const q: number[] = [];
@@ -150,7 +200,7 @@ export function ellipsoidContactsReference(
   b: number,
   c: number,
   cutoff: number,
-  samples = 32768,
+  samples = 4096,
 ): PairLengths {
   const curves: Parameters<typeof measureCurves>[0] = [];
   for (let i = 0; i < count; i++) {
@@ -162,11 +212,20 @@ export function ellipsoidContactsReference(
       const at = planeEllipsoidConic(n, o, a, b, c);
       if (!at) continue;
       // Only the part of the conic near the pair can be a contact (cells are smaller than cutoff).
-      const keep = (p: number[]) => Math.hypot(p[0] - si[0], p[1] - si[1], p[2] - si[2]) <= cutoff;
+      const keep = (p: number[]) => Math.hypot(p[0] - si[0], p[1] - si[1], p[2] - si[2]) <= 0.6 * cutoff;
       curves.push({ i, j, at, keep });
     }
   }
-  return { lengths: measureCurves(curves, sites, count, samples), count };
+  return { lengths: measureInChunks(curves, sites, count, samples), count };
+}
+
+/** measureCurves over chunks of curves (bounded memory), results summed per pair. */
+function measureInChunks(curves: Parameters<typeof measureCurves>[0], sites: ArrayLike<number>, count: number, samples: number, chunk = 64): Map<number, number> {
+  const out = new Map<number, number>();
+  for (let k = 0; k < curves.length; k += chunk) {
+    for (const [key, len] of measureCurves(curves.slice(k, k + chunk), sites, count, samples)) out.set(key, (out.get(key) ?? 0) + len);
+  }
+  return out;
 }
 
 export function meshContactsReference(positions: ArrayLike<number>, indices: ArrayLike<number>, sites: ArrayLike<number>, count: number, grid = 8, samples = 256): PairLengths {
@@ -212,7 +271,7 @@ export function meshContactsReference(positions: ArrayLike<number>, indices: Arr
       }
     }
   }
-  return { lengths: measureCurves(curves, sites, count, samples), count };
+  return { lengths: measureInChunks(curves, sites, count, samples, 2048), count };
 }
 
 /** Neighbour sets per cell from pair lengths (pairs longer than `tolerance`). */
