@@ -13,6 +13,9 @@ import { version } from '../version';
 
 const FORM = 'measure LAYER_FILE... --out RESULT.json [--pixel-size µm] [--periodic-x] [--min-contact µm] [--compare] [--force]';
 
+/** Results with more cells than this are written without indentation. */
+export const PRETTY_CELLS = 5000;
+
 interface MeasureArgs {
   files: string[];
   out: string;
@@ -123,7 +126,9 @@ export async function measureCommand(args: string[], log: (line: string) => void
     });
     for (const w of result.warnings) log(`warning: ${w}`);
     if (a.compare) result = withComparison(result, a, log);
-    writeAtomic(a.out, JSON.stringify(result, null, 2) + '\n');
+    // Pretty-printed like a simulated result, except for large tissues, where the indentation
+    // would double the file and the memory needed to write it.
+    writeAtomic(a.out, JSON.stringify(result, null, result.cells.length > PRETTY_CELLS ? undefined : 2) + '\n');
     const s = result.analyses[0].summary;
     log(
       `done: ${s.cells} cells, ${s.validCells} valid, ${s.percentScutoids.toFixed(1)} % scutoids over ${s.surfaces} layers, ` +
