@@ -10,8 +10,8 @@
  *   site; runs labelled i or j are the contact, their ends refined by bisection, their length a
  *   dense polyline.
  * - meshContactsReference: every triangle is sampled on a barycentric grid; for every pair of
- *   sites owning samples of it, the bisector plane ∩ triangle segment is sampled and measured
- *   the same way.
+ *   sites owning samples of it or of a triangle around its vertices, the bisector plane ∩
+ *   triangle segment is sampled and measured the same way.
  */
 import { cubeBruteForceLabels } from '../../src/core/closed/geometry';
 
@@ -228,7 +228,7 @@ function measureInChunks(curves: Parameters<typeof measureCurves>[0], sites: Arr
   return out;
 }
 
-export function meshContactsReference(positions: ArrayLike<number>, indices: ArrayLike<number>, sites: ArrayLike<number>, count: number, grid = 8, samples = 256): PairLengths {
+export function meshContactsReference(positions: ArrayLike<number>, indices: ArrayLike<number>, sites: ArrayLike<number>, count: number, grid = 6, samples = 48): PairLengths {
   const nf = indices.length / 3;
   const pts: number[] = [];
   const tri: number[] = [];
@@ -243,8 +243,19 @@ export function meshContactsReference(positions: ArrayLike<number>, indices: Arr
     }
   }
   const labels = label(pts, sites, count);
-  const owners: Set<number>[] = Array.from({ length: nf }, () => new Set());
-  for (let k = 0; k < tri.length; k++) owners[tri[k]].add(labels[k]);
+  const sampled: Set<number>[] = Array.from({ length: nf }, () => new Set());
+  for (let k = 0; k < tri.length; k++) sampled[tri[k]].add(labels[k]);
+  // A cell can reach into a triangle as a sliver between grid samples, but then it owns
+  // samples of a triangle around one of its vertices: candidates are the owners of every
+  // triangle sharing a vertex.
+  const nv = positions.length / 3;
+  const around: number[][] = Array.from({ length: nv }, () => []);
+  for (let f = 0; f < nf; f++) for (let e = 0; e < 3; e++) around[indices[3 * f + e]].push(f);
+  const owners: Set<number>[] = Array.from({ length: nf }, (_, f) => {
+    const set = new Set<number>();
+    for (let e = 0; e < 3; e++) for (const g of around[indices[3 * f + e]]) for (const o of sampled[g]) set.add(o);
+    return set;
+  });
   const curves: Parameters<typeof measureCurves>[0] = [];
   for (let f = 0; f < nf; f++) {
     const own = [...owners[f]];
