@@ -135,10 +135,9 @@ function parallelEllipsoid(surface: EllipsoidSurface, sites: ArrayLike<number>, 
   const maxDeviation = options.maxDeviation ?? 1e-3 * Math.sqrt((4 * Math.PI * (hi + Math.abs(t)) ** 2) / Math.max(1, count));
   const maxTriangles = options.maxTriangles ?? 2_000_000;
   if (!(maxDeviation > 0)) throw new Error(`maxDeviation: ${maxDeviation} µm is not a positive distance`);
-  // Longest edge of an icosphere of frequency f on the unit sphere is about 1.15 / f rad;
-  // start from that estimate, then check the measured edges of the built mesh.
-  const stretch = (hi + Math.max(0, t)) * (hi / lo);
-  let f = Math.max(2, Math.ceil((1.15 * stretch) / Math.sqrt(6 * rho * maxDeviation)));
+  // Longest edge of an icosphere of frequency f on the unit sphere is about 1.15 / f rad; the
+  // estimate (largest radius) is a lower bound for f, the measured edges decide.
+  let f = Math.max(2, Math.ceil((1.15 * (hi + Math.max(0, t))) / Math.sqrt(6 * rho * maxDeviation)));
   for (;;) {
     if (20 * f * f > maxTriangles) {
       throw new Error(`maxDeviation: ${maxDeviation} µm would need about ${20 * f * f} triangles for the parallel surface at ${t} µm (more than maxTriangles ${maxTriangles}); allow a larger deviation`);
