@@ -1,10 +1,11 @@
 import { defineConfig } from 'vitest/config';
 
 // The app (index.html), test pages (e2e/pages) and benchmark page (bench/page) are all
-// served by this one config; `npm run build` builds the app and the library.
+// served by this one config; `npm run build` builds the app (into dist/app) and the library
+// (vite.lib.config.ts: dist/esm, dist/types, dist/lib).
 export default defineConfig({
   server: { host: '127.0.0.1', port: 5173, strictPort: true },
-  build: { target: 'es2022' },
+  build: { target: 'es2022', outDir: 'dist/app' },
   // Scan every page up front: otherwise Vite discovers a dependency on first load, re-optimizes
   // and reloads the page under a running test.
   optimizeDeps: { entries: ['index.html', 'e2e/pages/*.html', 'bench/page/*.html', 'examples/*.html'] },
@@ -12,6 +13,8 @@ export default defineConfig({
     include: ['tests/**/*.test.ts'],
     // headless-gl is a native module: one process per test file, not worker threads.
     pool: 'forks',
+    // Tests spawn bin/tissue-sheet.mjs, which runs the compiled CLI: rebuild it if src changed.
+    globalSetup: ['scripts/build-if-stale.mjs'],
     testTimeout: 120_000,
     hookTimeout: 120_000,
   },

@@ -1,39 +1,46 @@
 import { readFileSync } from 'node:fs';
-import createGL from 'gl';
 import { GpuCapabilityError, wrapContext, type GpuContext } from '../gpu/context';
+import { loadHeadlessGL } from './loadGL';
 
 /**
  * A WebGL2 context in Node from headless-gl (`gl` 9.x). It needs an X display: run under
- * `xvfb-run -a` (the CLI re-executes itself that way when DISPLAY is unset).
+ * `xvfb-run -a` (the CLI re-executes itself that way when DISPLAY is unset). `gl` is an optional
+ * dependency, loaded here and not at import time, so that the library imports without it and a
+ * missing or unbuilt `gl` is one GpuCapabilityError saying what to install.
  */
 export function createHeadlessContext(): GpuContext {
-  let gl: WebGL2RenderingContext | null = null;
+  const createGL = loadHeadlessGL();
+  let created: WebGL2RenderingContext | null;
   try {
-    gl = createGL(1, 1, { createWebGL2Context: true }) as unknown as WebGL2RenderingContext | null;
+    created = createGL(1, 1, { createWebGL2Context: true });
   } catch (error) {
     throw headlessError(String(error));
   }
-  if (!gl) throw headlessError('createGL returned null');
-  const context = gl;
-  // three.js only needs these members of a canvas when it is handed a context.
-  const canvas = {
+  if (!created) throw headlessError('createGL returned null');
+  const context = created;
+  const canvas = canvasStandIn(context);
+  // three.js reads gl.canvas (e.g. in resetState), which headless-gl leaves undefined.
+  if (!context.canvas) Object.defineProperty(context, 'canvas', { value: canvas });
+  const destroy = () => (context.getExtension('STACKGL_destroy_context') as { destroy(): void } | null)?.destroy();
+  return wrapContext(context, canvas, destroy, headlessRendererName());
+}
+
+/** The members of a canvas three.js uses when it is handed a context; Node has no canvas. */
+type CanvasStandIn = Pick<HTMLCanvasElement, 'width' | 'height' | 'addEventListener' | 'removeEventListener'> & {
+  style: object;
+  getContext(contextId: string): WebGL2RenderingContext | null;
+};
+
+function canvasStandIn(context: WebGL2RenderingContext): HTMLCanvasElement {
+  const standIn: CanvasStandIn = {
     width: 1,
     height: 1,
     style: {},
     addEventListener() {},
     removeEventListener() {},
     getContext: () => context,
-  } as unknown as HTMLCanvasElement;
-  // three.js reads gl.canvas (e.g. in resetState), which headless-gl leaves undefined.
-  if (!context.canvas) Object.defineProperty(context, 'canvas', { value: canvas });
-  return wrapContext(
-    context,
-    canvas,
-    () => {
-      (context.getExtension('STACKGL_destroy_context') as { destroy(): void } | null)?.destroy();
-    },
-    headlessRendererName(),
-  );
+  };
+  return standIn as HTMLCanvasElement;
 }
 
 /**

@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# Checks the npm package as a consumer gets it (README, "Use it as a package"): `npm pack`, then
+# in an empty project whose package.json allows gl's install script, `npm install <tarball>`:
+#   - no dev dependency came along (tsx, vite, ...);
+#   - `import('tissue-sheet')` and `import('tissue-sheet/node')` work in Node;
+#   - `npx tissue-sheet run` computes a small sheet;
+#   - with gl's native module hidden, then gl itself hidden, the CLI exits 3 with one line
+#     saying what to run (a consumer who denied or omitted gl).
+# Needs the registry (the package's dependencies) and what headless-gl needs to build and run
+# (python3, make, g++, xvfb-run; scripts/test-all.sh installs the system packages).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+work=$(mktemp -d "${TMPDIR:-/tmp}/tissue-sheet-pack-XXXXXX")
+trap 'rm -rf "$work"' EXIT
+started=$SECONDS
+step() { echo "== $* ($((SECONDS - started)) s)"; }
+fail() { echo "check-pack: FAILED: $*" >&2; exit 1; }
+
+step "npm pack (prepack builds dist/)"
+tarball=$(npm pack --silent --pack-destination "$work" 2>/dev/null | tail -n 1)
+[ -f "$work/$tarball" ] || fail "npm pack wrote no tarball"
+echo "$tarball: $(du -k "$work/$tarball" | cut -f1) KiB packed, $(tar -tzf "$work/$tarball" | wc -l) files"
+if tar -tzf "$work/$tarball" | grep -E '^package/(src|tests|e2e|bench|node_modules|dist/app)/'; then
+  fail "the tarball ships sources, tests or the app (listed above); fix \"files\" in package.json"
+fi
+
+consumer="$work/consumer"
+mkdir "$consumer"
+cd "$consumer"
+echo '{ "name": "consumer", "private": true, "type": "module", "allowScripts": { "gl": true } }' > package.json
+
+step "npm install the tarball (builds headless-gl)"
+npm install --no-audit --no-fund --loglevel=error "$work/$tarball"
+for dev in tsx vite vitest typescript @playwright/test uplot lil-gui; do
+  [ ! -e "node_modules/$dev" ] || fail "node_modules/$dev is installed: a dev-only package is a runtime dependency"
+done
+echo "installed: $(ls node_modules | wc -l) packages, $(du -sh node_modules | cut -f1)"
+
+step "import the library in Node"
+node -e "import('tissue-sheet').then((m) => { console.log('tissue-sheet: runSheet', typeof m.runSheet, '| validateAnyConfig', typeof m.validateAnyConfig, '| runSweep', typeof m.runSweep); if (typeof m.runSheet !== 'function') process.exit(1); })"
+node -e "import('tissue-sheet/node').then((m) => { console.log('tissue-sheet/node: createHeadlessContext', typeof m.createHeadlessContext); if (typeof m.createHeadlessContext !== 'function') process.exit(1); })"
+
+cat > small.json <<'EOF'
+{ "surface": { "kind": "tube", "radius": 40, "length": 400 }, "resolution": 256, "cells": 60, "seed": 9,
+  "lloyd": { "maxIterations": 3 }, "sheet": { "surfaceRatio": 1.8, "layers": 1 } }
+EOF
+
+step "npx tissue-sheet run"
+npx --no-install tissue-sheet run small.json --out r.json 2> run.log || { cat run.log; fail "npx tissue-sheet run failed"; }
+tail -n 1 run.log
+node -e "
+  const r = JSON.parse(require('fs').readFileSync('r.json', 'utf8'));
+  if (r.software.name !== 'tissue-sheet' || r.cells.length !== 60) { console.error('unexpected result', r.software, r.cells.length); process.exit(1); }
+  console.log('r.json:', r.cells.length, 'cells, software', r.software.name, r.software.version);
+"
+
+# $1: what is hidden, $2: a phrase the one-line message must contain.
+expect_exit_3() {
+  set +e
+  # The bin itself, not npx: npx may add its own warnings (e.g. about the user's npm config).
+  message=$(node_modules/.bin/tissue-sheet run small.json --out never.json 2>&1)
+  code=$?
+  set -e
+  echo "exit $code: $message"
+  [ "$code" -eq 3 ] || fail "$1: expected exit code 3, got $code"
+  [ "$(printf '%s\n' "$message" | wc -l)" -eq 1 ] || fail "$1: expected one line"
+  printf '%s' "$message" | grep -qF "$2" || fail "$1: the message does not say \"$2\""
+}
+step "the CLI with gl unbuilt (install script denied or failed)"
+mv node_modules/gl/build "$work/gl-build"
+expect_exit_3 "gl unbuilt" "npm install-scripts approve gl && npm rebuild gl"
+mv "$work/gl-build" node_modules/gl/build
+step "the CLI without gl (--omit=optional)"
+mv node_modules/gl "$work/gl"
+expect_exit_3 "gl missing" "npm install gl@"
+node -e "import('tissue-sheet').then((m) => console.log('without gl, tissue-sheet still imports: runSheet', typeof m.runSheet))"
+mv "$work/gl" node_modules/gl
+
+step "check-pack: OK"
