@@ -87,7 +87,7 @@ for (const k of [0, 4, 9]) {
 }
 
 if (args.includes('--scaling')) {
-  console.log('scaling (one realization, Voronoi 1 and 10, all 12 ratios, lab protocol):');
+  console.log('scaling (one realization, Voronoi 1 and 2, all 12 ratios, lab protocol):');
   for (const cells of [200, 2000, 20000]) {
     const spacing = 5 * Math.sqrt(200 / cells);
     const t = performance.now();
