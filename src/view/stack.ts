@@ -32,10 +32,22 @@ export interface ViewStack {
   readonly closed: boolean;
 }
 
-/** The analysis the page reports: labels (the lab's method) when present, else the first. */
+/**
+ * The analysis the page and the element report (the headline %, the flags, the sides): the exact
+ * method wherever the result has one (planes, tubes, spheres: no pixels, no contact threshold),
+ * else the labels method. `methodCaption` says which.
+ */
 export function primaryAnalysis(result: SheetResult): AnalysisRecord | null {
   const analyses = result.analyses ?? [];
-  return analyses.find((a) => a.method === 'labels') ?? analyses[0] ?? null;
+  return analyses.find((a) => a.method === 'exact') ?? analyses.find((a) => a.method === 'labels') ?? analyses[0] ?? null;
+}
+
+/** Which adjacency method a number comes from, in words. */
+export function methodCaption(analysis: AnalysisRecord | null): string {
+  if (!analysis) return 'no analysis';
+  if (analysis.method === 'exact') return 'exact adjacency (Voronoi cells computed exactly, no pixels)';
+  const threshold = Number.isFinite(analysis.minContactLength) ? `, contacts < ${analysis.minContactLength.toFixed(2)} µm ignored` : '';
+  return `label adjacency (touching pixels${threshold}; no exact method for this surface)`;
 }
 
 export function analysisByMethod(result: SheetResult, method: 'labels' | 'exact'): AnalysisRecord | null {
