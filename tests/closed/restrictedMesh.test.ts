@@ -53,7 +53,12 @@ describe('restricted Voronoi on a triangle mesh', () => {
     const seeded = randomSequentialSites(surface, 200, 5, 9);
     check('egg-chamber.ply ×40', surface, seeded.positions, 200);
     const outer = offsetClosedSurface(surface, seeded.positions, seeded.normals, 200, 10, 'normal');
-    check('egg-chamber.ply ×40, +10 µm', outer.surface as MeshSurface, outer.sites, 200);
+    const plain = check('egg-chamber.ply ×40, +10 µm', outer.surface as MeshSurface, outer.sites, 200);
+    // Start triangles from the basal diagram (same topology) give the same diagram.
+    const basal = restrictedVoronoi(surface, seeded.positions, 200);
+    const hinted = restrictedVoronoi(outer.surface, outer.sites, 200, { startTriangles: basal.startTriangles });
+    expect(Array.from(hinted.adjacency.neighbours)).toEqual(Array.from(plain.adjacency.neighbours));
+    for (let k = 0; k < plain.adjacency.lengths.length; k++) expect(Math.abs(hinted.adjacency.lengths[k] - plain.adjacency.lengths[k])).toBeLessThan(1e-9);
   }, 60000);
 
   it('a cell in two pieces (top and bottom caps) is found whole by the coverage repair', () => {

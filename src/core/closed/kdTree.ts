@@ -29,7 +29,8 @@ export class KdTree3 {
   /** `points`: x, y, z per point (at least 3 count values). */
   constructor(points: ArrayLike<number>, count: number) {
     this.count = count;
-    this.xyz = Float64Array.from({ length: 3 * count }, (_, k) => points[k]);
+    this.xyz = new Float64Array(3 * count);
+    for (let k = 0; k < 3 * count; k++) this.xyz[k] = points[k];
     this.order = new Int32Array(count);
     for (let i = 0; i < count; i++) this.order[i] = i;
     const maxNodes = Math.max(1, 2 * Math.ceil(count / (LEAF / 2)) + 1);

@@ -68,7 +68,10 @@ export class MeshRestrictedVoronoi {
   private candD2 = new Float64Array(INITIAL_CANDIDATES);
   private nCand = 0;
   private candSeed = -1;
-  private readonly triTree: KdTree3;
+  private triTree: KdTree3 | null = null;
+  private readonly centroids: Float64Array;
+  /** Per site: the first triangle of its cell (its traversal's start), -1 when it has none. */
+  readonly startTriangles: Int32Array;
   private readonly near = new Int32Array(64);
   private readonly nearD2 = new Float64Array(64);
   readonly stats: MeshRvdStats;
@@ -80,6 +83,7 @@ export class MeshRestrictedVoronoi {
     private readonly siteTree: KdTree3,
     private readonly recorder: ContactRecorder,
     private readonly areas: Float64Array,
+    private readonly hints?: ArrayLike<number>,
   ) {
     const p = surface.positions;
     this.P = Float64Array.from(p as ArrayLike<number>);
@@ -97,24 +101,41 @@ export class MeshRestrictedVoronoi {
       this.triArea[f] = 0.5 * Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
       for (let k = 0; k < 3; k++) centroids[3 * f + k] = (P[a + k] + P[b + k] + P[c + k]) / 3;
     }
-    this.triTree = new KdTree3(centroids, nf);
+    this.centroids = centroids;
+    this.startTriangles = new Int32Array(count).fill(-1);
     this.covered = new Float64Array(nf);
     this.stamp = new Int32Array(nf).fill(-1);
     this.queue = new Int32Array(nf);
     this.ownerHead = new Int32Array(nf).fill(-1);
+    this.ownerNext = new Int32Array(Math.max(1024, 2 * nf));
+    this.ownerSeed = new Int32Array(Math.max(1024, 2 * nf));
     this.stats = { triangles: nf, clips: 0, repairTraversals: 0 };
   }
 
-  /** Runs every seed's traversal, then the coverage repair. Fills `areas` and the recorder. */
+  /**
+   * Runs every seed's traversal, then the coverage repair. Fills `areas`, the recorder and
+   * `startTriangles`. A seed starts at its hint (the triangle its cell started in on another
+   * surface of the stack with the same topology) when that triangle is in its cell, else at
+   * the nearest triangle centroids (k-d tree built on first need).
+   */
   run(): void {
     for (let i = 0; i < this.count; i++) {
       this.recorder.begin(i);
+      const hint = this.hints ? this.hints[i] : -1;
+      if (hint >= 0 && hint < this.nf && this.traverse(i, hint) > 0) {
+        this.startTriangles[i] = hint;
+        continue;
+      }
+      if (!this.triTree) this.triTree = new KdTree3(this.centroids, this.nf);
       const x = this.sites[3 * i], y = this.sites[3 * i + 1], z = this.sites[3 * i + 2];
       const found = this.triTree.knn(x, y, z, 8, this.near, this.nearD2);
       for (let q = 0; q < found; q++) {
         const f = this.near[q];
         if (this.owns(f, i)) continue;
-        if (this.traverse(i, f) > 0) break;
+        if (this.traverse(i, f) > 0) {
+          this.startTriangles[i] = f;
+          break;
+        }
       }
     }
     this.repair();

@@ -28,6 +28,13 @@ import { checkRestrictedSurface, type RestrictedSurface } from './restrictedSurf
 export interface RestrictedVoronoiOptions {
   /** Contacts at or below this length (µm) are rounding, not neighbours. */
   lengthTolerance?: number;
+  /**
+   * Mesh only: per site, a triangle to start its cell from, e.g. `startTriangles` of the
+   * diagram on another surface of the stack with the same triangles (offset meshes keep the
+   * topology, and sites move along their normals); saves building a k-d tree of triangles.
+   * A wrong hint costs one clip, never correctness.
+   */
+  startTriangles?: ArrayLike<number>;
 }
 
 export interface RestrictedVoronoi {
@@ -37,6 +44,8 @@ export interface RestrictedVoronoi {
   readonly areas: Float64Array;
   /** All 0: a closed surface has no border. */
   readonly touchesBorder: Uint8Array;
+  /** Mesh only: per site, the triangle its cell started in (-1: none); a hint for the next layer. */
+  readonly startTriangles?: Int32Array;
   /** Surface area, µm² (sum of triangle areas, or the ellipsoid's). */
   readonly surfaceArea: number;
   readonly stats: { method: 'mesh'; mesh: MeshRvdStats; ms: number } | { method: 'ellipsoid'; ellipsoid: EllipsoidRvdStats; ms: number };
@@ -67,6 +76,7 @@ export function restrictedVoronoi(
   const recorder = new ContactRecorder(count);
   const areas = new Float64Array(count);
   let stats: RestrictedVoronoi['stats'];
+  let startTriangles: Int32Array | undefined;
   if (surface.kind === 'ellipsoid') {
     const { a, b, c } = surface;
     for (let i = 0; i < count; i++) {
@@ -82,13 +92,14 @@ export function restrictedVoronoi(
     rvd.run();
     stats = { method: 'ellipsoid', ellipsoid: rvd.stats, ms: 0 };
   } else {
-    const rvd = new MeshRestrictedVoronoi(surface, xyz, count, tree, recorder, areas);
+    const rvd = new MeshRestrictedVoronoi(surface, xyz, count, tree, recorder, areas, options.startTriangles);
     rvd.run();
+    startTriangles = rvd.startTriangles;
     stats = { method: 'mesh', mesh: rvd.stats, ms: 0 };
   }
   const adjacency = recorder.finish(tolerance);
   stats.ms = performance.now() - start;
-  return { count, adjacency, areas, touchesBorder: new Uint8Array(count), surfaceArea, stats };
+  return { count, adjacency, areas, touchesBorder: new Uint8Array(count), surfaceArea, stats, ...(startTriangles ? { startTriangles } : {}) };
 }
 
 function meshArea(p: ArrayLike<number>, t: ArrayLike<number>): number {
