@@ -1,28 +1,59 @@
 /**
- * Runs sheets in the page, for the app and `<tissue-sheet>` alike: one compute context (an
- * off-screen WebGL2 canvas) shared by every caller on the page, runs queued one at a time on
- * it, a newer request cancelling the one it replaces, density images decoded and mesh files
- * fetched on the way. The page stays responsive
- * because runSheet yields to the event loop between Lloyd iterations.
+ * Runs sheets for the page, for the app and `<tissue-sheet>` alike, with the pipeline in a Web
+ * Worker (WorkerSheetRunner: an OffscreenCanvas WebGL2 context there), so the main thread only
+ * draws. Where the browser cannot give the worker a WebGL2 context, runs fall back to the page
+ * and `computeSite()` says so and why (the app and the element show it).
  *
- * Planar runs go through one SheetRunner: when only `sheet.*` changed (the live surface-ratio and
- * thickness sliders, a sweep's points) the converged seeded surface is reused and Lloyd is not
- * run again. Closed surfaces (sphere, ellipsoid, mesh) run whole through runSheet.
+ * One shared runner serves every caller on the page (its runs are taken in order in the
+ * worker); it keeps the converged seeded surface, so a change of `sheet.*` only (the live
+ * surface-ratio and thickness sliders) recomputes the other side and the analysis. Sweeps take
+ * their own runner (`createPipelineRunner`), so a sweep and the live view never evict each
+ * other's seeded surface.
+ *
+ * Mesh uploads: the seeded surface is keyed by the config, which names an uploaded mesh by its
+ * file name only. When other bytes arrive under a name already run, the runner is replaced, so
+ * a surface relaxed on the old file is never reused for the new one.
  */
-import { isClosedConfig, type AnyConfig } from '../core/config';
+import type { AnyConfig } from '../core/config';
 import type { GrayImage } from '../core/density';
-import { createCanvasContext, runSheet, SheetRunner, type GpuContext, type IterationRecord, type MeshFile, type SheetOutput } from '../run';
+import { createCanvasContext, WorkerSheetRunner, type ComputeSite, type GpuContext, type IterationRecord, type MeshFile, type SheetOutput } from '../run';
 import { decodeGrayImage } from './densityImage';
 import { meshFileFor } from './meshFiles';
 
 let sharedContext: GpuContext | null = null;
-let sharedRunner: SheetRunner | null = null;
-let queue: Promise<unknown> = Promise.resolve();
+let sharedRunner: WorkerSheetRunner | null = null;
+/** The bytes last run under each mesh name, to notice a different file under the same name. */
+const meshBytes = new Map<string, MeshFile['data']>();
+const siteListeners = new Set<(site: ComputeSite) => void>();
 
-/** The page's compute context; throws GpuCapabilityError (a message for people) without WebGL2. */
+/**
+ * The page's own compute context, used only when runs fall back to the page; throws
+ * GpuCapabilityError (a message for people) without WebGL2.
+ */
 export function computeContext(): GpuContext {
   sharedContext ??= createCanvasContext(document.createElement('canvas'));
   return sharedContext;
+}
+
+/** A new pipeline runner in its own worker (a sweep's); dispose it when done. */
+export function createPipelineRunner(): WorkerSheetRunner {
+  return new WorkerSheetRunner(computeContext);
+}
+
+function pipeline(): WorkerSheetRunner {
+  sharedRunner ??= createPipelineRunner();
+  return sharedRunner;
+}
+
+/** Where the page's runs compute: in the worker, or on the page and why. */
+export function computeSite(): ComputeSite {
+  return pipeline().site;
+}
+
+/** Calls `listener` after every run with where it computed (to show a fallback to the page). */
+export function onComputeSite(listener: (site: ComputeSite) => void): () => void {
+  siteListeners.add(listener);
+  return () => siteListeners.delete(listener);
 }
 
 export interface RunRequest {
@@ -43,64 +74,122 @@ async function densityImageFor(config: AnyConfig, given?: GrayImage): Promise<Gr
   const { src } = config.density;
   if (!decoded.has(src)) {
     if (decoded.size > 8) decoded.clear();
-    decoded.set(src, decodeGrayImage(src));
+    const job = decodeGrayImage(src);
+    job.catch(() => decoded.delete(src));
+    decoded.set(src, job);
   }
   return decoded.get(src);
 }
 
-/** One run, queued behind any run already on the shared context. */
-export function runInPage(request: RunRequest): Promise<SheetOutput> {
-  const job = queue.then(async (): Promise<SheetOutput> => {
-    if (request.signal?.aborted) throw new DOMException('The run was cancelled', 'AbortError');
-    const context = computeContext();
-    const { config, signal, onIteration } = request;
-    if (isClosedConfig(config)) {
-      const meshFile = await meshFileFor(config, request.meshFile);
-      return runSheet(config, context, { signal, onIteration, ...(meshFile ? { meshFile } : {}) });
-    }
-    const densityImage = await densityImageFor(config, request.densityImage);
-    sharedRunner ??= new SheetRunner(context);
-    return sharedRunner.run(config, { signal, onIteration, densityImage });
-  });
-  queue = job.catch(() => undefined);
-  return job;
+/** The inputs a run needs besides its config: the decoded density image and the mesh file. */
+export async function runInputs(config: AnyConfig, request: Pick<RunRequest, 'densityImage' | 'meshFile'> = {}): Promise<{ densityImage?: GrayImage; meshFile?: MeshFile }> {
+  const meshFile = await meshFileFor(config, request.meshFile);
+  const densityImage = await densityImageFor(config, request.densityImage);
+  return { ...(densityImage ? { densityImage } : {}), ...(meshFile ? { meshFile } : {}) };
+}
+
+/** True when `file` differs from the bytes last run under its name (remembers it). */
+function meshChanged(file: MeshFile): boolean {
+  const name = file.name ?? '';
+  const before = meshBytes.get(name);
+  meshBytes.set(name, file.data);
+  return before !== undefined && before !== file.data;
+}
+
+/** One run on the page's shared pipeline runner (in arrival order in the worker). */
+export async function runInPage(request: RunRequest): Promise<SheetOutput> {
+  if (request.signal?.aborted) throw abortError();
+  const { config, signal, onIteration } = request;
+  const inputs = await runInputs(config, request);
+  if (signal?.aborted) throw abortError();
+  if (inputs.meshFile && meshChanged(inputs.meshFile) && sharedRunner) {
+    sharedRunner.dispose();
+    sharedRunner = null;
+  }
+  const runner = pipeline();
+  try {
+    return await runner.run(config, { signal, onIteration, ...inputs });
+  } finally {
+    for (const listener of siteListeners) listener(runner.site);
+  }
+}
+
+function abortError(): DOMException {
+  return new DOMException('The run was cancelled', 'AbortError');
 }
 
 export function isAbort(error: unknown): boolean {
   return error instanceof DOMException && error.name === 'AbortError';
 }
 
+interface Waiting {
+  readonly request: Omit<RunRequest, 'signal'>;
+  readonly resolve: (output: SheetOutput) => void;
+  readonly reject: (error: unknown) => void;
+}
+
 /**
- * Keeps at most one run of one owner in flight: `start` cancels the previous run of this
- * runner. `debounced` waits `ms` of quiet first (for sliders that re-run live).
+ * Keeps at most one run of one owner in flight, the latest request winning:
+ * - `start` cancels the run in flight (and any waiting one) and starts at once;
+ * - `live` (a slider being dragged) starts at once when nothing is in flight, else waits for
+ *   the run in flight and replaces any request already waiting, so pictures stream at the pace
+ *   of the pipeline, each from the newest value, and nothing queues up behind a drag;
+ * - `debounced` waits `ms` of quiet first (for typed edits).
+ * A superseded request rejects with an AbortError.
  */
 export class LatestRunner {
   private controller: AbortController | null = null;
+  private waiting: Waiting | null = null;
   private timer: ReturnType<typeof setTimeout> | undefined;
 
   get running(): boolean {
-    return this.controller !== null;
+    return this.controller !== null || this.waiting !== null;
   }
 
   cancel(): void {
     clearTimeout(this.timer);
     this.controller?.abort();
     this.controller = null;
+    this.dropWaiting();
   }
 
   async start(request: Omit<RunRequest, 'signal'>): Promise<SheetOutput> {
     this.cancel();
-    const controller = new AbortController();
-    this.controller = controller;
-    try {
-      return await runInPage({ ...request, signal: controller.signal });
-    } finally {
-      if (this.controller === controller) this.controller = null;
-    }
+    return this.launch(request);
+  }
+
+  live(request: Omit<RunRequest, 'signal'>): Promise<SheetOutput> {
+    clearTimeout(this.timer);
+    if (!this.controller) return this.launch(request);
+    this.dropWaiting();
+    return new Promise<SheetOutput>((resolve, reject) => {
+      this.waiting = { request, resolve, reject };
+    });
   }
 
   debounced(ms: number, action: () => void): void {
     clearTimeout(this.timer);
     this.timer = setTimeout(action, ms);
+  }
+
+  private dropWaiting(): void {
+    const waiting = this.waiting;
+    this.waiting = null;
+    waiting?.reject(abortError());
+  }
+
+  private async launch(request: Omit<RunRequest, 'signal'>): Promise<SheetOutput> {
+    const controller = new AbortController();
+    this.controller = controller;
+    try {
+      return await runInPage({ ...request, signal: controller.signal });
+    } finally {
+      if (this.controller === controller) {
+        this.controller = null;
+        const next = this.waiting;
+        this.waiting = null;
+        if (next) this.launch(next.request).then(next.resolve, next.reject);
+      }
+    }
   }
 }

@@ -1,0 +1,228 @@
+/**
+ * A parameter sweep in the page, for the app and `<tissue-sheet>` alike, doing what
+ * `tissue-sheet sweep` does (src/cli/sweep.ts) with the same code from src/core/sweep:
+ * - the spec is validated by validateSweepSpec (one-line errors naming the field), expanded by
+ *   expandSweep (same keys and seeds), and every grid point is validated and checked before the
+ *   first run (errors name the point);
+ * - runs.csv has the CLI's header (baseColumns + sweepColumns over the grid points) and rows
+ *   (runSweep + sweepSummary); aggregate.csv is aggregateRows/aggregateToCsv over its numeric
+ *   columns;
+ * - runs sharing a seeded surface (same config but for `sheet`) run one after another, as in the
+ *   CLI, so the pipeline relaxes each realization once and reuses it for every ratio/thickness;
+ * - a previous runs.csv of the same spec (a download) resumes the sweep: planResume keeps its
+ *   valid rows (bad ones are reported and computed again), only the missing runs are computed;
+ * - cancelling (the signal) keeps every finished run: the result then has `aborted: true`.
+ * The pipeline runs in a worker of the sweep's own (createPipelineRunner), disposed at the end.
+ */
+import { checkClosedFeasible, checkFeasible, ConfigError, isClosedConfig, makeGrid, validateAnyConfig, type AnyConfig, type Config } from '../core/config';
+import {
+  aggregateRows,
+  aggregateToCsv,
+  baseColumns,
+  expandSweep,
+  formatCsvRow,
+  meanSd,
+  parseCsv,
+  planResume,
+  runSweep,
+  summaryColumns,
+  sweepColumns,
+  SweepSpecError,
+  TEXT_COLUMNS,
+  validateSweepSpec,
+  variedFields,
+  type Aggregate,
+  type ColumnStats,
+  type RejectedRow,
+  type SweepRun,
+  type ValidSweepSpec,
+} from '../core/sweep';
+import { seededKey, sweepSummary, type WorkerSheetRunner } from '../run';
+import { createPipelineRunner, isAbort, runInputs } from './pageRunner';
+
+type Run = SweepRun<AnyConfig & Record<string, unknown>>;
+
+export interface PageSweepProgress {
+  phase: 'done' | 'error';
+  /** Runs finished in this call (done or failed), and how many it has to do. */
+  finished: number;
+  total: number;
+  /** Runs taken from the resumed runs.csv. */
+  skipped: number;
+  elapsedMs: number;
+  /** The run that just finished: its key, grid point, realization and seed. */
+  run: { key: string; point: Record<string, unknown>; realization: number; seed: number };
+  /** Its runs.csv row (text cells, as the file holds them); absent when it failed. */
+  row?: Record<string, string>;
+  error?: string;
+}
+
+export interface PageSweepOptions {
+  signal?: AbortSignal;
+  /** runs.csv of an earlier (partial) sweep of the same spec: its runs are not computed again. */
+  resumeCsv?: string;
+  /** Largest number of runs accepted (validateSweepSpec's default otherwise). */
+  maxRuns?: number;
+  onProgress?: (progress: PageSweepProgress) => void;
+}
+
+export interface PageSweepResult {
+  spec: ValidSweepSpec;
+  /** Varied fields, in the spec's order. */
+  fields: string[];
+  /** runs.csv's columns. */
+  header: string[];
+  /** runs.csv's rows (resumed ones first, then in completion order), as text cells. */
+  runs: Record<string, string>[];
+  aggregate: Aggregate;
+  runsCsv: string;
+  aggregateCsv: string;
+  completed: number;
+  skipped: number;
+  /** Rows of the resumed runs.csv that were dropped (and computed again), with why. */
+  rejected: RejectedRow[];
+  /** True when the signal stopped the sweep: `runs` holds the runs finished until then. */
+  aborted: boolean;
+}
+
+/** Everything fixed before the first run: the spec, its runs in run order, the header. */
+export interface SweepPlan {
+  spec: ValidSweepSpec;
+  fields: string[];
+  runs: Run[];
+  header: string[];
+  summary: string[];
+  /** Summary columns each grid point fills. */
+  filled: Map<string, Set<string>>;
+  configs: Map<string, AnyConfig>;
+}
+
+export function planSweep(input: unknown, maxRuns?: number): SweepPlan {
+  const spec = validateSweepSpec(input, maxRuns === undefined ? {} : { maxRuns });
+  const fields = variedFields(spec);
+  const runs = expandSweep(spec);
+  const configs = new Map<string, AnyConfig>();
+  for (const run of runs) if (!configs.has(run.pointKey)) configs.set(run.pointKey, pointConfig(run));
+  const summary = sweepColumns(configs.values());
+  const filled = new Map([...configs].map(([key, config]) => [key, new Set(summaryColumns(config))]));
+  return { spec, fields, runs: seededOrder(runs), header: [...baseColumns(fields), ...summary], summary, filled, configs };
+}
+
+/**
+ * The CLI's run order: runs sharing a seeded surface (their config but for `sheet`) one after
+ * another, in order of first appearance, so each realization is relaxed once per sweep.
+ */
+export function seededOrder(runs: readonly Run[]): Run[] {
+  const keyed = runs.map((run) => ({ run, key: seededKey(validateAnyConfig(run.config)) }));
+  const first = new Map<string, number>();
+  keyed.forEach(({ key }, index) => first.has(key) || first.set(key, index));
+  return keyed.sort((a, b) => first.get(a.key)! - first.get(b.key)! || a.run.index - b.run.index).map(({ run }) => run);
+}
+
+/** A grid point's validated, feasible config; errors name the point. */
+function pointConfig(run: Run): AnyConfig {
+  try {
+    const config = validateAnyConfig(run.config);
+    if (isClosedConfig(config)) checkClosedFeasible(config);
+    else checkFeasible(config as Config, makeGrid(config as Config));
+    return config;
+  } catch (error) {
+    if (error instanceof ConfigError) throw new SweepSpecError(error.field, `grid point ${run.pointKey || '(base)'}: ${error.message}`);
+    throw error;
+  }
+}
+
+export async function sweepInPage(input: unknown, options: PageSweepOptions = {}): Promise<PageSweepResult> {
+  const plan = planSweep(input, options.maxRuns);
+  const { spec, fields, runs, header, summary, filled } = plan;
+  const resumed = planResume(options.resumeCsv ?? '', { header, fields, runs, filledColumns: (run) => filled.get(run.pointKey)!, textColumns: TEXT_COLUMNS });
+  let csv = resumed.cleanText;
+  const rows = [...resumed.rows];
+  const started = performance.now();
+  const runner: WorkerSheetRunner = createPipelineRunner();
+  let aborted = false;
+  let result: Awaited<ReturnType<typeof runSweep>> | null = null;
+  try {
+    result = await runSweep({
+      runs,
+      fields,
+      summaryColumns: summary,
+      existingCsv: csv,
+      signal: options.signal,
+      append: (text) => {
+        csv += text;
+        const records = parseCsv(text).records;
+        const record = records[records.length - 1];
+        const row: Record<string, string> = {};
+        header.forEach((h, k) => (row[h] = record[k]));
+        rows.push(row);
+      },
+      runner: async (config) => {
+        const valid = validateAnyConfig(config);
+        const inputs = await runInputs(valid);
+        return sweepSummary((await runner.run(valid, { signal: options.signal, ...inputs })).result);
+      },
+      onProgress: (p) => {
+        if (p.phase === 'start' || (p.phase === 'error' && isAbort(p.error))) return;
+        const { key, point, realization, seed } = p.run;
+        options.onProgress?.({
+          phase: p.phase,
+          finished: p.finished,
+          total: p.total,
+          skipped: p.skipped,
+          elapsedMs: performance.now() - started,
+          run: { key, point, realization, seed },
+          ...(p.phase === 'done' ? { row: rows[rows.length - 1] } : { error: p.error instanceof Error ? p.error.message : String(p.error) }),
+        });
+      },
+    });
+    aborted = result.aborted;
+  } catch (error) {
+    // The run in flight was cancelled: the finished ones stay.
+    if (!(isAbort(error) && options.signal?.aborted)) throw error;
+    aborted = true;
+  } finally {
+    runner.dispose();
+  }
+  const aggregate = aggregateRows(rows, fields, summary.filter((c) => !TEXT_COLUMNS.has(c)));
+  return {
+    spec,
+    fields,
+    header,
+    runs: rows,
+    aggregate,
+    runsCsv: csv === '' ? formatCsvRow(header) : csv,
+    aggregateCsv: aggregateToCsv(aggregate),
+    completed: result?.completed ?? rows.length - resumed.rows.length,
+    skipped: resumed.rows.length,
+    rejected: resumed.rejected,
+    aborted,
+  };
+}
+
+/** Two-sided 97.5 % quantile of Student's t with `df` degrees of freedom (for 95 % intervals). */
+export function tQuantile975(df: number): number {
+  const table = [12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.16, 2.145, 2.131, 2.12, 2.11, 2.101, 2.093, 2.086, 2.08, 2.074, 2.069, 2.064, 2.06, 2.056, 2.052, 2.048, 2.045, 2.042];
+  if (!(df >= 1)) return Number.NaN;
+  if (df <= table.length) return table[Math.floor(df) - 1];
+  // Cornish-Fisher expansion around the normal quantile: within 1e-3 for df > 30.
+  const z = 1.959964;
+  return z + (z ** 3 + z) / (4 * df) + (5 * z ** 5 + 16 * z ** 3 + 3 * z) / (96 * df ** 2);
+}
+
+export interface IntervalPoint {
+  mean: number;
+  /** 95 % confidence interval of the mean (t distribution), clamped to [lower, upper] bounds. */
+  low: number;
+  high: number;
+  n: number;
+}
+
+/** Mean and 95 % confidence interval of `values`, the interval clamped to [min, max]. */
+export function meanInterval(values: readonly number[], min = 0, max = 100): IntervalPoint {
+  const stats: ColumnStats = meanSd(values);
+  if (stats.n === 0) return { mean: Number.NaN, low: Number.NaN, high: Number.NaN, n: 0 };
+  const half = stats.n >= 2 ? tQuantile975(stats.n - 1) * stats.se : 0;
+  const clamp = (x: number) => Math.min(max, Math.max(min, x));
+  return { mean: stats.mean, low: clamp(stats.mean - half), high: clamp(stats.mean + half), n: stats.n };
+}
