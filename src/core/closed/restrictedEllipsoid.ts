@@ -18,10 +18,10 @@
  * restricted to E has no critical point other than s_i closer than 2 × reach (reach = smallest
  * radius of curvature = min axis² / max axis): a point p with p - s_i along the normal at p
  * would have the midpoint of p and s_i, at distance < reach from both, with two closest
- * points. So for R < 2 reach, E ∩ B(s_i, R) is a disc, and if a far point of E (the antipode
- * of s_i's parameter direction) lies outside the candidate cell, the whole candidate cell
- * lies in B(s_i, R): every site beyond 2 R cannot cut it (as on meshes). Otherwise k doubles
- * (up to all sites, which is exact by definition).
+ * points. So for R < 2 reach, E ∩ B(s_i, R) is a disc, and if a point of E beyond it (the
+ * farthest candidate site, which its own constraint excludes) lies outside the candidate
+ * cell, the whole candidate cell lies in B(s_i, R): every site beyond 2 R cannot cut it (as
+ * on meshes). Otherwise k doubles (up to all sites, which is exact by definition).
  */
 import { EllipsoidArcIntegrator, ellipsoidArea } from './conicArc';
 import type { KdTree3 } from './kdTree';
@@ -121,8 +121,20 @@ export class EllipsoidRestrictedVoronoi {
     this.clipArcs(i, n);
     for (;;) {
       if (n >= this.count - 1) break;
-      let R = this.boundaryRadius(n, sx, sy, sz);
-      if (!(R < 2 * this.reach) || this.inCell(-px, -py, -pz, n)) R = Infinity;
+      const R = this.boundaryRadius(n, sx, sy, sz);
+      // E minus the disc E ∩ B(s_i, R) is connected; the farthest candidate site lies in it
+      // when beyond R, and outside the candidate cell (its own constraint excludes it), so
+      // the whole candidate cell is inside the disc.
+      if (!(R < 2 * this.reach) || !(this.candD2[n - 1] > R * R)) {
+        // No proof possible yet (the candidate cell is still too large): twice the candidates.
+        this.stats.enlargements++;
+        k = Math.min(2 * k, this.count - 1);
+        this.ensure(k);
+        found = this.siteTree.knn(sx, sy, sz, k, this.cand, this.candD2, i);
+        n = found;
+        this.clipArcs(i, n);
+        continue;
+      }
       const next = n < found ? this.candD2[n] : this.candD2[found - 1];
       if (next > 4 * R * R) break;
       this.stats.enlargements++;
