@@ -10,6 +10,7 @@
 # (python3, make, g++, xvfb-run; scripts/test-all.sh installs the system packages).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+repo=$(pwd)
 work=$(mktemp -d "${TMPDIR:-/tmp}/tissue-sheet-pack-XXXXXX")
 trap 'rm -rf "$work"' EXIT
 started=$SECONDS
@@ -23,6 +24,11 @@ echo "$tarball: $(du -k "$work/$tarball" | cut -f1) KiB packed, $(tar -tzf "$wor
 if tar -tzf "$work/$tarball" | grep -E '^package/(src|tests|e2e|bench|node_modules|dist/app)/'; then
   fail "the tarball ships sources, tests or the app (listed above); fix \"files\" in package.json"
 fi
+# Assets the modules load by URL (the pipeline worker) must be in the tarball too.
+packed=$(tar -tzf "$work/$tarball")
+for asset in $(tar -xzOf "$work/$tarball" --wildcards 'package/dist/*.js' | grep -o 'assets/[A-Za-z0-9_.-]*\.js' | sort -u); do
+  printf '%s\n' "$packed" | grep -q "/$asset\$" || fail "a packed module loads $asset, which is not packed"
+done
 
 consumer="$work/consumer"
 mkdir "$consumer"
@@ -39,6 +45,21 @@ echo "installed: $(ls node_modules | wc -l) packages, $(du -sh node_modules | cu
 step "import the library in Node"
 node -e "import('tissue-sheet').then((m) => { console.log('tissue-sheet: runSheet', typeof m.runSheet, '| validateAnyConfig', typeof m.validateAnyConfig, '| runSweep', typeof m.runSweep); if (typeof m.runSheet !== 'function') process.exit(1); })"
 node -e "import('tissue-sheet/node').then((m) => { console.log('tissue-sheet/node: createHeadlessContext', typeof m.createHeadlessContext); if (typeof m.createHeadlessContext !== 'function') process.exit(1); })"
+
+step "typecheck a consumer (moduleResolution nodenext)"
+cat > consumer.ts <<'EOF'
+import { runSheet, validateAnyConfig, type SheetResult } from 'tissue-sheet';
+import { createHeadlessContext } from 'tissue-sheet/node';
+export async function cellCount(json: unknown): Promise<number> {
+  const { result }: { result: SheetResult } = await runSheet(validateAnyConfig(json), createHeadlessContext());
+  return result.cells.length;
+}
+// @ts-expect-error the declarations are real types, not `any`
+export const notANumber: number = runSheet;
+EOF
+"$repo/node_modules/.bin/tsc" --noEmit --strict --skipLibCheck --target es2022 --module nodenext \
+  --moduleResolution nodenext --types node --typeRoots "$repo/node_modules/@types" consumer.ts
+echo "consumer.ts typechecks"
 
 cat > small.json <<'EOF'
 { "surface": { "kind": "tube", "radius": 40, "length": 400 }, "resolution": 256, "cells": 60, "seed": 9,

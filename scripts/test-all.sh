@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs everything the tests need on a fresh Debian 12 machine (as root) and runs every test:
-# typecheck, Vitest (headless-gl under Xvfb) and Playwright (Debian's Chromium).
+# typecheck, Vitest (headless-gl under Xvfb), Playwright (Debian's Chromium), then the npm
+# package as a consumer installs it (scripts/check-pack.sh, about a minute; needs the registry).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -8,6 +9,10 @@ need=()
 command -v xvfb-run >/dev/null || need+=(xvfb xauth)
 [ -e /usr/lib/x86_64-linux-gnu/dri/swrast_dri.so ] || need+=(libgl1-mesa-dri)
 command -v chromium >/dev/null || need+=(chromium)
+# headless-gl (gl) compiles its native module with node-gyp.
+command -v g++ >/dev/null || need+=(g++)
+command -v make >/dev/null || need+=(make)
+command -v python3 >/dev/null || need+=(python3)
 if [ ${#need[@]} -gt 0 ]; then
   echo "== installing system packages: ${need[*]}"
   apt-get update -qq
@@ -17,5 +22,11 @@ fi
 echo "== npm ci (builds headless-gl from source)"
 npm ci --no-audit --no-fund
 
+echo "== build: the app (dist/app) and the package (dist/esm, dist/types, dist/lib)"
+npm run build
+
 echo "== tests"
 npm test
+
+echo "== the package as a consumer installs it"
+npm run check:pack
