@@ -5,7 +5,7 @@
  */
 import { ConfigError, validateAnyConfig, type AnyConfig as Config } from '../core/config';
 import { GpuCapabilityError, type SheetOutput } from '../run';
-import { computeContext, isAbort, LatestRunner } from '../view/pageRunner';
+import { computeContext, isAbort, LatestRunner, onComputeSite } from '../view/pageRunner';
 import { initialConfig, saveConfig, urlWithConfig } from './model/settings';
 import { viewStack, type ViewStack } from '../view/stack';
 import { Charts } from './panels/charts';
@@ -22,11 +22,12 @@ const progress = $<HTMLProgressElement>('#progress');
 const errorBox = $('#error');
 const cancelButton = $<HTMLButtonElement>('#cancel');
 
-/** Debounce of live slider re-runs and of other edits, ms. */
-const LIVE_DEBOUNCE_MS = 250;
+/** Debounce of typed edits, ms. Slider drags are not debounced: they stream (LatestRunner.live). */
 const EDIT_DEBOUNCE_MS = 400;
 
 let stack: ViewStack | null = null;
+/** The draft of the latest run asked for (JSON). */
+let lastDraft = '';
 let runs = 0;
 const runner = new LatestRunner();
 
@@ -51,7 +52,10 @@ const viewPanel = new ViewPanel($('main'), $('#unrolled'));
 const charts = new Charts($('#chart-polygons'), $('#chart-energy'), $('#chart-sweep'));
 const controls = new ConfigControls($('#controls'), initialConfig((m) => showError(m)), {
   onEdit: (draft, live) => {
-    runner.debounced(live ? LIVE_DEBOUNCE_MS : EDIT_DEBOUNCE_MS, () => void run(draft));
+    // A slider's "change" after its last "input" asks for the run already under way: skip it.
+    if (JSON.stringify(draft) === lastDraft) return;
+    if (live) void run(draft, true);
+    else runner.debounced(EDIT_DEBOUNCE_MS, () => void run(draft));
   },
   onError: showError,
 });
@@ -78,8 +82,12 @@ function show(output: SheetOutput): void {
   charts.showStack(stack);
 }
 
-/** Validates and runs `draft`; on success the result replaces the one on screen. */
-async function run(draft: Config): Promise<void> {
+/**
+ * Validates and runs `draft`; on success the result replaces the one on screen. `live` (a slider
+ * being dragged) waits for the run in flight instead of cancelling it, so pictures stream.
+ */
+async function run(draft: Config, live = false): Promise<void> {
+  lastDraft = JSON.stringify(draft);
   let config: Config;
   try {
     config = validateAnyConfig(draft);
@@ -96,7 +104,7 @@ async function run(draft: Config): Promise<void> {
   progress.value = 0;
   const started = performance.now();
   try {
-    const output = await runner.start({
+    const output = await (live ? runner.live.bind(runner) : runner.start.bind(runner))({
       config,
       onIteration(record, total) {
         progress.max = Math.max(1, total);
@@ -109,7 +117,7 @@ async function run(draft: Config): Promise<void> {
     saveConfig(config);
     runs += 1;
     document.body.dataset.runs = String(runs);
-    statusLine.textContent = `Done in ${((performance.now() - started) / 1000).toFixed(1)} s.`;
+    statusLine.textContent = `Done in ${((performance.now() - started) / 1000).toFixed(1)} s.${siteNote}`;
     progress.value = progress.max;
     setState('done');
   } catch (error) {
@@ -134,6 +142,13 @@ function runWith(change: (config: Config) => Config): void {
   controls.setConfig(next);
   void run(next);
 }
+
+// Where the pipeline runs: said in the page when it fell back from the worker to the main thread.
+let siteNote = '';
+onComputeSite((site) => {
+  document.body.dataset.computeSite = site.where;
+  siteNote = site.where === 'page' ? ` Computed on the page, not in a worker (${site.reason}): the page may pause during runs.` : '';
+});
 
 $('#run').addEventListener('click', () => void run(controls.config));
 $('#step').addEventListener('click', () =>
