@@ -1,4 +1,5 @@
 import { describe, expect, it } from 'vitest';
+import { analyzeSurfaces, withMinBoundaryLength } from '../../src/core/analysis/scutoids';
 import { offsetClosedSurface } from '../../src/core/closed/closedOffset';
 import { ellipsoidArea } from '../../src/core/closed/conicArc';
 import { randomSequentialSites } from '../../src/core/closed/randomSequentialSites';
@@ -93,6 +94,24 @@ describe('offset surfaces of the stack', () => {
     const rvd = restrictedVoronoi(outer.surface, outer.sites, count);
     expect(Array.from(rvd.areas).every((v) => v > 0)).toBe(true);
     expect(() => offsetClosedSurface({ kind: 'ellipsoid', a, b, c }, basal.positions, basal.normals, count, -20, 'normal')).toThrow(/^sheet\.thickness: .*smallest radius of curvature/);
+  });
+});
+
+describe('the diagrams of a stack feed the analysis', () => {
+  it('concentric spheres keep every neighbour (0 % scutoids); an ellipsoid under "axes" 20 µm out changes some', () => {
+    const count = 200;
+    const basal = randomSequentialSites({ kind: 'ellipsoid', a: 40, b: 40, c: 40 }, count, 3, 8);
+    const stack = [0, 10, 20].map((t) => offsetClosedSurface({ kind: 'ellipsoid', a: 40, b: 40, c: 40 }, basal.positions, basal.normals, count, t, 'normal'));
+    const surfaces = stack.map((s) => restrictedVoronoi(s.surface, s.sites, count));
+    expect(analyzeSurfaces(surfaces).summary.percentScutoids).toBe(0);
+    const e = randomSequentialSites({ kind: 'ellipsoid', a: 90, b: 45, c: 45 }, count, 6, 8);
+    const outer = offsetClosedSurface({ kind: 'ellipsoid', a: 90, b: 45, c: 45 }, e.positions, e.normals, count, 20, 'axes');
+    const pair = [restrictedVoronoi({ kind: 'ellipsoid', a: 90, b: 45, c: 45 }, e.positions, count), restrictedVoronoi(outer.surface, outer.sites, count)];
+    const min = 0.5;
+    const summary = analyzeSurfaces(pair.map((s) => withMinBoundaryLength(s, min))).summary;
+    console.log(`ellipsoid 90:45:45, 200 RSA cells, "axes" +20 µm, contacts ≥ ${min} µm: ${summary.percentScutoids.toFixed(1)} % scutoids`);
+    expect(summary.cells).toBe(count);
+    expect(summary.percentScutoids).toBeGreaterThan(0);
   });
 });
 
