@@ -90,7 +90,9 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
       if (error instanceof ResumeError) throw new InputError(error.message);
       throw error;
     }
-    for (const bad of plan.rejected.slice(0, 20)) log(`warning: ${csvPath}:${bad.line}: ${bad.reason}; dropped, the run is computed again`);
+    for (const bad of plan.rejected.slice(0, 20)) {
+      log(`warning: ${csvPath}:${bad.line}: ${bad.reason}; ${bad.reason.startsWith('duplicate') ? 'dropped (the first row is kept)' : 'dropped, the run is computed again'}`);
+    }
     if (plan.rejected.length > 20) log(`warning: ${csvPath}: ${plan.rejected.length - 20} more bad rows dropped`);
     if (plan.rejected.length > 0) {
       appendFileSync(join(options.out, 'runs.rejected.csv'), plan.rejected.map((r) => (r.text.endsWith('\n') ? r.text : `${r.text}\r\n`)).join(''));

@@ -81,7 +81,8 @@ export function validateSweepSpec(input: unknown, options: SweepSpecOptions = {}
   }
   const forbidden = findForbiddenKey(input, []);
   if (forbidden) {
-    throw new SweepSpecError(forbidden, `${forbidden}: "${forbidden.split(/[.[\]"]+/).filter(Boolean).pop()}" is not allowed as a key (it would reach an object prototype); remove it`);
+    const key = [...FORBIDDEN_KEYS].find((k) => forbidden.includes(k)) ?? forbidden;
+    throw new SweepSpecError(forbidden, `${forbidden}: "${key}" is not allowed as a key or path part (it would reach an object prototype); remove it`);
   }
   const spec = structuredClone(input) as Record<string, unknown>;
   if (!validateShape(spec)) throw shapeError(validateShape.errors?.[0]);
