@@ -2,7 +2,9 @@
 # Checks the npm package as a consumer gets it (README, "Use it as a package"): `npm pack`, then
 # in an empty project whose package.json allows gl's install script, `npm install <tarball>`:
 #   - no dev dependency came along (tsx, vite, ...);
-#   - `import('tissue-sheet')` and `import('tissue-sheet/node')` work in Node;
+#   - `import('tissue-sheet')` and `import('tissue-sheet/node')` work in Node, and the main
+#     entry (and `tissue-sheet/element`) statically import no Node built-in, gl or pngjs;
+#   - a consumer's TypeScript typechecks against the declarations ("moduleResolution": "nodenext");
 #   - `npx tissue-sheet run` computes a small sheet;
 #   - with gl's native module hidden, then gl itself hidden, the CLI exits 3 with one line
 #     saying what to run (a consumer who denied or omitted gl).
@@ -18,7 +20,9 @@ step() { echo "== $* ($((SECONDS - started)) s)"; }
 fail() { echo "check-pack: FAILED: $*" >&2; exit 1; }
 
 step "npm pack (prepack builds dist/)"
-tarball=$(npm pack --silent --pack-destination "$work" 2>/dev/null | tail -n 1)
+npm pack --silent --pack-destination "$work" > "$work/pack.out" 2> "$work/pack.log" ||
+  { cat "$work/pack.out" "$work/pack.log" | grep -v '^npm warn' | tail -n 20 || true; fail "npm pack (its prepack build, npm run build:lib) failed"; }
+tarball=$(tail -n 1 "$work/pack.out")
 [ -f "$work/$tarball" ] || fail "npm pack wrote no tarball"
 echo "$tarball: $(du -k "$work/$tarball" | cut -f1) KiB packed, $(tar -tzf "$work/$tarball" | wc -l) files"
 if tar -tzf "$work/$tarball" | grep -E '^package/(src|tests|e2e|bench|node_modules|dist/app)/'; then
@@ -45,6 +49,29 @@ echo "installed: $(ls node_modules | wc -l) packages, $(du -sh node_modules | cu
 step "import the library in Node"
 node -e "import('tissue-sheet').then((m) => { console.log('tissue-sheet: runSheet', typeof m.runSheet, '| validateAnyConfig', typeof m.validateAnyConfig, '| runSweep', typeof m.runSweep); if (typeof m.runSheet !== 'function') process.exit(1); })"
 node -e "import('tissue-sheet/node').then((m) => { console.log('tissue-sheet/node: createHeadlessContext', typeof m.createHeadlessContext); if (typeof m.createHeadlessContext !== 'function') process.exit(1); })"
+
+step "the main entry is browser-safe: no Node built-in, gl or pngjs in its static imports"
+cat > browser-safe.cjs <<'EOF'
+const fs = require('fs'), path = require('path');
+const root = path.resolve('node_modules/tissue-sheet/dist/esm'), seen = new Set(), bad = [];
+const visit = (file) => {
+  if (seen.has(file)) return;
+  seen.add(file);
+  for (const [, spec] of fs.readFileSync(file, 'utf8').matchAll(/^(?:import|export)\s[^'";]*['"]([^'"]+)['"]/gm)) {
+    if (spec.startsWith('.')) visit(path.resolve(path.dirname(file), spec));
+    else if (/^node:|^(gl|pngjs)(\/|$)/.test(spec)) bad.push(`${path.relative(root, file)} imports ${spec}`);
+  }
+};
+visit(path.join(root, process.argv[2]));
+if (bad.length) {
+  console.error(bad.join('\n'));
+  process.exit(1);
+}
+console.log(`${process.argv[2]} and the ${seen.size - 1} chunks it imports statically import no Node-only module`);
+EOF
+node browser-safe.cjs index.js || fail "tissue-sheet (the main entry) imports a Node-only module"
+node browser-safe.cjs element.js || fail "tissue-sheet/element imports a Node-only module"
+! node browser-safe.cjs node.js >/dev/null 2>&1 || fail "browser-safe.cjs finds no Node import even in node.js"
 
 step "typecheck a consumer (moduleResolution nodenext)"
 cat > consumer.ts <<'EOF'
