@@ -112,10 +112,17 @@ export function checkMeshFile(file: MeshFile): void {
   const name = file.name ?? 'mesh';
   checkPlyCounts(file, name);
   let mesh;
+  // three.js's loaders print whole objects to the console for some bad files (a NaN vertex
+  // dumps its BufferGeometry); the checks below say what is wrong in one line instead.
+  const { warn, error: printError } = console;
+  console.warn = console.error = () => {};
   try {
     mesh = parseMesh(file.data, { fileName: name });
   } catch (error) {
     throw new InputError(`surface.src: ${name}: ${oneLine(error instanceof Error ? error.message : 'cannot be read as a mesh')}`);
+  } finally {
+    console.warn = warn;
+    console.error = printError;
   }
   const p = mesh.positions;
   for (let k = 0; k < p.length; k++) {
