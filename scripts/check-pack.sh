@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Checks the npm package as a consumer gets it (README, "Use it as a package"): `npm pack`, then
 # in an empty project whose package.json allows gl's install script, `npm install <tarball>`:
-#   - no dev dependency came along (tsx, vite, ...);
+#   - no dev dependency came along (tsx, vite, ...), and the packed code imports every runtime
+#     dependency;
 #   - `import('tissue-sheet')` and `import('tissue-sheet/node')` work in Node, and the main
 #     entry (and `tissue-sheet/element`) statically import no Node built-in, gl or pngjs;
 #   - a consumer's TypeScript typechecks against the declarations ("moduleResolution": "nodenext");
@@ -72,6 +73,26 @@ EOF
 node browser-safe.cjs index.js || fail "tissue-sheet (the main entry) imports a Node-only module"
 node browser-safe.cjs element.js || fail "tissue-sheet/element imports a Node-only module"
 ! node browser-safe.cjs node.js >/dev/null 2>&1 || fail "browser-safe.cjs finds no Node import even in node.js"
+
+step "every runtime dependency is imported by the packed code"
+cat > deps-used.cjs <<'EOF'
+const fs = require('fs'), path = require('path');
+const pkg = path.resolve('node_modules/tissue-sheet');
+const manifest = JSON.parse(fs.readFileSync(path.join(pkg, 'package.json'), 'utf8'));
+const code = fs.readdirSync(path.join(pkg, 'dist/esm'), { recursive: true })
+  .filter((f) => f.endsWith('.js') && !f.startsWith('assets'))
+  .map((f) => fs.readFileSync(path.join(pkg, 'dist/esm', f), 'utf8'))
+  .join('\n');
+const names = Object.keys({ ...manifest.dependencies, ...manifest.optionalDependencies });
+const escape = (s) => s.replace(/[.*+?^${}()|[\]\\]/g, '\\$&');
+const unused = names.filter((name) => !new RegExp(`(from |import\\(|require(\\.resolve)?\\()["']${escape(name)}(/[^"']*)?["']`).test(code));
+if (unused.length) {
+  console.error(`dependencies no packed module imports: ${unused.join(', ')}`);
+  process.exit(1);
+}
+console.log(`all ${names.length} runtime dependencies are imported: ${names.join(', ')}`);
+EOF
+node deps-used.cjs || fail "a runtime dependency is not used; make it a devDependency or remove it"
 
 step "typecheck a consumer (moduleResolution nodenext)"
 cat > consumer.ts <<'EOF'
