@@ -1,10 +1,14 @@
-import { spawnSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { spawn, spawnSync } from 'node:child_process';
+import { existsSync, mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
+import { hostname, tmpdir } from 'node:os';
 import { join } from 'node:path';
+import { PNG } from 'pngjs';
 import { describe, expect, it } from 'vitest';
+import { validateAnyConfig } from '../../src/core/config';
+import { readCsvTable, summaryColumns } from '../../src/core/sweep';
 
-const bin = join(__dirname, '../../bin/tissue-sheet.mjs');
+// The CLI from its sources (same main() as bin/tissue-sheet.mjs, which runs the compiled build).
+const bin = join(__dirname, 'fromSource.mjs');
 const dir = mkdtempSync(join(tmpdir(), 'tissue-sheet-cli-'));
 
 function cli(args: string[]) {
@@ -19,8 +23,8 @@ function writeJson(name: string, value: unknown): string {
 
 const small = {
   surface: { kind: 'tube', radius: 40, length: 400 },
-  resolution: 256,
-  cells: 60,
+  resolution: 128,
+  cells: 40,
   seed: 9,
   lloyd: { maxIterations: 3 },
   sheet: { surfaceRatio: 1.8, layers: 1 },
@@ -38,7 +42,7 @@ describe('tissue-sheet run', () => {
     expect(result.seed).toBe(9);
     expect(['blend', 'gather', 'readback']).toContain(result.gpu.centroidPath);
     expect(result.lloyd.iterations).toHaveLength(3);
-    expect(result.cells).toHaveLength(60);
+    expect(result.cells).toHaveLength(40);
     expect(result.surfaces.map((s: { name: string }) => s.name)).toEqual(['layer 1', 'apical']);
     expect(result.analyses.map((a: { method: string }) => a.method)).toEqual(['labels', 'exact']);
     const cell = result.cells[0];
@@ -73,7 +77,24 @@ describe('tissue-sheet run', () => {
     ['thickness beyond the radius', { ...small, sheet: { direction: 'inward', thickness: 50 } }, /sheet\.thickness: 50 µm inward reaches the tube's axis/],
     ['negative layers', { ...small, sheet: { layers: -1 } }, /sheet\.layers: must be an integer/],
     ['not JSON', '{"cells": 3,', /not valid JSON/],
+    ['a plane 1e20 µm wide', { ...small, surface: { kind: 'plane', width: 1e20, height: 1e20 }, sheet: {} }, /^tissue-sheet: surface\.width: 100000000000000000000 µm is outside/],
+    ['a plane 1e-20 µm wide', { ...small, surface: { kind: 'plane', width: 1e-20, height: 1e-20 }, sheet: {} }, /^tissue-sheet: surface\.width: 1e-20 µm is outside/],
+    ['one texel around a tube', { ...small, surface: { kind: 'tube', radius: 0.1, length: 4000 }, resolution: 1024, sheet: {} }, /^tissue-sheet: resolution: the grid is 1 x 1024 texels/],
+    ['a huge surface ratio', { ...small, sheet: { surfaceRatio: 1e6 } }, /^tissue-sheet: sheet\.surfaceRatio: .* lower sheet\.surfaceRatio/],
+    ['a ratio beyond the texture limit', { ...small, resolution: 64, sheet: { surfaceRatio: 600 } }, /^tissue-sheet: sheet\.surfaceRatio: the other surface would be \d+ x \d+ texels .* this GPU allows/],
+    ['a mesh with a NaN vertex', { ...small, surface: { kind: 'mesh', src: 'nan.ply' }, sheet: {} }, /^tissue-sheet: surface\.src: .*nan\.ply: .*vertex 3 .*NaN/],
+    ['a PLY with a wrong vertex count', { ...small, surface: { kind: 'mesh', src: 'count.ply' }, sheet: {} }, /^tissue-sheet: surface\.src: .*count\.ply: the PLY header declares 5 vertex \+ 4 face = 9 lines but the body has 8/],
+    ['an http mesh', { ...small, surface: { kind: 'mesh', src: 'http://127.0.0.1:9/a.ply' }, sheet: {} }, /^tissue-sheet: surface\.src: "http:\/\/127\.0\.0\.1:9\/a\.ply" is a network address; .*--allow-network/],
+    ['an empty density image', { ...small, density: { kind: 'image', src: 'empty.png' } }, /^tissue-sheet: density\.src: density image .*empty\.png: the file is empty/],
+    ['a directory as density image', { ...small, density: { kind: 'image', src: 'folder.png' } }, /^tissue-sheet: density\.src: density image .*folder\.png: is a directory/],
   ];
+  const tetra = (vertices: number, last: string) =>
+    `ply\nformat ascii 1.0\nelement vertex ${vertices}\nproperty float x\nproperty float y\nproperty float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n` +
+    `0 0 0\n1 0 0\n0 1 0\n${last}\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n`;
+  writeFileSync(join(dir, 'nan.ply'), tetra(4, '0 0 NaN'));
+  writeFileSync(join(dir, 'count.ply'), tetra(5, '0 0 1'));
+  writeFileSync(join(dir, 'empty.png'), '');
+  mkdirSync(join(dir, 'folder.png'), { recursive: true });
   for (const [name, input, message] of badInputs) {
     it(`bad input (${name}): exit 2, one line naming the problem`, () => {
       const run = cli(['run', writeJson(`bad-${name.replace(/\W/g, '')}.json`, input), '--out', join(dir, 'never.json')]);
@@ -83,6 +104,32 @@ describe('tissue-sheet run', () => {
       expect(run.stderr).not.toMatch(/\n\s+at /); // no stack trace
     });
   }
+
+  it('accepts a UTF-8 byte-order mark', () => {
+    const path = join(dir, 'bom.json');
+    writeFileSync(path, '\ufeff' + JSON.stringify({ ...small, lloyd: { maxIterations: 1 } }));
+    expect(cli(['run', path, '--out', join(dir, 'bom-result.json')]).status).toBe(0);
+  });
+
+  it('never writes over its input, through a link, or over a foreign file without --force', () => {
+    const input = join(dir, 'small.json');
+    const before = readFileSync(input, 'utf8');
+    const same = cli(['run', input, '--out', input]);
+    expect(same.status).toBe(2);
+    expect(same.stderr).toMatch(/--out .*small\.json: that is the input file/);
+    writeFileSync(join(dir, 'notes.txt'), 'mine');
+    const foreign = cli(['run', input, '--out', join(dir, 'notes.txt')]);
+    expect(foreign.status).toBe(2);
+    expect(foreign.stderr).toMatch(/exists and is not a tissue-sheet result; pass --force/);
+    expect(readFileSync(input, 'utf8')).toBe(before);
+    expect(readFileSync(join(dir, 'notes.txt'), 'utf8')).toBe('mine');
+  });
+
+  it('documents its exit codes in --help', () => {
+    const help = cli(['--help']);
+    expect(help.status).toBe(0);
+    for (const code of ['0 ', '1 ', '2 ', '3 ', '130 ']) expect(help.stdout).toContain(`\n  ${code}`);
+  });
 
   it('missing --out is a usage error', () => {
     const run = cli(['run', join(dir, 'small.json')]);
@@ -113,14 +160,116 @@ describe('tissue-sheet sweep', () => {
       else expect(Number(cells[scutoids])).toBeGreaterThan(0);
     }
     const aggregate = JSON.parse(readFileSync(join(out, 'aggregate.json'), 'utf8'));
-    expect(JSON.stringify(aggregate)).toMatch(/percentScutoids/);
+    expect(aggregate[0].stats['labels.percentScutoids']).toMatchObject({ n: 2, missing: 0 });
+    const record = JSON.parse(readFileSync(join(out, 'sweep.json'), 'utf8'));
+    expect(record).toMatchObject({ software: { name: 'tissue-sheet' }, runs: 4, computed: 4 });
+    expect(typeof record.renderer).toBe('string');
+    expect(Date.parse(record.ended)).toBeGreaterThanOrEqual(Date.parse(record.started));
 
-    // Cut the last row off (an interrupted sweep) and rerun: only that run is computed again.
-    writeFileSync(join(out, 'runs.csv'), runs.slice(0, 4).join('\r\n') + '\r\n');
+    // Cut the last row in half (an interrupted write) and duplicate another: only the cut run
+    // is computed again, and the file ends with one row per run.
+    writeFileSync(join(out, 'runs.csv'), [...runs.slice(0, 4), runs[1]].join('\r\n') + '\r\n' + runs[4].slice(0, 30));
     const second = cli(['sweep', spec, '--out', out]);
     expect(second.status).toBe(0);
+    expect(second.stderr).toMatch(/runs\.csv:5: duplicate of line 2/);
+    expect(second.stderr).toMatch(/runs\.csv:6: incomplete last line/);
     expect(second.stderr).toMatch(/1 runs computed, 3 resumed/);
     expect(readFileSync(join(out, 'runs.csv'), 'utf8').trim().split(/\r?\n/)).toEqual(runs);
   });
-});
 
+  it('fixes the header from the spec: every method and surface of the grid, each row filling its own', () => {
+    const spec = writeJson('union.json', {
+      base: { ...small, lloyd: { maxIterations: 1 }, sheet: { surfaceRatio: 1.5 } },
+      vary: { 'sheet.adjacency': ['labels', 'both'], 'sheet.layers': [0, 1] },
+      seed: 4,
+    });
+    const out = join(dir, 'union');
+    const run = cli(['sweep', spec, '--out', out]);
+    expect(run.status).toBe(0);
+    const table = readCsvTable(readFileSync(join(out, 'runs.csv'), 'utf8'));
+    expect(table.header).toContain('exact.percentScutoids');
+    expect(table.header).toContain('labels.layer1.meanSides');
+    for (const row of table.rows) {
+      const config = validateAnyConfig({ ...small, sheet: { surfaceRatio: 1.5, adjacency: row['sheet.adjacency'], layers: Number(row['sheet.layers']) } });
+      const expected = new Set(summaryColumns(config));
+      for (const column of table.header.slice(5)) {
+        // the real summary fills exactly the columns predicted for its config
+        expect(row[column] !== '', `${row.key} ${column}`).toBe(expected.has(column));
+      }
+    }
+    const aggregate = readCsvTable(readFileSync(join(out, 'aggregate.csv'), 'utf8'));
+    const labelsOnly = aggregate.rows.find((r) => r['sheet.adjacency'] === 'labels')!;
+    expect(labelsOnly['exact.percentScutoids.n']).toBe('0');
+    expect(labelsOnly['exact.percentScutoids.mean']).toBe('');
+  });
+
+  it('runs a sweep over a density image', () => {
+    const png = new PNG({ width: 8, height: 4 });
+    for (let k = 0; k < 32; k++) png.data.fill(k % 8 < 4 ? 0 : 255, 4 * k, 4 * k + 3).fill(255, 4 * k + 3, 4 * k + 4);
+    writeFileSync(join(dir, 'half.png'), PNG.sync.write(png));
+    const spec = writeJson('density.json', {
+      base: { ...small, lloyd: { maxIterations: 1 }, sheet: {} },
+      vary: { density: [{ kind: 'uniform' }, { kind: 'image', src: 'half.png', high: 4 }] },
+    });
+    const run = cli(['sweep', spec, '--out', join(dir, 'density')]);
+    expect(run.stderr).toMatch(/2 runs computed/);
+    expect(run.status).toBe(0);
+  });
+
+  const badSpecs: Array<[string, unknown, RegExp]> = [
+    ['seed "abc"', { base: small, seed: 'abc' }, /^tissue-sheet: seed: must be an integer$/],
+    ['unknown seed mode', { base: small, seedMode: 'sometimes' }, /^tissue-sheet: seedMode: must be one of/],
+    ['realizations 1e9', { base: small, realizations: 1e9 }, /^tissue-sheet: realizations: must be an integer from 1 to/],
+    ['unknown field in base', { base: { ...small, cels: 3 } }, /^tissue-sheet: base\.cels: unknown field/],
+    ['a prototype path', { base: small, vary: { '__proto__.polluted': [1] } }, /^tissue-sheet: vary\["__proto__\.polluted"\]: "__proto__" is not allowed/],
+    ['5.4 million runs', { base: small, vary: { cells: Array.from({ length: 300 }, (_, k) => k + 1), seed: undefined, 'lloyd.maxIterations': Array.from({ length: 300 }, (_, k) => k) }, realizations: 60 }, /5400000 runs .* --max-runs/],
+    ['a grid point beyond the texture limit', { base: { ...small, resolution: 64, sheet: {} }, vary: { 'sheet.surfaceRatio': [1, 800] } }, /^tissue-sheet: grid point sheet\.surfaceRatio=800: sheet\.surfaceRatio: .*this GPU allows/],
+    ['a grid point with a broken mesh', { base: { ...small, sheet: {} }, vary: { surface: [{ kind: 'sphere', radius: 30 }, { kind: 'mesh', src: 'nan.ply' }] } }, /^tissue-sheet: grid point surface=.*nan\.ply.*NaN/],
+  ];
+  for (const [name, spec, message] of badSpecs) {
+    it(`bad sweep spec (${name}): exit 2 in seconds, one line, nothing written`, () => {
+      const out = join(dir, `never-${name.replace(/\W/g, '')}`);
+      const start = Date.now();
+      const run = cli(['sweep', writeJson(`spec-${name.replace(/\W/g, '')}.json`, spec), '--out', out]);
+      expect(Date.now() - start).toBeLessThan(15_000);
+      expect(run.status).toBe(2);
+      expect(run.stderr.trim().split('\n')).toHaveLength(1);
+      expect(run.stderr.trim()).toMatch(message);
+      expect(existsSync(out)).toBe(false);
+    });
+  }
+
+  it('refuses a second sweep on a locked directory (exit 3), naming the holder', () => {
+    const out = join(dir, 'locked');
+    mkdirSync(out);
+    writeFileSync(join(out, '.tissue-sheet.lock'), JSON.stringify({ pid: process.pid, host: hostname(), started: 'earlier' }));
+    const run = cli(['sweep', writeJson('lock.json', { base: { ...small, lloyd: { maxIterations: 1 } } }), '--out', out]);
+    expect(run.status).toBe(3);
+    expect(run.stderr).toMatch(new RegExp(`another sweep is writing here \\(process ${process.pid} on ${hostname()}`));
+    expect(existsSync(join(out, 'runs.csv'))).toBe(false);
+  });
+
+  it('stops on Ctrl-C with exit 130, keeping finished rows, and resumes', async () => {
+    const spec = writeJson('interrupt.json', { base: { ...small, lloyd: { maxIterations: 2 }, sheet: {} }, realizations: 12 });
+    const out = join(dir, 'interrupted');
+    const child = spawn(process.execPath, [bin, 'sweep', spec, '--out', out], { env: process.env });
+    let stderr = '';
+    const code = await new Promise<number | null>((resolve) => {
+      child.stderr.on('data', (chunk) => {
+        stderr += chunk;
+        if (/done 2\/12/.test(stderr) && !child.killed) child.kill('SIGINT');
+      });
+      child.on('exit', (status) => resolve(status));
+    });
+    expect(code).toBe(130);
+    expect(stderr).toMatch(/interrupt/);
+    const kept = readCsvTable(readFileSync(join(out, 'runs.csv'), 'utf8'));
+    expect(kept.truncated).toBe(false);
+    expect(kept.rows.length).toBeGreaterThanOrEqual(2);
+    expect(kept.rows.length).toBeLessThan(12);
+    expect(existsSync(join(out, '.tissue-sheet.lock'))).toBe(false);
+    const again = cli(['sweep', spec, '--out', out]);
+    expect(again.status).toBe(0);
+    expect(again.stderr).toMatch(new RegExp(`${12 - kept.rows.length} runs computed, ${kept.rows.length} resumed`));
+  });
+});
