@@ -8,7 +8,7 @@
 import { dirname } from 'node:path';
 import { ConfigError, validateAnyConfig } from '../core/config';
 import { createHeadlessContext } from '../node/headless';
-import { runSheet } from '../run/index';
+import { describeEngine, runSheet } from '../run/index';
 import { InterruptedError } from './errors';
 import type { CliOptions } from './args';
 import { checkOutFile, writeFileAtomic } from './output';
@@ -38,7 +38,7 @@ export async function runCommand(options: CliOptions, signal: AbortSignal, log: 
     writeFileAtomic(options.out, JSON.stringify(result, null, 2) + '\n');
     log(
       `done: ${result.cells.length} cells, ${result.lloyd.iterations.length} iterations, ` +
-        `centroid path ${result.gpu.centroidPath}, ${result.timings.totalMs.toFixed(0)} ms -> ${options.out}`,
+        `${describeEngine(result.engine)}, ${result.timings.totalMs.toFixed(0)} ms -> ${options.out}`,
     );
   } finally {
     context.dispose();

@@ -1,4 +1,4 @@
-import type { Config } from './config';
+import { layerStepOf, steppedOffsets, type Config } from './config';
 import type { Grid } from './grid';
 
 /** One surface of the sheet's stack: the seeded surface, a layer, or the other surface. */
@@ -30,9 +30,10 @@ export function surfaceStack(config: Config, seededGrid: Grid): StackSurface[] {
     otherOffset = otherRadius - surface.radius;
   }
   const stack: StackSurface[] = [];
-  const count = sheet.layers + 2;
+  const offsets = stackOffsets(config, otherOffset);
+  const count = offsets.length;
   for (let k = 0; k < count; k++) {
-    const offset = (otherOffset * k) / (count - 1);
+    const offset = offsets[k];
     const role = k === 0 ? 'seeded' : k === count - 1 ? 'other' : 'layer';
     const name = role === 'seeded' ? sheet.seeded : role === 'other' ? otherName : `layer ${k}`;
     if (surface.kind === 'plane') {
@@ -45,6 +46,30 @@ export function surfaceStack(config: Config, seededGrid: Grid): StackSurface[] {
     stack.push({ name, role, offset, ratio, grid });
   }
   return stack;
+}
+
+/**
+ * Signed offsets of the stack [seeded, layers..., other]: sheet.layers evenly spaced, or a fixed
+ * layer step (sheet.layerStep, or the lab protocol's): in surface-ratio units on a tube
+ * (s = 1, 1 + step, ..., the other surface), in µm of thickness on a plane.
+ */
+export function stackOffsets(config: Config, otherOffset: number): number[] {
+  const { sheet, surface } = config;
+  const step = layerStepOf(sheet);
+  if (step === null) {
+    const count = sheet.layers + 2;
+    return Array.from({ length: count }, (_, k) => (otherOffset * k) / (count - 1));
+  }
+  if (surface.kind === 'tube') {
+    const R = surface.radius;
+    const otherRatio = (R + otherOffset) / R;
+    const up = otherRatio >= 1;
+    // Ratios 1, 1 + step, ... outward; 1, 1 / (1 + step), ... inward (the inner tube is the seeded one scaled down).
+    const steps = steppedOffsets(up ? otherRatio - 1 : 1 / otherRatio - 1, step);
+    return steps.map((d, k) => (k === steps.length - 1 ? otherOffset : up ? R * d : R / (1 + d) - R));
+  }
+  const sign = otherOffset < 0 ? -1 : 1;
+  return steppedOffsets(Math.abs(otherOffset), step).map((d) => sign * d);
 }
 
 /**

@@ -1,4 +1,4 @@
-import { checkClosedFeasible, makeCubeGrid, type ClosedConfig } from '../core/config';
+import { checkClosedFeasible, checkClosedSheet, layerStepOf, makeCubeGrid, steppedOffsets, type ClosedConfig } from '../core/config';
 import {
   cubeLabelAdjacency,
   offsetSurface,
@@ -10,6 +10,7 @@ import {
 import { sphericalVoronoi } from '../core/closed/sphericalDelaunay';
 import type { Grid } from '../core/grid';
 import type { EngineChoice } from './enginePolicy';
+import type { CentroidPath } from '../gpu/centroidPolicy';
 import type { GpuContext } from '../gpu/context';
 import { CubeCcvtEngine } from '../gpu/cubeEngine';
 import { ClosedLloydRun } from '../gpu/cubeLloyd';
@@ -51,12 +52,16 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
     return { ...surface, neighbours: texelNeighbours(surface.image.n) };
   },
 
-  checkSheet: (config, geometry) => checkOffsets(config, geometry),
+  checkSheet(config, geometry) {
+    checkClosedSheet(config);
+    checkOffsets(config, geometry);
+  },
 
   relax(context, config, geometry, choice) {
     const { image, projector } = geometry;
+    const centroidPath = gpuPath(choice);
     const sites = placeClosedSites(image, projector, config.cells, config.seed, config.minSpacing);
-    const engine = new CubeCcvtEngine(context, image.n, config.cells, { variant: config.jumpFlood.variant, centroidPath: choice.centroidPath });
+    const engine = new CubeCcvtEngine(context, image.n, config.cells, { variant: config.jumpFlood.variant, centroidPath });
     try {
       engine.setGeometry(image.position, image.area);
       const run = new ClosedLloydRun(engine, projector, sites, config.lloyd, minTexelSpacing(geometry));
@@ -70,11 +75,11 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
   stack(config, geometry) {
     const { sheet } = config;
     const other = (sheet.direction === 'outward' ? 1 : -1) * sheet.thickness;
-    const count = sheet.layers + 2;
-    return Array.from({ length: count }, (_, k) => {
+    const offsets = closedStackOffsets(sheet, other);
+    const count = offsets.length;
+    return offsets.map((offset, k) => {
       const role = k === 0 ? 'seeded' : k === count - 1 ? 'other' : 'layer';
       const name = role === 'seeded' ? sheet.seeded : role === 'other' ? (sheet.seeded === 'basal' ? 'apical' : 'basal') : `layer ${k}`;
-      const offset = (other * k) / (count - 1);
       return { name, role, offset, sample: offsetSurface(geometry.image, offset, geometry.neighbours) };
     });
   },
@@ -86,6 +91,13 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
   },
 
   labeller: (context, config, geometry, choice) => cubeMapLabeller(context, config, geometry.image.n, choice),
+
+  exactLabels() {
+    throw new Error('the cube-map family runs on the GPU engine, which labels every surface');
+  },
+
+  // The lab protocol is refused on closed surfaces (no open ends): validity is the stack's.
+  protocolInvalid: () => null,
 
   labelImage: (geometry, layer, labels) => ({
     name: layer.name,
@@ -136,6 +148,14 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
   resultSection: (config, geometry, seeded, labeller) => ({ closed: closedSection(config, geometry, seeded, labeller) }),
 };
 
+/** Signed offsets of a closed stack: sheet.layers evenly spaced, or every sheet.layerStep µm. */
+function closedStackOffsets(sheet: ClosedConfig['sheet'], other: number): number[] {
+  const step = layerStepOf(sheet);
+  if (step !== null) return steppedOffsets(Math.abs(other), step).map((d) => (other < 0 ? -d : d));
+  const count = sheet.layers + 2;
+  return Array.from({ length: count }, (_, k) => (other * k) / (count - 1));
+}
+
 /** The n x 6n atlas as a grid record: square texels of the mean texel area. */
 function atlasGrid(n: number, totalArea: number): Grid {
   const texel = Math.sqrt(totalArea / (6 * n * n));
@@ -158,9 +178,15 @@ function minTexelSpacing(geometry: CubeMapGeometry): number {
   return Number.isFinite(min) ? min : 1;
 }
 
+/** The cube map runs on the GPU engine only (the engine policy never chooses another here). */
+function gpuPath(choice: EngineChoice): CentroidPath {
+  if (choice.name !== 'gpu') throw new Error(`the cube-map family runs on the GPU engine, not "${choice.name}"`);
+  return choice.centroidPath;
+}
+
 /** Every surface of the stack has the same cube map: one engine labels them all (setGeometry). */
 function cubeMapLabeller(context: GpuContext, config: ClosedConfig, n: number, choice: EngineChoice): Labeller<CubeMapLayer, CubeMapProjected> {
-  const engine = new CubeCcvtEngine(context, n, config.cells, { variant: config.jumpFlood.variant, centroidPath: choice.centroidPath });
+  const engine = new CubeCcvtEngine(context, n, config.cells, { variant: config.jumpFlood.variant, centroidPath: gpuPath(choice) });
   return {
     label(layer, sites) {
       engine.setGeometry(layer.sample.position, layer.sample.area);

@@ -2,28 +2,58 @@ import type { AnyConfig } from '../core/config';
 import { chooseCentroidPath, type CentroidPath, type SurfaceFamilyName } from '../gpu/centroidPolicy';
 import type { GpuCapabilities } from '../gpu/context';
 
-/** Which engine runs Lloyd and labels the surfaces of a run, and why (recorded in the result). */
-export interface EngineChoice {
-  /** "gpu": jump flood and centroid passes in WebGL2 render targets. */
+/** Which engine runs Lloyd and finds the neighbours of a run, and why (recorded in the result). */
+export type EngineChoice = GpuEngineChoice | ExactEngineChoice;
+
+/** Jump flood and centroid passes in WebGL2 render targets. */
+export interface GpuEngineChoice {
   readonly name: 'gpu';
   readonly family: SurfaceFamilyName;
+  /** How the GPU sums centroids. */
   readonly centroidPath: CentroidPath;
-  /** One line: why this engine and this centroid path. */
+  /** One line: why this engine and centroid path. */
+  readonly reason: string;
+}
+
+/** Lloyd on the exact Voronoi diagram on the CPU (planes and tubes): every analysis exact, no label textures. */
+export interface ExactEngineChoice {
+  readonly name: 'exact';
+  readonly family: SurfaceFamilyName;
+  readonly centroidPath: null;
   readonly reason: string;
 }
 
 /**
- * The engine policy: the one place a run's engine and centroid path are chosen. Today every
- * surface family runs on the GPU engine of its layout (planar grid or cube map); an engine of
- * another kind (an exact CPU engine for planes and tubes) is one more branch here and one more
- * `relax` in the family, not another pipeline.
+ * The engine policy: the one place a run's engine and centroid path are chosen.
+ * - Closed surfaces: the cube-map GPU engine (the only one).
+ * - Planes and tubes: `engine: "exact"` or `"gpu"` as asked; `"auto"` takes the exact engine on a
+ *   software renderer (there the "GPU" is the CPU, and the exact computation costs a fraction of
+ *   a jump flood), unless the labels method is asked for, and the GPU engine otherwise.
  */
 export function chooseEngine(config: AnyConfig, family: SurfaceFamilyName, capabilities: GpuCapabilities): EngineChoice {
+  if (family === 'planar grid') {
+    if (config.engine === 'exact') return exact(family, 'requested (engine "exact")');
+    if (config.engine === 'auto' && capabilities.softwareRenderer && config.sheet.adjacency !== 'labels') {
+      return exact(family, `auto: the renderer is software (${capabilities.renderer}), where the exact CPU engine is faster than a jump flood and exact`);
+    }
+  }
   const path = chooseCentroidPath(family, config.centroidPath, capabilities);
-  return {
-    name: 'gpu',
-    family,
-    centroidPath: path.path,
-    reason: `the ${family} GPU engine, the only engine for this surface; centroid path ${path.path} (${path.reason})`,
-  };
+  const why =
+    family === 'cube map'
+      ? 'the cube-map GPU engine, the only engine for closed surfaces'
+      : config.engine === 'gpu'
+        ? 'requested (engine "gpu")'
+        : config.sheet.adjacency === 'labels'
+          ? 'auto: the labels method needs label textures'
+          : 'auto: a hardware GPU';
+  return { name: 'gpu', family, centroidPath: path.path, reason: `${why}; centroid path ${path.path} (${path.reason})` };
+}
+
+function exact(family: SurfaceFamilyName, reason: string): ExactEngineChoice {
+  return { name: 'exact', family, centroidPath: null, reason };
+}
+
+/** The engine in a few words, for logs and the page: "exact engine" or "GPU, centroid path readback". */
+export function describeEngine(engine: EngineChoice): string {
+  return engine.name === 'exact' ? 'exact engine' : `GPU, centroid path ${engine.centroidPath}`;
 }

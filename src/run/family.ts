@@ -83,11 +83,15 @@ export interface SurfaceFamily<C extends AnyConfig, Geometry, Sites, Layer exten
   /** The seeded sites moved along the normal onto a layer. */
   project(geometry: Geometry, layer: Layer, sites: Sites): Projected;
   labeller(context: GpuContext, config: C, geometry: Geometry, engine: EngineChoice): Labeller<Layer, Projected>;
+  /** The exact engine's label image of a layer: its exact cells drawn on the texels (for views). */
+  exactLabels(geometry: Geometry, layer: Layer, projected: Projected): Int32Array;
   labelImage(geometry: Geometry, layer: Layer, labels: Int32Array): LabelImage;
   /** Neighbours, contact lengths (µm), areas and border contacts from a layer's label image. */
   labelAdjacency(geometry: Geometry, layer: Layer, labels: Int32Array, count: number): LabelSurfaceAdjacency;
   /** The shortest contact (µm) the labels method counts on each layer, and the value reported. */
   minContactLengths(config: C, geometry: Geometry, layers: Layer[]): { reported: number; perLayer: number[] };
+  /** The protocol's invalid cells beyond those touching an open end of the stack (lab: any validity layer), or null. */
+  protocolInvalid(config: C, geometry: Geometry, sites: Sites): Uint8Array | null;
   /** The exact adjacency of a layer, or null where this surface has no exact method. */
   exactAdjacency(config: C, geometry: Geometry, layer: Layer, sites: Sites, projected: Projected): SurfaceAdjacency | null;
   cellPlacement(config: C, layer: Layer, sites: Sites, projected: Projected, id: number): CellPlacement;

@@ -6,7 +6,7 @@
 export { runSheet, SheetRunner, seededKey, type RunCallbacks } from './runSheet';
 export { sweepSummary } from './sweepSummary';
 export { WorkerSheetRunner, type ComputeSite } from './worker/workerRunner';
-export type { EngineChoice } from './enginePolicy';
+export { describeEngine, type EngineChoice } from './enginePolicy';
 export type { MeshFile } from './closedMesh';
 export type {
   AnalysisRecord,

@@ -1,7 +1,8 @@
-import { labMinBoundaryLength, surfaceFromExact } from '../core/analysis';
-import { checkFeasible, makeGrid, type Config } from '../core/config';
-import { densityField } from '../core/density';
+import { LAB_PROTOCOL, labelContactThresholdTexels, labInvalidCells, labMinBoundaryLength, surfaceFromExact, type LabProtocolSettings } from '../core/analysis';
+import { checkFeasible, checkSheet, layerStepOf, makeGrid, minContactPixelsOf, type Config } from '../core/config';
+import { densityField, type GrayImage } from '../core/density';
 import { exactVoronoi } from '../core/exact';
+import { ExactLloydRun, exactDensity, rasterizeCells } from '../core/exactEngine';
 import type { Grid } from '../core/grid';
 import { labelAdjacency } from '../core/labels';
 import { projectSites, surfaceStack, type StackSurface } from '../core/sheetGeometry';
@@ -11,13 +12,15 @@ import type { EngineChoice } from './enginePolicy';
 import type { GpuContext } from '../gpu/context';
 import { CcvtEngine } from '../gpu/engine';
 import { LloydRun } from '../gpu/lloyd';
-import type { Labeller, RunCallbacks, SurfaceFamily } from './family';
+import type { Labeller, Relaxation, RunCallbacks, SurfaceFamily } from './family';
 import { gpuRelaxation } from './relax';
 
 /** A plane or tube, unrolled: its texel grid and the density per texel. */
 export interface PlanarGeometry {
   readonly grid: Grid;
   readonly density: Float32Array;
+  /** The decoded density image, for `density.kind = "image"`. */
+  readonly densityImage?: GrayImage;
 }
 
 /** Sites of a planar surface: interleaved x, y in texel units of its grid. */
@@ -34,15 +37,21 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
   async prepare(config, callbacks: RunCallbacks) {
     const grid = makeGrid(config);
     checkFeasible(config, grid);
-    return { grid, density: densityField(config.density, grid, callbacks.densityImage) };
+    const { densityImage } = callbacks;
+    return { grid, density: densityField(config.density, grid, densityImage), ...(densityImage ? { densityImage } : {}) };
   },
 
-  // checkFeasible (in prepare) and validation cover the sheet of a plane or tube.
-  checkSheet() {},
+  // Again for a reused seeded surface: its sheet may be new.
+  checkSheet: (config) => checkSheet(config),
 
   relax(context, config, geometry, choice) {
     const { grid, density } = geometry;
     const sites = placeSites(grid, config.cells, config.seed, config.minSpacing, placementDensity(config, density));
+    if (choice.name === 'exact') {
+      const run = new ExactLloydRun(grid, sites, config.lloyd, exactDensity(config.density, grid, geometry.densityImage));
+      // No label image: the stack rasterizes the exact cells for views when asked.
+      return { sites, relaxation: cpuRelaxation(run) };
+    }
     const engine = new CcvtEngine(context, grid, config.cells, { variant: config.jumpFlood.variant, centroidPath: choice.centroidPath });
     try {
       // Planar-family texels all cover the same area, so the weight is the density alone.
@@ -63,6 +72,8 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
 
   labeller: (context, config, _geometry, choice) => planarLabeller(context, config, choice),
 
+  exactLabels: (_geometry, layer, projected) => rasterizeCells(layer.grid, exactVoronoi(layer.grid, projected)),
+
   labelImage: (_geometry, layer, labels) => ({ name: layer.name, grid: layer.grid, labels }),
 
   labelAdjacency(_geometry, layer, labels, count) {
@@ -76,10 +87,21 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
     };
   },
 
-  // The lab's threshold scaled to this sheet's mean cell size, the same on every surface.
+  // A pixel rule (texel edges, e.g. the lab's 6 px around a 512 px tube) or a length in µm;
+  // by default the lab's threshold scaled to this sheet's mean cell size. Texels are square
+  // and the same size on every surface of the stack, so one length serves them all.
   minContactLengths(config, geometry, layers) {
-    const length = config.sheet.minContactLength ?? defaultMinContactLength(geometry.grid, config.cells);
+    const pixels = minContactPixelsOf(config.sheet);
+    const length =
+      pixels !== null
+        ? labelContactThresholdTexels(geometry.grid, { ...LAB_PROTOCOL, minContactPixels: pixels }) * geometry.grid.texelX
+        : (config.sheet.minContactLength ?? defaultMinContactLength(geometry.grid, config.cells));
     return { reported: length, perLayer: layers.map(() => length) };
+  },
+
+  protocolInvalid(config, geometry, sites) {
+    if (config.sheet.protocol !== 'lab') return null;
+    return labInvalidCells(geometry.grid, sites, labSettings(config.sheet));
   },
 
   exactAdjacency: (_config, _geometry, layer, _sites, projected) => surfaceFromExact(exactVoronoi(layer.grid, projected), layer.name),
@@ -111,10 +133,38 @@ function placementDensity(config: Config, density: Float32Array): Float32Array |
   return density.map(Math.sqrt);
 }
 
+/** The lab protocol's knobs as the config sets them. */
+function labSettings(sheet: Config['sheet']): LabProtocolSettings {
+  return {
+    ...LAB_PROTOCOL,
+    layerStep: layerStepOf(sheet) ?? LAB_PROTOCOL.layerStep,
+    validityMaxRatio: sheet.validityMaxRatio,
+    minContactPixels: minContactPixelsOf(sheet) ?? LAB_PROTOCOL.minContactPixels,
+  };
+}
+
+/** The exact engine's Lloyd loop as the pipeline drives it (no GPU, no label image). */
+function cpuRelaxation(run: ExactLloydRun): Relaxation {
+  return {
+    get done() {
+      return run.done;
+    },
+    get converged() {
+      return run.converged;
+    },
+    iterations: run.iterations,
+    step: () => run.step(),
+    finish: () => ({ ...run.finish(), labels: new Int32Array(0) }),
+    dispose() {},
+  };
+}
+
 /** A tube's surfaces differ in width, so each gets an engine of its own grid. */
 function planarLabeller(context: GpuContext, config: Config, choice: EngineChoice): Labeller<StackSurface, PlanarSites> {
   return {
     label(layer, sites) {
+      // The exact engine makes no label textures: exactLabels draws its cells instead.
+      if (choice.name !== 'gpu') throw new Error('planar labeller: the exact engine has no label textures');
       const engine = new CcvtEngine(context, layer.grid, config.cells, { variant: config.jumpFlood.variant, centroidPath: choice.centroidPath });
       try {
         engine.setSites(sites);

@@ -77,11 +77,12 @@ export interface SheetResult {
   readonly config: AnyConfig;
   readonly seed: number;
   readonly grid: GridRecord;
+  /** The GPU engine's context and passes; null when the exact engine ran (see `engine`). */
   readonly gpu: {
     readonly renderer: string;
     readonly centroidPath: 'blend' | 'gather' | 'readback';
     readonly jumpFloodVariant: string;
-  };
+  } | null;
   /** The engine that ran, chosen by the engine policy (src/run/enginePolicy.ts), and why. */
   readonly engine: EngineChoice;
   readonly lloyd: {
@@ -92,8 +93,8 @@ export interface SheetResult {
     /** Cells that own no texel (never expected; non-zero means the grid is too coarse). */
     readonly emptyCells: number;
   };
-  /** How the seeded surface's neighbours were found: adjacent texels of the label texture. */
-  readonly adjacency: { readonly method: 'labels' };
+  /** How the cells' neighbours (cells[], surfaces[].cells) were found: adjacent texels of the label textures, or exactly (exact engine). */
+  readonly adjacency: { readonly method: 'labels' | 'exact' };
   readonly timings: { readonly setupMs: number; readonly lloydMs: number; readonly adjacencyMs: number; readonly totalMs: number };
   /** Cells of the seeded surface. */
   readonly cells: CellRecord[];

@@ -62,11 +62,10 @@ export class SheetRunner {
         config,
         seed: config.seed,
         grid: family.gridRecord(seeded.geometry),
-        gpu: {
-          renderer: this.context.capabilities.renderer,
-          centroidPath: seeded.engine.centroidPath,
-          jumpFloodVariant: config.jumpFlood.variant,
-        },
+        gpu:
+          seeded.engine.name === 'gpu'
+            ? { renderer: this.context.capabilities.renderer, centroidPath: seeded.engine.centroidPath, jumpFloodVariant: config.jumpFlood.variant }
+            : null,
         engine: { ...seeded.engine },
         lloyd: {
           iterations: seeded.iterations,
@@ -74,7 +73,7 @@ export class SheetRunner {
           finalEnergy: seeded.finalEnergy,
           emptyCells: seeded.emptyCells,
         },
-        adjacency: { method: 'labels' },
+        adjacency: { method: seeded.engine.name === 'exact' ? 'exact' : 'labels' },
         timings: { setupMs: seeded.setupMs, lloydMs: seeded.lloydMs, adjacencyMs: stack.adjacencyMs, totalMs: performance.now() - start },
         cells: stack.seededCells,
         surfaces: stack.surfaces,

@@ -1,8 +1,8 @@
-import { analyzeSurfaces, withMinBoundaryLength, type SurfaceAdjacency } from '../core/analysis';
+import { analyzeLabStack, analyzeSurfaces, toCsr, withMinBoundaryLength, type SurfaceAdjacency } from '../core/analysis';
 import type { AnyConfig } from '../core/config';
 import type { GpuContext } from '../gpu/context';
 import { analysisRecord } from './analysisRecord';
-import type { LabelSurfaceAdjacency, StackLayer, SurfaceFamily } from './family';
+import type { StackLayer, SurfaceFamily } from './family';
 import { throwIfAborted, yieldToEventLoop, type SeededSurface } from './relax';
 import type { AnalysisRecord, CellRecord, ClosedSurfaceRecord, LabelImage, SurfaceRecord } from './result';
 
@@ -36,39 +36,55 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
   const { geometry } = seeded;
   family.checkSheet(config, geometry);
   const layers = family.stack(config, geometry);
+  // The exact engine makes no label textures: its label images are its exact cells, drawn on
+  // the texels only when a view asks for them.
+  const exactEngine = seeded.engine.name === 'exact';
   const labeller = family.labeller(context, config, geometry, seeded.engine);
   try {
     const projected: P[] = [];
     const labelImages: LabelImage[] = [];
-    const labelled: LabelSurfaceAdjacency[] = [];
+    const labelled: SurfaceAdjacency[] = [];
     for (const layer of layers) {
       throwIfAborted(signal);
       const sites = family.project(geometry, layer, seeded.sites);
+      projected.push(sites);
+      if (exactEngine) {
+        labelImages.push(lazyLabels(family.labelImage(geometry, layer, EMPTY_LABELS), () => family.exactLabels(geometry, layer, sites)));
+        continue;
+      }
       let labels = seeded.labels;
       if (layer.role !== 'seeded') {
         labels = labeller.label(layer, sites);
         await yieldToEventLoop();
       }
-      projected.push(sites);
       labelImages.push(family.labelImage(geometry, layer, labels));
       labelled.push(family.labelAdjacency(geometry, layer, labels, config.cells));
     }
 
+    // The protocol: which cells are valid, how intercalations are counted (docs/protocols.md).
+    const invalid = family.protocolInvalid(config, geometry, seeded.sites);
+    const analyze = (surfaces: SurfaceAdjacency[]) => (invalid ? analyzeLabStack(surfaces, invalid) : analyzeSurfaces(surfaces));
     const analyses: AnalysisRecord[] = [];
     const { adjacency } = config.sheet;
-    if (adjacency !== 'exact') {
+    if (!exactEngine && adjacency !== 'exact') {
       const minContact = family.minContactLengths(config, geometry, layers);
       const inputs = labelled.map((surface, k) => withMinBoundaryLength(surface, minContact.perLayer[k]));
-      analyses.push(analysisRecord('labels', minContact.reported, analyzeSurfaces(inputs)));
+      analyses.push(analysisRecord('labels', minContact.reported, analyze(inputs)));
     }
-    if (adjacency !== 'labels') {
+    let exactSurfaces: SurfaceAdjacency[] | null = null;
+    if (exactEngine || adjacency !== 'labels') {
       const exact = layers.map((layer, k) => family.exactAdjacency(config, geometry, layer, seeded.sites, projected[k]));
-      if (exact.every((surface): surface is SurfaceAdjacency => surface !== null)) analyses.push(analysisRecord('exact', 0, analyzeSurfaces(exact)));
+      if (exact.every((surface): surface is SurfaceAdjacency => surface !== null)) {
+        exactSurfaces = exact;
+        analyses.push(analysisRecord('exact', 0, analyze(exact)));
+      }
     }
     const adjacencyMs = performance.now() - start;
 
     const section = family.resultSection(config, geometry, seeded, labeller);
-    const cellsOf = (k: number) => cellRecords(labelled[k], (id) => family.cellPlacement(config, layers[k], seeded.sites, projected[k], id));
+    // Cells and their contacts: from the label images on the GPU engine, exact on the exact one.
+    const cellSurfaces = exactEngine && exactSurfaces ? exactSurfaces : labelled;
+    const cellsOf = (k: number) => cellRecords(cellSurfaces[k], (id) => family.cellPlacement(config, layers[k], seeded.sites, projected[k], id));
     const surfaces: SurfaceRecord[] = layers.slice(1).map((layer, index) => ({
       name: layer.name,
       role: layer.role === 'layer' ? 'layer' : 'other',
@@ -83,13 +99,27 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
   }
 }
 
-/** The cells of one surface from its label adjacency. */
-function cellRecords(surface: LabelSurfaceAdjacency, placement: (id: number) => Pick<CellRecord, 'position' | 'surface'>): CellRecord[] {
-  const { offsets, neighbours: ids, lengths } = surface.adjacency;
+const EMPTY_LABELS = new Int32Array(0);
+
+/** A label image whose labels are computed on first read (and kept). */
+function lazyLabels(image: LabelImage, compute: () => Int32Array): LabelImage {
+  let labels: Int32Array | null = null;
+  return {
+    ...image,
+    get labels() {
+      labels ??= compute();
+      return labels;
+    },
+  };
+}
+
+/** The cells of one surface from its adjacency (contact lengths in µm). */
+function cellRecords(surface: SurfaceAdjacency, placement: (id: number) => Pick<CellRecord, 'position' | 'surface'>): CellRecord[] {
+  const { offsets, neighbours: ids, lengths } = toCsr(surface.adjacency);
   const cells: CellRecord[] = [];
   for (let id = 0; id < surface.count; id++) {
     const neighbours = [];
-    for (let k = offsets[id]; k < offsets[id + 1]; k++) neighbours.push({ id: ids[k], length: lengths[k] });
+    for (let k = offsets[id]; k < offsets[id + 1]; k++) neighbours.push({ id: ids[k], length: lengths ? lengths[k] : 0 });
     const { position, surface: coordinates } = placement(id);
     cells.push({ id, position, surface: coordinates, area: surface.areas[id], neighbours, touchesBorder: surface.touchesBorder[id] === 1 });
   }

@@ -6,7 +6,7 @@ export function sweepSummary(result: SheetResult): Record<string, unknown> {
   const summary: Record<string, unknown> = {
     iterations: result.lloyd.iterations.length,
     finalEnergy: result.lloyd.finalEnergy,
-    centroidPath: result.gpu.centroidPath,
+    centroidPath: result.engine.centroidPath ?? 'none (exact engine)',
   };
   for (const analysis of result.analyses) {
     const s = analysis.summary;

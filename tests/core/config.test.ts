@@ -87,6 +87,7 @@ describe('validateConfig: defaults', () => {
       lloyd: { maxIterations: 10, tolerance: 0.01, overRelaxation: 1.5, warmStart: false },
       jumpFlood: { variant: '1+jfa' },
       centroidPath: 'gather',
+      engine: 'gpu',
       sheet: {
         seeded: 'apical',
         direction: 'inward',
@@ -94,6 +95,10 @@ describe('validateConfig: defaults', () => {
         surfaceRatio: null,
         layers: 2,
         adjacency: 'labels',
+        protocol: 'default',
+        layerStep: null,
+        validityMaxRatio: 10,
+        minContactPixels: 3,
         minContactLength: 1.5,
       },
     };

@@ -3,8 +3,10 @@
  * per surface), how the run went (iterations, energy, centroid path, timings), and the per-cell
  * table. Every number carries its full value in `data-value` for tests and copy-paste.
  */
+import { describeEngine } from '../../run';
 import { cellTable } from '../model/cellRows';
-import { analysisByMethod, type ViewStack } from '../../view/stack';
+import { byConstruction, noValidCells } from '../../core/analysis/byConstruction';
+import { analysisByMethod, methodCaption, type ViewStack } from '../../view/stack';
 
 const fmt = (value: number, digits = 2) => (Number.isFinite(value) ? value.toFixed(digits) : '–');
 
@@ -15,11 +17,18 @@ export function renderResults(root: HTMLElement, stack: ViewStack): void {
     const value = analysis?.summary.percentScutoids ?? Number.NaN;
     headline.textContent = `${fmt(value, 1)} %`;
     headline.dataset.value = String(value);
+    headline.dataset.method = analysis?.method ?? '';
   }
   const caption = root.querySelector<HTMLElement>('#percent-scutoids-caption');
-  if (caption) {
-    const method = analysis ? `${analysis.method} adjacency, contacts < ${fmt(analysis.minContactLength)} µm ignored` : 'no analysis';
-    caption.textContent = `scutoids (${method})`;
+  if (caption) caption.textContent = `scutoids, from ${methodCaption(analysis)}`;
+  const why = root.querySelector<HTMLElement>('#by-construction');
+  if (why) {
+    // A 0 that the geometry forces is said to be one, never left to read as a finding.
+    const rule = byConstruction(result.config);
+    const empty = analysis ? noValidCells(analysis.summary.validCells, analysis.summary.cells) : null;
+    why.textContent = empty ?? rule?.message ?? '';
+    why.dataset.reason = empty ? 'no-valid-cells' : (rule?.reason ?? '');
+    why.hidden = !why.textContent;
   }
   const summary = root.querySelector<HTMLElement>('#summary');
   if (summary) summary.replaceChildren(summaryTable(stack));
@@ -36,12 +45,26 @@ export function renderResults(root: HTMLElement, stack: ViewStack): void {
       ? `; geodesic Voronoi (heat method) ${fmt(closed.geodesic.msPerSite, 1)} ms per site, agrees with the GPU cells on ${fmt(100 * closed.geodesic.agreement, 1)} % of vertices`
       : '';
     run.textContent =
-      `${result.cells.length} cells, ${where}, ${last} Lloyd iterations` +
+      `${result.cells.length} cells, ${where}, ${last} Lloyd iterations (Voronoi ${last + 1})` +
       `${result.lloyd.converged ? ' (converged)' : ''}, final energy ${result.lloyd.finalEnergy.toPrecision(6)} µm⁴, ` +
-      `centroid path ${result.gpu.centroidPath}, ${fmt(result.timings.totalMs, 0)} ms on ${result.gpu.renderer}${geodesic}`;
+      `${describeEngine(result.engine)}, ${timings(result.timings)}${result.gpu ? ` on ${result.gpu.renderer}` : ''}${geodesic}`;
+    run.dataset.voronoiK = String(last + 1);
   }
   const table = root.querySelector<HTMLElement>('#cell-table');
   if (table) table.replaceChildren(cellTableElement(stack));
+}
+
+/**
+ * Timings in words. When only the sheet changed the seeded surface is reused: its setup and
+ * Lloyd times are from the run that computed it, not part of this run's total, and are said so.
+ */
+export function timings(t: { setupMs: number; lloydMs: number; adjacencyMs: number; totalMs: number }): string {
+  const parts = t.setupMs + t.lloydMs + t.adjacencyMs;
+  const ms = (v: number) => `${fmt(v, 0)} ms`;
+  if (parts <= t.totalMs + 1) {
+    return `${ms(t.totalMs)} in all (setup ${ms(t.setupMs)}, Lloyd ${ms(t.lloydMs)}, adjacency and analysis ${ms(t.adjacencyMs)}, other ${ms(Math.max(0, t.totalMs - parts))})`;
+  }
+  return `${ms(t.totalMs)} in all (adjacency and analysis ${ms(t.adjacencyMs)}; the seeded surface was reused from an earlier run, where setup took ${ms(t.setupMs)} and Lloyd ${ms(t.lloydMs)})`;
 }
 
 function row(cells: (string | number)[], header = false, key?: string, value?: number): HTMLTableRowElement {

@@ -1,3 +1,6 @@
 /** Analysis of Voronoi sheets: adjacency and scutoid statistics. */
 export * from './adjacency';
 export * from './scutoids';
+export * from './protocol';
+export * from './protocolTube';
+export * from './flintstones';

@@ -80,6 +80,29 @@ export function analyzeTubeLab(
   return { ratio: apicalRatio, stackRatios, validityRatios: validity, invalid, analysis };
 }
 
+/**
+ * The lab's valid set of one realization: 1 for every cell that touches an open end of the tube
+ * on any layer s = 1 : step : validityMaxRatio (decided once, so every ratio uses the same cells).
+ */
+export function labInvalidCells(grid: Grid, sites: ArrayLike<number>, settings: LabProtocolSettings = LAB_PROTOCOL, surfaceOf: SurfaceOf = referenceSurface): Uint8Array {
+  const count = Math.floor(sites.length / 2);
+  const surfaceAt = surfaceCache(grid, sites, surfaceOf);
+  return invalidOnAnySurface(validityRatios(settings).map(surfaceAt), count);
+}
+
+/**
+ * The lab protocol's statistics of an analysed stack (any adjacency method): cells in `invalid`
+ * or touching an open end on a surface of the stack are excluded, and intercalations are
+ * accumulated layer to layer, |∪ lost| + |∪ won|.
+ */
+export function analyzeLabStack(stack: SurfaceAdjacency[], invalid: Uint8Array): ScutoidAnalysis {
+  const excluded = invalidOnAnySurface(stack, invalid.length, invalid.slice());
+  const masked = stack.map((s) => ({ ...s, touchesBorder: excluded }));
+  const analysis = analyzeSurfaces(masked);
+  applyLabTransitions(analysis, masked);
+  return analysis;
+}
+
 /** Lab intercalation count per cell over a stack: |∪ lost| + |∪ won| layer to layer. */
 export function labTransitions(stack: SurfaceAdjacency[]): { won: Int32Array; lost: Int32Array; transitions: Int32Array } {
   const count = stack[0].count;

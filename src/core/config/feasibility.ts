@@ -1,5 +1,6 @@
 /** The grid a configuration implies, and the checks that need it (or several fields at once). */
 import type { Grid } from '../grid';
+import { checkMethods } from './methods';
 import { ConfigError } from './validate';
 import type { ClosedConfig, ClosedSurfaceConfig, Config, SurfaceConfig } from './types';
 
@@ -98,7 +99,8 @@ export function checkFeasible(config: Config, grid: Grid): void {
 }
 
 /** The other surface must exist: a ratio only on a tube, an inward offset short of the axis. */
-function checkSheet(config: Config): void {
+export function checkSheet(config: Config): void {
+  checkMethods(config);
   const { sheet, surface } = config;
   if (sheet.surfaceRatio !== null) {
     if (surface.kind !== 'tube') {
@@ -190,7 +192,7 @@ export function checkClosedFeasible(config: ClosedConfig, grid: CubeGrid = makeC
       `density.kind: closed surfaces support only "uniform" density for now (got "${config.density.kind}")`,
     );
   }
-  const { surface, sheet } = config;
+  const { surface } = config;
   const d = config.minSpacing;
   if (d > 0 && config.cells > 1 && surface.kind !== 'mesh') {
     const area = surface.kind === 'sphere' ? 4 * Math.PI * surface.radius ** 2 : ellipsoidArea(surface.a, surface.b, surface.c);
@@ -203,6 +205,13 @@ export function checkClosedFeasible(config: ClosedConfig, grid: CubeGrid = makeC
       );
     }
   }
+  checkClosedSheet(config);
+}
+
+/** The sheet of a closed surface: a thickness (no ratio), methods that exist there, no fold. */
+export function checkClosedSheet(config: ClosedConfig): void {
+  checkMethods(config);
+  const { surface, sheet } = config;
   if (sheet.surfaceRatio !== null) {
     throw new ConfigError(
       'sheet.surfaceRatio',

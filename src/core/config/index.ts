@@ -15,3 +15,4 @@ export * from './types';
 export * from './schema';
 export * from './validate';
 export * from './feasibility';
+export * from './methods';

@@ -38,6 +38,28 @@ export function surfaceOfKind(current: AnySurfaceConfig, kind: string): AnySurfa
   return planarOfKind({ kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 }, kind);
 }
 
+/**
+ * The thickness (µm) a sheet gets when the user switches to a surface kind, so every kind starts
+ * from a sheet that shows the phenomenon, or, where the geometry rules it out (parallel planes,
+ * concentric spheres), from one whose 0 % the page explains (core/analysis/byConstruction.ts),
+ * never from the schema's thickness 0, where the surfaces coincide.
+ */
+export function thicknessForKind(surface: AnySurfaceConfig): number {
+  switch (surface.kind) {
+    case 'tube':
+      return Math.round(surface.radius); // the outer radius twice the inner: s = 2
+    case 'sphere':
+      return Math.round(surface.radius / 3);
+    case 'ellipsoid':
+      return Math.round(Math.min(surface.a, surface.b, surface.c) / 2);
+    case 'mesh':
+      // Small against the sample meshes' concave radii of curvature (an offset past one is refused).
+      return Math.max(1, Math.round(surface.scale / 10));
+    default:
+      return 20;
+  }
+}
+
 /** Switching between plane and tube keeps the unrolled size: circumference <-> width, length <-> height. */
 export function planarOfKind(current: SurfaceConfig, kind: string): SurfaceConfig {
   const d = unrolledDomain(current);

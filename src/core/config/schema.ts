@@ -261,6 +261,13 @@ export const configSchema = {
       description:
         'How the centroid sums are computed: "blend" (additive float blending, needs EXT_float_blend), "gather" (portable GPU pass), "readback" (site ids read back and summed on the CPU) or "auto" (blend on a GPU with EXT_float_blend, gather on one without, readback on software renderers).',
     },
+    engine: {
+      type: 'string',
+      enum: ['auto', 'gpu', 'exact'],
+      default: 'auto',
+      description:
+        'Which engine runs Lloyd and finds the neighbours: "gpu" (jump flood and centroid passes in WebGL2), "exact" (planes and tubes only: Lloyd on the exact Voronoi diagram on the CPU, every analysis exact, no label textures) or "auto" (exact on planes and tubes where the renderer is software, e.g. SwiftShader or llvmpipe, and the labels method is not asked for; the GPU otherwise). The result records which engine ran and why.',
+    },
     sheet: {
       description:
         'The sheet: the seeded surface (where Lloyd runs), the other surface at a thickness along the normal, and layers between them.',
@@ -309,6 +316,35 @@ export const configSchema = {
           default: 'both',
           description:
             'How neighbours are found on every surface: "labels" (adjacent texels of the label textures), "exact" (Delaunay of the unrolled sites with periodic copies) or "both".',
+        },
+        protocol: {
+          type: 'string',
+          enum: ['default', 'lab'],
+          default: 'default',
+          description:
+            'Which rules the statistics follow (docs/protocols.md): "default" (valid cells decided on the analysed surfaces, layers as given) or "lab" (tubes with a surface ratio, outward: the published protocol of Gómez-Gálvez et al.: layers every sheet.layerStep of s, a cell is valid only if it touches no open end on any layer s = 1 : layerStep : validityMaxRatio, intercalations accumulated over the layers, the pixel contact rule for the labels method).',
+        },
+        layerStep: {
+          type: ['number', 'null'],
+          exclusiveMinimum: 0,
+          default: null,
+          description:
+            'Layers at a fixed step instead of sheet.layers: in surface-ratio units on a tube (s = 1, 1 + step, ..., the other surface), in µm of thickness elsewhere. null: sheet.layers evenly spaced; 0.25 under protocol "lab".',
+        },
+        validityMaxRatio: {
+          type: 'number',
+          minimum: 1,
+          maximum: 100,
+          default: 10,
+          description: 'Protocol "lab": a cell is valid only if it touches no open end on any layer from s = 1 up to this ratio (in steps of sheet.layerStep).',
+        },
+        minContactPixels: {
+          type: ['number', 'null'],
+          minimum: 0,
+          maximum: 64,
+          default: null,
+          description:
+            'Labels method: ignore contacts shorter than this many texel edges of an image 512 px around the seeded tube (the lab\'s pixel rule; scaled to this grid). null: sheet.minContactLength; 6 under protocol "lab".',
         },
         minContactLength: {
           type: ['number', 'null'],
