@@ -109,9 +109,10 @@ EOF
   --moduleResolution nodenext --types node --typeRoots "$repo/node_modules/@types" consumer.ts
 echo "consumer.ts typechecks"
 
+# "engine": "gpu", so that the run goes through headless-gl (auto may pick the exact CPU engine).
 cat > small.json <<'EOF'
 { "surface": { "kind": "tube", "radius": 40, "length": 400 }, "resolution": 256, "cells": 60, "seed": 9,
-  "lloyd": { "maxIterations": 3 }, "sheet": { "surfaceRatio": 1.8, "layers": 1 } }
+  "engine": "gpu", "lloyd": { "maxIterations": 3 }, "sheet": { "surfaceRatio": 1.8, "layers": 1 } }
 EOF
 
 step "npx tissue-sheet run"
