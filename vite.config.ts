@@ -13,8 +13,6 @@ export default defineConfig({
     include: ['tests/**/*.test.ts'],
     // headless-gl is a native module: one process per test file, not worker threads.
     pool: 'forks',
-    // Tests spawn bin/tissue-sheet.mjs, which runs the compiled CLI: rebuild it if src changed.
-    globalSetup: ['scripts/build-if-stale.mjs'],
     testTimeout: 120_000,
     hookTimeout: 120_000,
   },

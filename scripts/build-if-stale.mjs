@@ -1,9 +1,9 @@
 // Rebuilds the package modules (dist/esm, what bin/tissue-sheet.mjs runs) when any source is
-// newer than them, so tests that spawn the CLI never run stale compiled code. Vitest runs it
-// as a global setup (vite.config.ts) before any test file; `npm ci` runs it as `prepare`, so a
-// fresh clone has a working CLI; `node scripts/build-if-stale.mjs` runs it by hand. The build
-// goes to a temporary folder that then replaces dist/esm, so a CLI started by a concurrent test
-// run never sees a half-written folder.
+// newer than them, so tests that spawn the CLI never run stale compiled code: `npm run test:e2e`
+// runs it first (e2e/element.spec.ts compares the element with `node bin/tissue-sheet.mjs`);
+// `npm ci` runs it as `prepare`, so a fresh clone has a working CLI; `node
+// scripts/build-if-stale.mjs` runs it by hand. The build goes to a temporary folder that then
+// replaces dist/esm, so a CLI started by a concurrent test run never sees a half-written folder.
 import { spawnSync } from 'node:child_process';
 import { existsSync, readdirSync, renameSync, rmSync, statSync } from 'node:fs';
 import { join, resolve } from 'node:path';
@@ -55,11 +55,6 @@ export function buildIfStale() {
   rmSync(tmp, { recursive: true, force: true });
   rmSync(old, { recursive: true, force: true });
   return true;
-}
-
-/** Vitest global setup: a failed build is reported but fails no test that does not use it. */
-export default function setup() {
-  buildIfStale();
 }
 
 // By hand, or as the `prepare` script (which runs on `npm ci` / `npm install` in a checkout)
