@@ -7,13 +7,13 @@ import {
   type ClosedSites,
   type CubeSurfaceSample,
 } from '../core/closed/geometry';
-import { sphericalVoronoi } from '../core/closed/sphericalDelaunay';
 import type { Grid } from '../core/grid';
 import type { EngineChoice } from './enginePolicy';
 import type { CentroidPath } from '../gpu/centroidPolicy';
 import type { GpuContext } from '../gpu/context';
 import { CubeCcvtEngine } from '../gpu/cubeEngine';
 import { ClosedLloydRun } from '../gpu/cubeLloyd';
+import { closedExactAdjacency } from './closedExact';
 import { closedSection } from './closedRecord';
 import { checkOffsets, prepareClosedSurface, type ClosedSurface } from './closedSurface';
 import type { Labeller, StackLayer, SurfaceFamily } from './family';
@@ -125,11 +125,10 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
     return { reported: length, perLayer: layers.map((layer) => length * Math.sqrt(layer.sample.totalArea / totalArea)) };
   },
 
-  exactAdjacency(config, _geometry, layer, sites) {
-    if (config.surface.kind !== 'sphere') return null;
-    const v = sphericalVoronoi(sites.directions, config.cells, config.surface.radius + layer.offset);
-    return { count: config.cells, adjacency: v.adjacency, areas: v.areas, touchesBorder: v.touchesBorder, label: layer.name };
-  },
+  exactAdjacency: (config, geometry, layer, sites) => closedExactAdjacency(config, geometry, sites, layer.offset, layer.name),
+
+  // True contact lengths: the same thresholds as the labels method, per surface.
+  exactMinContactLengths: (config, geometry, layers) => cubeMapFamily.minContactLengths(config, geometry, layers),
 
   cellPlacement(_config, _layer, sites, projected, id) {
     const deg = 180 / Math.PI;

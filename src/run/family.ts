@@ -92,6 +92,8 @@ export interface SurfaceFamily<C extends AnyConfig, Geometry, Sites, Layer exten
   minContactLengths(config: C, geometry: Geometry, layers: Layer[]): { reported: number; perLayer: number[] };
   /** The protocol's invalid cells beyond those touching an open end of the stack (lab: any validity layer), or null. */
   protocolInvalid(config: C, geometry: Geometry, sites: Sites): Uint8Array | null;
+  /** The shortest contact (µm) the exact method counts on each layer, or null for every contact. */
+  exactMinContactLengths(config: C, geometry: Geometry, layers: Layer[]): { reported: number; perLayer: number[] } | null;
   /** The exact adjacency of a layer, or null where this surface has no exact method. */
   exactAdjacency(config: C, geometry: Geometry, layer: Layer, sites: Sites, projected: Projected): SurfaceAdjacency | null;
   cellPlacement(config: C, layer: Layer, sites: Sites, projected: Projected, id: number): CellPlacement;

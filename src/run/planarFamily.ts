@@ -104,6 +104,9 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
     return labInvalidCells(geometry.grid, sites, labSettings(config.sheet));
   },
 
+  // The exact Delaunay needs no threshold: every contact of positive length counts.
+  exactMinContactLengths: () => null,
+
   exactAdjacency: (_config, _geometry, layer, _sites, projected) => surfaceFromExact(exactVoronoi(layer.grid, projected), layer.name),
 
   cellPlacement(config, layer, _sites, projected, id) {

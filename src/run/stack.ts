@@ -76,7 +76,9 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
       const exact = layers.map((layer, k) => family.exactAdjacency(config, geometry, layer, seeded.sites, projected[k]));
       if (exact.every((surface): surface is SurfaceAdjacency => surface !== null)) {
         exactSurfaces = exact;
-        analyses.push(analysisRecord('exact', 0, analyze(exact)));
+        const minContact = family.exactMinContactLengths(config, geometry, layers);
+        const inputs = minContact ? exact.map((surface, k) => withMinBoundaryLength(surface, minContact.perLayer[k])) : exact;
+        analyses.push(analysisRecord('exact', minContact?.reported ?? 0, analyze(inputs)));
       }
     }
     const adjacencyMs = performance.now() - start;

@@ -30,13 +30,15 @@ describe('closed surface config', () => {
   it('validateConfig (planar callers) refuses closed kinds with a one-line message', () => {
     expect(() => validateConfig({ surface: { kind: 'sphere', radius: 5 } })).toThrow(/^surface\.kind: "sphere" is a closed surface/);
   });
-  it('cells <= 6 n² / 16, uniform density, exact only on a sphere, no surface ratio', () => {
+  it('cells <= 6 n² / 16, uniform density, exact on every closed surface, no surface ratio, no exact engine', () => {
     expect(feasibility({ surface: { kind: 'sphere', radius: 50 }, resolution: 32, cells: 384 })).toBeNull();
     expect(feasibility({ surface: { kind: 'sphere', radius: 50 }, resolution: 32, cells: 385 })?.message).toBe(
       'cells: 385 cells need at least 6160 texels (16 per cell) but the cube map has 6144 (6 x 32²); lower cells or raise resolution',
     );
     expect(feasibility({ surface: { kind: 'sphere', radius: 50 }, resolution: 32, cells: 10, density: { kind: 'linear', axis: 'x', from: 1, to: 2 } })?.field).toBe('density.kind');
-    expect(feasibility({ surface: { kind: 'ellipsoid', a: 2, b: 1, c: 1 }, resolution: 32, cells: 10, sheet: { adjacency: 'exact' } })?.field).toBe('sheet.adjacency');
+    // The restricted Voronoi diagram is exact on every closed surface.
+    expect(feasibility({ surface: { kind: 'ellipsoid', a: 2, b: 1, c: 1 }, resolution: 32, cells: 10, sheet: { adjacency: 'exact' } })).toBeNull();
+    expect(feasibility({ surface: { kind: 'ellipsoid', a: 20, b: 10, c: 10 }, resolution: 32, cells: 10, engine: 'exact' })?.field).toBe('engine');
     expect(feasibility({ surface: { kind: 'sphere', radius: 50 }, resolution: 32, cells: 10, sheet: { surfaceRatio: 2 } })?.field).toBe('sheet.surfaceRatio');
     expect(feasibility({ surface: { kind: 'sphere', radius: 10 }, resolution: 64, cells: 100, minSpacing: 5 })?.field).toBe('minSpacing');
   });

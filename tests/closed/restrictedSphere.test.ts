@@ -3,7 +3,7 @@ import { isSymmetric } from '../../src/core/analysis/adjacency';
 import { randomSequentialSites } from '../../src/core/closed/randomSequentialSites';
 import { restrictedVoronoi } from '../../src/core/closed/restrictedVoronoi';
 import { sphereSurface } from '../../src/core/closed/restrictedSurface';
-import { sphericalVoronoi } from '../../src/core/closed/sphericalDelaunay';
+import { sphericalVoronoi } from '../oracles/sphericalDelaunay';
 import { createRandom } from '../../src/core/random';
 import { compareNeighbourSets } from './restrictedReference';
 

@@ -1,6 +1,6 @@
 import { beforeAll, describe, expect, it } from 'vitest';
 import { validateAnyConfig, type ClosedConfig, type ConfigInput } from '../../src/core/config';
-import { sphericalVoronoi } from '../../src/core/closed/sphericalDelaunay';
+import { sphericalVoronoi } from '../oracles/sphericalDelaunay';
 import { runSheet } from '../../src/run/runSheet';
 import type { SheetResult } from '../../src/run/result';
 import { useHeadlessContext } from '../gpu/context';

@@ -218,12 +218,6 @@ export function checkClosedSheet(config: ClosedConfig): void {
       `sheet.surfaceRatio: only a tube has a surface ratio (surface.kind is "${surface.kind}"); give sheet.thickness in µm instead`,
     );
   }
-  if (sheet.adjacency === 'exact' && surface.kind !== 'sphere') {
-    throw new ConfigError(
-      'sheet.adjacency',
-      `sheet.adjacency: "exact" exists only on a sphere (the spherical Delaunay); use "labels" or "both" on a ${surface.kind}`,
-    );
-  }
   const radius = minCurvatureRadius(surface);
   if (radius !== null && sheet.direction === 'inward' && sheet.thickness >= radius) {
     throw inwardOffsetError(sheet.thickness, radius, surface.kind);

@@ -7,8 +7,8 @@
  */
 import { Vector3 } from 'three';
 import { ConvexHull } from 'three/examples/jsm/math/ConvexHull.js';
-import type { CsrAdjacency } from '../analysis/adjacency';
-import { csrFromLists } from '../analysis/adjacency';
+import type { CsrAdjacency } from '../../src/core/analysis/adjacency';
+import { csrFromLists } from '../../src/core/analysis/adjacency';
 
 export interface SphericalVoronoi {
   readonly count: number;
