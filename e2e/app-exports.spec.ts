@@ -79,8 +79,9 @@ test('exports download files that parse and match the on-screen numbers', async 
   await expect(page.locator('#sweep')).toHaveAttribute('data-done', '3', { timeout: 120_000 });
   const sweep = table((await downloadText(page, 'sweep')).text);
   expect(sweep.map((r) => r['sheet.surfaceRatio'])).toEqual(['1', '1.5', '2']);
-  expect(Number(sweep[0].percentScutoids)).toBe(0);
-  expect(Number(sweep[2].percentScutoids)).toBeGreaterThan(Number(sweep[0].percentScutoids));
+  // The CLI's runs.csv columns: one % per adjacency method.
+  expect(Number(sweep[0]['labels.percentScutoids'])).toBe(0);
+  expect(Number(sweep[2]['labels.percentScutoids'])).toBeGreaterThan(Number(sweep[0]['labels.percentScutoids']));
 });
 
 test('a URL round trip reproduces the result, and reopening restores the last session', async ({ page, browser }) => {

@@ -61,7 +61,6 @@ const controls = new ConfigControls($('#controls'), initialConfig((m) => showErr
 });
 const sweep = new SweepPanel($('#sweep'), {
   config: () => validateAnyConfig(controls.config),
-  onPoints: (label, points) => charts.showSweep(label, points),
   onError: showError,
 });
 bindExports($('.exports'), {

@@ -62,13 +62,13 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
     pointConfigs.set(run.pointKey, config);
     inputs.set(run.pointKey, await atPoint(run, () => loadInputs(config, sources)));
   }
-  const summary = sweepColumns(pointConfigs.values());
-  const header = [...baseColumns(fields), ...summary];
-  const filled = new Map([...pointConfigs].map(([key, config]) => [key, new Set(summaryColumns(config))]));
-
   const context = createHeadlessContext();
   let release = () => {};
   try {
+    // Every column a point may fill (the engine, and so the methods, can depend on the renderer).
+    const summary = sweepColumns(pointConfigs.values());
+    const header = [...baseColumns(fields), ...summary];
+    const filled = new Map([...pointConfigs].map(([key, config]) => [key, new Set(summaryColumns(config))]));
     const budget = computeBudget(context.capabilities.maxTextureSize, options.allowLarge);
     for (const run of runs) if (run.realization === 0) pointConfig(run, (c) => checkRunnable(c, budget));
 

@@ -9,6 +9,10 @@ import type { GrayImage } from '../core/density';
 import { ConfigError } from '../core/config';
 import type { MeshFile, SheetResult } from '../run';
 import { isAbort, LatestRunner } from '../view/pageRunner';
+import { computeSite as pipelineSite } from '../view/pageRunner';
+import { sweepInPage } from '../view/pageSweep';
+import type { TissueSheetSweepOptions, TissueSheetSweepProgressDetail, TissueSheetSweepResult } from './events';
+import type { ComputeSite } from '../run';
 import { SheetView3D } from '../view/sheetView3d';
 import { primaryAnalysis, viewStack } from '../view/stack';
 import { ATTRIBUTES, OTHER_ATTRIBUTES, configFromAttributes } from './attributes';
@@ -137,6 +141,29 @@ export class TissueSheetElement extends HTMLElement {
       if (!isAbort(error)) this.fail(error);
       throw error;
     }
+  }
+
+  /** Where runs compute: `{ where: 'worker' }`, or `{ where: 'page', reason }` after a fallback. */
+  get computeSite(): ComputeSite {
+    return pipelineSite();
+  }
+
+  /**
+   * A parameter sweep with the CLI's spec (`{ base, vary, realizations, seed, seedMode }`,
+   * docs/sweep.md), validated as the CLI does (a bad spec rejects with a SweepSpecError naming
+   * the field). Resolves with the rows of the CLI's runs.csv and its aggregate (mean, sd, se, n
+   * per grid point and column), plus both files' text. A `sweep-progress` event follows every
+   * finished run. Aborting `signal` stops after the run in flight and resolves with the runs
+   * finished so far (`aborted: true`); `resume` (a runs.csv of the same spec) skips its runs.
+   */
+  async sweep(spec: unknown, options: TissueSheetSweepOptions = {}): Promise<TissueSheetSweepResult> {
+    const result = await sweepInPage(spec, {
+      ...(options.signal ? { signal: options.signal } : {}),
+      ...(options.resume ? { resumeCsv: options.resume } : {}),
+      onProgress: (p) => this.emit<TissueSheetSweepProgressDetail>('sweep-progress', p),
+    });
+    const { runs, aggregate, runsCsv, aggregateCsv, completed, skipped, aborted, header } = result;
+    return { runs, aggregate, runsCsv, aggregateCsv, completed, skipped, aborted, header };
   }
 
   /** The last result as the documented JSON object (a copy); throws before the first result. */

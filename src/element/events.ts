@@ -1,5 +1,7 @@
 /** The element's events and their typed `detail`. */
+import type { Aggregate } from '../core/sweep';
 import type { SheetResult } from '../run';
+import type { PageSweepProgress } from '../view/pageSweep';
 
 export interface TissueSheetProgressDetail {
   /** 1-based Lloyd iteration just finished. */
@@ -27,8 +29,34 @@ export interface TissueSheetErrorDetail {
   field?: string;
 }
 
+/** After every finished run of `sweep()`: counts, the run (key, point, seed) and its runs.csv row. */
+export type TissueSheetSweepProgressDetail = PageSweepProgress;
+
+export interface TissueSheetSweepOptions {
+  /** Aborting stops the sweep after the run in flight; the finished runs are returned. */
+  signal?: AbortSignal;
+  /** runs.csv of an earlier run of the same spec: its runs are kept, the others computed. */
+  resume?: string;
+}
+
+export interface TissueSheetSweepResult {
+  /** runs.csv's columns (the CLI's). */
+  header: string[];
+  /** runs.csv's rows as text cells, resumed ones first. */
+  runs: Record<string, string>[];
+  /** Per grid point: mean, sd, se, n of every numeric column (the CLI's aggregate). */
+  aggregate: Aggregate;
+  runsCsv: string;
+  aggregateCsv: string;
+  completed: number;
+  skipped: number;
+  /** True when the signal stopped it: `runs` holds the runs finished until then. */
+  aborted: boolean;
+}
+
 export interface TissueSheetEventMap {
   progress: CustomEvent<TissueSheetProgressDetail>;
+  'sweep-progress': CustomEvent<TissueSheetSweepProgressDetail>;
   result: CustomEvent<TissueSheetResultDetail>;
   error: CustomEvent<TissueSheetErrorDetail>;
 }

@@ -1,32 +1,111 @@
 /**
- * The in-page sweep: % scutoids against the surface ratio (tube) or the thickness (plane, closed surfaces), over
- * a few realizations, run with src/core/sweep (expandSweep + runSweep) and runSheet as the
- * runner. Every grid point of a realization shares its random sites (seedMode
- * "per-realization"), as when the lab evaluates the same realizations at every ratio. The tidy
- * CSV is kept for download; the chart shows mean ± sd.
+ * The in-page sweep: any numeric field of the configuration, or Voronoi k (Lloyd iterations + 1),
+ * from a value to another in a number of points, over realizations; the spec is the CLI's
+ * (docs/sweep.md) and runs through src/view/pageSweep.ts, so runs.csv and aggregate.csv have the
+ * CLI's columns and the realizations' seeded surfaces are reused as in the CLI. Every grid point
+ * of a realization shares its random sites (seedMode "per-realization"), as when the lab
+ * evaluates the same realizations at every ratio.
+ *
+ * The chart grows as runs finish (mean and 95 % CI, sweepChart.ts). Cancel keeps the finished
+ * runs; Resume computes the rest. Downloads: runs.csv, aggregate.csv and sweep.json (the spec);
+ * loading a sweep.json (the CLI's or ours) with its runs.csv shows it and lets it be resumed.
  */
 import { validateAnyConfig, type AnyConfig as Config } from '../../core/config';
-import { aggregateRows, expandSweep, runSweep } from '../../core/sweep';
-import { isAbort, runInPage } from '../../view/pageRunner';
-import { primaryAnalysis } from '../../view/stack';
+import { readCsvTable } from '../../core/sweep';
+import { isAbort } from '../../view/pageRunner';
+import { planSweep, sweepInPage, type SweepPlan } from '../../view/pageSweep';
+import { version } from '../../version';
+import { download } from './exports';
+import { FIELDS } from './fields';
+import { SweepChart } from './sweepChart';
 
 export interface SweepPanelEvents {
   config(): Config;
-  onPoints(label: string, points: { x: number; mean: number; sd: number }[]): void;
   onError(message: string): void;
+}
+
+/** The "Voronoi k" choice: sweeps lloyd.maxIterations = k - 1 with tolerance 0. */
+const VORONOI_K = 'voronoi-k';
+const NUMERIC_KINDS = new Set(['number', 'integer', 'range', 'optional-number']);
+
+interface Choice {
+  value: string;
+  label: string;
+  integer: boolean;
 }
 
 export class SweepPanel {
   private controller: AbortController | null = null;
-  /** The tidy CSV of the last sweep (header + one row per run). */
-  csv = '';
+  private readonly chart: SweepChart;
+  /** The sweep on screen: its spec (plain JSON) and its runs.csv so far. */
+  private spec: unknown = null;
+  private runsCsv = '';
+  private aggregateCsv = '';
+  private readonly field: HTMLSelectElement;
 
   constructor(
     private readonly root: HTMLElement,
     private readonly events: SweepPanelEvents,
   ) {
-    this.button('run').addEventListener('click', () => void this.run());
+    this.chart = new SweepChart(root.querySelector<HTMLElement>('#chart-sweep') ?? root);
+    this.field = document.createElement('select');
+    this.field.name = 'sweep-field';
+    this.field.setAttribute('aria-label', 'field to sweep');
+    this.buildControls();
+    this.button('run').addEventListener('click', () => void this.runNew());
     this.button('cancel').addEventListener('click', () => this.controller?.abort());
+    this.button('resume').addEventListener('click', () => void this.resume());
+    this.button('runs-csv').addEventListener('click', () => this.download('runs.csv', this.runsCsv, 'text/csv'));
+    this.button('aggregate-csv').addEventListener('click', () => this.download('aggregate.csv', this.aggregateCsv, 'text/csv'));
+    this.button('spec').addEventListener('click', () => this.download('sweep.json', this.spec ? `${JSON.stringify({ software: { name: 'tissue-sheet', version }, spec: this.spec }, null, 2)}\n` : '', 'application/json'));
+    this.root.querySelector<HTMLInputElement>('[name="sweep-load"]')!.addEventListener('change', (event) => void this.load(event.target as HTMLInputElement));
+    this.refreshChoices();
+    this.root.querySelector('.sweep-controls')?.addEventListener('focusin', () => this.refreshChoices());
+  }
+
+  /** The tidy runs.csv of the sweep on screen (the CLI's columns). */
+  get csv(): string {
+    return this.runsCsv;
+  }
+
+  private buildControls(): void {
+    const controls = this.root.querySelector<HTMLElement>('.sweep-controls')!;
+    const label = document.createElement('label');
+    label.append('vary ', this.field);
+    controls.prepend(label);
+    const status = controls.querySelector('[data-sweep="status"]');
+    const extra = document.createElement('span');
+    extra.className = 'sweep-files';
+    extra.innerHTML = `<button type="button" data-sweep="resume" disabled title="Compute the runs this sweep still lacks">Resume</button>
+      <button type="button" data-sweep="runs-csv" disabled>runs.csv</button>
+      <button type="button" data-sweep="aggregate-csv" disabled>aggregate.csv</button>
+      <button type="button" data-sweep="spec" disabled>sweep.json</button>
+      <label title="A sweep.json (this page's or the CLI's) and its runs.csv, to see them and resume">load <input name="sweep-load" type="file" multiple accept=".json,.csv,application/json,text/csv" /></label>`;
+    controls.insertBefore(extra, status);
+  }
+
+  /** The numeric fields shown for the current configuration, and Voronoi k. */
+  private refreshChoices(): void {
+    let config: Config;
+    try {
+      config = this.events.config();
+    } catch {
+      return;
+    }
+    const choices: Choice[] = [{ value: VORONOI_K, label: 'Voronoi k (Lloyd iterations + 1)', integer: true }];
+    for (const spec of FIELDS) {
+      if (spec.set || !NUMERIC_KINDS.has(spec.kind) || (spec.show && !spec.show(config))) continue;
+      choices.push({ value: spec.path, label: spec.unit ? `${spec.label} (${spec.unit})` : spec.label, integer: spec.kind === 'integer' });
+    }
+    const previous = this.field.value || (config.surface.kind === 'tube' ? 'sheet.surfaceRatio' : 'sheet.thickness');
+    this.field.replaceChildren(
+      ...choices.map((c) => {
+        const option = new Option(c.label, c.value);
+        option.dataset.integer = String(c.integer);
+        return option;
+      }),
+    );
+    this.field.value = choices.some((c) => c.value === previous) ? previous : choices[1]?.value ?? VORONOI_K;
   }
 
   private button(name: string): HTMLButtonElement {
@@ -41,64 +120,158 @@ export class SweepPanel {
     this.root.querySelector<HTMLElement>('[data-sweep="status"]')!.textContent = text;
   }
 
-  /** The swept field and its values for the current surface. */
-  private plan(config: Config): { field: string; label: string; values: number[] } {
+  /** The CLI sweep spec of the form: the chosen field from..to in points, realizations. */
+  private specFromForm(): unknown {
+    this.refreshChoices();
+    const base = structuredClone(validateAnyConfig(this.events.config())) as Config;
+    const choice = this.field.value;
+    const integer = this.field.selectedOptions[0]?.dataset.integer === 'true';
     const from = Number(this.input('from').value);
     const to = Number(this.input('to').value);
-    const steps = Math.max(2, Math.min(50, Math.round(Number(this.input('steps').value))));
+    const steps = Math.max(1, Math.min(50, Math.round(Number(this.input('steps').value))));
     if (!Number.isFinite(from) || !Number.isFinite(to)) throw new Error('Sweep: give numbers for "from" and "to".');
-    const values = Array.from({ length: steps }, (_, k) => Number((from + ((to - from) * k) / (steps - 1)).toPrecision(6)));
-    if (config.surface.kind === 'tube') return { field: 'sheet.surfaceRatio', label: 'surface ratio', values };
-    return { field: 'sheet.thickness', label: 'thickness (µm)', values };
+    let values = Array.from({ length: steps }, (_, k) => Number((from + (steps > 1 ? ((to - from) * k) / (steps - 1) : 0)).toPrecision(6)));
+    if (integer) values = [...new Set(values.map(Math.round))];
+    const realizations = Math.max(1, Math.min(1000, Math.round(Number(this.input('realizations').value) || 1)));
+    let path = choice;
+    if (choice === VORONOI_K) {
+      // Voronoi k is k - 1 Lloyd iterations, all of them: no early stop.
+      path = 'lloyd.maxIterations';
+      values = values.map((k) => k - 1);
+      base.lloyd = { ...base.lloyd, tolerance: 0 };
+    }
+    if (path === 'sheet.surfaceRatio') base.sheet = { ...base.sheet, thickness: 0 };
+    if (path === 'sheet.thickness') base.sheet = { ...base.sheet, surfaceRatio: null };
+    return { base, vary: { [path]: values }, realizations, seed: base.seed, seedMode: 'per-realization' };
   }
 
-  async run(): Promise<void> {
+  private chartFor(plan: SweepPlan): void {
+    const field = plan.fields[0] ?? '';
+    const voronoi = field === 'lloyd.maxIterations';
+    const label = voronoi ? 'Voronoi k' : (FIELDS.find((f) => f.path === field)?.label ?? field);
+    const methods = ['exact', 'labels'].filter((m) => plan.summary.includes(`${m}.percentScutoids`));
+    this.chart.reset({ label, field, methods, x: (cell) => (voronoi ? Number(cell) + 1 : Number(cell)) });
+  }
+
+  private async runNew(): Promise<void> {
+    try {
+      const spec = this.specFromForm();
+      await this.execute(spec, '');
+    } catch (error) {
+      this.events.onError((error as Error).message);
+    }
+  }
+
+  private async resume(): Promise<void> {
+    if (this.spec) await this.execute(this.spec, this.runsCsv);
+  }
+
+  private async execute(spec: unknown, resumeCsv: string): Promise<void> {
     this.controller?.abort();
     const controller = new AbortController();
     this.controller = controller;
-    this.button('cancel').disabled = false;
+    let plan: SweepPlan;
     try {
-      const base = structuredClone(this.events.config());
-      if (base.surface.kind === 'tube') base.sheet = { ...base.sheet, thickness: 0 };
-      else base.sheet = { ...base.sheet, surfaceRatio: null };
-      const { field, label, values } = this.plan(base);
-      const realizations = Math.max(1, Math.min(20, Math.round(Number(this.input('realizations').value) || 1)));
-      const runs = expandSweep({ base: base as unknown as Record<string, unknown>, vary: { [field]: values }, realizations, seedMode: 'per-realization' });
-      let csv = '';
-      const result = await runSweep({
-        runs,
-        fields: [field],
+      plan = planSweep(spec);
+    } catch (error) {
+      this.events.onError((error as Error).message);
+      return;
+    }
+    this.spec = spec;
+    this.chartFor(plan);
+    this.chart.add(readCsvTable(resumeCsv).rows);
+    this.setBusy(true);
+    delete this.root.dataset.done;
+    this.root.dataset.finished = '0';
+    const total = plan.runs.length;
+    try {
+      const result = await sweepInPage(spec, {
         signal: controller.signal,
-        append: (text) => {
-          csv += text;
+        resumeCsv,
+        onProgress: (p) => {
+          if (p.row) this.chart.add([p.row]);
+          this.root.dataset.finished = String(p.skipped + p.finished);
+          const rate = p.finished / Math.max(1e-3, p.elapsedMs / 1000);
+          this.status(`Sweep: ${p.skipped + p.finished} / ${total} runs (${rate.toFixed(2)} runs/s)${p.error ? `; failed ${p.run.key}: ${p.error}` : ''}`);
         },
-        runner: async (config) => {
-          const output = await runInPage({ config: validateAnyConfig(config), signal: controller.signal });
-          const analysis = primaryAnalysis(output.result);
-          const summary = analysis?.summary;
-          return {
-            method: analysis?.method ?? '',
-            percentScutoids: summary?.percentScutoids ?? Number.NaN,
-            percentScutoidsEnds: summary?.percentScutoidsEnds ?? Number.NaN,
-            meanTransitions: summary?.meanTransitions ?? Number.NaN,
-            validCells: summary?.validCells ?? 0,
-            finalEnergy: output.result.lloyd.finalEnergy,
-          };
-        },
-        onProgress: (p) => this.status(`Sweep: ${p.finished} / ${p.total} runs (${(p.elapsedMs / 1000).toFixed(1)} s)`),
       });
-      this.csv = csv;
-      const aggregate = aggregateRows(result.rows, [field], ['percentScutoids']);
-      const points = aggregate.points.map((p) => ({ x: Number(p.point[field]), mean: p.stats.percentScutoids.mean, sd: Number.isFinite(p.stats.percentScutoids.sd) ? p.stats.percentScutoids.sd : 0 }));
-      this.events.onPoints(label, points);
-      this.status(result.aborted ? `Sweep cancelled after ${result.completed} runs.` : `Sweep done: ${result.completed} runs.`);
-      this.root.dataset.done = String(result.completed);
+      this.runsCsv = result.runsCsv;
+      this.aggregateCsv = result.aggregateCsv;
+      const done = result.runs.length;
+      this.root.dataset.finished = String(done);
+      this.root.dataset.done = String(done);
+      this.root.dataset.state = result.aborted ? 'cancelled' : 'done';
+      const rejected = result.rejected.length > 0 ? ` ${result.rejected.length} rows of the loaded runs.csv were not valid for this spec and were computed again (first: line ${result.rejected[0].line}, ${result.rejected[0].reason}).` : '';
+      this.status(
+        result.aborted
+          ? `Sweep cancelled: ${done} of ${total} runs kept; Resume computes the other ${total - done}.${rejected}`
+          : `Sweep done: ${done} runs (${result.completed} computed, ${result.skipped} loaded).${rejected}`,
+      );
     } catch (error) {
       if (isAbort(error)) this.status('Sweep cancelled.');
       else this.events.onError((error as Error).message);
     } finally {
       if (this.controller === controller) this.controller = null;
-      this.button('cancel').disabled = true;
+      this.setBusy(false);
     }
+  }
+
+  private setBusy(busy: boolean): void {
+    this.button('cancel').disabled = !busy;
+    this.button('run').disabled = busy;
+    const done = readCsvTable(this.runsCsv).rows.length;
+    let total = 0;
+    try {
+      total = this.spec ? planSweep(this.spec).runs.length : 0;
+    } catch {
+      total = 0;
+    }
+    this.button('resume').disabled = busy || !this.spec || done >= total;
+    for (const name of ['runs-csv', 'aggregate-csv', 'spec']) this.button(name).disabled = busy || !this.spec;
+  }
+
+  /** Loads a sweep.json (a spec, or a record with `spec`) and its runs.csv. */
+  private async load(input: HTMLInputElement): Promise<void> {
+    const files = [...(input.files ?? [])];
+    input.value = '';
+    try {
+      let spec: unknown = null;
+      let csv = '';
+      for (const file of files) {
+        const text = await file.text();
+        if (/\.csv$/i.test(file.name) || text.startsWith('key,')) csv = text;
+        else {
+          let data: unknown;
+          try {
+            data = JSON.parse(text);
+          } catch {
+            throw new Error(`${file.name}: not JSON; load a sweep.json and its runs.csv`);
+          }
+          spec = data && typeof data === 'object' && 'spec' in data ? (data as { spec: unknown }).spec : data;
+        }
+      }
+      spec ??= this.spec;
+      if (!spec) throw new Error('Load a sweep.json (the spec) together with its runs.csv.');
+      const plan = planSweep(spec);
+      this.spec = spec;
+      this.runsCsv = csv;
+      this.aggregateCsv = '';
+      this.chartFor(plan);
+      const rows = readCsvTable(csv).rows;
+      this.chart.add(rows);
+      this.root.dataset.done = String(rows.length);
+      this.status(`Loaded a sweep of ${plan.runs.length} runs with ${rows.length} rows in its runs.csv; Resume checks them and computes the rest.`);
+      this.setBusy(false);
+    } catch (error) {
+      this.events.onError((error as Error).message);
+    }
+  }
+
+  private download(name: string, text: string, type: string): void {
+    if (!text) {
+      this.events.onError(name === 'aggregate.csv' ? 'The aggregate is written when a sweep finishes or is cancelled; resume the loaded sweep first.' : 'Run a sweep first.');
+      return;
+    }
+    download(name, text, type);
   }
 }

@@ -5,8 +5,9 @@
  *
  * It mirrors the pipeline's sweep summary (src/run/sweepSummary.ts), flattened with "." (see
  * flattenSummary): `iterations`, `finalEnergy`, `centroidPath`, then for each adjacency method
- * the config produces ("labels" unless sheet.adjacency is "exact"; "exact" unless it is
- * "labels", and on closed surfaces only on a sphere): `<method>.percentScutoids`,
+ * the config produces on this renderer ("labels" unless sheet.adjacency is "exact"; "exact"
+ * unless it is "labels", and on closed surfaces only on a sphere; only "exact" when the engine
+ * policy picks the exact CPU engine): `<method>.percentScutoids`,
  * `.meanTransitions`, `.meanNeighbours3D`, `.validCells`, `.excludedCells`, and per surface of
  * the stack (seeded, "layer k" without its space, other) `<method>.<surface>.meanSides` and
  * `<method>.<surface>.polygons.<3..10+>`. A CLI test checks a real run's summary against this.
@@ -20,8 +21,24 @@ export const TEXT_COLUMNS: ReadonlySet<string> = new Set(['centroidPath']);
 export const METHOD_METRICS = ['percentScutoids', 'meanTransitions', 'meanNeighbours3D', 'validCells', 'excludedCells'] as const;
 export const METHODS = ['labels', 'exact'] as const;
 
-/** Adjacency methods whose statistics a run of `config` reports. */
-export function runMethods(config: AnyConfig): (typeof METHODS)[number][] {
+/** What the engine policy needs to know of the renderer (src/run/enginePolicy.ts). */
+export interface RendererTraits {
+  softwareRenderer: boolean;
+}
+
+/**
+ * Whether the exact CPU engine runs `config` (mirrors the engine policy): planes and tubes with
+ * engine "exact", or "auto" on a software renderer when the labels method is not asked for.
+ */
+export function runsExactEngine(config: AnyConfig, renderer: RendererTraits): boolean {
+  if (isClosedConfig(config)) return false;
+  const engine = (config as { engine?: string }).engine;
+  return engine === 'exact' || (engine === 'auto' && renderer.softwareRenderer && config.sheet.adjacency !== 'labels');
+}
+
+/** Adjacency methods whose statistics a run of `config` reports (the exact engine: exact only). */
+export function runMethods(config: AnyConfig, renderer: RendererTraits = { softwareRenderer: false }): (typeof METHODS)[number][] {
+  if (runsExactEngine(config, renderer)) return ['exact'];
   const { adjacency } = config.sheet;
   const methods: (typeof METHODS)[number][] = [];
   if (adjacency !== 'exact') methods.push('labels');
@@ -40,10 +57,21 @@ function surfaceColumns(method: string, surface: string): string[] {
   return [`${method}.${surface}.meanSides`, ...SIDE_CLASSES.map((c) => `${method}.${surface}.polygons.${c}`)];
 }
 
-/** The summary columns one run of `config` fills, in order. */
-export function summaryColumns(config: AnyConfig): string[] {
+/**
+ * Methods a run of `config` may report on any renderer: the engine policy picks the exact
+ * engine only on software renderers, and a runner that reuses a relaxed seeded surface keeps
+ * the engine of the first run sharing it, so a sweep allows both outcomes; resume checks that
+ * each method's columns are filled all or none (see resume.ts).
+ */
+export function possibleMethods(config: AnyConfig): (typeof METHODS)[number][] {
+  const both = new Set([...runMethods(config, { softwareRenderer: false }), ...runMethods(config, { softwareRenderer: true })]);
+  return METHODS.filter((m) => both.has(m));
+}
+
+/** The summary columns one run of `config` may fill (given a renderer: does fill), in order. */
+export function summaryColumns(config: AnyConfig, renderer?: RendererTraits): string[] {
   const columns: string[] = [...TOP_COLUMNS];
-  for (const method of runMethods(config)) {
+  for (const method of renderer ? runMethods(config, renderer) : possibleMethods(config)) {
     columns.push(...METHOD_METRICS.map((m) => `${method}.${m}`));
     for (const surface of surfaceColumnNames(config)) columns.push(...surfaceColumns(method, surface));
   }
@@ -55,11 +83,11 @@ export function summaryColumns(config: AnyConfig): string[] {
  * order of the configs' methods: top columns, then per method (labels, exact) its metrics and
  * its surfaces in order of first appearance.
  */
-export function sweepColumns(configs: Iterable<AnyConfig>): string[] {
+export function sweepColumns(configs: Iterable<AnyConfig>, renderer?: RendererTraits): string[] {
   const surfaces = new Map<string, string[]>(METHODS.map((m) => [m, []]));
   const used = new Set<string>();
   for (const config of configs) {
-    for (const method of runMethods(config)) {
+    for (const method of renderer ? runMethods(config, renderer) : possibleMethods(config)) {
       used.add(method);
       const list = surfaces.get(method)!;
       for (const s of surfaceColumnNames(config)) if (!list.includes(s)) list.push(s);

@@ -118,17 +118,36 @@ function checkRecord<C extends Config>(
   }
   const filled = spec.filledColumns(run);
   const fixed = new Set(['key', 'realization', 'seed', ...spec.fields]);
+  // Columns of one adjacency method ("labels.*", "exact.*") are filled all or none: which
+  // methods a run reports can depend on the engine that ran it.
+  const groups = new Map<string, { filled: number; empty: number; first: string }>();
   for (let i = 0; i < spec.header.length; i++) {
     const name = spec.header[i];
     if (fixed.has(name)) continue;
     const value = record[i];
+    const group = /^(labels|exact)\./.exec(name)?.[1];
     if (!filled.has(name)) {
       if (value !== '') return `${name} should be empty for this run (got ${JSON.stringify(value)})`;
+      continue;
+    }
+    if (group) {
+      const g = groups.get(group) ?? { filled: 0, empty: 0, first: name };
+      groups.set(group, g);
+      if (value === '') {
+        g.empty++;
+        continue;
+      }
+      g.filled++;
     } else if (value === '') {
       return `${name} is empty`;
-    } else if (!spec.textColumns.has(name) && !isNumberText(value)) {
+    }
+    if (!spec.textColumns.has(name) && !isNumberText(value)) {
       return `${name}: ${JSON.stringify(value.length > 40 ? `${value.slice(0, 37)}...` : value)} is not a number`;
     }
   }
+  for (const [method, g] of groups) {
+    if (g.filled > 0 && g.empty > 0) return `${method}.* columns are partly empty (${g.empty} of ${g.filled + g.empty})`;
+  }
+  if (groups.size > 0 && [...groups.values()].every((g) => g.filled === 0)) return 'no adjacency method has values';
   return undefined;
 }

@@ -1,0 +1,110 @@
+/**
+ * The sweep's live chart: % scutoids against the swept value, one line per adjacency method
+ * (mean over the realizations finished so far) with its 95 % confidence band (t interval of the
+ * mean, clamped to 0-100 %). Rows are added one at a time as runs finish; the chart is redrawn
+ * at most once per animation frame, by updating its data, not rebuilding it.
+ */
+import uPlot from 'uplot';
+import 'uplot/dist/uPlot.min.css';
+import { meanInterval } from '../../view/pageSweep';
+
+const COLORS: Record<string, string> = { exact: '#1f5fa8', labels: '#c0392b' };
+
+export interface SweepChartSetup {
+  /** Axis label of the swept value. */
+  label: string;
+  /** runs.csv column of the swept value. */
+  field: string;
+  /** Maps a cell of that column to the x plotted (e.g. Lloyd iterations -> Voronoi k). */
+  x: (cell: string) => number;
+  /** Adjacency methods with a `<method>.percentScutoids` column. */
+  methods: string[];
+}
+
+export class SweepChart {
+  private plot: uPlot | null = null;
+  private setup: SweepChartSetup | null = null;
+  /** x -> method -> % scutoids of each finished run. */
+  private readonly values = new Map<number, Map<string, number[]>>();
+  private frame = 0;
+
+  constructor(private readonly root: HTMLElement) {}
+
+  /** Starts an empty chart for a sweep. */
+  reset(setup: SweepChartSetup): void {
+    this.setup = setup;
+    this.values.clear();
+    this.plot?.destroy();
+    this.plot = null;
+    this.root.dataset.points = '0';
+  }
+
+  /** Adds finished runs (runs.csv rows) and schedules a redraw. */
+  add(rows: readonly Record<string, string>[]): void {
+    const setup = this.setup;
+    if (!setup) return;
+    for (const row of rows) {
+      const x = setup.x(row[setup.field]);
+      let byMethod = this.values.get(x);
+      if (!byMethod) this.values.set(x, (byMethod = new Map(setup.methods.map((m) => [m, []]))));
+      for (const method of setup.methods) {
+        const cell = row[`${method}.percentScutoids`];
+        if (cell !== undefined && cell !== '') byMethod.get(method)!.push(Number(cell));
+      }
+    }
+    if (!this.frame) this.frame = requestAnimationFrame(() => this.draw());
+  }
+
+  /** Mean and clamped 95 % interval per x and method (what the chart shows). */
+  points(): { x: number; method: string; mean: number; low: number; high: number; n: number }[] {
+    const out = [];
+    for (const x of [...this.values.keys()].sort((a, b) => a - b)) {
+      for (const [method, values] of this.values.get(x)!) out.push({ x, method, ...meanInterval(values) });
+    }
+    return out;
+  }
+
+  private draw(): void {
+    this.frame = 0;
+    const setup = this.setup;
+    if (!setup) return;
+    const xs = [...this.values.keys()].sort((a, b) => a - b);
+    const data: (number | null)[][] = [xs];
+    const series: uPlot.Series[] = [{ label: setup.label }];
+    const bands: uPlot.Band[] = [];
+    for (const method of setup.methods) {
+      const color = COLORS[method] ?? '#555';
+      const stats = xs.map((x) => meanInterval(this.values.get(x)!.get(method) ?? []));
+      const at = data.length;
+      data.push(stats.map((s) => (Number.isFinite(s.mean) ? s.mean : null)));
+      data.push(stats.map((s) => (Number.isFinite(s.high) ? s.high : null)));
+      data.push(stats.map((s) => (Number.isFinite(s.low) ? s.low : null)));
+      const value = (_u: uPlot, v: number | null) => (v === null ? '' : `${v.toFixed(1)} %`);
+      series.push(
+        { label: `${method}: mean % scutoids`, stroke: color, width: 2, points: { show: true, size: 6 }, value },
+        { label: `${method}: 95 % CI high`, stroke: `${color}55`, width: 1, points: { show: false }, value },
+        { label: `${method}: 95 % CI low`, stroke: `${color}55`, width: 1, points: { show: false }, value },
+      );
+      bands.push({ series: [at + 1, at + 2], fill: `${color}22` });
+    }
+    this.root.dataset.points = String(xs.length);
+    if (this.plot && this.plot.series.length === series.length) {
+      this.plot.setData(data as uPlot.AlignedData);
+      return;
+    }
+    this.plot?.destroy();
+    const width = Math.max(240, Math.floor(this.root.clientWidth || 320));
+    this.plot = new uPlot(
+      {
+        title: `% scutoids vs ${setup.label} (mean, 95 % CI)`,
+        width,
+        height: 200,
+        scales: { x: { time: false }, y: { range: (_u, _min, max) => [0, Math.min(100, Math.max(10, Math.ceil(max * 1.1)))] } },
+        series,
+        bands,
+      },
+      data as uPlot.AlignedData,
+      this.root,
+    );
+  }
+}
