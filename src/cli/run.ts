@@ -9,7 +9,8 @@ import { dirname } from 'node:path';
 import { ConfigError, validateAnyConfig } from '../core/config';
 import { createHeadlessContext } from '../node/headless';
 import { describeEngine, runSheet } from '../run/index';
-import { InterruptedError } from './errors';
+import { findForbiddenKey } from '../core/sweep';
+import { InputError, InterruptedError } from './errors';
 import type { CliOptions } from './args';
 import { checkOutFile, writeFileAtomic } from './output';
 import { checkRunnable, computeBudget, loadInputs, readJsonFile } from './prepare';
@@ -17,6 +18,9 @@ import { Sources } from './sources';
 
 export async function runCommand(options: CliOptions, signal: AbortSignal, log: (line: string) => void): Promise<void> {
   const json = readJsonFile(options.input, 'config');
+  // JSON.parse keeps "__proto__" as an own key; refuse it before any code copies the object.
+  const forbidden = findForbiddenKey(json, []);
+  if (forbidden) throw new InputError(`${options.input}: ${forbidden}: not allowed as a key (it would reach an object prototype); remove it`);
   const config = validateAnyConfig(json);
   checkOutFile(options.out, [options.input], options.force);
   // Schema-level scale checks first (no GPU needed), then the texture limit once a context exists.

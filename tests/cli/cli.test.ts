@@ -88,6 +88,7 @@ describe('tissue-sheet run', () => {
     ['a PLY with a wrong vertex count', { ...small, surface: { kind: 'mesh', src: 'count.ply' }, sheet: {} }, /^tissue-sheet: surface\.src: .*count\.ply: the PLY header declares 5 vertex \+ 4 face = 9 lines but the body has 8/],
     ['an http mesh', { ...small, surface: { kind: 'mesh', src: 'http://127.0.0.1:9/a.ply' }, sheet: {} }, /^tissue-sheet: surface\.src: "http:\/\/127\.0\.0\.1:9\/a\.ply" is a network address; .*--allow-network/],
     ['an empty density image', { ...small, density: { kind: 'image', src: 'empty.png' } }, /^tissue-sheet: density\.src: density image .*empty\.png: the file is empty/],
+    ['a __proto__ key', '{"cells": 20, "sheet": {"__proto__": {"layers": 3}}}', /^tissue-sheet: .*sheet\.__proto__: not allowed as a key/],
     ['a directory as density image', { ...small, density: { kind: 'image', src: 'folder.png' } }, /^tissue-sheet: density\.src: density image .*folder\.png: is a directory/],
   ];
   const tetra = (vertices: number, last: string) =>
