@@ -6,7 +6,12 @@
 import { ConfigError, validateAnyConfig, type AnyConfig as Config } from '../core/config';
 import { GpuCapabilityError, type SheetOutput } from '../run';
 import { computeContext, isAbort, LatestRunner, onComputeSite } from '../view/pageRunner';
-import { initialConfig, saveConfig, urlWithConfig } from './model/settings';
+import { initialConfig, readLink, saveConfig, urlWithConfig } from './model/settings';
+import { checkPageBudget } from '../view/pageBudget';
+import { pendingSources } from '../view/sources';
+import { version } from '../version';
+import { bindHelp } from './panels/help';
+import { LinkAlert, SourceQuestion } from './panels/notices';
 import { viewStack, type ViewStack } from '../view/stack';
 import { Charts } from './panels/charts';
 import { ConfigControls } from './panels/controls';
@@ -31,7 +36,7 @@ let lastDraft = '';
 let runs = 0;
 const runner = new LatestRunner();
 
-function setState(state: 'running' | 'done' | 'error' | 'cancelled' | 'no-webgl'): void {
+function setState(state: 'running' | 'done' | 'error' | 'cancelled' | 'no-webgl' | 'waiting' | 'refused'): void {
   document.body.dataset.state = state;
 }
 
@@ -42,15 +47,35 @@ function showError(error: unknown): void {
   errorBox.hidden = false;
 }
 
+/** True when `config` is the link's own configuration (its errors stay until dismissed). */
+function isLinkConfig(config: unknown): boolean {
+  return linkConfig !== null && JSON.stringify(config) === JSON.stringify(linkConfig);
+}
+
+/** A configuration that cannot run: a link's refusal stays until dismissed, an edit's until the next run. */
+function refuse(error: unknown, fromLink: boolean): void {
+  const message = error instanceof Error ? error.message : String(error);
+  if (fromLink) linkAlert.show(`This link's configuration was not run: ${message}`);
+  else showError(error);
+  setState(fromLink ? 'refused' : 'error');
+}
+
 function clearError(): void {
   errorBox.hidden = true;
   errorBox.textContent = '';
 }
 
 renderLegend($('#legend'));
+/** The address's configuration, read once: a link is untrusted input, validated and never stored. */
+const link = readLink(location.href);
+const linkConfig = link.kind === 'ok' ? link.config : null;
+const linkAlert = new LinkAlert($('#link-alert'));
+const sourceQuestion = new SourceQuestion($('#source-question'));
+for (const element of document.querySelectorAll('[data-version]')) element.textContent = version;
+bindHelp($('#help-open'), $<HTMLDialogElement>('#help'));
 const viewPanel = new ViewPanel($('main'), $('#unrolled'));
-const charts = new Charts($('#chart-polygons'), $('#chart-energy'), $('#chart-sweep'));
-const controls = new ConfigControls($('#controls'), initialConfig((m) => showError(m)), {
+const charts = new Charts($('#chart-polygons'), $('#chart-energy'), $('#chart-sweep'), $('#chart-lewis'), $('#chart-aboav'));
+const controls = new ConfigControls($('#controls'), initialConfig(link), {
   onEdit: (draft, live) => {
     // A slider's "change" after its last "input" asks for the run already under way: skip it.
     if (JSON.stringify(draft) === lastDraft) return;
@@ -70,15 +95,23 @@ bindExports($('.exports'), {
   onError: showError,
 });
 
-function show(output: SheetOutput): void {
-  stack = viewStack(output);
+/** Lets the browser handle input between the parts of drawing a result (no task over ~50 ms). */
+const nextTask = () => new Promise<void>((resolve) => setTimeout(resolve, 0));
+
+async function show(output: SheetOutput): Promise<void> {
+  const shown = viewStack(output);
+  stack = shown;
   try {
-    viewPanel.show(stack);
+    viewPanel.show(shown);
   } catch (error) {
     showError(`The 3D view could not draw this result: ${(error as Error).message}`);
   }
-  renderResults($('main'), stack);
-  charts.showStack(stack);
+  await nextTask();
+  if (stack !== shown) return; // a newer result is being drawn
+  renderResults($('main'), shown);
+  await nextTask();
+  if (stack !== shown) return;
+  charts.showStack(shown);
 }
 
 /**
@@ -91,10 +124,25 @@ async function run(draft: Config, live = false): Promise<void> {
   try {
     config = validateAnyConfig(draft);
   } catch (error) {
-    showError(error);
-    setState('error');
+    refuse(error, isLinkConfig(draft));
     return;
   }
+  try {
+    // The work is bounded before anything is allocated (the page cannot raise the budget).
+    checkPageBudget(config, computeContext().capabilities.maxTextureSize);
+  } catch (error) {
+    refuse(error, isLinkConfig(config));
+    return;
+  }
+  const pending = pendingSources(config, location.href);
+  if (pending.length > 0) {
+    // Nothing is requested from another origin before the user's click.
+    sourceQuestion.ask(pending, isLinkConfig(config) ? 'This link' : 'This configuration', () => void run(config));
+    statusLine.textContent = `Waiting: load ${pending[0].path} from ${pending[0].host}?`;
+    setState('waiting');
+    return;
+  }
+  sourceQuestion.close();
   clearError();
   setState('running');
   cancelButton.disabled = false;
@@ -111,9 +159,9 @@ async function run(draft: Config, live = false): Promise<void> {
         statusLine.textContent = `Lloyd iteration ${record.iteration} / ${total}, energy ${record.energy.toPrecision(6)} µm⁴`;
       },
     });
-    show(output);
+    await show(output);
     // Saved once it ran: the URL and the session hold the configuration of the result on screen.
-    saveConfig(config);
+    saveConfig(config, linkConfig);
     runs += 1;
     document.body.dataset.runs = String(runs);
     statusLine.textContent = `Done in ${((performance.now() - started) / 1000).toFixed(1)} s.${siteNote}`;
@@ -159,9 +207,12 @@ $('#converge').addEventListener('click', () =>
 cancelButton.addEventListener('click', () => runner.cancel());
 $('#share').addEventListener('click', async () => {
   try {
-    const link = urlWithConfig(location.href, validateAnyConfig(controls.config));
-    await navigator.clipboard?.writeText(link);
-    statusLine.textContent = 'Link copied: it reproduces this configuration.';
+    // The configuration of the result on screen, not the form's draft.
+    if (!stack) throw new Error('Nothing to share yet: run a sheet first.');
+    const shared = urlWithConfig(location.href, stack.result.config);
+    $('#share').dataset.link = shared;
+    await navigator.clipboard?.writeText(shared);
+    statusLine.textContent = 'Link copied: it reproduces the result on screen.';
   } catch (error) {
     showError(error);
   }
@@ -175,6 +226,13 @@ function start(): void {
     statusLine.textContent = 'No run possible in this browser.';
     for (const id of ['#run', '#step', '#converge']) $<HTMLButtonElement>(id).disabled = true;
     setState('no-webgl');
+    return;
+  }
+  if (link.kind === 'bad') {
+    // A broken link runs nothing and leaves the address as it was; the form shows what would run.
+    linkAlert.show(`This link cannot be used: ${link.message} Nothing was run; fix the link, or press Run to run the settings shown.`);
+    statusLine.textContent = 'The link was not used.';
+    setState('refused');
     return;
   }
   void run(controls.config);

@@ -14,7 +14,12 @@ import { sweepInPage } from '../view/pageSweep';
 import type { TissueSheetSweepOptions, TissueSheetSweepProgressDetail, TissueSheetSweepResult } from './events';
 import type { ComputeSite } from '../run';
 import { SheetView3D } from '../view/sheetView3d';
-import { primaryAnalysis, viewStack } from '../view/stack';
+import { byConstruction } from '../core/analysis/byConstruction';
+import { checkPageBudget } from '../view/pageBudget';
+import { pendingSources, type ForeignSource } from '../view/sources';
+import { computeContext } from '../view/pageRunner';
+import { methodCaption, primaryAnalysis, viewStack } from '../view/stack';
+import { askToLoad } from './sourcePrompt';
 import { ATTRIBUTES, OTHER_ATTRIBUTES, configFromAttributes } from './attributes';
 import type { TissueSheetErrorDetail, TissueSheetEventMap, TissueSheetProgressDetail, TissueSheetResultDetail } from './events';
 import { TEMPLATE } from './template';
@@ -112,6 +117,15 @@ export class TissueSheetElement extends HTMLElement {
       this.fail(error);
       throw error;
     }
+    try {
+      // Untrusted attributes: the work is bounded before anything is allocated.
+      checkPageBudget(config, computeContext().capabilities.maxTextureSize);
+    } catch (error) {
+      this.fail(error);
+      throw error;
+    }
+    const pending = pendingSources(config, location.href);
+    if (pending.length > 0) return this.waitForApproval(pending);
     this.status(`Running ${config.cells} cells…`);
     try {
       const output = await this.runner.start({
@@ -130,12 +144,24 @@ export class TissueSheetElement extends HTMLElement {
         this.status(`3D view: ${(error as Error).message}`, true);
       }
       this.last = output.result;
-      const percent = primaryAnalysis(output.result)?.summary.percentScutoids ?? Number.NaN;
+      const analysis = primaryAnalysis(output.result);
+      const percent = analysis?.summary.percentScutoids ?? Number.NaN;
+      const method = analysis?.method ?? 'labels';
       const label = this.shadow.querySelector<HTMLElement>('.percent')!;
       label.textContent = `${percent.toFixed(1)} %`;
       label.dataset.value = String(percent);
-      this.status(`${config.cells} cells, ${output.result.lloyd.iterations.length} Lloyd iterations, ${config.surface.kind}`);
-      this.emit<TissueSheetResultDetail>('result', { result: output.result, percentScutoids: percent });
+      label.dataset.method = method;
+      label.title = `scutoids, from ${methodCaption(analysis)}`;
+      this.shadow.querySelector<HTMLElement>('.method')!.textContent = method;
+      const rule = byConstruction(output.result.config);
+      const iterations = output.result.lloyd.iterations.length;
+      this.status(rule ? rule.message : `${config.cells} cells, Voronoi ${iterations + 1} (${iterations} Lloyd iterations), ${config.surface.kind}, ${method} adjacency`);
+      this.emit<TissueSheetResultDetail>('result', {
+        result: output.result,
+        percentScutoids: percent,
+        method,
+        ...(rule ? { byConstruction: rule.message } : {}),
+      });
       return output.result;
     } catch (error) {
       if (!isAbort(error)) this.fail(error);
@@ -182,6 +208,17 @@ export class TissueSheetElement extends HTMLElement {
   override addEventListener(type: string, listener: EventListenerOrEventListenerObject, options?: boolean | AddEventListenerOptions): void;
   override addEventListener(type: string, listener: EventListenerOrEventListenerObject, options?: boolean | AddEventListenerOptions): void {
     super.addEventListener(type, listener, options);
+  }
+
+  /**
+   * A source from another origin: the element shows "this element asks to load PATH from HOST"
+   * and requests nothing until its button is clicked; then it runs.
+   */
+  private waitForApproval(pending: ForeignSource[]): Promise<SheetResult> {
+    this.status('Waiting for permission to load a source from another site.');
+    return new Promise<SheetResult>((resolve, reject) => {
+      askToLoad(this.shadow, pending, () => this.run().then(resolve, reject));
+    });
   }
 
   private schedule(): void {

@@ -16,8 +16,12 @@ export interface TissueSheetProgressDetail {
 export interface TissueSheetResultDetail {
   /** The documented result JSON (the same document `tissue-sheet run` writes). */
   result: SheetResult;
-  /** % scutoids of the labels analysis (the exact one when labels was not computed). */
+  /** % scutoids of the analysis shown: the exact method where the result has one (planes, tubes, spheres), else labels. */
   percentScutoids: number;
+  /** Which adjacency method `percentScutoids` comes from. */
+  method: 'labels' | 'exact';
+  /** Why the value is fixed by the geometry (s = 1, thickness 0, parallel planes, concentric spheres), when it is. */
+  byConstruction?: string;
 }
 
 export interface TissueSheetErrorDetail {

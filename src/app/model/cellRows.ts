@@ -1,9 +1,15 @@
 /**
  * The per-cell rows shown in the page's table and written to the per-cell CSV: one source, so
- * the file and the screen always agree.
+ * the file and the screen always agree. Per surface of the stack (basal, layers, apical): the
+ * cell's area, its sides and its neighbour ids (space-separated); per cell: valid, scutoid, and
+ * the apico-basal transitions (sides and flags from the analysis shown; the neighbour ids are the
+ * label images' contacts, all of them, as the result records them). The CSV starts with provenance comment lines ("# ...": the
+ * version, the adjacency method, the full configuration as JSON); read it with a CSV reader's
+ * comment option (pandas: `comment="#"`, R: `comment.char = "#"`). Text cells are neutralised
+ * against formula injection by formatCsv (core/sweep/csv.ts).
  */
 import { formatCsv } from '../../core/sweep';
-import type { ViewStack } from '../../view/stack';
+import { methodCaption, type ViewStack } from '../../view/stack';
 
 export interface CellTable {
   header: string[];
@@ -21,7 +27,9 @@ export function cellTable(stack: ViewStack): CellTable {
     'lost',
     'transitions',
     'neighbours3D',
-    'area_um2',
+    ...names.map((n) => `area_um2_${n}`),
+    // The result keeps neighbour ids (with contact lengths) from the label images only.
+    ...names.map((n) => `label_neighbours_${n}`),
     // Closed surfaces: the site's parameter direction as longitude / latitude.
     ...(stack.closed ? ['longitude_deg', 'latitude_deg'] : ['u_um', 'v_um']),
   ];
@@ -36,7 +44,8 @@ export function cellTable(stack: ViewStack): CellTable {
       stats?.lost ?? '',
       stats?.transitions ?? '',
       stats?.neighbours3D ?? '',
-      round(cell.area, 3),
+      ...stack.surfaces.map((s) => round(s.cells[i]?.area ?? Number.NaN, 3)),
+      ...stack.surfaces.map((s) => (s.cells[i]?.neighbours ?? []).map((n) => n.id).join(' ')),
       round(cell.surface[0], 3),
       round(cell.surface[1], 3),
     ];
@@ -44,9 +53,20 @@ export function cellTable(stack: ViewStack): CellTable {
   return { header, rows };
 }
 
+/** Comment lines that say where a file comes from: software, version, method and configuration. */
+export function provenanceLines(stack: ViewStack, what: string): string[] {
+  const { result } = stack;
+  return [
+    `${what}, written by ${result.software.name} ${result.software.version}`,
+    `scutoid flags, sides and transitions from ${methodCaption(stack.analysis)}; label_neighbours_* columns: every contact in the label images`,
+    `seed ${result.seed}; config (rerun it to reproduce this file): ${JSON.stringify(result.config)}`,
+  ];
+}
+
 export function cellCsv(stack: ViewStack): string {
   const { header, rows } = cellTable(stack);
-  return formatCsv(header, rows);
+  const comments = provenanceLines(stack, 'tissue-sheet per-cell table').map((line) => `# ${line}\r\n`);
+  return comments.join('') + formatCsv(header, rows);
 }
 
 function round(value: number, digits: number): number {

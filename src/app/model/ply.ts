@@ -13,6 +13,7 @@ import { isClosedConfig } from '../../core/config';
 import { exactVoronoi } from '../../core/exact';
 import { embed } from '../../core/surface';
 import { closedSurfaceMesh } from '../../view/cubeAtlasMesh';
+import { provenanceLines } from './cellRows';
 import type { ViewStack } from '../../view/stack';
 
 export function cellsPly(stack: ViewStack): string {
@@ -66,6 +67,8 @@ function plyDocument(stack: ViewStack, comment: string, vertices: string[], face
     'ply',
     'format ascii 1.0',
     `comment tissue-sheet ${stack.result.software.version}: ${comment}`,
+    // Provenance: one comment line each (PLY comments end at the line's end).
+    ...provenanceLines(stack, 'tissue-sheet cells').map((line) => `comment ${line.replace(/[\r\n]+/g, ' ')}`),
     `element vertex ${vertices.length}`,
     'property float x',
     'property float y',

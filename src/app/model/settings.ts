@@ -1,7 +1,8 @@
 /**
  * The page's configuration: its defaults (small enough to run in a few seconds on a software
  * GPU), and where it lives between visits: the URL (`?config=<JSON>`, a shareable link that
- * reproduces the result) and localStorage (the last session, used when the URL has none).
+ * reproduces the result) and localStorage (the last configuration the user ran without a link,
+ * used when the URL has none). A link is untrusted input: validated, shown, never stored.
  * Closed surfaces are part of it; a mesh is its sample URL (/meshes/<name>) or, for a user's
  * file, only its name (see meshFiles.ts).
  */
@@ -26,7 +27,7 @@ export function configFromUrl(href: string): AnyConfig | null {
   try {
     data = JSON.parse(text);
   } catch {
-    throw new Error(`The link's configuration is not valid JSON; it was ignored and the defaults are shown.`);
+    throw new Error(`The link's configuration is not valid JSON; nothing was run.`);
   }
   return validateAnyConfig(data);
 }
@@ -47,7 +48,14 @@ export function configFromStorage(storage: Storage | undefined = globalThis.loca
   }
 }
 
-export function saveConfig(config: AnyConfig): void {
+/**
+ * After a run: the address reproduces it, and localStorage keeps it for the next visit without
+ * a link, unless it is exactly the configuration of the link the page was opened with (a link's
+ * configuration is never stored, and its address is left as it is: the link is its state).
+ */
+export function saveConfig(config: AnyConfig, fromLink: AnyConfig | null = null): void {
+  // The link's own configuration: the address already reproduces it and stays as it was.
+  if (fromLink && JSON.stringify(fromLink) === JSON.stringify(config)) return;
   try {
     globalThis.localStorage?.setItem(STORAGE_KEY, JSON.stringify(config));
   } catch {
@@ -57,13 +65,24 @@ export function saveConfig(config: AnyConfig): void {
   if (next !== location.href) history.replaceState(null, '', next);
 }
 
-/** URL first (a shared link), then the last session, then the defaults. */
-export function initialConfig(onWarning: (message: string) => void): AnyConfig {
+/** What the address holds: no configuration, a valid one, or one that cannot be used (and why). */
+export type LinkState = { kind: 'none' } | { kind: 'ok'; config: AnyConfig } | { kind: 'bad'; message: string };
+
+/** Reads `?config=` of `href` without throwing. */
+export function readLink(href: string): LinkState {
   try {
-    const fromUrl = configFromUrl(location.href);
-    if (fromUrl) return fromUrl;
+    const config = configFromUrl(href);
+    return config ? { kind: 'ok', config } : { kind: 'none' };
   } catch (error) {
-    onWarning(`The link's configuration was not used: ${(error as Error).message}`);
+    return { kind: 'bad', message: (error as Error).message };
   }
+}
+
+/**
+ * The configuration the page opens with: the link's when it is valid (a link is its own state),
+ * else the last configuration the user ran without a link, else the defaults.
+ */
+export function initialConfig(link: LinkState): AnyConfig {
+  if (link.kind === 'ok') return link.config;
   return configFromStorage() ?? defaultConfig();
 }

@@ -10,26 +10,41 @@ import type { ViewStack } from '../../view/stack';
 
 const SURFACE_COLORS = ['#1f5fa8', '#c0392b', '#7f8c8d', '#16a085', '#8e44ad', '#d35400'];
 
+const HEIGHT = 200;
+
+/** One uPlot chart that follows its box's width (a window resize, a narrower layout). */
 class Chart {
   private plot: uPlot | null = null;
-  constructor(private readonly root: HTMLElement) {}
+  constructor(private readonly root: HTMLElement) {
+    new ResizeObserver(() => this.plot?.setSize({ width: this.width(), height: HEIGHT })).observe(root);
+  }
+
+  private width(): number {
+    return Math.max(200, Math.floor(this.root.clientWidth || 320));
+  }
 
   show(options: Omit<uPlot.Options, 'width' | 'height'>, data: uPlot.AlignedData): void {
     this.plot?.destroy();
-    const width = Math.max(240, Math.floor(this.root.clientWidth || 320));
-    this.plot = new uPlot({ ...options, width, height: 200 }, data, this.root);
+    this.plot = new uPlot({ ...options, width: this.width(), height: HEIGHT }, data, this.root);
   }
 }
+
+const sideTicks = (_u: uPlot, ticks: number[]) => ticks.map((t) => (t >= 10 ? '10+' : Number.isInteger(t) ? String(t) : ''));
 
 export class Charts {
   private readonly polygons: Chart;
   private readonly energy: Chart;
   private readonly sweep: Chart;
 
-  constructor(polygons: HTMLElement, energy: HTMLElement, sweep: HTMLElement) {
+  private readonly lewis: Chart | null;
+  private readonly aboav: Chart | null;
+
+  constructor(polygons: HTMLElement, energy: HTMLElement, sweep: HTMLElement, lewis?: HTMLElement | null, aboav?: HTMLElement | null) {
     this.polygons = new Chart(polygons);
     this.energy = new Chart(energy);
     this.sweep = new Chart(sweep);
+    this.lewis = lewis ? new Chart(lewis) : null;
+    this.aboav = aboav ? new Chart(aboav) : null;
   }
 
   showStack(stack: ViewStack): void {
@@ -62,6 +77,8 @@ export class Charts {
       data as uPlot.AlignedData,
     );
 
+    this.showLaws(stack);
+
     const iterations = stack.result.lloyd.iterations;
     this.energy.show(
       {
@@ -71,6 +88,55 @@ export class Charts {
         series: [{ label: 'iteration' }, { label: 'energy', stroke: '#1f5fa8', width: 2, points: { show: true }, value: (_u, v) => (v === null ? '' : v.toPrecision(6)) }],
       },
       [iterations.map((r) => r.iteration), iterations.map((r) => r.energy)],
+    );
+  }
+
+  /**
+   * Lewis's law (mean area of n-sided cells over the mean area, against n, with (n - 2)/4) and
+   * Aboav-Weaire (mean sides of the neighbours of n-sided cells, against n, with Aboav's
+   * 5 + 8/n), one line per surface, from the analysis shown (valid cells).
+   */
+  private showLaws(stack: ViewStack): void {
+    const perSurface = stack.analysis?.summary.perSurface ?? [];
+    const last = perSurface.length - 1;
+    const x = SIDE_LABELS.map((_, k) => k + 3);
+    const color = (k: number) => SURFACE_COLORS[k === 0 ? 0 : k === last ? 1 : 2 + ((k - 1) % 4)];
+    const line = (name: string, k: number): uPlot.Series => ({
+      label: name,
+      stroke: color(k),
+      width: 2,
+      points: { show: true, size: 6 },
+      spanGaps: false,
+      value: (_u, v) => (v === null ? '' : v.toFixed(2)),
+    });
+    const finite = (v: number) => (Number.isFinite(v) ? v : null);
+    const names = perSurface.map((s, k) => stack.surfaces[k]?.name ?? s.label ?? `surface ${k}`);
+    const method = stack.analysis?.method ?? '';
+    this.lewis?.show(
+      {
+        title: `Lewis's law: area of n-sided cells / mean area (${method})`,
+        scales: { x: { time: false, range: [2.5, 10.5] } },
+        axes: [{ values: sideTicks }, {}],
+        series: [
+          { label: 'sides n' },
+          ...names.map(line),
+          { label: '(n − 2) / 4', stroke: '#555', dash: [4, 4], width: 1, points: { show: false } },
+        ],
+      },
+      [x, ...perSurface.map((s) => s.lewis.map((e) => finite(e.normalizedArea))), x.map((n) => (n - 2) / 4)] as uPlot.AlignedData,
+    );
+    this.aboav?.show(
+      {
+        title: `Aboav-Weaire: mean sides of the neighbours m(n) (${method})`,
+        scales: { x: { time: false, range: [2.5, 10.5] } },
+        axes: [{ values: sideTicks }, {}],
+        series: [
+          { label: 'sides n' },
+          ...names.map(line),
+          { label: '5 + 8/n (Aboav)', stroke: '#555', dash: [4, 4], width: 1, points: { show: false } },
+        ],
+      },
+      [x, ...perSurface.map((s) => s.aboavWeaire.map((e) => finite(e.meanNeighbourSides))), x.map((n) => 5 + 8 / n)] as uPlot.AlignedData,
     );
   }
 

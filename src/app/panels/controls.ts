@@ -15,9 +15,29 @@ export interface ControlsEvents {
   onError(message: string): void;
 }
 
+/**
+ * Engine settings, shown in a closed "Advanced" section: sound defaults, no biology in them.
+ * Everything else (the surface, the sheet, the cells, the regularity) comes first.
+ */
+const ADVANCED = new Set(['resolution', 'lloyd.tolerance', 'lloyd.overRelaxation', 'lloyd.warmStart', 'jumpFlood.variant', 'centroidPath', 'sheet.minContactLength']);
+/** Groups in the order a biologist meets them, with their legends. */
+const GROUP_ORDER: [FieldSpec['group'], string][] = [
+  ['Surface', 'Surface'],
+  ['Sheet', 'Sheet: basal and apical surfaces'],
+  ['Cells', 'Cells'],
+  ['Lloyd', 'Regularity (Voronoi k)'],
+  ['Density', 'Cell density'],
+];
+/** Text beside a field that follows the configuration. */
+const LIVE_NOTES: Record<string, (c: Config) => string> = {
+  'lloyd.maxIterations': (c) => `Voronoi ${c.lloyd.maxIterations + 1}: k = Lloyd iterations + 1 (Voronoi 1 = random sites).`,
+};
+
 interface Bound {
   spec: FieldSpec;
   row: HTMLElement;
+  label: HTMLLabelElement;
+  liveNote?: HTMLElement;
   input: HTMLInputElement | HTMLSelectElement;
   output?: HTMLOutputElement;
 }
@@ -32,15 +52,27 @@ export class ConfigControls {
     private readonly events: ControlsEvents,
   ) {
     this.draft = structuredClone(initial);
+    // Enter in a field must not submit (reload) the page; no inline handler under the CSP.
+    root.addEventListener('submit', (event) => event.preventDefault());
     const groups = new Map<string, HTMLFieldSetElement>();
-    for (const spec of FIELDS) {
-      let fieldset = groups.get(spec.group);
+    const fieldsetOf = (group: string, legend: string, parent: HTMLElement) => {
+      let fieldset = groups.get(group);
       if (!fieldset) {
         fieldset = document.createElement('fieldset');
-        fieldset.append(Object.assign(document.createElement('legend'), { textContent: spec.group }));
-        groups.set(spec.group, fieldset);
-        root.append(fieldset);
+        fieldset.dataset.group = group;
+        fieldset.append(Object.assign(document.createElement('legend'), { textContent: legend }));
+        groups.set(group, fieldset);
+        parent.append(fieldset);
       }
+      return fieldset;
+    };
+    for (const [group, legend] of GROUP_ORDER) fieldsetOf(group, legend, root);
+    const advanced = document.createElement('details');
+    advanced.className = 'advanced';
+    advanced.append(Object.assign(document.createElement('summary'), { textContent: 'Advanced: engine settings (defaults need no change)' }));
+    root.append(advanced);
+    for (const spec of FIELDS) {
+      const fieldset = ADVANCED.has(spec.path) ? fieldsetOf('Advanced', 'Engine', advanced) : fieldsetOf(spec.group, spec.group, root);
       this.bound.push(this.renderField(fieldset, spec));
     }
     this.refresh();
@@ -97,8 +129,14 @@ export class ConfigControls {
       note.textContent = spec.note;
       row.append(note);
     }
+    let liveNote: HTMLElement | undefined;
+    if (LIVE_NOTES[spec.path]) {
+      liveNote = document.createElement('small');
+      liveNote.className = 'note live-note';
+      row.append(liveNote);
+    }
     fieldset.append(row);
-    const bound: Bound = { spec, row, input, output };
+    const bound: Bound = { spec, row, label, input, output, liveNote };
     input.addEventListener('change', () => void this.edit(bound, false));
     if (spec.live) input.addEventListener('input', () => void this.edit(bound, true));
     return bound;
@@ -154,10 +192,15 @@ export class ConfigControls {
 
   /** Shows/hides fields for the draft and writes its values into the controls. */
   private refresh(): void {
-    for (const { spec, row, input, output } of this.bound) {
+    for (const { spec, row, label, input, output, liveNote } of this.bound) {
       const visible = spec.show ? spec.show(this.draft) : true;
       row.hidden = !visible;
       if (!visible) continue;
+      // The tooltip of every control: the schema's description of its field.
+      const description = spec.description?.(this.draft) ?? '';
+      input.title = description;
+      label.title = description;
+      if (liveNote) liveNote.textContent = LIVE_NOTES[spec.path](this.draft);
       const value = spec.get ? spec.get(this.draft) : getPath(this.draft, spec.path);
       if (spec.max !== undefined && input instanceof HTMLInputElement) {
         input.max = String(typeof spec.max === 'function' ? spec.max(this.draft) : spec.max);

@@ -1,9 +1,11 @@
 /**
  * Downloads: the result JSON (the same document the CLI writes), the per-cell CSV, the sweep
- * CSV, a PNG of the 3D view and the cells as a PLY mesh. File names carry the seed and the
+ * CSV, a PNG of the 3D view and the cells as a PLY mesh. Each carries its provenance: version,
+ * seed and the full configuration (CSV and PLY comment lines, PNG tEXt chunks). File names carry the seed and the
  * surface, so several exports of a session stay apart.
  */
-import { cellCsv } from '../model/cellRows';
+import { cellCsv, provenanceLines } from '../model/cellRows';
+import { withPngText } from '../model/pngText';
 import { cellsPly } from '../model/ply';
 import type { ViewStack } from '../../view/stack';
 
@@ -37,8 +39,19 @@ export function bindExports(root: HTMLElement, sources: ExportSources): void {
     cells: () => withStack((s) => download(`${baseName(s)}-cells.csv`, cellCsv(s), 'text/csv')),
     ply: () => withStack((s) => download(`${baseName(s)}-cells.ply`, cellsPly(s), 'application/octet-stream')),
     png: async () => {
+      // An empty view is refused: a blank picture would pass for a result.
       const stack = sources.stack();
-      download(`${stack ? baseName(stack) : 'tissue-sheet'}-view.png`, await sources.viewPng());
+      if (!stack) throw new Error('Nothing to save yet: the view is empty until a run has finished.');
+      const png = new Uint8Array(await (await sources.viewPng()).arrayBuffer());
+      const { result } = stack;
+      const tagged = withPngText(png, [
+        ['Software', `${result.software.name} ${result.software.version}`],
+        ['Description', provenanceLines(stack, '3D view of a tissue-sheet result').join('\n')],
+        ['tissue-sheet:version', result.software.version],
+        ['tissue-sheet:seed', String(result.seed)],
+        ['tissue-sheet:config', JSON.stringify(result.config)],
+      ]);
+      download(`${baseName(stack)}-view.png`, new Blob([tagged as BlobPart], { type: 'image/png' }));
     },
     sweep: () => {
       const csv = sources.sweepCsv();

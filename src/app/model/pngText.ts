@@ -1,0 +1,89 @@
+/**
+ * Provenance in a PNG: tEXt chunks (keyword, NUL, Latin-1 text; PNG 1.2 §4.2.3.1) inserted right
+ * after IHDR, and read back. Text outside Latin-1 is written as JSON-style \uXXXX escapes, so a
+ * configuration (JSON) survives unchanged. Pure: bytes in, bytes out.
+ */
+
+const SIGNATURE = [0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a];
+
+let crcTable: Uint32Array | null = null;
+
+/** CRC-32 (ISO 3309, the PNG chunk checksum) of `bytes`. */
+export function crc32(bytes: Uint8Array): number {
+  if (!crcTable) {
+    crcTable = new Uint32Array(256);
+    for (let n = 0; n < 256; n++) {
+      let c = n;
+      for (let k = 0; k < 8; k++) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1;
+      crcTable[n] = c >>> 0;
+    }
+  }
+  let c = 0xffffffff;
+  for (const b of bytes) c = crcTable[(c ^ b) & 0xff] ^ (c >>> 8);
+  return (c ^ 0xffffffff) >>> 0;
+}
+
+function latin1(text: string): Uint8Array {
+  const escaped = text.replace(/[^\x20-\x7e\n]/g, (ch) => `\\u${ch.charCodeAt(0).toString(16).padStart(4, '0')}`);
+  return Uint8Array.from(escaped, (ch) => ch.charCodeAt(0));
+}
+
+function chunk(type: string, data: Uint8Array): Uint8Array {
+  const out = new Uint8Array(12 + data.length);
+  const view = new DataView(out.buffer);
+  view.setUint32(0, data.length);
+  out.set(latin1(type), 4);
+  out.set(data, 8);
+  view.setUint32(8 + data.length, crc32(out.subarray(4, 8 + data.length)));
+  return out;
+}
+
+function checkSignature(png: Uint8Array): void {
+  if (png.length < 33 || SIGNATURE.some((b, i) => png[i] !== b)) throw new Error('not a PNG file');
+}
+
+/** `png` with a tEXt chunk per entry after IHDR. Keywords: 1 to 79 Latin-1 characters. */
+export function withPngText(png: Uint8Array, entries: readonly [keyword: string, text: string][]): Uint8Array {
+  checkSignature(png);
+  const ihdrEnd = 8 + 12 + new DataView(png.buffer, png.byteOffset).getUint32(8);
+  const chunks = entries.map(([keyword, text]) => {
+    if (!/^[\x20-\x7e]{1,79}$/.test(keyword)) throw new Error(`PNG text keyword "${keyword}": use 1 to 79 printable characters`);
+    const key = latin1(keyword);
+    const body = latin1(text);
+    const data = new Uint8Array(key.length + 1 + body.length);
+    data.set(key, 0);
+    data.set(body, key.length + 1);
+    return chunk('tEXt', data);
+  });
+  const size = png.length + chunks.reduce((n, c) => n + c.length, 0);
+  const out = new Uint8Array(size);
+  out.set(png.subarray(0, ihdrEnd), 0);
+  let at = ihdrEnd;
+  for (const c of chunks) {
+    out.set(c, at);
+    at += c.length;
+  }
+  out.set(png.subarray(ihdrEnd), at);
+  return out;
+}
+
+/** Every tEXt chunk of `png` (keyword -> text), checking each chunk's CRC. */
+export function readPngText(png: Uint8Array): Record<string, string> {
+  checkSignature(png);
+  const view = new DataView(png.buffer, png.byteOffset, png.byteLength);
+  const out: Record<string, string> = Object.create(null);
+  let at = 8;
+  while (at + 12 <= png.length) {
+    const length = view.getUint32(at);
+    const type = String.fromCharCode(...png.subarray(at + 4, at + 8));
+    const data = png.subarray(at + 8, at + 8 + length);
+    if (view.getUint32(at + 8 + length) !== crc32(png.subarray(at + 4, at + 8 + length))) throw new Error(`PNG chunk ${type}: bad CRC`);
+    if (type === 'tEXt') {
+      const nul = data.indexOf(0);
+      out[String.fromCharCode(...data.subarray(0, nul))] = Array.from(data.subarray(nul + 1), (b) => String.fromCharCode(b)).join('');
+    }
+    if (type === 'IEND') break;
+    at += 12 + length;
+  }
+  return out;
+}
