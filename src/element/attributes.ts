@@ -6,8 +6,8 @@
  * Which config fields are attributes is listed here; how each one parses (number, nullable
  * number, string, boolean) and which surface kinds take it are read from the config schema.
  */
-import { CLOSED_SURFACE_KINDS, isClosedConfig, validateAnyConfig, type AnyConfig, type ConfigInput } from '../core/config';
-import { APP_DEFAULTS, CLOSED_RESOLUTION, densityPreset, surfaceOfKind } from '../core/config/presets';
+import { CLOSED_SURFACE_KINDS, isClosedConfig, validateAnyConfig, type AnyConfig, type AnySurfaceConfig, type ConfigInput } from '../core/config';
+import { APP_DEFAULTS, densityPreset, surfaceOfKind, thicknessForKind } from '../core/config/presets';
 import { kindsWithField, schemaField } from '../core/config/schemaFields';
 import { setPath } from '../core/sweep';
 
@@ -87,7 +87,7 @@ function parse(kind: Kind, text: string): unknown {
  * the attributes. Switching `surface` to a plane drops the tube's surface ratio; giving a
  * thickness on a tube without a surface ratio uses the thickness. A closed surface (sphere,
  * ellipsoid, mesh) starts from the app's dimensions for it and, without a `resolution`
- * attribute, a cube map of 64 texels per face edge. A mesh without `src` uses `meshName` (the
+ * attribute, the default resolution (defaultResolution: from the cells and the minimum contact length). A mesh without `src` uses `meshName` (the
  * element's meshFile) or the organoid sample.
  */
 export function configFromAttributes(element: Element, base: ConfigInput | null, meshName?: string): AnyConfig {
@@ -98,10 +98,17 @@ export function configFromAttributes(element: Element, base: ConfigInput | null,
     // A different kind starts from that kind's required fields (an empty plane/tube is invalid).
     if (CLOSED_SURFACE_KINDS.some((closed) => closed === surfaceKind)) {
       input.surface = surfaceOfKind({ kind: 'tube', radius: 1, length: 1 }, surfaceKind);
-      if (!element.hasAttribute('resolution')) input.resolution = Math.min(Number(input.resolution ?? schemaField('resolution').default), CLOSED_RESOLUTION);
+      // Without a resolution attribute, the default every entry point gives this surface.
+      if (!element.hasAttribute('resolution')) input.resolution = null;
     } else {
       input.surface = surfaceKind === 'plane' ? { kind: 'plane', width: 512, height: 512 } : { kind: surfaceKind, radius: 256 / (2 * Math.PI), length: 512 };
     }
+  }
+  if (surfaceKind !== null && surfaceKind !== 'tube') {
+    // Every kind starts from a sheet with a thickness (never the coincident surfaces of thickness 0).
+    const sheet = { ...(input.sheet as Record<string, unknown> | undefined) };
+    if (!element.hasAttribute('thickness') && !sheet.thickness) sheet.thickness = thicknessForKind(input.surface as AnySurfaceConfig);
+    input.sheet = sheet;
   }
   const surface = input.surface as { kind?: string; src?: string };
   if (surface.kind === 'mesh' && meshName && !element.hasAttribute('src')) surface.src = meshName;

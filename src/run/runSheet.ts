@@ -41,9 +41,11 @@ export class SheetRunner {
     callbacks: RunCallbacks,
   ): Promise<SheetOutput> {
     const start = performance.now();
-    const key = seededKey(config);
+    // The engine may depend on sheet.* (auto takes the GPU where labels are asked for): a seeded
+    // surface is reused only by runs on the same engine.
+    const engine = chooseEngine(config, family.name, this.context.capabilities);
+    const key = `${engine.name}/${engine.centroidPath}/${seededKey(config)}`;
     if (this.cached?.key !== key) {
-      const engine = chooseEngine(config, family.name, this.context.capabilities);
       this.cached = { key, seeded: relaxSeededSurface(family, config, this.context, engine, callbacks) };
     }
     let seeded: SeededSurface<G, S>;

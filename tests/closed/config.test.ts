@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import {
+  defaultResolution,
   checkClosedFeasible,
   ConfigError,
   ellipsoidArea,
@@ -58,5 +59,28 @@ describe('directionTexel (allocation-free) matches directionToTexel', () => {
     const dirs: number[][] = [[1, 1, 1], [-1, 1, 0], [0, -1, -1], [1, 0, 0], [0, 0, -1], [-1, -1, -1]];
     for (let k = 0; k < 2000; k++) dirs.push([random.next() - 0.5, random.next() - 0.5, random.next() - 0.5]);
     for (const [x, y, z] of dirs) for (const n of [7, 64]) expect(directionTexel(x, y, z, n)).toBe(directionTexelReference(x, y, z, n));
+  });
+});
+
+describe('one default resolution for closed surfaces', () => {
+  it('validation fills it in from the cells and the minimum contact length: a texel edge at most half the shortest counted contact', () => {
+    for (const cells of [50, 200, 1000]) {
+      for (const surface of [{ kind: 'sphere', radius: 60 }, { kind: 'ellipsoid', a: 90, b: 45, c: 45 }] as const) {
+        const config = validateAnyConfig({ surface, cells });
+        const area = surface.kind === 'sphere' ? 4 * Math.PI * surface.radius ** 2 : ellipsoidArea(surface.a, surface.b, surface.c);
+        const contact = (6 / 102.4) * Math.sqrt(area / cells);
+        const texel = Math.sqrt(area / (6 * config.resolution ** 2));
+        expect(texel).toBeLessThanOrEqual(contact / 2);
+        // The smallest such multiple of 8: one step coarser breaks the rule.
+        expect(Math.sqrt(area / (6 * (config.resolution - 8) ** 2))).toBeGreaterThan(contact / 2);
+        expect(config.resolution).toBe(defaultResolution(config));
+      }
+    }
+    // A given contact length is honoured where the area is known.
+    const fine = validateAnyConfig({ surface: { kind: 'sphere', radius: 60 }, cells: 200, sheet: { minContactLength: 0.5 } });
+    expect(Math.sqrt((4 * Math.PI * 3600) / (6 * fine.resolution ** 2))).toBeLessThanOrEqual(0.25);
+    // Planes and tubes keep 512; an explicit resolution is kept.
+    expect(validateAnyConfig({}).resolution).toBe(512);
+    expect(validateAnyConfig({ surface: { kind: 'sphere', radius: 60 }, resolution: 48 }).resolution).toBe(48);
   });
 });

@@ -111,7 +111,7 @@ describe('validateConfig: errors name the exact field', () => {
     const e = errorOf({ surface: { kind: 'tube', radius: -3, length: 10 } });
     expect(e.field).toBe('surface.radius');
     expect(e.message).toBe('surface.radius: must be > 0 µm (got -3)');
-    expect(errorOf({ resolution: 8 }).message).toBe('resolution: must be an integer from 16 to 16384 (got 8)');
+    expect(errorOf({ resolution: 8 }).message).toBe('resolution: must be an integer from 16 to 16384 or null (got 8)');
     expect(errorOf({ resolution: 20000 }).field).toBe('resolution');
     expect(errorOf({ cells: 0 }).message).toBe('cells: must be an integer >= 1 (got 0)');
     expect(errorOf({ seed: 2 ** 32 }).field).toBe('seed');

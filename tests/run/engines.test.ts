@@ -51,6 +51,18 @@ describe('the engine policy', () => {
   });
 });
 
+describe('the seeded surface cache', () => {
+  it('is shared only by runs on the same engine (a sweep over sheet.adjacency switches engines)', async () => {
+    const runner = new SheetRunner(context);
+    const labels = await runner.run(tube({ lloyd: { maxIterations: 2 }, sheet: { adjacency: 'labels', surfaceRatio: 1.5 } }));
+    const both = await runner.run(tube({ lloyd: { maxIterations: 2 }, sheet: { adjacency: 'both', surfaceRatio: 1.5 } }));
+    const alone = await new SheetRunner(context).run(tube({ lloyd: { maxIterations: 2 }, sheet: { adjacency: 'both', surfaceRatio: 1.5 } }));
+    expect(labels.result.engine.name).toBe('gpu');
+    expect(both.result.engine.name).toBe(alone.result.engine.name);
+    expect(both.result.lloyd.finalEnergy).toBe(alone.result.lloyd.finalEnergy);
+  });
+});
+
 describe('the exact engine through the pipeline', () => {
   it('records itself, makes only exact analyses, and its cells are the exact Voronoi cells of its sites', async () => {
     const output = await new SheetRunner(context).run(tube({ engine: 'exact', lloyd: { maxIterations: 5 }, sheet: { surfaceRatio: 1.5 } }));

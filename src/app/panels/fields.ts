@@ -10,14 +10,13 @@
  * surfaces: sphere (radius), ellipsoid (a, b, c), mesh (a sample from public/meshes/ or a
  * user's file; see model/meshFiles.ts).
  */
-import { isClosedConfig, type AnyConfig } from '../../core/config';
-import { CLOSED_RESOLUTION, PLANAR_RESOLUTION, densityPreset, surfaceOfKind } from '../../core/config/presets';
+import { defaultResolution, isClosedConfig, type AnyConfig } from '../../core/config';
+import { PLANAR_RESOLUTION, densityPreset, surfaceOfKind, thicknessForKind } from '../../core/config/presets';
 import { kindsWithField, schemaField, schemaUnion } from '../../core/config/schemaFields';
 import { SAMPLE_MESHES, sampleName, sampleUrl } from '../model/meshFiles';
 
 // The presets moved to core/config/presets.ts (the element needs them too); kept here for importers.
 export {
-  CLOSED_RESOLUTION,
   DEFAULT_ELLIPSOID,
   DEFAULT_MESH_SCALE,
   DEFAULT_MESH_SRC,
@@ -124,18 +123,24 @@ function field(path: string, p: Presentation): FieldSpec {
   return spec;
 }
 
-/** Switching kind: closed kinds get a cube-map resolution, planar ones a planar one; no surface ratio off a tube; uniform density on closed surfaces. */
+/** Switching kind: closed kinds get the default cube-map resolution, planar ones a planar one; no surface ratio off a tube; uniform density on closed surfaces. */
 function withSurfaceKind(c: Config, kind: string): Config {
   const surface = surfaceOfKind(c.surface, kind);
   const wasClosed = isClosedConfig(c);
   const closed = kind === 'sphere' || kind === 'ellipsoid' || kind === 'mesh';
-  const resolution = closed && !wasClosed ? Math.min(c.resolution, CLOSED_RESOLUTION) : !closed && wasClosed ? PLANAR_RESOLUTION : c.resolution;
+  // A closed kind gets the resolution any entry point gives it by default (defaultResolution).
+  const resolution = closed && !wasClosed ? defaultResolution({ surface, cells: c.cells, sheet: c.sheet }) : !closed && wasClosed ? PLANAR_RESOLUTION : c.resolution;
   return {
     ...c,
     surface,
     resolution,
     density: closed ? { kind: 'uniform' } : c.density,
-    sheet: { ...c.sheet, surfaceRatio: kind === 'tube' ? c.sheet.surfaceRatio : null },
+    // Every kind starts from a sheet with a thickness (see thicknessForKind), never 0.
+    sheet: {
+      ...c.sheet,
+      surfaceRatio: kind === 'tube' ? c.sheet.surfaceRatio : null,
+      thickness: kind === 'tube' && c.sheet.surfaceRatio !== null ? c.sheet.thickness : thicknessForKind(surface),
+    },
   } as Config;
 }
 
@@ -174,6 +179,7 @@ export const FIELDS: FieldSpec[] = [
     group: 'Surface',
     kind: 'select',
     options: [...SAMPLE_MESHES.map((m) => ({ value: m.name, label: m.label })), { value: '', label: 'uploaded file', disabled: true }],
+    description: () => 'A sample closed surface shipped with the app (public/meshes/); sets surface.src to its address, so a link reproduces it.',
     show: (c) => c.surface.kind === 'mesh',
     get: (c) => (c.surface.kind === 'mesh' ? (sampleName(c.surface.src) ?? '') : ''),
     set: (c, v) => (c.surface.kind === 'mesh' && v ? { ...c, surface: { ...c.surface, src: sampleUrl(String(v)) } } : c),
@@ -228,9 +234,10 @@ export const FIELDS: FieldSpec[] = [
       { value: 'ratio', label: 'surface ratio' },
       { value: 'thickness', label: 'thickness' },
     ],
+    description: () => 'A tube\'s other surface is set either by the surface ratio s = R_outer / R_inner (the published tube model) or by a thickness in µm.',
     show: isTube,
     get: (c) => (c.sheet.surfaceRatio === null ? 'thickness' : 'ratio'),
-    set: (c, v) => ({ ...c, sheet: { ...c.sheet, surfaceRatio: v === 'ratio' ? 2 : null, thickness: 0 } }),
+    set: (c, v) => ({ ...c, sheet: { ...c.sheet, surfaceRatio: v === 'ratio' ? 2 : null, thickness: v === 'ratio' ? 0 : thicknessForKind(c.surface) } }),
   },
   field('sheet.surfaceRatio', {
     label: 'Surface ratio R_outer / R_inner',

@@ -2,7 +2,7 @@
 import type { Grid } from '../grid';
 import { checkMethods } from './methods';
 import { ConfigError } from './validate';
-import type { ClosedConfig, ClosedSurfaceConfig, Config, SurfaceConfig } from './types';
+import type { AnyConfig, ClosedConfig, ClosedSurfaceConfig, Config, SurfaceConfig } from './types';
 
 // ---------------------------------------------------------------------------------------------
 // Grid and feasibility
@@ -126,6 +126,31 @@ export function checkSheet(config: Config): void {
 
 function fmt(value: number): string {
   return Number(value.toPrecision(6)).toString();
+}
+
+/** `resolution` of planes and tubes when the config leaves it null. */
+export const PLANAR_DEFAULT_RESOLUTION = 512;
+/** The lab's shortest counted contact relative to the mean cell diameter (6 px of 102.4 px). */
+const LAB_CONTACT_PER_DIAMETER = 6 / 102.4;
+
+/**
+ * The resolution a config gets when it leaves `resolution` null. Planes and tubes: 512. Closed
+ * surfaces: the smallest n (a multiple of 8, 32 to 1024) whose texel edge sqrt(area / 6 n²) is
+ * at most half the minimum contact length, so that the labels method resolves every counted
+ * contact (with the default contact rule, 6/102.4 of the mean cell diameter, n depends on the
+ * number of cells only: 200 for 200 cells), and at least MIN_TEXELS_PER_CELL texels per cell.
+ */
+export function defaultResolution(config: Pick<AnyConfig, 'surface' | 'cells' | 'sheet'>): number {
+  const { surface, cells, sheet } = config;
+  if (surface.kind === 'plane' || surface.kind === 'tube') return PLANAR_DEFAULT_RESOLUTION;
+  const area = surface.kind === 'sphere' ? 4 * Math.PI * surface.radius ** 2 : surface.kind === 'ellipsoid' ? ellipsoidArea(surface.a, surface.b, surface.c) : null;
+  const length = sheet.minContactLength;
+  // Diameter over contact length: from the given length where the area is known before loading.
+  const diameterPerContact = area !== null && length !== null && length > 0 ? Math.sqrt(area / cells) / length : 1 / LAB_CONTACT_PER_DIAMETER;
+  const forContacts = 2 * Math.sqrt(cells / 6) * diameterPerContact;
+  const forCells = Math.sqrt((MIN_TEXELS_PER_CELL * cells) / 6);
+  const n = Math.ceil(Math.max(forContacts, forCells) / 8) * 8;
+  return Math.min(1024, Math.max(32, n));
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -18,8 +18,6 @@ export const APP_DEFAULTS: ConfigInput = {
   sheet: { surfaceRatio: 1.5 },
 };
 
-/** Closed surfaces start small enough for a software GPU: n texels per cube face. */
-export const CLOSED_RESOLUTION = 64;
 /** Resolution a planar surface gets when the user switches to it from a closed one. */
 export const PLANAR_RESOLUTION = 256;
 export const DEFAULT_SPHERE_RADIUS = 60;

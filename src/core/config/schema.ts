@@ -111,12 +111,12 @@ export const configSchema = {
       ],
     },
     resolution: {
-      type: 'integer',
+      type: ['integer', 'null'],
       minimum: 16,
       maximum: 16384,
-      default: 512,
+      default: null,
       description:
-        'Texels along the longer side of the unrolled domain; closed surfaces: texels along each cube-face edge (6·resolution² texels in all).',
+        'Texels along the longer side of the unrolled domain; closed surfaces: texels along each cube-face edge (6·resolution² texels in all). null: 512 on planes and tubes; on closed surfaces chosen from the number of cells and the minimum contact length, so that a texel edge is at most half the shortest counted contact (docs/closed-surfaces.md). Validation replaces null by the number, so results record it.',
     },
     cells: { type: 'integer', minimum: 1, default: 200, description: 'Number of cells (sites).' },
     seed: {

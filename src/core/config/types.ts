@@ -42,12 +42,16 @@ export type CentroidPathName = SchemaConfig['centroidPath'];
 export type SheetConfig = SchemaConfig['sheet'];
 
 /** A validated configuration on a plane or a tube: every field present, every default filled in. */
-export interface Config extends Omit<SchemaConfig, 'surface'> {
+export interface Config extends Omit<SchemaConfig, 'surface' | 'resolution'> {
   surface: SurfaceConfig;
+  /** Always a number once validated: validation resolves null (see defaultResolution). */
+  resolution: number;
 }
 /** A validated configuration on a closed surface (sphere, ellipsoid, mesh). */
-export interface ClosedConfig extends Omit<SchemaConfig, 'surface'> {
+export interface ClosedConfig extends Omit<SchemaConfig, 'surface' | 'resolution'> {
   surface: ClosedSurfaceConfig;
+  /** Always a number once validated: validation resolves null (see defaultResolution). */
+  resolution: number;
 }
 /** Any validated configuration: planar (Config) or closed (ClosedConfig). */
 export type AnyConfig = Config | ClosedConfig;

@@ -1,5 +1,6 @@
 /** Validation of a configuration against the schema, with one-line errors naming the field. */
 import Ajv, { type ErrorObject } from 'ajv';
+import { defaultResolution } from './feasibility';
 import { configSchema } from './schema';
 import type { AnyConfig, Config } from './types';
 import { isClosedConfig } from './types';
@@ -25,7 +26,9 @@ type SchemaNode = Record<string, unknown>;
 const ajv = new Ajv({ useDefaults: true, allErrors: false, discriminator: true, verbose: true, strict: true, strictRequired: false });
 // strictRequired is off because the discriminator's `required: ['kind']` is defined in the branches.
 ajv.addVocabulary(['unit']);
-const validate = ajv.compile<AnyConfig>(configSchema);
+/** What the schema validates: an AnyConfig whose resolution may still be null. */
+type Unresolved<T> = T extends unknown ? Omit<T, 'resolution'> & { resolution: number | null } : never;
+const validate = ajv.compile<Unresolved<AnyConfig>>(configSchema);
 
 /**
  * Checks `input`, fills every default and returns a fresh object (the input is never modified).
@@ -41,7 +44,9 @@ export function validateAnyConfig(input: unknown): AnyConfig {
     if (!error) throw new ConfigError('', 'config: invalid');
     throw toConfigError(error);
   }
-  return data;
+  // The resolution a null asks for depends on the surface and the cells: fill it in, so the
+  // returned config (and every result) records the number that ran.
+  return { ...data, resolution: data.resolution ?? defaultResolution(data) };
 }
 
 /**
