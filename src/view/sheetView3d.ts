@@ -31,6 +31,12 @@ export class SheetView3D {
   private readonly group = new THREE.Group();
   private readonly inner = new THREE.Group();
   private readonly meshes: THREE.Mesh[] = [];
+  /**
+   * Materials are kept from one result to the next (only their textures change): a material's
+   * shader program lives as long as a material uses it, and compiling it again on every result
+   * stalled the main thread (~60 ms per program on a software GPU).
+   */
+  private readonly materials: Record<'textured' | 'closed', THREE.MeshBasicMaterial[]> = { textured: [], closed: [] };
   private readonly clip = new THREE.Plane(new THREE.Vector3(0, -1, 0), 0);
   private cutFraction = 0;
   private radius = 1;
@@ -122,6 +128,7 @@ export class SheetView3D {
     this.resizeObserver.disconnect();
     this.controls.dispose();
     this.clearMeshes();
+    for (const material of [...this.materials.textured, ...this.materials.closed]) material.dispose();
     this.renderer.dispose();
   }
 
@@ -138,9 +145,7 @@ export class SheetView3D {
     for (const mesh of this.meshes) {
       this.inner.remove(mesh);
       mesh.geometry.dispose();
-      const material = mesh.material as THREE.MeshBasicMaterial;
-      material.map?.dispose();
-      material.dispose();
+      (mesh.material as THREE.MeshBasicMaterial).map?.dispose();
     }
     this.meshes.length = 0;
   }
@@ -153,7 +158,7 @@ export class SheetView3D {
     const config = stack.result.config;
     for (const surface of stack.surfaces) {
       if (stack.closed || isClosedConfig(config)) {
-        const mesh = new THREE.Mesh(this.closedGeometry(stack, surface), new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide, clippingPlanes: [this.clip] }));
+        const mesh = new THREE.Mesh(this.closedGeometry(stack, surface), this.material('closed', surface.index));
         mesh.name = surface.name;
         mesh.visible = visible[surface.index] ?? true;
         this.meshes.push(mesh);
@@ -168,7 +173,8 @@ export class SheetView3D {
       texture.colorSpace = THREE.SRGBColorSpace;
       texture.wrapS = config.surface.kind === 'tube' ? THREE.RepeatWrapping : THREE.ClampToEdgeWrapping;
       texture.needsUpdate = true;
-      const material = new THREE.MeshBasicMaterial({ map: texture, side: THREE.DoubleSide, clippingPlanes: [this.clip] });
+      const material = this.material('textured', surface.index);
+      material.map = texture;
       const mesh = new THREE.Mesh(surfaceGeometry(config.surface, surface.image.grid, surface.offset), material);
       mesh.name = surface.name;
       mesh.visible = visible[surface.index] ?? true;
@@ -186,6 +192,13 @@ export class SheetView3D {
     this.group.rotation.set(0, config.surface.kind === 'tube' ? Math.PI / 2 : 0, 0);
     this.radius = Math.max(1, box.getBoundingSphere(new THREE.Sphere()).radius);
     this.updateClip();
+  }
+
+  /** The kept material of surface `index` (see `materials`). */
+  private material(kind: 'textured' | 'closed', index: number): THREE.MeshBasicMaterial {
+    const pool = this.materials[kind];
+    pool[index] ??= new THREE.MeshBasicMaterial({ vertexColors: kind === 'closed', side: THREE.DoubleSide, clippingPlanes: [this.clip] });
+    return pool[index];
   }
 
   /** A closed surface: colours by sides, dark cell boundaries, striped scutoids, a baked light. */
