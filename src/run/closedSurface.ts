@@ -35,8 +35,9 @@ export async function prepareClosedSurface(config: ClosedConfig, callbacks: RunC
 
 /** Refuses offsets that reach a focal point (the offset surface would fold over itself). */
 export function checkOffsets(config: ClosedConfig, surface: ClosedSurface): void {
-  const { thickness, direction } = config.sheet;
-  if (thickness <= 0) return;
+  const { thickness, direction, offset } = config.sheet;
+  // "axes" offsets are ellipsoids again: no focal point to reach (checkMethods bounds inward ones).
+  if (thickness <= 0 || offset === 'axes') return;
   const where = config.surface.kind === 'mesh' ? 'mesh (estimated from its vertex normals)' : config.surface.kind;
   if (direction === 'inward' && thickness >= surface.convexRadius) throw inwardOffsetError(thickness, surface.convexRadius, where);
   if (direction === 'outward' && thickness >= surface.concaveRadius) {

@@ -1,5 +1,9 @@
 import { checkClosedFeasible, checkClosedSheet, layerStepOf, makeCubeGrid, steppedOffsets, type ClosedConfig } from '../core/config';
+import { ellipsoidProjector, PROJECTION_STRIDE } from '../core/closed/projector';
+import { sampleSurface } from '../core/cubemap/sample';
 import {
+  allocateSites,
+  storeProjection,
   cubeLabelAdjacency,
   offsetSurface,
   placeClosedSites,
@@ -25,9 +29,14 @@ export interface CubeMapGeometry extends ClosedSurface {
   readonly neighbours: Int32Array;
 }
 
-/** A surface of a closed sheet's stack: the seeded geometry image offset along its normals. */
+/** A surface of a closed sheet's stack, sampled on the seeded surface's cube map. */
 export interface CubeMapLayer extends StackLayer {
   readonly sample: CubeSurfaceSample;
+  /**
+   * `sheet.offset = "axes"`: this layer is the ellipsoid with these semi-axes (a + t, b + t,
+   * c + t) and sites move to their closest points on it; absent: the parallel surface.
+   */
+  readonly axes?: readonly [number, number, number];
 }
 
 /** Sites moved onto a layer: their 3D positions, and the texels they were seeded in. */
@@ -80,11 +89,17 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
     return offsets.map((offset, k) => {
       const role = k === 0 ? 'seeded' : k === count - 1 ? 'other' : 'layer';
       const name = role === 'seeded' ? sheet.seeded : role === 'other' ? (sheet.seeded === 'basal' ? 'apical' : 'basal') : `layer ${k}`;
+      if (sheet.offset === 'axes' && offset !== 0) {
+        const [a, b, c] = semiAxes(config);
+        const axes = [a + offset, b + offset, c + offset] as const;
+        return { name, role, offset, axes, sample: sampleSurface({ kind: 'ellipsoid', a: axes[0], b: axes[1], c: axes[2] }, geometry.image.n) };
+      }
       return { name, role, offset, sample: offsetSurface(geometry.image, offset, geometry.neighbours) };
     });
   },
 
-  project(_geometry, layer, sites) {
+  project(geometry, layer, sites) {
+    if (layer.axes) return closestPointsOn(layer.axes, sites, geometry.image.n);
     const positions = new Float64Array(3 * sites.count);
     for (let k = 0; k < positions.length; k++) positions[k] = sites.positions[k] + layer.offset * sites.normals[k];
     return { positions, texels: sites.texels };
@@ -125,7 +140,7 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
     return { reported: length, perLayer: layers.map((layer) => length * Math.sqrt(layer.sample.totalArea / totalArea)) };
   },
 
-  exactAdjacency: (config, geometry, layer, sites) => closedExactAdjacency(config, geometry, sites, layer.offset, layer.name),
+  exactAdjacency: (config, geometry, layer, sites) => closedExactAdjacency(config, geometry, sites, layer.offset, config.sheet.offset, layer.name),
 
   // True contact lengths: the same thresholds as the labels method, per surface.
   exactMinContactLengths: (config, geometry, layers) => cubeMapFamily.minContactLengths(config, geometry, layers),
@@ -146,6 +161,26 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
 
   resultSection: (config, geometry, seeded, labeller) => ({ closed: closedSection(config, geometry, seeded, labeller) }),
 };
+
+/** Semi-axes of a sphere or ellipsoid (the surfaces "axes" offsets apply to). */
+function semiAxes(config: ClosedConfig): [number, number, number] {
+  const { surface } = config;
+  if (surface.kind === 'sphere') return [surface.radius, surface.radius, surface.radius];
+  if (surface.kind === 'ellipsoid') return [surface.a, surface.b, surface.c];
+  throw new Error('sheet.offset: "axes" needs a sphere or an ellipsoid');
+}
+
+/** Each site moved to its closest point on the ellipsoid `axes`, with the texel it falls in there. */
+function closestPointsOn(axes: readonly [number, number, number], sites: ClosedSites, n: number): CubeMapProjected {
+  const projector = ellipsoidProjector(axes[0], axes[1], axes[2]);
+  const moved = allocateSites(sites.count);
+  const buffer = new Float64Array(PROJECTION_STRIDE);
+  for (let i = 0; i < sites.count; i++) {
+    projector.project(sites.positions[3 * i], sites.positions[3 * i + 1], sites.positions[3 * i + 2], buffer, 0);
+    storeProjection(moved, i, buffer, 0, n);
+  }
+  return { positions: moved.positions, texels: moved.texels };
+}
 
 /** Signed offsets of a closed stack: sheet.layers evenly spaced, or every sheet.layerStep µm. */
 function closedStackOffsets(sheet: ClosedConfig['sheet'], other: number): number[] {

@@ -93,6 +93,7 @@ describe('validateConfig: defaults', () => {
         direction: 'inward',
         thickness: 4,
         surfaceRatio: null,
+        offset: 'normal',
         layers: 2,
         adjacency: 'labels',
         protocol: 'default',

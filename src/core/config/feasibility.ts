@@ -244,7 +244,8 @@ export function checkClosedSheet(config: ClosedConfig): void {
     );
   }
   const radius = minCurvatureRadius(surface);
-  if (radius !== null && sheet.direction === 'inward' && sheet.thickness >= radius) {
+  // "axes" offsets are ellipsoids again: they never fold (checkMethods bounds the inward ones).
+  if (radius !== null && sheet.offset === 'normal' && sheet.direction === 'inward' && sheet.thickness >= radius) {
     throw inwardOffsetError(sheet.thickness, radius, surface.kind);
   }
 }

@@ -57,6 +57,21 @@ export function checkMethods(config: AnyConfig): void {
       `sheet.minContactPixels: the pixel rule counts pixels of an image 512 px around a tube; on a ${surface.kind} give sheet.minContactLength in µm instead`,
     );
   }
+  if (sheet.offset === 'axes') {
+    if (surface.kind !== 'sphere' && surface.kind !== 'ellipsoid') {
+      throw new ConfigError(
+        'sheet.offset',
+        `sheet.offset: "axes" grows the semi-axes of a sphere or ellipsoid; a ${surface.kind} has none: use "normal"`,
+      );
+    }
+    const smallest = surface.kind === 'sphere' ? surface.radius : Math.min(surface.a, surface.b, surface.c);
+    if (sheet.direction === 'inward' && sheet.thickness >= smallest) {
+      throw new ConfigError(
+        'sheet.thickness',
+        `sheet.thickness: ${sheet.thickness} µm inward would shrink the smallest semi-axis (${smallest} µm) to nothing; use less than ${smallest} µm or direction "outward"`,
+      );
+    }
+  }
   const step = layerStepOf(sheet);
   if (step === null) return;
   if (sheet.layers > 0) {

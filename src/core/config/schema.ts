@@ -303,6 +303,13 @@ export const configSchema = {
           description:
             'Tube only, instead of thickness: s = R_outer / R_inner (outward: the other radius is radius·s; inward: radius/s). null: use thickness.',
         },
+        offset: {
+          type: 'string',
+          enum: ['normal', 'axes'],
+          default: 'normal',
+          description:
+            'Closed surfaces: how the other surface and the layers are made. "normal": the parallel surface, each site moved along its normal by the thickness. "axes" (sphere and ellipsoid; the lab\'s spheroid model): the ellipsoid with semi-axes a + t, b + t, c + t at thickness t, each site moved to its closest point on it. With lloyd.maxIterations 0 and minSpacing, the sites are random with a minimum distance, as the lab seeds them.',
+        },
         layers: {
           type: 'integer',
           minimum: 0,
