@@ -24,7 +24,9 @@ async function downloadText(page: Page, button: string): Promise<{ name: string;
 }
 
 function table(text: string): Record<string, string>[] {
-  const [header, ...rows] = parseCsv(text).records;
+  // Provenance comment lines ("# ...") come first in the per-cell CSV.
+  const body = text.split(/\r?\n/).filter((line) => !line.startsWith('#')).join('\r\n');
+  const [header, ...rows] = parseCsv(body).records;
   return rows.map((r) => Object.fromEntries(header.map((h, k) => [h, r[k]])));
 }
 
@@ -38,7 +40,10 @@ test('exports download files that parse and match the on-screen numbers', async 
   const json = await downloadText(page, 'json');
   expect(json.name).toBe('tissue-sheet-tube-seed1.json');
   const result = JSON.parse(json.text);
-  const labels = result.analyses.find((a: { method: string }) => a.method === 'labels');
+  // The headline's analysis: the exact method wherever the result has one (a tube has).
+  const method = await page.locator('#percent-scutoids').getAttribute('data-method');
+  expect(method).toBe('exact');
+  const labels = result.analyses.find((a: { method: string }) => a.method === method);
   expect(labels.summary.percentScutoids).toBe(percent);
   expect(labels.summary.scutoids).toBe(scutoidsShown);
   expect(result.config.sheet.surfaceRatio).toBe(1.5);
@@ -48,7 +53,7 @@ test('exports download files that parse and match the on-screen numbers', async 
   expect(cells).toHaveLength(150);
   expect(cells.filter((c) => c.scutoid === '1')).toHaveLength(scutoidsShown);
   expect(cells.filter((c) => c.valid === '1')).toHaveLength(validShown);
-  await page.locator('details summary').click();
+  await page.locator('section[aria-labelledby="cells-title"] summary').click();
   const firstRow = await page.locator('#cell-table tbody tr').first().locator('th, td').allTextContents();
   expect(firstRow).toEqual(Object.values(cells[0]));
   for (const cell of cells) {
@@ -99,7 +104,7 @@ test('a URL round trip reproduces the result, and reopening restores the last se
   expect(new URL(link).searchParams.get('config')).toContain('"seed":7');
   const percent = await page.locator('#percent-scutoids').getAttribute('data-value');
   const summary = await page.locator('#summary').textContent();
-  await page.locator('details summary').click();
+  await page.locator('section[aria-labelledby="cells-title"] summary').click();
   const cells = await page.locator('#cell-table').textContent();
 
   // A fresh browser context (no saved session) opening the shared link.

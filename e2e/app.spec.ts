@@ -76,8 +76,8 @@ test('an impossible configuration is explained in words and the previous result 
   expect(await percentScutoids(page)).toBe(shown);
   expect(await page.locator('#summary').textContent()).toBe(table);
 
-  await page.getByLabel('Lloyd iterations').fill('-2');
-  await page.getByLabel('Lloyd iterations').press('Enter');
+  await page.locator('#field-lloyd-maxIterations').fill('-2');
+  await page.locator('#field-lloyd-maxIterations').press('Enter');
   await expect(page.locator('#error')).toContainText('lloyd.maxIterations: must be an integer from 0 to 100000 (got -2)');
   expect(await percentScutoids(page)).toBe(shown);
 });

@@ -8,6 +8,7 @@ import { getPath, setPath } from '../../core/sweep';
 import { imageFileToDataUrl } from '../../view/densityImage';
 import { isUploadName, rememberUpload } from '../../view/meshFiles';
 import { sampleName } from '../model/meshFiles';
+import { schemaField } from '../../core/config/schemaFields';
 import { FIELDS, type FieldSpec } from './fields';
 
 export interface ControlsEvents {
@@ -197,7 +198,7 @@ export class ConfigControls {
       row.hidden = !visible;
       if (!visible) continue;
       // The tooltip of every control: the schema's description of its field.
-      const description = spec.description?.(this.draft) ?? '';
+      const description = kindDescription(spec.path, this.draft) ?? spec.description?.(this.draft) ?? '';
       input.title = description;
       label.title = description;
       if (liveNote) liveNote.textContent = LIVE_NOTES[spec.path](this.draft);
@@ -216,6 +217,17 @@ export class ConfigControls {
       }
       if (output) output.value = String(value);
     }
+  }
+}
+
+/** A union's kind selector: the description of the kind chosen (schema), not of the first one. */
+function kindDescription(path: string, c: Config): string | null {
+  if (path !== 'surface.kind' && path !== 'density.kind') return null;
+  const kind = path === 'surface.kind' ? c.surface.kind : c.density.kind;
+  try {
+    return schemaField(path, kind).description ?? null;
+  } catch {
+    return null;
   }
 }
 

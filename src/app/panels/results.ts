@@ -83,7 +83,9 @@ function row(cells: (string | number)[], header = false, key?: string, value?: n
 function summaryTable(stack: ViewStack): HTMLTableElement {
   const table = document.createElement('table');
   table.className = 'summary';
-  const methods = (['labels', 'exact'] as const).map((m) => analysisByMethod(stack.result, m)).filter((a) => a !== null);
+  // The headline's method first: its values are the rows' data-value.
+  const order = stack.analysis?.method === 'exact' ? (['exact', 'labels'] as const) : (['labels', 'exact'] as const);
+  const methods = order.map((m) => analysisByMethod(stack.result, m)).filter((a) => a !== null);
   table.append(row(['', ...methods.map((a) => a.method)], true));
   const line = (key: keyof (typeof methods)[number]['summary'], label: string, digits: number) => {
     const values = methods.map((a) => a.summary[key] as number);
