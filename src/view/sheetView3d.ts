@@ -40,6 +40,8 @@ export class SheetView3D {
   private readonly clip = new THREE.Plane(new THREE.Vector3(0, -1, 0), 0);
   private cutFraction = 0;
   private radius = 1;
+  /** Length over diameter of a tube (1 otherwise): long tubes get an oblique view. */
+  private elongation = 1;
   private highlight: boolean;
   private stack: ViewStack | null = null;
   private frame = 0;
@@ -61,14 +63,16 @@ export class SheetView3D {
     this.resize();
   }
 
-  /** Shows a new result; the camera is refitted only when the sheet's size changed. */
+  /**
+   * Shows a new result. The camera is refitted on every change of geometry (the surface, the
+   * thickness, the surface ratio, the layers), so the whole sheet is always in view; a new
+   * result of the same geometry (more Lloyd iterations, another seed) keeps the user's view.
+   */
   setStack(stack: ViewStack): void {
     const previous = this.stack;
     this.stack = stack;
     this.rebuild();
-    const config = stack.result.config;
-    const sameShape = previous && JSON.stringify(previous.result.config.surface) === JSON.stringify(config.surface);
-    if (!sameShape) this.fitCamera();
+    if (!previous || geometryKey(previous) !== geometryKey(stack)) this.fitCamera();
     this.requestRender();
   }
 
@@ -191,6 +195,9 @@ export class SheetView3D {
     this.inner.position.copy(centre.negate());
     this.group.rotation.set(0, config.surface.kind === 'tube' ? Math.PI / 2 : 0, 0);
     this.radius = Math.max(1, box.getBoundingSphere(new THREE.Sphere()).radius);
+    const size = box.getSize(new THREE.Vector3());
+    // Along the tube's axis over across it (the axis is z before the view turns it to x).
+    this.elongation = config.surface.kind === 'tube' ? size.z / Math.max(1e-9, Math.max(size.x, size.y)) : 1;
     this.updateClip();
   }
 
@@ -241,8 +248,14 @@ export class SheetView3D {
     // Look from the side, a little above: a tube lies across the view.
     const direction = new THREE.Vector3(0, 0.45, 1).normalize();
     if (this.stack?.result.config.surface.kind === 'plane') direction.set(0.25, 0.5, 1).normalize();
-    // A closed surface is seen whole.
-    const closeness = this.stack?.closed ? 0.8 : 0.62;
+    // A closed surface is seen whole; so is a sheet (the bounding sphere fills the view).
+    let closeness = this.stack?.closed ? 0.8 : 0.95;
+    if (this.elongation > 3) {
+      // A long tube seen from the side is a sliver: look along it from above one end, so its
+      // near part shows its cells and the rest recedes in perspective, still whole in view.
+      direction.set(0.8, 0.45, 0.55).normalize();
+      closeness = 0.9;
+    }
     this.camera.position.copy(direction.multiplyScalar(distance * closeness));
     this.camera.near = distance / 100;
     this.camera.far = distance * 10;
@@ -263,4 +276,11 @@ export class SheetView3D {
     const depth = this.radius * (1 - 2 * this.cutFraction);
     this.clip.set(normal, depth);
   }
+}
+
+/** What the camera fit depends on: the surface and the sheet's geometry. */
+function geometryKey(stack: ViewStack): string {
+  const { surface, sheet } = stack.result.config;
+  const s = sheet as { thickness: number; surfaceRatio?: number | null; direction: string; layers: number };
+  return JSON.stringify([surface, s.thickness, s.surfaceRatio ?? null, s.direction, s.layers]);
 }
