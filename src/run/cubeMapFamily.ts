@@ -1,4 +1,5 @@
 import { checkClosedFeasible, checkClosedSheet, layerStepOf, makeCubeGrid, steppedOffsets, type ClosedConfig } from '../core/config';
+import { KdTree3 } from '../core/closed/kdTree';
 import { ellipsoidProjector, PROJECTION_STRIDE } from '../core/closed/projector';
 import { sampleSurface } from '../core/cubemap/sample';
 import {
@@ -107,8 +108,17 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
 
   labeller: (context, config, geometry, choice) => cubeMapLabeller(context, config, geometry.image.n, choice),
 
-  exactLabels() {
-    throw new Error('the cube-map family runs on the GPU engine, which labels every surface');
+  // Only the exact method asked for: a layer's label image (for views) is each texel's nearest
+  // site in 3D, the jump flood's own definition, computed on the CPU when a view reads it.
+  exactLabels(_geometry, layer, projected) {
+    const count = projected.positions.length / 3;
+    const tree = new KdTree3(projected.positions, count);
+    const ids = new Int32Array(1);
+    const d2 = new Float64Array(1);
+    const P = layer.sample.position;
+    const labels = new Int32Array(P.length / 3);
+    for (let k = 0; k < labels.length; k++) labels[k] = tree.nearest(P[3 * k], P[3 * k + 1], P[3 * k + 2], ids, d2);
+    return labels;
   },
 
   // The lab protocol is refused on closed surfaces (no open ends): validity is the stack's.

@@ -83,7 +83,10 @@ export interface SurfaceFamily<C extends AnyConfig, Geometry, Sites, Layer exten
   /** The seeded sites moved along the normal onto a layer. */
   project(geometry: Geometry, layer: Layer, sites: Sites): Projected;
   labeller(context: GpuContext, config: C, geometry: Geometry, engine: EngineChoice): Labeller<Layer, Projected>;
-  /** The exact engine's label image of a layer: its exact cells drawn on the texels (for views). */
+  /**
+   * A layer's label image without a jump flood, for views only (no statistic reads it): the exact
+   * engine's cells drawn on the texels, or on a cube map each texel's nearest site.
+   */
   exactLabels(geometry: Geometry, layer: Layer, projected: Projected): Int32Array;
   labelImage(geometry: Geometry, layer: Layer, labels: Int32Array): LabelImage;
   /** Neighbours, contact lengths (µm), areas and border contacts from a layer's label image. */

@@ -36,9 +36,11 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
   const { geometry } = seeded;
   family.checkSheet(config, geometry);
   const layers = family.stack(config, geometry);
-  // The exact engine makes no label textures: its label images are its exact cells, drawn on
-  // the texels only when a view asks for them.
+  // The exact engine makes no label textures, and where only the exact method is asked for no
+  // surface but the seeded one needs any: those label images are drawn on the CPU, only when a
+  // view reads them.
   const exactEngine = seeded.engine.name === 'exact';
+  const exactOnly = exactEngine || config.sheet.adjacency === 'exact';
   const labeller = family.labeller(context, config, geometry, seeded.engine);
   try {
     const projected: P[] = [];
@@ -48,7 +50,7 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
       throwIfAborted(signal);
       const sites = family.project(geometry, layer, seeded.sites);
       projected.push(sites);
-      if (exactEngine) {
+      if (exactEngine || (exactOnly && layer.role !== 'seeded')) {
         labelImages.push(lazyLabels(family.labelImage(geometry, layer, EMPTY_LABELS), () => family.exactLabels(geometry, layer, sites)));
         continue;
       }
@@ -84,8 +86,8 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
     const adjacencyMs = performance.now() - start;
 
     const section = family.resultSection(config, geometry, seeded, labeller);
-    // Cells and their contacts: from the label images on the GPU engine, exact on the exact one.
-    const cellSurfaces = exactEngine && exactSurfaces ? exactSurfaces : labelled;
+    // Cells and their contacts: exact where only the exact method ran, else from the label images.
+    const cellSurfaces = exactOnly && exactSurfaces ? exactSurfaces : labelled;
     const cellsOf = (k: number) => cellRecords(cellSurfaces[k], (id) => family.cellPlacement(config, layers[k], seeded.sites, projected[k], id));
     const surfaces: SurfaceRecord[] = layers.slice(1).map((layer, index) => ({
       name: layer.name,

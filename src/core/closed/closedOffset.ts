@@ -137,12 +137,14 @@ function parallelEllipsoid(surface: EllipsoidSurface, sites: ArrayLike<number>, 
   if (!(maxDeviation > 0)) throw new Error(`maxDeviation: ${maxDeviation} µm is not a positive distance`);
   // Longest edge of an icosphere of frequency f on the unit sphere is about 1.15 / f rad; the
   // estimate (largest radius) is a lower bound for f, the measured edges decide.
-  let f = Math.max(2, Math.ceil((1.15 * (hi + Math.max(0, t))) / Math.sqrt(6 * rho * maxDeviation)));
+  // Frequencies rounded up to a multiple of 16, so that the layers of a stack share one
+  // icosphere (cachedIcosphere) instead of building one each.
+  let f = roundFrequency(Math.max(2, Math.ceil((1.15 * (hi + Math.max(0, t))) / Math.sqrt(6 * rho * maxDeviation))));
   for (;;) {
     if (20 * f * f > maxTriangles) {
       throw new Error(`maxDeviation: ${maxDeviation} µm would need about ${20 * f * f} triangles for the parallel surface at ${t} µm (more than maxTriangles ${maxTriangles}); allow a larger deviation`);
     }
-    const mesh = icosphere(f);
+    const mesh = cachedIcosphere(f);
     const P = new Float64Array(mesh.positions.length);
     const N = new Float64Array(3);
     for (let v = 0; v < P.length; v += 3) {
@@ -174,9 +176,32 @@ function parallelEllipsoid(surface: EllipsoidSurface, sites: ArrayLike<number>, 
         ellipsoidNormal(p[0], p[1], p[2], a, b, c, nrm, 3 * i);
         for (let k = 0; k < 3; k++) out[3 * i + k] = p[k] + t * nrm[3 * i + k];
       }
-      const triangulated: MeshSurface = { kind: 'mesh', positions: P, indices: T, triangleNeighbours: triangleNeighbours(T, P.length / 3) };
+      const triangulated: MeshSurface = { kind: 'mesh', positions: P, indices: T, triangleNeighbours: mesh.triangleNeighbours };
       return { surface: triangulated, sites: out, normals: nrm, representation: 'triangulated', deviation };
     }
-    f = Math.ceil(f * Math.sqrt(deviation / maxDeviation) * 1.05);
+    f = roundFrequency(Math.ceil(f * Math.sqrt(deviation / maxDeviation) * 1.05));
   }
+}
+
+/**
+ * Icospheres with their triangle neighbours, kept for the next call: every layer of a stack (and
+ * every run on the same ellipsoid) triangulates its parallel surface at about the same frequency,
+ * and building the icosphere and its neighbour table cost more than the diagram itself.
+ */
+const icospheres = new Map<number, { positions: Float32Array; indices: Uint32Array; triangleNeighbours: Int32Array }>();
+const KEPT_ICOSPHERES = 4;
+
+function cachedIcosphere(frequency: number): { positions: Float32Array; indices: Uint32Array; triangleNeighbours: Int32Array } {
+  let mesh = icospheres.get(frequency);
+  if (!mesh) {
+    const built = icosphere(frequency);
+    mesh = { positions: built.positions, indices: built.indices, triangleNeighbours: triangleNeighbours(built.indices, built.positions.length / 3) };
+    if (icospheres.size >= KEPT_ICOSPHERES) icospheres.delete(icospheres.keys().next().value as number);
+    icospheres.set(frequency, mesh);
+  }
+  return mesh;
+}
+
+function roundFrequency(f: number): number {
+  return Math.ceil(f / 16) * 16;
 }
