@@ -15,18 +15,7 @@ export interface LloydOptions {
   readonly profile?: boolean;
 }
 
-/** One Lloyd iteration as recorded in the result. */
-export interface IterationRecord {
-  readonly iteration: number;
-  /** CVT energy of the sites at the start of the iteration (the Voronoi they were moved in). */
-  readonly energy: number;
-  /** Largest site displacement of this iteration, µm. */
-  readonly maxDisplacement: number;
-  /** Jump-flood passes that labelled the sites of this iteration. */
-  readonly jumpFloodPasses: number;
-  readonly jumpFloodMs: number;
-  readonly centroidMs: number;
-}
+export type { IterationRecord } from '../core/iterationRecord';
 
 /**
  * Lloyd's method on a planar-family grid (plane, tube), one iteration at a time. `sites`

@@ -53,6 +53,11 @@ export async function readMeshSource(src: string): Promise<MeshFile> {
     }
     throw new ConfigError('surface.src', `surface.src: cannot read "${src}" (looked in the working directory and public/meshes/); give the path of an .obj, .ply or .stl file`);
   }
+  return fetchMeshFile(src);
+}
+
+/** Fetches a mesh file from a URL; errors are one-line ConfigErrors on `surface.src`. */
+export async function fetchMeshFile(src: string): Promise<MeshFile> {
   let response: Response;
   try {
     response = await fetch(src);

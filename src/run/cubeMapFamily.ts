@@ -1,3 +1,4 @@
+import { surfaceFromLabels } from '../core/analysis';
 import { checkClosedFeasible, checkClosedSheet, layerStepOf, makeCubeGrid, steppedOffsets, type ClosedConfig } from '../core/config';
 import { KdTree3 } from '../core/closed/kdTree';
 import { ellipsoidProjector, PROJECTION_STRIDE } from '../core/closed/projector';
@@ -22,7 +23,7 @@ import { closedExactAdjacency } from './closedExact';
 import { closedSection } from './closedRecord';
 import { checkOffsets, prepareClosedSurface, type ClosedSurface } from './closedSurface';
 import type { Labeller, StackLayer, SurfaceFamily } from './family';
-import { gpuRelaxation } from './relax';
+import { relaxation } from './relax';
 
 /** A closed surface on its cube map, with the texel neighbour table every surface of its stack shares. */
 export interface CubeMapGeometry extends ClosedSurface {
@@ -75,7 +76,7 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
     try {
       engine.setGeometry(image.position, image.area);
       const run = new ClosedLloydRun(engine, projector, sites, config.lloyd, minTexelSpacing(geometry));
-      return { sites, relaxation: gpuRelaxation(run, engine) };
+      return { sites, relaxation: relaxation(run, () => engine.readLabels(), () => engine.dispose()) };
     } catch (error) {
       engine.dispose();
       throw error;
@@ -131,16 +132,8 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
     positions: layer.sample.position,
   }),
 
-  labelAdjacency(geometry, layer, labels, count) {
-    const a = cubeLabelAdjacency(layer.sample, labels, count, geometry.neighbours);
-    return {
-      count: a.count,
-      adjacency: { offsets: a.offsets, neighbours: a.neighbours, lengths: a.lengths },
-      areas: a.area,
-      touchesBorder: a.touchesBorder,
-      label: layer.name,
-    };
-  },
+  labelAdjacency: (geometry, layer, labels, count) => surfaceFromLabels(cubeLabelAdjacency(layer.sample, labels, count, geometry.neighbours), layer.name),
+
 
   minContactLengths(config, geometry, layers) {
     const { totalArea } = geometry.image;

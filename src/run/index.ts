@@ -7,7 +7,7 @@ export { runSheet, SheetRunner, seededKey, type RunCallbacks } from './runSheet'
 export { sweepSummary } from './sweepSummary';
 export { WorkerSheetRunner, type ComputeSite } from './worker/workerRunner';
 export { describeEngine, type EngineChoice } from './enginePolicy';
-export type { MeshFile } from './closedMesh';
+export { fetchMeshFile, type MeshFile } from './closedMesh';
 export type {
   AnalysisRecord,
   CellRecord,

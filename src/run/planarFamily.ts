@@ -1,4 +1,4 @@
-import { LAB_PROTOCOL, labelContactThresholdTexels, labInvalidCells, labMinBoundaryLength, surfaceFromExact, type LabProtocolSettings } from '../core/analysis';
+import { LAB_PROTOCOL, labelContactThresholdTexels, labInvalidCells, labMinBoundaryLength, surfaceFromExact, surfaceFromLabels, type LabProtocolSettings } from '../core/analysis';
 import { checkFeasible, checkSheet, layerStepOf, makeGrid, minContactPixelsOf, type Config } from '../core/config';
 import { densityField, type GrayImage } from '../core/density';
 import { exactVoronoi } from '../core/exact';
@@ -12,8 +12,8 @@ import type { EngineChoice } from './enginePolicy';
 import type { GpuContext } from '../gpu/context';
 import { CcvtEngine } from '../gpu/engine';
 import { LloydRun } from '../gpu/lloyd';
-import type { Labeller, Relaxation, RunCallbacks, SurfaceFamily } from './family';
-import { gpuRelaxation } from './relax';
+import type { Labeller, RunCallbacks, SurfaceFamily } from './family';
+import { relaxation } from './relax';
 
 /** A plane or tube, unrolled: its texel grid and the density per texel. */
 export interface PlanarGeometry {
@@ -50,7 +50,7 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
     if (choice.name === 'exact') {
       const run = new ExactLloydRun(grid, sites, config.lloyd, exactDensity(config.density, grid, geometry.densityImage));
       // No label image: the stack rasterizes the exact cells for views when asked.
-      return { sites, relaxation: cpuRelaxation(run) };
+      return { sites, relaxation: relaxation(run, () => NO_LABELS) };
     }
     const engine = new CcvtEngine(context, grid, config.cells, { variant: config.jumpFlood.variant, centroidPath: choice.centroidPath });
     try {
@@ -59,7 +59,7 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
       const run = new LloydRun(engine, grid, sites, config.lloyd);
       // Label the final sites with a cold flood, as every other surface of the stack is
       // labelled: identical surfaces then get identical labels (no warm-start residue at s = 1).
-      return { sites, relaxation: gpuRelaxation(run, engine, () => engine.floodLabels()) };
+      return { sites, relaxation: relaxation(run, () => engine.readLabels(), () => engine.dispose(), () => engine.floodLabels()) };
     } catch (error) {
       engine.dispose();
       throw error;
@@ -76,16 +76,8 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
 
   labelImage: (_geometry, layer, labels) => ({ name: layer.name, grid: layer.grid, labels }),
 
-  labelAdjacency(_geometry, layer, labels, count) {
-    const a = labelAdjacency(layer.grid, labels, count);
-    return {
-      count: a.count,
-      adjacency: { offsets: a.offsets, neighbours: a.neighbours, lengths: a.lengths },
-      areas: a.area,
-      touchesBorder: a.touchesBorder,
-      label: layer.name,
-    };
-  },
+  labelAdjacency: (_geometry, layer, labels, count) => surfaceFromLabels(labelAdjacency(layer.grid, labels, count), layer.name),
+
 
   // A pixel rule (texel edges, e.g. the lab's 6 px around a 512 px tube) or a length in µm;
   // by default the lab's threshold scaled to this sheet's mean cell size. Texels are square
@@ -136,6 +128,9 @@ function placementDensity(config: Config, density: Float32Array): Float32Array |
   return density.map(Math.sqrt);
 }
 
+/** The exact engine's seeded surface has no label image (the stack draws its cells for views). */
+const NO_LABELS = new Int32Array(0);
+
 /** The lab protocol's knobs as the config sets them. */
 function labSettings(sheet: Config['sheet']): LabProtocolSettings {
   return {
@@ -143,22 +138,6 @@ function labSettings(sheet: Config['sheet']): LabProtocolSettings {
     layerStep: layerStepOf(sheet) ?? LAB_PROTOCOL.layerStep,
     validityMaxRatio: sheet.validityMaxRatio,
     minContactPixels: minContactPixelsOf(sheet) ?? LAB_PROTOCOL.minContactPixels,
-  };
-}
-
-/** The exact engine's Lloyd loop as the pipeline drives it (no GPU, no label image). */
-function cpuRelaxation(run: ExactLloydRun): Relaxation {
-  return {
-    get done() {
-      return run.done;
-    },
-    get converged() {
-      return run.converged;
-    },
-    iterations: run.iterations,
-    step: () => run.step(),
-    finish: () => ({ ...run.finish(), labels: new Int32Array(0) }),
-    dispose() {},
   };
 }
 

@@ -2,7 +2,6 @@ import type { AnyConfig } from '../core/config';
 import type { GpuContext } from '../gpu/context';
 import type { IterationRecord } from '../gpu/lloyd';
 import type { EngineChoice } from './enginePolicy';
-import type { LloydLoop } from '../gpu/lloydLoop';
 import type { Relaxation, RunCallbacks, StackLayer, SurfaceFamily } from './family';
 
 /** The converged seeded surface: what every other surface of the sheet is projected from. */
@@ -63,13 +62,24 @@ export async function relaxSeededSurface<C extends AnyConfig, G, S, L extends St
   }
 }
 
+/** A Lloyd loop of either engine (LloydRun, ClosedLloydRun, ExactLloydRun). */
+export interface LloydDriver {
+  readonly done: boolean;
+  readonly converged: boolean;
+  readonly iterations: IterationRecord[];
+  step(): IterationRecord;
+  finish(): { energy: number; emptyCells: number };
+}
+
 /**
- * A GPU engine's Lloyd loop as the pipeline drives it. `beforeFinish` runs before the final
- * sums (the planar family re-labels the final sites with a cold flood there).
+ * A Lloyd loop as the pipeline drives it. `labels` gives the final label image after the final
+ * sums, `beforeFinish` runs before them (the planar GPU family re-labels the final sites with a
+ * cold flood there), `dispose` frees the engine.
  */
-export function gpuRelaxation(
-  run: LloydLoop & { finish(): { energy: number; emptyCells: number } },
-  engine: { readLabels(): Int32Array; dispose(): void },
+export function relaxation(
+  run: LloydDriver,
+  labels: () => Int32Array,
+  dispose: () => void = () => {},
   beforeFinish: () => void = () => {},
 ): Relaxation {
   return {
@@ -84,9 +94,9 @@ export function gpuRelaxation(
     finish() {
       beforeFinish();
       const final = run.finish();
-      return { ...final, labels: engine.readLabels() };
+      return { ...final, labels: labels() };
     },
-    dispose: () => engine.dispose(),
+    dispose,
   };
 }
 

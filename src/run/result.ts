@@ -1,4 +1,4 @@
-import type { ScutoidSummary } from '../core/analysis';
+import type { AnalysisRecord } from '../core/analysis/record';
 import type { AnyConfig } from '../core/config';
 import type { Grid } from '../core/grid';
 import type { Vec3 } from '../core/surface';
@@ -41,34 +41,7 @@ export interface SurfaceRecord {
   readonly cells: CellRecord[];
 }
 
-/** Per-cell statistics over the stack [seeded, layers..., other]. */
-export interface CellStatisticsRecord {
-  readonly id: number;
-  /** Not a border cell on any surface: counted in the statistics. */
-  readonly valid: boolean;
-  /** Valid, and its neighbour set is not the same on every surface. */
-  readonly scutoid: boolean;
-  /** Neighbours on the last surface that are not on the first, and the other way round. */
-  readonly won: number;
-  readonly lost: number;
-  /** Apico-basal transitions, counted surface to surface through the layers. */
-  readonly transitions: number;
-  /** Size of the union of the neighbour sets over all surfaces. */
-  readonly neighbours3D: number;
-  /** Sides on each surface, in stack order. */
-  readonly sides: number[];
-}
-
-/** Scutoid statistics over the stack [seeded, layers..., other] from one adjacency method. */
-export interface AnalysisRecord {
-  /** "labels": adjacent texels of the label textures; "exact": Delaunay of the unrolled sites. */
-  readonly method: 'labels' | 'exact';
-  /** Contacts shorter than this (µm) were ignored (labels method only; 0 for exact). */
-  readonly minContactLength: number;
-  /** Includes `perSurface`: polygon distribution, Lewis and Aboav-Weaire per surface. */
-  readonly summary: ScutoidSummary;
-  readonly cells: CellStatisticsRecord[];
-}
+export type { AnalysisRecord, CellStatisticsRecord } from '../core/analysis/record';
 
 /** The documented output of `tissue-sheet run` (see README, "Result JSON"). */
 export interface SheetResult {

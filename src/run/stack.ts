@@ -1,7 +1,7 @@
 import { analyzeLabStack, analyzeSurfaces, toCsr, withMinBoundaryLength, type SurfaceAdjacency } from '../core/analysis';
 import type { AnyConfig } from '../core/config';
 import type { GpuContext } from '../gpu/context';
-import { analysisRecord } from './analysisRecord';
+import { analysisRecord } from '../core/analysis';
 import type { StackLayer, SurfaceFamily } from './family';
 import { throwIfAborted, yieldToEventLoop, type SeededSurface } from './relax';
 import type { AnalysisRecord, CellRecord, ClosedSurfaceRecord, LabelImage, SurfaceRecord } from './result';

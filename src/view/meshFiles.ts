@@ -5,7 +5,7 @@
  * "/"); a link or a later visit with such a name asks for the file again.
  */
 import { ConfigError, type AnyConfig } from '../core/config';
-import type { MeshFile } from '../run';
+import { fetchMeshFile, type MeshFile } from '../run';
 
 /** A src without a "/" (and not a data: URL) names a file the user uploaded. */
 export function isUploadName(src: string): boolean {
@@ -26,17 +26,6 @@ function uploadedMesh(name: string): MeshFile | null {
 
 const fetched = new Map<string, Promise<MeshFile>>();
 
-async function fetchMesh(src: string): Promise<MeshFile> {
-  let response: Response;
-  try {
-    response = await fetch(src);
-  } catch (error) {
-    throw new ConfigError('surface.src', `surface.src: cannot fetch "${src}" (${(error as Error).message}); give a reachable URL of an .obj, .ply or .stl file`);
-  }
-  if (!response.ok) throw new ConfigError('surface.src', `surface.src: fetching "${src}" gave HTTP ${response.status}; give a reachable URL of an .obj, .ply or .stl file`);
-  return { data: await response.arrayBuffer(), name: src };
-}
-
 /**
  * The mesh file of a mesh config: `given` (the element's meshFile property), an uploaded file
  * of that name, or the URL fetched once and kept. Null for other surfaces.
@@ -55,7 +44,7 @@ export async function meshFileFor(config: AnyConfig, given?: MeshFile | null): P
   }
   if (!fetched.has(src)) {
     if (fetched.size > 8) fetched.clear();
-    const job = fetchMesh(src);
+    const job = fetchMeshFile(src);
     job.catch(() => fetched.delete(src));
     fetched.set(src, job);
   }

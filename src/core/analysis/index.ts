@@ -4,3 +4,4 @@ export * from './scutoids';
 export * from './protocol';
 export * from './protocolTube';
 export * from './flintstones';
+export * from './record';

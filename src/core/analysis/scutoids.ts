@@ -351,6 +351,14 @@ export function withMinBoundaryLength(surface: SurfaceAdjacency, minLength: numb
   return { ...surface, adjacency: filterShortContacts(adj, minLength), sides: undefined };
 }
 
+/** The analysis input for one label adjacency (a planar grid's or a cube map's label image). */
+export function surfaceFromLabels(
+  a: { count: number; offsets: Int32Array; neighbours: Int32Array; lengths: Float64Array; area: Float64Array; touchesBorder: Uint8Array },
+  label?: string,
+): SurfaceAdjacency & { adjacency: CsrAdjacency & { lengths: Float64Array }; areas: Float64Array; touchesBorder: Uint8Array } {
+  return { count: a.count, adjacency: { offsets: a.offsets, neighbours: a.neighbours, lengths: a.lengths }, areas: a.area, touchesBorder: a.touchesBorder, label };
+}
+
 /** The analysis input for one exact Voronoi diagram. */
 export function surfaceFromExact(v: ExactVoronoi, label?: string): SurfaceAdjacency {
   return { count: v.count, adjacency: v.adjacency, areas: v.areas, touchesBorder: v.touchesBorder, label };

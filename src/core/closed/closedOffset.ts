@@ -19,6 +19,7 @@
  */
 import { closestPointOnEllipsoid } from '../cubemap/sample';
 import { icosphere } from '../mesh/generate';
+import { areaWeightedVertexNormals } from '../mesh/types';
 import type { EllipsoidSurface, MeshSurface, RestrictedSurface } from './restrictedSurface';
 import { triangleNeighbours } from './restrictedSurface';
 
@@ -91,29 +92,6 @@ function moveAlong(sites: ArrayLike<number>, normals: ArrayLike<number>, count: 
   const out = new Float64Array(3 * count);
   for (let k = 0; k < 3 * count; k++) out[k] = sites[k] + t * normals[k];
   return out;
-}
-
-/** Area-weighted vertex normals (sum of the incident faces' cross products), unit length. */
-export function areaWeightedVertexNormals(positions: ArrayLike<number>, indices: ArrayLike<number>): Float64Array {
-  const p = positions, n = new Float64Array(positions.length);
-  for (let f = 0; f < indices.length; f += 3) {
-    const a = 3 * indices[f], b = 3 * indices[f + 1], c = 3 * indices[f + 2];
-    const ux = p[b] - p[a], uy = p[b + 1] - p[a + 1], uz = p[b + 2] - p[a + 2];
-    const vx = p[c] - p[a], vy = p[c + 1] - p[a + 1], vz = p[c + 2] - p[a + 2];
-    const cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
-    for (const v of [a, b, c]) {
-      n[v] += cx;
-      n[v + 1] += cy;
-      n[v + 2] += cz;
-    }
-  }
-  for (let v = 0; v < n.length; v += 3) {
-    const l = Math.hypot(n[v], n[v + 1], n[v + 2]) || 1;
-    n[v] /= l;
-    n[v + 1] /= l;
-    n[v + 2] /= l;
-  }
-  return n;
 }
 
 /** The mesh's vertices moved t along their area-weighted normals (t = 0: the mesh itself). */

@@ -18,7 +18,7 @@
  * grid of cells `minSpacing` wide (typed arrays, collisions checked by distance).
  */
 import { createRandom } from '../random';
-import { areaWeightedVertexNormals } from './closedOffset';
+import { areaWeightedVertexNormals } from '../mesh/types';
 import { ellipsoidArea } from './conicArc';
 import type { RestrictedSurface } from './restrictedSurface';
 

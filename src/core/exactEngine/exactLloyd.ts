@@ -13,6 +13,7 @@
  * The loop reuses every buffer (the triangulation is updated in place); nothing is allocated per
  * iteration except by d3-delaunay when the triangle count grows past what it has.
  */
+import type { IterationRecord } from '../iterationRecord';
 import type { Grid } from '../grid';
 import { moveSitesToCentroids, type LloydMove } from '../lloydUpdate';
 import { CellIntegrator, type ExactDensity } from './cellIntegrals';
@@ -31,20 +32,8 @@ export interface ExactLloydOptions {
   readonly profile?: boolean;
 }
 
-/** One iteration, with the fields of gpu/lloyd.ts's IterationRecord. */
-export interface ExactIterationRecord {
-  readonly iteration: number;
-  /** CVT energy Σ∫ρ|x - z|² (µm⁴ × relative density) of the sites before the move. */
-  readonly energy: number;
-  /** Largest site displacement of this iteration, µm. */
-  readonly maxDisplacement: number;
-  /** Always 0: no jump flood. */
-  readonly jumpFloodPasses: number;
-  /** Time to triangulate and walk the cells (the exact engine's "labelling"), ms. */
-  readonly jumpFloodMs: number;
-  /** Time to integrate the cells and move the sites, ms. */
-  readonly centroidMs: number;
-}
+/** One iteration: the GPU engine's record (jumpFloodPasses 0; see IterationRecord for the timings). */
+export type ExactIterationRecord = IterationRecord;
 
 const UNIFORM: ExactDensity = { kind: 'uniform' };
 

@@ -3,7 +3,7 @@
  * contacts, then builds one analysis input per layer over the union of labels and runs the
  * same analysis as a simulated stack (analyzeSurfaces) on it.
  */
-import { analyzeSurfaces, csrFromLists, labMinBoundaryLength, withMinBoundaryLength, type SurfaceAdjacency } from '../analysis';
+import { analysisRecord, analyzeSurfaces, csrFromLists, labMinBoundaryLength, withMinBoundaryLength, type SurfaceAdjacency } from '../analysis';
 import { BORDER_NAMES, countContacts, type LayerContacts } from './contacts';
 import { MeasureInputError } from './errors';
 import { decodeLayer, planLayers, type LabelFileInput, type LayerPlan } from './layerPlan';
@@ -99,21 +99,12 @@ function assemble(plan: LayerPlan, contacts: LayerContacts[], options: MeasureOp
   const analysis = analyzeSurfaces(surfaces.map((s) => withMinBoundaryLength(s, minContactLength)));
   const cellStats = analysis.cells;
 
-  const analysisRecord: MeasuredAnalysis = {
+  const record = analysisRecord('labels', minContactLength, analysis);
+  const measuredAnalysis: MeasuredAnalysis = {
+    ...record,
     method: 'labels',
-    minContactLength,
-    summary: analysis.summary,
-    cells: labels.map((label, id) => ({
-      id,
-      label,
-      valid: cellStats.valid[id] === 1,
-      scutoid: cellStats.scutoid[id] === 1,
-      won: cellStats.won[id],
-      lost: cellStats.lost[id],
-      transitions: cellStats.transitions[id],
-      neighbours3D: cellStats.neighbours3D[id],
-      sides: cellStats.sides.map((s) => s[id]),
-    })),
+    // The same per-cell statistics as a simulated result's, with each cell's own label.
+    cells: record.cells.map((cell) => ({ ...cell, label: labels[cell.id] })),
   };
 
   // Per-cell records with original labels.
@@ -182,7 +173,7 @@ function assemble(plan: LayerPlan, contacts: LayerContacts[], options: MeasureOp
         minContactSource: options.minContact === undefined ? 'default' : 'option',
       },
     },
-    analyses: [analysisRecord],
+    analyses: [measuredAnalysis],
     cells,
     exclusions: { touchesBorder: touching, missing, total: analysis.summary.excludedCells },
     surfaceRatio,

@@ -1,3 +1,4 @@
+import type { CellStatisticsRecord } from '../analysis/record';
 /**
  * The JSON shape of `tissue-sheet measure` (docs/measure.md, "Result"). `analyses[0]` has the
  * shape of a simulated result's AnalysisRecord (src/run/result.ts; a test checks that the types
@@ -43,17 +44,9 @@ export interface MeasuredInputs {
   };
 }
 
-/** The per-cell statistics of analyses[0].cells, with the original label. */
-export interface MeasuredCellStatistics {
-  readonly id: number;
+/** The per-cell statistics of analyses[0].cells (a simulated result's), with the original label. */
+export interface MeasuredCellStatistics extends CellStatisticsRecord {
   readonly label: number;
-  readonly valid: boolean;
-  readonly scutoid: boolean;
-  readonly won: number;
-  readonly lost: number;
-  readonly transitions: number;
-  readonly neighbours3D: number;
-  readonly sides: number[];
 }
 
 export interface MeasuredAnalysis {

@@ -91,10 +91,15 @@ export function signedVolume(mesh: TriangleMesh): number {
  * would make that projection jump at every mesh edge.
  */
 export function vertexNormals(mesh: TriangleMesh): Float32Array {
-  const { positions: p, indices: t } = mesh;
+  return Float32Array.from(areaWeightedVertexNormals(mesh.positions, mesh.indices));
+}
+
+/** Area-weighted vertex normals (sum of the incident faces' cross products), unit length, in float64. */
+export function areaWeightedVertexNormals(positions: ArrayLike<number>, indices: ArrayLike<number>): Float64Array {
+  const p = positions;
   const n = new Float64Array(p.length);
-  for (let f = 0; f < t.length; f += 3) {
-    const a = 3 * t[f], b = 3 * t[f + 1], c = 3 * t[f + 2];
+  for (let f = 0; f < indices.length; f += 3) {
+    const a = 3 * indices[f], b = 3 * indices[f + 1], c = 3 * indices[f + 2];
     const ux = p[b] - p[a], uy = p[b + 1] - p[a + 1], uz = p[b + 2] - p[a + 2];
     const vx = p[c] - p[a], vy = p[c + 1] - p[a + 1], vz = p[c + 2] - p[a + 2];
     const cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
@@ -104,14 +109,13 @@ export function vertexNormals(mesh: TriangleMesh): Float32Array {
       n[i + 2] += cz;
     }
   }
-  const out = new Float32Array(p.length);
-  for (let i = 0; i < p.length; i += 3) {
+  for (let i = 0; i < n.length; i += 3) {
     const l = Math.hypot(n[i], n[i + 1], n[i + 2]) || 1;
-    out[i] = n[i] / l;
-    out[i + 1] = n[i + 1] / l;
-    out[i + 2] = n[i + 2] / l;
+    n[i] /= l;
+    n[i + 1] /= l;
+    n[i + 2] /= l;
   }
-  return out;
+  return n;
 }
 
 /** Mean edge length (each undirected edge counted once per incident face side; fine for h). */
