@@ -177,16 +177,4 @@ export function openSphere(frequency: number, holeAngle = 0.5): TriangleMesh {
   });
 }
 
-/** Concatenates meshes (no welding): e.g. two spheres make a two-component mesh. */
-export function mergeMeshes(...meshes: TriangleMesh[]): TriangleMesh {
-  const positions = new Float32Array(meshes.reduce((s, m) => s + m.positions.length, 0));
-  const indices = new Uint32Array(meshes.reduce((s, m) => s + m.indices.length, 0));
-  let pv = 0, pi = 0;
-  for (const m of meshes) {
-    positions.set(m.positions, pv);
-    for (let i = 0; i < m.indices.length; i++) indices[pi + i] = m.indices[i] + pv / 3;
-    pv += m.positions.length;
-    pi += m.indices.length;
-  }
-  return { positions, indices };
-}
+export { mergeMeshes } from './types';

@@ -15,7 +15,7 @@ import type { BufferGeometry } from 'three';
 import { OBJLoader } from 'three/examples/jsm/loaders/OBJLoader.js';
 import { PLYLoader } from 'three/examples/jsm/loaders/PLYLoader.js';
 import { STLLoader } from 'three/examples/jsm/loaders/STLLoader.js';
-import { boundingBox, type TriangleMesh } from './types';
+import { boundingBox, mergeMeshes, type TriangleMesh } from './types';
 
 export type MeshFormat = 'obj' | 'ply' | 'stl';
 
@@ -141,19 +141,7 @@ function geometryToMesh(g: BufferGeometry, label: string): TriangleMesh {
 }
 
 function concatGeometries(parts: BufferGeometry[], label: string): TriangleMesh {
-  const meshes = parts.map((g) => geometryToMesh(g, label));
-  const nv = meshes.reduce((s, m) => s + m.positions.length, 0);
-  const ni = meshes.reduce((s, m) => s + m.indices.length, 0);
-  const positions = new Float32Array(nv);
-  const indices = new Uint32Array(ni);
-  let pv = 0, pi = 0;
-  for (const m of meshes) {
-    positions.set(m.positions, pv);
-    for (let i = 0; i < m.indices.length; i++) indices[pi + i] = m.indices[i] + pv / 3;
-    pv += m.positions.length;
-    pi += m.indices.length;
-  }
-  return { positions, indices };
+  return mergeMeshes(...parts.map((g) => geometryToMesh(g, label)));
 }
 
 function precheckObj(text: string): void {

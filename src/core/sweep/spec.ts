@@ -19,12 +19,11 @@ import Ajv from 'ajv';
 import { configSchema, ConfigError, validateAnyConfig, type AnyConfig } from '../config';
 import { countRuns, FORBIDDEN_KEYS, setPath, type SweepSpec } from './expand';
 
-export class SweepSpecError extends Error {
-  readonly field: string;
+/** A sweep-spec problem: a ConfigError whose `field` is a path in the spec (`vary["sheet.layers"][1]`). */
+export class SweepSpecError extends ConfigError {
   constructor(field: string, message: string) {
-    super(message);
+    super(field, message);
     this.name = 'SweepSpecError';
-    this.field = field;
   }
 }
 
