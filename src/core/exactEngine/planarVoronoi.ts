@@ -110,7 +110,8 @@ export class PlanarVoronoi {
       this.delaunay = new Delaunay(points.slice());
     }
     const d = this.delaunay;
-    if ((d as unknown as { collinear?: Int32Array }).collinear || d.hull.length <= 2) {
+    // d3-delaunay marks all-collinear input with a `collinear` array its typings do not declare.
+    if (Reflect.get(d, 'collinear') || d.hull.length <= 2) {
       this.useFallback(sites);
       return this;
     }
