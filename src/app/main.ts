@@ -18,6 +18,7 @@ import { ConfigControls } from './panels/controls';
 import { bindExports } from './panels/exports';
 import { renderResults } from './panels/results';
 import { SweepPanel } from './panels/sweepPanel';
+import { mountLloydMovie } from './panels/lloydMovie';
 import { ViewPanel } from './panels/viewPanel';
 import { renderLegend } from './view/legend';
 
@@ -88,6 +89,7 @@ const sweep = new SweepPanel($('#sweep'), {
   config: () => validateAnyConfig(controls.config),
   onError: showError,
 });
+mountLloydMovie($('#cells-title').closest('section')!, { config: () => validateAnyConfig(controls.config), onError: showError });
 bindExports($('.exports'), {
   stack: () => stack,
   sweepCsv: () => sweep.csv,

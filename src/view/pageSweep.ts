@@ -97,7 +97,18 @@ export interface SweepPlan {
   configs: Map<string, AnyConfig>;
 }
 
+/** Plans already made, by spec object: a panel plans before it runs, and runs plan again. */
+const plans = new WeakMap<object, { maxRuns?: number; plan: SweepPlan }>();
+
 export function planSweep(input: unknown, maxRuns?: number): SweepPlan {
+  const known = typeof input === 'object' && input !== null ? plans.get(input) : undefined;
+  if (known && known.maxRuns === maxRuns) return known.plan;
+  const plan = makePlan(input, maxRuns);
+  if (typeof input === 'object' && input !== null) plans.set(input, { maxRuns, plan });
+  return plan;
+}
+
+function makePlan(input: unknown, maxRuns?: number): SweepPlan {
   const spec = validateSweepSpec(input, maxRuns === undefined ? {} : { maxRuns });
   const fields = variedFields(spec);
   const runs = expandSweep(spec);
