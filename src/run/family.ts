@@ -19,6 +19,11 @@ export interface RunCallbacks {
   densityImage?: GrayImage;
   /** The mesh file itself (e.g. a user's File read in the browser) instead of reading surface.src. */
   meshFile?: MeshFile;
+  /**
+   * false: the caller needs the result only, not the label images for views (a sweep): a worker
+   * then sends none back, and lazily drawn images are never drawn.
+   */
+  views?: boolean;
 }
 
 /** One surface of the sheet's stack: the seeded surface, a layer, or the other surface. */

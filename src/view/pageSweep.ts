@@ -171,7 +171,8 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
       runner: async (config) => {
         const valid = validateAnyConfig(config);
         const inputs = await runInputs(valid);
-        return sweepSummary((await runner.run(valid, { signal: options.signal, ...inputs })).result);
+        // Only the summary is kept: no label images cross from the worker.
+        return sweepSummary((await runner.run(valid, { signal: options.signal, views: false, ...inputs })).result);
       },
       onProgress: (p) => {
         if (p.phase === 'start' || (p.phase === 'error' && isAbort(p.error))) return;

@@ -61,7 +61,8 @@ async function run(message: Extract<ToWorker, { type: 'run' }>): Promise<void> {
       ...(message.densityImage ? { densityImage: message.densityImage } : {}),
       ...(message.meshFile ? { meshFile: message.meshFile } : {}),
     });
-    post({ type: 'result', id: message.id, output });
+    // Label images are most of the message (and lazily drawn ones would be drawn to send them).
+    post({ type: 'result', id: message.id, output: message.views === false ? { result: output.result, labelImages: [] } : output });
   } catch (error) {
     post({ type: 'error', id: message.id, error: serialize(error) });
   } finally {

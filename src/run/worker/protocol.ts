@@ -16,6 +16,8 @@ export type ToWorker =
       readonly config: AnyConfig;
       readonly densityImage?: GrayImage;
       readonly meshFile?: MeshFile;
+      /** false: send the result without label images (see RunCallbacks.views). */
+      readonly views?: boolean;
     }
   | { readonly type: 'cancel'; readonly id: number };
 

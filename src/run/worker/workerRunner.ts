@@ -56,6 +56,7 @@ export class WorkerSheetRunner {
       config,
       ...(callbacks.densityImage ? { densityImage: callbacks.densityImage } : {}),
       ...(callbacks.meshFile ? { meshFile: callbacks.meshFile } : {}),
+      ...(callbacks.views === false ? { views: false } : {}),
     };
     return new Promise<SheetOutput>((resolve, reject) => {
       this.pending.set(id, { resolve, reject, callbacks, message });
