@@ -33,6 +33,13 @@ test.describe('the pipeline in a Web Worker', () => {
     expect(String((result.site as { reason: string }).reason)).toMatch(/no workers in this test/);
   });
 
+  test('a result-only run (views: false) returns the same result without label images', async ({ page }) => {
+    const result = await call('resultOnly', tube)({ page });
+    expect(result.same).toBe(true);
+    expect(result.images).toBe(0);
+    expect(result.fullImages).toBe(3);
+  });
+
   test('a cancelled run rejects with AbortError and the worker serves the next run', async ({ page }) => {
     const result = await call('cancelThenRun', tube)({ page });
     expect(result.firstError).toBe('AbortError');

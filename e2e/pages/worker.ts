@@ -60,5 +60,15 @@ async function cancelThenRun(input: ConfigInput) {
   return { firstError, cells: second.result.cells.length };
 }
 
-(window as unknown as Record<string, unknown>).tissueSheetWorkerTest = { compareWorkerAndPage, fallBack, cancelThenRun };
+/** A result-only run (a sweep's): the same result, no label images sent back. */
+async function resultOnly(input: ConfigInput) {
+  const runner = new WorkerSheetRunner(pageContext);
+  const config = validateAnyConfig(input);
+  const full = await runner.run(config);
+  const bare = await runner.run(config, { views: false });
+  runner.dispose();
+  return { same: comparable(full.result) === comparable(bare.result), images: bare.labelImages.length, fullImages: full.labelImages.length };
+}
+
+(window as unknown as Record<string, unknown>).tissueSheetWorkerTest = { compareWorkerAndPage, fallBack, cancelThenRun, resultOnly };
 document.title = 'ready';
