@@ -71,7 +71,7 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
     if (!exactEngine && adjacency !== 'exact') {
       const minContact = family.minContactLengths(config, geometry, layers);
       const inputs = labelled.map((surface, k) => withMinBoundaryLength(surface, minContact.perLayer[k]));
-      analyses.push(analysisRecord('labels', minContact.reported, analyze(inputs)));
+      analyses.push(analysisRecord('labels', minContact.reported, analyze(inputs), config.sheet.protocol));
     }
     let exactSurfaces: SurfaceAdjacency[] | null = null;
     if (exactEngine || adjacency !== 'labels') {
@@ -80,7 +80,7 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
         exactSurfaces = exact;
         const minContact = family.exactMinContactLengths(config, geometry, layers);
         const inputs = minContact ? exact.map((surface, k) => withMinBoundaryLength(surface, minContact.perLayer[k])) : exact;
-        analyses.push(analysisRecord('exact', minContact?.reported ?? 0, analyze(inputs)));
+        analyses.push(analysisRecord('exact', minContact?.reported ?? 0, analyze(inputs), config.sheet.protocol));
       }
     }
     const adjacencyMs = performance.now() - start;

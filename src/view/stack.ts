@@ -45,9 +45,10 @@ export function primaryAnalysis(result: SheetResult): AnalysisRecord | null {
 /** Which adjacency method a number comes from, in words. */
 export function methodCaption(analysis: AnalysisRecord | null): string {
   if (!analysis) return 'no analysis';
-  if (analysis.method === 'exact') return 'exact adjacency (Voronoi cells computed exactly, no pixels)';
+  const protocol = analysis.protocol === 'lab' ? "; the lab's protocol (docs/protocols.md)" : '';
+  if (analysis.method === 'exact') return `exact adjacency (Voronoi cells computed exactly, no pixels${protocol})`;
   const threshold = Number.isFinite(analysis.minContactLength) ? `, contacts < ${analysis.minContactLength.toFixed(2)} µm ignored` : '';
-  return `label adjacency (touching pixels${threshold}; no exact method for this surface)`;
+  return `label adjacency (touching pixels${threshold}; no exact method for this surface${protocol})`;
 }
 
 export function analysisByMethod(result: SheetResult, method: 'labels' | 'exact'): AnalysisRecord | null {

@@ -26,6 +26,8 @@ export interface AnalysisRecord {
    * of the unrolled sites on planes and tubes, the restricted Voronoi diagram on closed surfaces).
    */
   readonly method: 'labels' | 'exact';
+  /** Which rules decided valid cells and counted transitions (docs/protocols.md). */
+  readonly protocol: 'default' | 'lab';
   /** Contacts shorter than this (µm) were ignored (0: every contact counts, the planar exact method). */
   readonly minContactLength: number;
   /** Includes `perSurface`: polygon distribution, Lewis and Aboav-Weaire per surface. */
@@ -34,7 +36,12 @@ export interface AnalysisRecord {
 }
 
 /** The JSON form of a scutoid analysis: per-cell records instead of typed arrays. */
-export function analysisRecord(method: 'labels' | 'exact', minContactLength: number, analysis: ScutoidAnalysis): AnalysisRecord {
+export function analysisRecord(
+  method: 'labels' | 'exact',
+  minContactLength: number,
+  analysis: ScutoidAnalysis,
+  protocol: 'default' | 'lab' = 'default',
+): AnalysisRecord {
   const c = analysis.cells;
   const cells = Array.from(c.valid, (valid, id) => ({
     id,
@@ -46,5 +53,5 @@ export function analysisRecord(method: 'labels' | 'exact', minContactLength: num
     neighbours3D: c.neighbours3D[id],
     sides: c.sides.map((perSurface) => perSurface[id]),
   }));
-  return { method, minContactLength, summary: analysis.summary, cells };
+  return { method, protocol, minContactLength, summary: analysis.summary, cells };
 }

@@ -1,4 +1,4 @@
-import type { CellStatisticsRecord } from '../analysis/record';
+import type { AnalysisRecord, CellStatisticsRecord } from '../analysis/record';
 /**
  * The JSON shape of `tissue-sheet measure` (docs/measure.md, "Result"). `analyses[0]` has the
  * shape of a simulated result's AnalysisRecord (src/run/result.ts; a test checks that the types
@@ -49,10 +49,9 @@ export interface MeasuredCellStatistics extends CellStatisticsRecord {
   readonly label: number;
 }
 
-export interface MeasuredAnalysis {
+/** A simulated result's AnalysisRecord (labels method, default protocol), cells with their labels. */
+export interface MeasuredAnalysis extends AnalysisRecord {
   readonly method: 'labels';
-  readonly minContactLength: number;
-  readonly summary: ScutoidSummary;
   readonly cells: MeasuredCellStatistics[];
 }
 

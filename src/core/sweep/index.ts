@@ -6,3 +6,5 @@ export * from './csv';
 export * from './resume';
 export * from './aggregate';
 export * from './runner';
+export * from './shard';
+export * from './flintstones';
