@@ -4,7 +4,6 @@ import type { AnalysisRecord, CellStatisticsRecord } from '../analysis/record';
  * shape of a simulated result's AnalysisRecord (src/run/result.ts; a test checks that the types
  * agree), so charts and exports read measured and simulated statistics alike.
  */
-import type { ScutoidSummary } from '../analysis';
 import type { PixelSizeSource } from './labelImage';
 import type { ModelComparison } from './compare';
 
