@@ -12,12 +12,14 @@ export interface CliOptions {
   allowLarge: boolean;
   /** Sweeps: the largest number of runs accepted. */
   maxRuns?: number;
+  /** Sweeps: "I/N" or "slurm" (parsed by parseShard). */
+  shard?: string;
 }
 
 export function parseArgs(args: string[], form: string, sweep = false): CliOptions {
   let input: string | undefined;
   let out: string | undefined;
-  const options = { force: false, allowNetwork: false, allowLarge: false, maxRuns: undefined as number | undefined };
+  const options = { force: false, allowNetwork: false, allowLarge: false, maxRuns: undefined as number | undefined, shard: undefined as string | undefined };
   const usage = `usage: tissue-sheet ${form}`;
   for (let i = 0; i < args.length; i++) {
     const arg = args[i];
@@ -36,7 +38,7 @@ export function parseArgs(args: string[], form: string, sweep = false): CliOptio
       const n = Number(v);
       if (!Number.isInteger(n) || n < 1) throw new InputError(`--max-runs: must be a positive integer (got ${JSON.stringify(v)})`);
       options.maxRuns = n;
-    } else if (arg.startsWith('-') && arg !== '-') throw new InputError(`unknown option ${name}; ${usage}`);
+    } else if (sweep && name === '--shard') options.shard = value(); else if (arg.startsWith('-') && arg !== '-') throw new InputError(`unknown option ${name}; ${usage}`);
     else if (input === undefined) input = arg;
     else throw new InputError(`unexpected argument ${arg}; ${usage}`);
   }

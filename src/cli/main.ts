@@ -9,6 +9,8 @@ const usage = `tissue-sheet ${version}
 Usage:
   tissue-sheet run CONFIG.json --out RESULT.json   compute one sheet (see docs/config.md)
   tissue-sheet sweep SWEEP.json --out DIR          a grid of runs; resumes when rerun (docs/sweep.md)
+  tissue-sheet sweep SWEEP.json --out DIR --shard I/N   the I-th of N shares of the grid (or --shard slurm)
+  tissue-sheet merge DIR... --out DIR              join shard directories into one sweep directory
   tissue-sheet --version | --help
 
 Options:
@@ -16,11 +18,14 @@ Options:
   --allow-network   fetch http(s) mesh and density sources (default: file paths only)
   --allow-large     lift the work and memory limits (GPU texture limits still apply)
   --max-runs N      sweep: accept up to N runs (default 100000)
+  --shard I/N       sweep: compute only shard I of N (1 <= I <= N); every run is in exactly
+                    one shard; "slurm" takes I and N from SLURM_ARRAY_TASK_ID/_MIN/_COUNT
 
 Progress goes to stderr. Exit codes:
   0    done
   1    unexpected failure (a bug: rerun with TISSUE_SHEET_DEBUG=1 and report it)
-  2    bad input: config, sweep spec, mesh, image, runs.csv or arguments
+  2    bad input: config, sweep spec, mesh, image, runs.csv, shards of different
+       specs or versions, or arguments
        (one line naming the field or file and what to change)
   3    environment: no usable GPU context or X display, output directory locked
        by another sweep, an output that cannot be written
@@ -31,7 +36,8 @@ type Command = (args: string[], signal: AbortSignal, log: (line: string) => void
 const commands: Record<string, Command> = {
   run: (args, signal, log) => runCommand(parseArgs(args, 'run CONFIG.json --out RESULT.json [--force] [--allow-network] [--allow-large]'), signal, log),
   sweep: (args, signal, log) =>
-    sweepCommand(parseArgs(args, 'sweep SWEEP.json --out DIR [--force] [--allow-network] [--allow-large] [--max-runs N]', true), signal, log),
+    sweepCommand(parseArgs(args, 'sweep SWEEP.json --out DIR [--force] [--allow-network] [--allow-large] [--max-runs N] [--shard I/N|slurm]', true), signal, log),
+  merge: async (args, _signal, log) => (await import('./merge')).mergeCommand(args, log),
   measure: async (args, _signal, log) => (await import('./measure')).measureCommand(args, log),
 };
 

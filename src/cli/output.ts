@@ -49,7 +49,7 @@ export function checkOutFile(out: string, inputs: readonly string[], force: bool
 }
 
 /** Files a sweep writes in its output directory. */
-export const SWEEP_FILES = ['sweep.json', 'runs.csv', 'aggregate.csv', 'aggregate.json', 'runs.rejected.csv'] as const;
+export const SWEEP_FILES = ['sweep.json', 'runs.csv', 'aggregate.csv', 'aggregate.json', 'flintstones.csv', 'runs.rejected.csv'] as const;
 
 /**
  * Refuses an --out directory that is a link or a file, holds an input, or is a non-empty

@@ -11,30 +11,12 @@
  * Rows are appended as runs finish; aggregate.csv/json and sweep.json are written atomically.
  * Ctrl-C stops after the current run (exit 130); rerunning the same command resumes.
  */
-import { execFileSync } from 'node:child_process';
 import { appendFileSync, existsSync, mkdirSync, readFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
-import { fileURLToPath } from 'node:url';
 import { ConfigError, validateAnyConfig, type AnyConfig } from '../core/config';
-import {
-  aggregateRows,
-  aggregateToCsv,
-  aggregateToJson,
-  baseColumns,
-  expandSweep,
-  planResume,
-  ResumeError,
-  runSweep,
-  summaryColumns,
-  sweepColumns,
-  SweepSpecError,
-  TEXT_COLUMNS,
-  validateSweepSpec,
-  variedFields,
-  type SweepRun,
-} from '../core/sweep';
+import { parseShard, planResume, ResumeError, runSweep, shardRuns, SweepSpecError, validateSweepSpec, type Shard } from '../core/sweep';
 import { createHeadlessContext } from '../node/headless';
-import { SheetRunner, seededKey, sweepSummary } from '../run/index';
+import { SheetRunner, sweepSummary } from '../run/index';
 import { version } from '../version';
 import type { CliOptions } from './args';
 import { InputError, InterruptedError } from './errors';
@@ -42,42 +24,48 @@ import { lockDirectory } from './lock';
 import { checkOutDir, writeFileAtomic } from './output';
 import { checkRunnable, computeBudget, loadInputs, readJsonFile, type RunInputs } from './prepare';
 import { Sources } from './sources';
-
-type Run = SweepRun<AnyConfig & Record<string, unknown>>;
+import { gitCommit, sweepLayout, writeAggregates, type Run } from './sweepFiles';
 
 export async function sweepCommand(options: CliOptions, signal: AbortSignal, log: (line: string) => void): Promise<void> {
   const started = new Date().toISOString();
+  const shard: Shard | null = options.shard === undefined ? null : parseShard(options.shard, process.env);
   const spec = validateSweepSpec(readJsonFile(options.input, 'sweep spec'), { maxRuns: options.maxRuns, raiseHint: 'pass --max-runs N to raise the limit' });
   checkOutDir(options.out, [options.input], options.force);
-  const fields = variedFields(spec);
-  const runs = expandSweep(spec);
 
-  // One check per grid point (realizations differ only in their seed).
-  const pointConfigs = new Map<string, AnyConfig>();
+  // Every grid point is checked, also in a shard: the header is the whole grid's, so shards
+  // merge, and a bad point is found by every shard before any run.
+  const layout = sweepLayout(spec, (run) => pointConfig(run, (c) => checkRunnable(c, computeBudget(Number.MAX_SAFE_INTEGER, options.allowLarge))));
+  const { fields, summary } = layout;
+  const runs = shard ? shardRuns(layout.runs, shard, layout.reuseGroup) : layout.ordered;
   const sources = new Sources({ baseDir: dirname(options.input), allowNetwork: options.allowNetwork });
   const inputs = new Map<string, RunInputs>();
-  for (const run of runs) {
-    if (pointConfigs.has(run.pointKey)) continue;
-    const config = pointConfig(run, (c) => checkRunnable(c, computeBudget(Number.MAX_SAFE_INTEGER, options.allowLarge)));
-    pointConfigs.set(run.pointKey, config);
-    inputs.set(run.pointKey, await atPoint(run, () => loadInputs(config, sources)));
+  for (const run of layout.runs) {
+    if (inputs.has(run.pointKey)) continue;
+    inputs.set(run.pointKey, await atPoint(run, () => loadInputs(validateAnyConfig(run.config), sources)));
   }
   const context = createHeadlessContext();
   let release = () => {};
   try {
-    // Every column a point may fill (the engine, and so the methods, can depend on the renderer).
-    const summary = sweepColumns(pointConfigs.values());
-    const header = [...baseColumns(fields), ...summary];
-    const filled = new Map([...pointConfigs].map(([key, config]) => [key, new Set(summaryColumns(config))]));
     const budget = computeBudget(context.capabilities.maxTextureSize, options.allowLarge);
-    for (const run of runs) if (run.realization === 0) pointConfig(run, (c) => checkRunnable(c, budget));
+    for (const run of layout.runs) if (run.realization === 0) pointConfig(run, (c) => checkRunnable(c, budget));
 
     mkdirSync(options.out, { recursive: true });
     release = lockDirectory(options.out, log);
     const record = (extra: Record<string, unknown>) =>
       writeFileAtomic(
         join(options.out, 'sweep.json'),
-        JSON.stringify({ software: { name: 'tissue-sheet', version, commit: gitCommit() }, renderer: context.capabilities.renderer, started, ...extra, spec }, null, 2) + '\n',
+        JSON.stringify(
+          {
+            software: { name: 'tissue-sheet', version, commit: gitCommit() },
+            renderer: context.capabilities.renderer,
+            started,
+            ...(shard ? { shard: { index: shard.index, count: shard.count, of: layout.runs.length } } : {}),
+            ...extra,
+            spec,
+          },
+          null,
+          2,
+        ) + '\n',
       );
     record({ runs: runs.length });
 
@@ -85,7 +73,7 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
     const existing = existsSync(csvPath) ? readFileSync(csvPath, 'utf8') : '';
     let plan;
     try {
-      plan = planResume(existing, { header, fields, runs, filledColumns: (run) => filled.get(run.pointKey)!, textColumns: TEXT_COLUMNS }, csvPath);
+      plan = planResume(existing, { ...layout.resume, runs }, csvPath);
     } catch (error) {
       if (error instanceof ResumeError) throw new InputError(error.message);
       throw error;
@@ -100,18 +88,13 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
     }
     if (plan.rewrite) writeFileAtomic(csvPath, plan.cleanText);
 
-    // Runs sharing a seeded surface (same config but for `sheet`) run consecutively: the runner
-    // relaxes it once and reuses it for every ratio or thickness.
-    const keyed = runs.map((run) => ({ run, key: seededKey(validateAnyConfig(run.config)) }));
-    const firstIndex = new Map<string, number>();
-    keyed.forEach(({ key }, index) => firstIndex.has(key) || firstIndex.set(key, index));
-    const ordered = keyed.sort((a, b) => firstIndex.get(a.key)! - firstIndex.get(b.key)! || a.run.index - b.run.index).map(({ run }) => run);
-
+    // Runs sharing a seeded surface (same config but for `sheet`) run consecutively (layout.ordered,
+    // and shards keep those groups whole): the runner relaxes it once for every ratio or thickness.
     const runner = new SheetRunner(context);
     let result;
     try {
       result = await runSweep({
-        runs: ordered,
+        runs,
         fields,
         summaryColumns: summary,
         existingCsv: plan.cleanText,
@@ -128,19 +111,10 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
       if (signal.aborted) throw new InterruptedError(`interrupted; finished runs are in ${csvPath}: rerun the same command to resume`);
       throw error;
     }
-    const numeric = summary.filter((c) => !TEXT_COLUMNS.has(c));
-    const aggregate = aggregateRows(result.rows, fields, numeric);
-    for (const point of aggregate.points) {
-      const partial = Object.entries(point.stats).filter(([, s]) => s.n > 0 && s.missing > 0);
-      for (const [column, s] of partial.slice(0, 3)) {
-        log(`warning: ${Object.entries(point.point).map(([f, v]) => `${f}=${v}`).join(' ') || 'all runs'}: ${column} has ${s.missing} of ${point.runs} values that are not finite numbers (not counted: n = ${s.n})`);
-      }
-    }
-    writeFileAtomic(join(options.out, 'aggregate.csv'), aggregateToCsv(aggregate));
-    writeFileAtomic(join(options.out, 'aggregate.json'), JSON.stringify(aggregateToJson(aggregate), null, 2) + '\n');
+    writeAggregates(options.out, result.rows, layout, log);
     record({ runs: runs.length, ended: new Date().toISOString(), computed: result.completed, resumed: result.skipped });
     if (result.aborted) throw new InterruptedError(`interrupted after ${result.completed} runs; rerun the same command to resume`);
-    log(`sweep: ${result.completed} runs computed, ${result.skipped} resumed -> ${options.out}`);
+    log(`sweep: ${result.completed} runs computed, ${result.skipped} resumed${shard ? ` (shard ${shard.index}/${shard.count}: ${runs.length} of ${layout.runs.length} runs)` : ''} -> ${options.out}`);
   } finally {
     release();
     context.dispose();
@@ -165,14 +139,5 @@ async function atPoint<T>(run: Run, load: () => Promise<T>): Promise<T> {
   } catch (error) {
     if (error instanceof InputError && run.pointKey) throw new InputError(`grid point ${run.pointKey}: ${error.message}`);
     throw error;
-  }
-}
-
-/** The git commit of the checkout the CLI runs from, when it is one. */
-function gitCommit(): string | null {
-  try {
-    return execFileSync('git', ['rev-parse', 'HEAD'], { cwd: dirname(fileURLToPath(import.meta.url)), encoding: 'utf8', timeout: 2000, stdio: ['ignore', 'pipe', 'ignore'] }).trim() || null;
-  } catch {
-    return null;
   }
 }

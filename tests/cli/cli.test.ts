@@ -163,7 +163,7 @@ describe('tissue-sheet sweep', () => {
       else expect(Number(cells[scutoids])).toBeGreaterThan(0);
     }
     const aggregate = JSON.parse(readFileSync(join(out, 'aggregate.json'), 'utf8'));
-    expect(aggregate[0].stats['exact.percentScutoids']).toMatchObject({ n: 2, missing: 0 });
+    expect(aggregate.points[0].stats['exact.percentScutoids']).toMatchObject({ n: 2, missing: 0 });
     const record = JSON.parse(readFileSync(join(out, 'sweep.json'), 'utf8'));
     expect(record).toMatchObject({ software: { name: 'tissue-sheet' }, runs: 4, computed: 4 });
     expect(typeof record.renderer).toBe('string');

@@ -13,7 +13,8 @@
  * `<method>.<surface>.polygons.<3..10+>`. A CLI test checks a real run's summary against this.
  */
 import { SIDE_CLASSES } from '../analysis';
-import { isClosedConfig, type AnyConfig } from '../config';
+import { isClosedConfig, layerStepOf, steppedOffsets, type AnyConfig } from '../config';
+import { stackOffsets } from '../sheetGeometry';
 
 export const TOP_COLUMNS = ['iterations', 'finalEnergy', 'centroidPath'] as const;
 /** Summary columns holding text; every other summary column holds a number ("NaN" included). */
@@ -46,9 +47,28 @@ export function runMethods(config: AnyConfig, renderer: RendererTraits = { softw
   return methods;
 }
 
+/**
+ * Layers between the seeded and the other surface: sheet.layers, or with a layer step (the lab
+ * protocol's every 0.25 of s on a tube) as many as the stack builders lay out
+ * (src/core/sheetGeometry.ts stackOffsets; closed stacks: every step µm of thickness).
+ */
+export function stackLayerCount(config: AnyConfig): number {
+  const step = layerStepOf(config.sheet);
+  if (step === null) return config.sheet.layers;
+  const { sheet, surface } = config;
+  if (isClosedConfig(config)) return steppedOffsets(sheet.thickness, step).length - 2;
+  const sign = sheet.direction === 'outward' ? 1 : -1;
+  let other = sign * sheet.thickness;
+  if (surface.kind === 'tube' && sheet.surfaceRatio !== null) {
+    other = (sign > 0 ? surface.radius * sheet.surfaceRatio : surface.radius / sheet.surfaceRatio) - surface.radius;
+  }
+  return stackOffsets(config, other).length - 2;
+}
+
 /** Surface names of the stack as they appear in column names (no spaces). */
 export function surfaceColumnNames(config: AnyConfig): string[] {
-  const { seeded, layers } = config.sheet;
+  const { seeded } = config.sheet;
+  const layers = stackLayerCount(config);
   const other = seeded === 'basal' ? 'apical' : 'basal';
   return [seeded, ...Array.from({ length: layers }, (_, k) => `layer${k + 1}`), other];
 }

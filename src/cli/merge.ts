@@ -1,0 +1,175 @@
+/**
+ * `tissue-sheet merge DIR... --out DIR`: joins sweep directories (shards of one sweep, or partial
+ * runs of it) into one sweep directory, written as the unsharded sweep writes it: runs.csv in the
+ * same order, aggregate.csv/json, flintstones.csv, sweep.json.
+ *
+ * - Every DIR must hold a sweep.json of ours; all must record the same spec and the same software
+ *   version (else exit 2 naming the first that differs): rows of another spec or version would
+ *   mix numbers that are not comparable.
+ * - Every runs.csv is validated as a resumed one is (header, key, seed, columns: resume.ts); bad
+ *   rows are reported by file and line and left out.
+ * - A run found in several DIRs (a shard given twice, a shard rerun) is counted once: the first
+ *   DIR's row is kept, with a warning when the rows differ.
+ * - Runs that no DIR holds are reported; the aggregate then covers the runs present (its n says
+ *   so), and `tissue-sheet sweep SPEC --out DIR` on the merged directory computes the rest.
+ */
+import { existsSync, lstatSync, mkdirSync, readFileSync, realpathSync } from 'node:fs';
+import { join, resolve } from 'node:path';
+import { formatCsvRow, planResume, ResumeError, sortRowsByRuns, validateSweepSpec } from '../core/sweep';
+import { version } from '../version';
+import { InputError } from './errors';
+import { lockDirectory } from './lock';
+import { checkOutDir, writeFileAtomic } from './output';
+import { readJsonFile } from './prepare';
+import { gitCommit, sweepLayout } from './sweepFiles';
+import { writeAggregates } from './sweepFiles';
+
+const USAGE = 'usage: tissue-sheet merge DIR... --out DIR [--force]';
+
+interface MergeOptions {
+  dirs: string[];
+  out: string;
+  force: boolean;
+}
+
+export function parseMergeArgs(args: string[]): MergeOptions {
+  const dirs: string[] = [];
+  let out: string | undefined;
+  let force = false;
+  for (let i = 0; i < args.length; i++) {
+    const arg = args[i];
+    const [name, inline] = arg.startsWith('--') && arg.includes('=') ? [arg.slice(0, arg.indexOf('=')), arg.slice(arg.indexOf('=') + 1)] : [arg, undefined];
+    if (name === '--out' || name === '-o') {
+      out = inline ?? args[++i];
+      if (out === undefined || out === '') throw new InputError(`--out needs a value; ${USAGE}`);
+    } else if (name === '--force') force = true;
+    else if (arg.startsWith('-') && arg !== '-') throw new InputError(`unknown option ${name}; ${USAGE}`);
+    else dirs.push(arg);
+  }
+  if (dirs.length === 0) throw new InputError(`missing sweep directories to merge; ${USAGE}`);
+  if (!out) throw new InputError(`missing --out; ${USAGE}`);
+  return { dirs, out, force };
+}
+
+interface SweepRecord {
+  software?: { name?: unknown; version?: unknown };
+  renderer?: unknown;
+  spec?: unknown;
+  shard?: { index: number; count: number };
+}
+
+/** Object keys sorted at every level: two specs are the same when these texts are. */
+function canonical(value: unknown): string {
+  return JSON.stringify(value, (_key, v) => (v && typeof v === 'object' && !Array.isArray(v) ? Object.fromEntries(Object.entries(v).sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0))) : v));
+}
+
+function readRecord(dir: string): SweepRecord {
+  let stat;
+  try {
+    stat = lstatSync(dir);
+  } catch {
+    throw new InputError(`${dir}: no such directory; give sweep output directories (each holding sweep.json)`);
+  }
+  if (!stat.isDirectory()) throw new InputError(`${dir}: is not a directory; give sweep output directories (each holding sweep.json)`);
+  const path = join(dir, 'sweep.json');
+  if (!existsSync(path)) throw new InputError(`${dir}: has no sweep.json; is it a tissue-sheet sweep directory?`);
+  const record = readJsonFile(path, 'sweep record') as SweepRecord;
+  if (typeof record !== 'object' || record === null || record.software?.name !== 'tissue-sheet' || typeof record.software.version !== 'string' || record.spec === undefined) {
+    throw new InputError(`${path}: not a tissue-sheet sweep record (no software name, version and spec)`);
+  }
+  return record;
+}
+
+export async function mergeCommand(args: string[], log: (line: string) => void): Promise<void> {
+  const started = new Date().toISOString();
+  const options = parseMergeArgs(args);
+  const real = (p: string) => (existsSync(p) ? realpathSync(p) : resolve(p));
+  for (const dir of options.dirs) {
+    if (real(dir) === real(options.out)) throw new InputError(`--out ${options.out}: is also an input (${dir}); merge into a new directory`);
+  }
+  const records = options.dirs.map((dir) => ({ dir, record: readRecord(dir) }));
+  const first = records[0];
+  for (const { dir, record } of records.slice(1)) {
+    if (record.software!.version !== first.record.software!.version) {
+      throw new InputError(`${join(dir, 'sweep.json')}: written by tissue-sheet ${String(record.software!.version)}, ${join(first.dir, 'sweep.json')} by ${String(first.record.software!.version)}; merge only shards of one version`);
+    }
+    if (canonical(record.spec) !== canonical(first.record.spec)) {
+      throw new InputError(`${join(dir, 'sweep.json')}: another spec than ${join(first.dir, 'sweep.json')}; merge only shards of one sweep spec`);
+    }
+  }
+  let spec;
+  try {
+    spec = validateSweepSpec(first.record.spec, { maxRuns: Number.MAX_SAFE_INTEGER });
+  } catch (error) {
+    throw new InputError(`${join(first.dir, 'sweep.json')}: its spec is not valid for tissue-sheet ${version} (${(error as Error).message})`);
+  }
+  const layout = sweepLayout(spec);
+  checkOutDir(options.out, options.dirs.map((d) => join(d, 'runs.csv')), options.force);
+
+  const t0 = performance.now();
+  const kept = new Map<string, { row: Record<string, string>; dir: string; text: string }>();
+  let repeated = 0;
+  let differing = 0;
+  let rejected = 0;
+  for (const { dir } of records) {
+    const path = join(dir, 'runs.csv');
+    if (!existsSync(path)) {
+      log(`warning: ${path}: missing; that directory adds no runs`);
+      continue;
+    }
+    let plan;
+    try {
+      plan = planResume(readFileSync(path, 'utf8'), layout.resume, path);
+    } catch (error) {
+      if (error instanceof ResumeError) throw new InputError(error.message);
+      throw error;
+    }
+    for (const bad of plan.rejected.slice(0, 20)) log(`warning: ${path}:${bad.line}: ${bad.reason}; left out`);
+    rejected += plan.rejected.length;
+    for (const row of plan.rows) {
+      const text = formatCsvRow(layout.header.map((h) => row[h]));
+      const seen = kept.get(row.key);
+      if (!seen) {
+        kept.set(row.key, { row, dir, text });
+        continue;
+      }
+      repeated++;
+      if (seen.text !== text) {
+        differing++;
+        if (differing <= 5) log(`warning: run ${row.key} is in ${seen.dir} and ${dir} with different values; keeping ${seen.dir}'s`);
+      }
+    }
+  }
+  const rows = sortRowsByRuns([...kept.values()].map((k) => k.row), layout.ordered);
+  const missing = layout.runs.filter((run) => !kept.has(run.key));
+
+  mkdirSync(options.out, { recursive: true });
+  const release = lockDirectory(options.out, log);
+  try {
+    writeFileAtomic(join(options.out, 'runs.csv'), formatCsvRow(layout.header) + rows.map((r) => formatCsvRow(layout.header.map((h) => r[h]))).join(''));
+    writeAggregates(options.out, rows, layout, log);
+    const renderers = [...new Set(records.map((r) => String(r.record.renderer)))];
+    writeFileAtomic(
+      join(options.out, 'sweep.json'),
+      JSON.stringify(
+        {
+          software: { name: 'tissue-sheet', version: first.record.software!.version, commit: gitCommit() },
+          renderer: renderers.length === 1 ? renderers[0] : renderers,
+          started,
+          runs: layout.runs.length,
+          ended: new Date().toISOString(),
+          merged: { from: options.dirs, rows: rows.length, missing: missing.length, repeated, differing, rejected, mergedBy: version },
+          spec: first.record.spec,
+        },
+        null,
+        2,
+      ) + '\n',
+    );
+  } finally {
+    release();
+  }
+  if (missing.length > 0) {
+    log(`warning: ${missing.length} of ${layout.runs.length} runs are in none of the directories (e.g. ${missing[0].key}); the aggregate covers the ${rows.length} present. Run the missing shards and merge again, or run \`tissue-sheet sweep SPEC --out ${options.out}\` to compute them`);
+  }
+  log(`merge: ${rows.length} runs from ${options.dirs.length} directories (${repeated} repeated, ${rejected} bad rows left out) in ${((performance.now() - t0) / 1000).toFixed(2)} s -> ${options.out}`);
+}

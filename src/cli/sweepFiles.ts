@@ -1,0 +1,114 @@
+/**
+ * What `sweep` and `merge` share: the layout of a spec's runs.csv (header and the columns each
+ * grid point fills), the order rows are written in, and the aggregate files (aggregate.csv,
+ * aggregate.json with the Flintstones fits, flintstones.csv), so a merged directory is written
+ * exactly as the unsharded sweep's.
+ */
+import { execFileSync } from 'node:child_process';
+import { dirname, join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { validateAnyConfig, type AnyConfig } from '../core/config';
+import {
+  aggregateRows,
+  aggregateToCsv,
+  aggregateToJson,
+  baseColumns,
+  expandSweep,
+  flintstonesToCsv,
+  orderForReuse,
+  sortRowsByRuns,
+  summaryColumns,
+  sweepColumns,
+  sweepFlintstones,
+  TEXT_COLUMNS,
+  variedFields,
+  type ResumeSpec,
+  type SweepRun,
+  type ValidSweepSpec,
+} from '../core/sweep';
+import { seededKey } from '../run/index';
+import { writeFileAtomic } from './output';
+
+export type Run = SweepRun<AnyConfig & Record<string, unknown>>;
+
+export interface SweepLayout {
+  readonly fields: string[];
+  /** Every run of the spec, in grid order. */
+  readonly runs: Run[];
+  /** Every run in the order rows are written (runs sharing a seeded surface together). */
+  readonly ordered: Run[];
+  /** Summary columns of runs.csv (the union over the grid). */
+  readonly summary: string[];
+  readonly header: string[];
+  /** Runs with the same group share a relaxed seeded surface (SheetRunner reuses it). */
+  readonly reuseGroup: (run: Run) => string;
+  readonly resume: ResumeSpec<AnyConfig & Record<string, unknown>>;
+}
+
+/**
+ * The layout of a spec's sweep. `pointConfig` validates (and may check) one grid point's config;
+ * it is called once per grid point, in grid order.
+ */
+export function sweepLayout(spec: ValidSweepSpec, pointConfig: (run: Run) => AnyConfig = (run) => validateAnyConfig(run.config)): SweepLayout {
+  const fields = variedFields(spec);
+  const runs = expandSweep(spec) as Run[];
+  const configs = new Map<string, AnyConfig>();
+  for (const run of runs) if (!configs.has(run.pointKey)) configs.set(run.pointKey, pointConfig(run));
+  // Every column a point may fill (the engine, and so the methods, can depend on the renderer).
+  const summary = sweepColumns(configs.values());
+  const header = [...baseColumns(fields), ...summary];
+  const filled = new Map([...configs].map(([key, config]) => [key, new Set(summaryColumns(config))]));
+  // Seeded keys once per grid point and realization seed, not once per run.
+  const keys = new Map<string, string>();
+  const reuseGroup = (run: Run): string => {
+    const id = `${run.pointKey}#${run.seed}`;
+    let key = keys.get(id);
+    if (key === undefined) keys.set(id, (key = seededKey({ ...configs.get(run.pointKey)!, seed: run.seed })));
+    return key;
+  };
+  const ordered = orderForReuse(runs, reuseGroup);
+  return {
+    fields,
+    runs,
+    ordered,
+    summary,
+    header,
+    reuseGroup,
+    resume: { header, fields, runs, filledColumns: (run) => filled.get(run.pointKey)!, textColumns: TEXT_COLUMNS },
+  };
+}
+
+/**
+ * Writes aggregate.csv, aggregate.json ({ points, flintstones }) and, when some group can be
+ * fitted, flintstones.csv. Rows are taken in write order first, so the aggregate does not depend
+ * on the order runs finished or shards were merged in.
+ */
+export function writeAggregates(out: string, rows: readonly Record<string, string>[], layout: SweepLayout, log: (line: string) => void): { flintstones: number } {
+  const sorted = sortRowsByRuns(rows, layout.ordered);
+  const numeric = layout.summary.filter((c) => !TEXT_COLUMNS.has(c));
+  const aggregate = aggregateRows(sorted, layout.fields, numeric);
+  for (const point of aggregate.points) {
+    const partial = Object.entries(point.stats).filter(([, s]) => s.n > 0 && s.missing > 0);
+    for (const [column, s] of partial.slice(0, 3)) {
+      log(`warning: ${Object.entries(point.point).map(([f, v]) => `${f}=${v}`).join(' ') || 'all runs'}: ${column} has ${s.missing} of ${point.runs} values that are not finite numbers (not counted: n = ${s.n})`);
+    }
+  }
+  const fits = sweepFlintstones(sorted, layout.runs, layout.fields);
+  const fitted = fits.filter((f) => f.parameters !== null);
+  for (const fit of fits.filter((f) => f.illConditioned).slice(0, 3)) {
+    log(`warning: Flintstones law, Voronoi ${fit.voronoi}${Object.entries(fit.group).map(([f, v]) => ` ${f}=${v}`).join('')}: ${fit.parameters ? 'ill-conditioned' : 'not fitted'} (${fit.note})`);
+  }
+  writeFileAtomic(join(out, 'aggregate.csv'), aggregateToCsv(aggregate));
+  writeFileAtomic(join(out, 'aggregate.json'), JSON.stringify({ points: aggregateToJson(aggregate), flintstones: fits }, null, 2) + '\n');
+  if (fitted.length > 0) writeFileAtomic(join(out, 'flintstones.csv'), flintstonesToCsv(fits, layout.fields));
+  return { flintstones: fitted.length };
+}
+
+/** The git commit of the checkout the CLI runs from, when it is one. */
+export function gitCommit(): string | null {
+  try {
+    return execFileSync('git', ['rev-parse', 'HEAD'], { cwd: dirname(fileURLToPath(import.meta.url)), encoding: 'utf8', timeout: 2000, stdio: ['ignore', 'pipe', 'ignore'] }).trim() || null;
+  } catch {
+    return null;
+  }
+}
