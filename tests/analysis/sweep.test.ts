@@ -14,8 +14,18 @@ import {
   remainingRuns,
   runSweep,
   variedFields,
+  orderForReuse,
+  parseShard,
+  shardRuns,
+  sortRowsByRuns,
+  sweepFlintstones,
+  flintstonesToCsv,
+  SweepSpecError,
+  type SweepRun,
   type SweepSpec,
 } from '../../src/core/sweep';
+import { anchoredB, flintstonesLaw } from '../../src/core/analysis/flintstones';
+import { Random } from '../../src/core/random';
 
 const spec: SweepSpec = {
   base: { seed: 42, geometry: { kind: 'tube', ratio: 1 }, lloyd: { iterations: 0 }, sites: 200 },
@@ -194,5 +204,150 @@ describe('runSweep', () => {
     expect(readCsvTable(file).rows.length).toBe(8);
     const other = expandSweep({ base: { seed: 2, s: 1 }, vary: { s: [1, 2, 3], label: ['a,b', 'c'] }, realizations: 2 });
     await expect(runSweep({ runs: other, fields, runner, existingCsv: file, append: () => {} })).rejects.toThrow(/seed/);
+  });
+});
+
+describe('shards', () => {
+  const grid: SweepSpec = {
+    base: { seed: 1 },
+    vary: { 'lloyd.maxIterations': [0, 1, 2], 'sheet.surfaceRatio': [1, 2, 3, 4] },
+    realizations: 5,
+    seedMode: 'per-realization',
+  };
+  const runs = expandSweep(grid);
+  // Runs sharing a seeded surface: same config but for sheet.*, same seed.
+  const group = (run: SweepRun) => JSON.stringify([run.point['lloyd.maxIterations'], run.seed]);
+
+  it('every run is in exactly one shard, groups whole, shards balanced within one group', () => {
+    for (const count of [1, 2, 3, 4, 7, 15, 16, 100]) {
+      const shards = Array.from({ length: count }, (_, i) => shardRuns(runs, { index: i + 1, count }, group));
+      const keys = shards.flatMap((s) => s.map((r) => r.key));
+      expect(new Set(keys).size, `N=${count}`).toBe(keys.length);
+      expect([...keys].sort()).toEqual(runs.map((r) => r.key).sort());
+      const home = new Map<string, number>();
+      shards.forEach((s, i) => s.forEach((r) => expect(home.get(group(r)) ?? i).toBe(i) || home.set(group(r), i)));
+      const groupsPer = shards.map((s) => new Set(s.map(group)).size);
+      expect(Math.max(...groupsPer) - Math.min(...groupsPer)).toBeLessThanOrEqual(1);
+    }
+  });
+
+  it('keeps the runs of a group consecutive, and deals every Voronoi k to every shard', () => {
+    const shards = [1, 2, 3, 4].map((index) => shardRuns(runs, { index, count: 4 }, group));
+    for (const shard of shards) {
+      const seen: string[] = [];
+      for (const run of shard) if (seen[seen.length - 1] !== group(run)) seen.push(group(run));
+      expect(new Set(seen).size).toBe(seen.length); // no group resumes after another
+      expect(new Set(shard.map((r) => r.point['lloyd.maxIterations']))).toEqual(new Set([0, 1, 2]));
+    }
+  });
+
+  it('with one run per group, shard I of N is every N-th run of the reuse order', () => {
+    const ordered = orderForReuse(runs, (r) => r.key);
+    expect(ordered.map((r) => r.key)).toEqual(runs.map((r) => r.key));
+    const third = shardRuns(runs, { index: 3, count: 5 }, (r) => r.key);
+    expect(third.map((r) => r.key)).toEqual(runs.filter((_, k) => k % 5 === 2).map((r) => r.key));
+  });
+
+  it('parses I/N and SLURM array variables, refusing the rest with one line naming --shard', () => {
+    expect(parseShard('2/4')).toEqual({ index: 2, count: 4 });
+    expect(parseShard('slurm', { SLURM_ARRAY_TASK_ID: '7', SLURM_ARRAY_TASK_MIN: '5', SLURM_ARRAY_TASK_COUNT: '4' })).toEqual({ index: 3, count: 4 });
+    expect(parseShard('slurm', { SLURM_ARRAY_TASK_ID: '0', SLURM_ARRAY_TASK_MIN: '0', SLURM_ARRAY_TASK_COUNT: '1' })).toEqual({ index: 1, count: 1 });
+    for (const [text, env, pattern] of [
+      ['0/4', {}, /I must be 1 to 4/],
+      ['5/4', {}, /I must be 1 to 4/],
+      ['1/0', {}, /N must be/],
+      ['a/b', {}, /not I\/N/],
+      ['2', {}, /not I\/N/],
+      ['slurm', {}, /SLURM_ARRAY_TASK_ID is not set/],
+      ['slurm', { SLURM_ARRAY_TASK_ID: '9', SLURM_ARRAY_TASK_MIN: '1', SLURM_ARRAY_TASK_COUNT: '4' }, /not one of 4 consecutive tasks/],
+      ['slurm', { SLURM_ARRAY_TASK_ID: 'x', SLURM_ARRAY_TASK_MIN: '1', SLURM_ARRAY_TASK_COUNT: '4' }, /SLURM_ARRAY_TASK_ID="x"/],
+    ] as const) {
+      let error: unknown;
+      try {
+        parseShard(text, env);
+      } catch (e) {
+        error = e;
+      }
+      expect(error, text).toBeInstanceOf(SweepSpecError);
+      expect((error as Error).message).toMatch(/^--shard/);
+      expect((error as Error).message).toMatch(pattern);
+      expect((error as Error).message).not.toMatch(/\n/);
+    }
+  });
+
+  it('sortRowsByRuns puts rows in run order whatever order they came in', () => {
+    const ordered = orderForReuse(runs, group);
+    const rows = [...ordered].reverse().map((r) => ({ key: r.key }));
+    expect(sortRowsByRuns(rows, ordered).map((r) => r.key)).toEqual(ordered.map((r) => r.key));
+  });
+});
+
+describe('Flintstones law in the sweep aggregate', () => {
+  const RATIOS = [1, 1.25, 1.5, 1.75, 2, 2.5, 3, 4, 5, 6, 8, 10];
+  const truths: Record<number, { nMax: number; c: number; d: number }> = { 0: { nMax: 8, c: 2.5, d: -1.2 }, 4: { nMax: 7.5, c: 2, d: -1.5 } };
+  const tube = { surface: { kind: 'tube', radius: 81.49, length: 4096 }, cells: 200, minSpacing: 5, sheet: { protocol: 'lab' } };
+
+  /** A sweep's runs and rows whose n3D follows the law with the given truth per Voronoi k, plus noise. */
+  function syntheticSweep(ratios: number[], noise: number, metric = 'exact.meanNeighbours3D', extra: Record<string, unknown[]> = {}) {
+    const runs = expandSweep({ base: tube, vary: { ...extra, 'lloyd.maxIterations': [0, 4], 'sheet.surfaceRatio': ratios }, realizations: 6, seed: 3 });
+    const fields = Object.keys({ ...extra, 'lloyd.maxIterations': 0, 'sheet.surfaceRatio': 0 });
+    const random = new Random(11);
+    const rows = runs.map((run) => {
+      const truth = truths[run.point['lloyd.maxIterations'] as number];
+      const p = { ...truth, b: anchoredB(truth.nMax, truth.c, truth.d, 6) };
+      const u = Math.max(random.next(), 1e-12);
+      const n = flintstonesLaw(run.point['sheet.surfaceRatio'] as number, p) + noise * Math.sqrt(-2 * Math.log(u)) * Math.cos(2 * Math.PI * random.next());
+      const row: Record<string, string> = { key: run.key, realization: String(run.realization), seed: String(run.seed), [metric]: String(n) };
+      for (const f of fields) row[f] = String(run.point[f]);
+      return row;
+    });
+    return { runs, rows, fields };
+  }
+
+  it('recovers the parameters of each Voronoi k within 3 standard errors from a synthetic sweep', () => {
+    const { runs, rows, fields } = syntheticSweep(RATIOS, 0.05);
+    const fits = sweepFlintstones(rows, runs, fields);
+    expect(fits.map((f) => f.voronoi)).toEqual([1, 5]);
+    for (const fit of fits) {
+      const truth = truths[fit.voronoi - 1];
+      expect(fit.metric).toBe('exact.meanNeighbours3D');
+      expect(fit.points).toBe(RATIOS.length * 6);
+      expect(fit.ratios).toBe(RATIOS.length);
+      expect(fit.illConditioned, fit.note).toBe(false);
+      expect(fit.rSquared!).toBeGreaterThan(0.9);
+      for (const name of ['nMax', 'c', 'd'] as const) {
+        const se = fit.standardErrors![name]!;
+        expect(se).toBeGreaterThan(0);
+        expect(Math.abs(fit.parameters![name] - truth[name]), `Voronoi ${fit.voronoi} ${name}`).toBeLessThan(3 * se + 1e-9);
+      }
+      // the anchor holds: n3D(1) = 6
+      expect(flintstonesLaw(1, fit.parameters!)).toBeCloseTo(6, 9);
+    }
+  });
+
+  it('fits each combination of the other varied fields apart, and uses labels where there is no exact value', () => {
+    const { runs, rows, fields } = syntheticSweep(RATIOS, 0.05, 'labels.meanNeighbours3D', { cells: [100, 200] });
+    const fits = sweepFlintstones(rows, runs, fields);
+    expect(fits.map((f) => [f.group.cells, f.voronoi])).toEqual([['100', 1], ['100', 5], ['200', 1], ['200', 5]]);
+    for (const fit of fits) expect(fit.metric).toBe('labels.meanNeighbours3D');
+    const csv = readCsvTable(flintstonesToCsv(fits, fields));
+    expect(csv.header.slice(0, 3)).toEqual(['cells', 'voronoi', 'metric']);
+    expect(csv.rows.map((r) => r.illConditioned)).toEqual(['false', 'false', 'false', 'false']);
+    expect(Number(csv.rows[1]['nMax'])).toBeCloseTo(fits[1].parameters!.nMax, 12);
+  });
+
+  it('flags a fit the data cannot pin down, and makes none from too few ratios', () => {
+    const narrow = syntheticSweep([1, 1.25, 1.5, 1.75], 0.3);
+    const fits = sweepFlintstones(narrow.rows, narrow.runs, narrow.fields);
+    expect(fits.length).toBe(2);
+    for (const fit of fits) {
+      expect(fit.illConditioned).toBe(true);
+      expect(fit.note).toMatch(/standard error|converge/);
+    }
+    const few = syntheticSweep([1, 2, 4], 0.05);
+    for (const fit of sweepFlintstones(few.rows, few.runs, few.fields)) {
+      expect(fit.parameters).toBeNull();
+      expect(fit.note).toMatch(/3 distinct surface ratios/);
+    }
   });
 });
