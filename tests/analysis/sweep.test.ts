@@ -225,7 +225,12 @@ describe('shards', () => {
       expect(new Set(keys).size, `N=${count}`).toBe(keys.length);
       expect([...keys].sort()).toEqual(runs.map((r) => r.key).sort());
       const home = new Map<string, number>();
-      shards.forEach((s, i) => s.forEach((r) => expect(home.get(group(r)) ?? i).toBe(i) || home.set(group(r), i)));
+      shards.forEach((s, i) =>
+        s.forEach((r) => {
+          expect(home.get(group(r)) ?? i).toBe(i);
+          home.set(group(r), i);
+        }),
+      );
       const groupsPer = shards.map((s) => new Set(s.map(group)).size);
       expect(Math.max(...groupsPer) - Math.min(...groupsPer)).toBeLessThanOrEqual(1);
     }
