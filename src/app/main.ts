@@ -16,6 +16,7 @@ import { viewStack, type ViewStack } from '../view/stack';
 import { Charts } from './panels/charts';
 import { ConfigControls } from './panels/controls';
 import { bindExports } from './panels/exports';
+import { rerunNote, type OpenedFile } from './model/project';
 import { renderResults } from './panels/results';
 import { SweepPanel } from './panels/sweepPanel';
 import { mountLloydMovie } from './panels/lloydMovie';
@@ -95,7 +96,31 @@ bindExports($('.exports'), {
   sweepCsv: () => sweep.csv,
   viewPng: () => viewPanel.toBlob(),
   onError: showError,
+  view: () => viewPanel.view,
+  viewState: () => viewPanel.viewState(),
+  onOpen: (file, name) => openInPage(file, name),
 });
+
+/** Shows an opened project (exactly as saved) or result JSON (drawn from its cells, or re-run). */
+async function openInPage(file: OpenedFile, name: string): Promise<void> {
+  runner.cancel();
+  clearError();
+  const config = file.kind === 'result-rerun' ? file.result.config : file.output.result.config;
+  controls.setConfig(config);
+  if (file.kind === 'result-rerun') {
+    await run(config);
+    statusLine.textContent = `Opened ${name}: ${rerunNote(file.result, stack)}`;
+    return;
+  }
+  await show(file.output);
+  if (file.kind === 'project' && stack) viewPanel.restore(stack, file.view);
+  saveConfig(config, linkConfig);
+  statusLine.textContent =
+    file.kind === 'project'
+      ? `Opened project ${name}: the result and view as saved; nothing was run.`
+      : `Opened ${name}: statistics from the file; the pictures are the exact cells of its sites (nothing was run).`;
+  setState('done');
+}
 
 /** Lets the browser handle input between the parts of drawing a result (no task over ~50 ms). */
 const nextTask = () => new Promise<void>((resolve) => setTimeout(resolve, 0));

@@ -11,11 +11,25 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import type { ViewStack, ViewSurface } from './stack';
 import { closedSurfaceMesh } from './cubeAtlasMesh';
-import { paintSurface, RGB, sideColorIndex } from './sideColors';
+import { RGB, SELECTED_RGB, sideColorIndex } from './sideColors';
+import { drawExactCells, exactScale } from './exactCells';
 import { surfaceGeometry } from './surfaceGeometry';
 
 /** A fixed light (world space, from the default camera's side) baked into closed surfaces' colours. */
 const LIGHT = new THREE.Vector3(0.35, 0.6, 0.75).normalize();
+/**
+ * Shading of closed surfaces: 1 (the legend's colour exactly) wherever the surface faces the
+ * light by at least LIT_FROM (n·l), darker only towards the back, down to SHADE_MIN at n·l = -1,
+ * so the shape reads without changing the colours a reader matches to the legend.
+ */
+const LIT_FROM = 0.2;
+const SHADE_MIN = 0.7;
+
+/** A picked cell: which surface of the stack it was picked on, and its id. */
+export interface PickedCell {
+  surface: number;
+  cell: number;
+}
 
 export interface SheetViewOptions {
   highlightScutoids?: boolean;
@@ -43,6 +57,8 @@ export class SheetView3D {
   /** Length over diameter of a tube (1 otherwise): long tubes get an oblique view. */
   private elongation = 1;
   private highlight: boolean;
+  private selected = -1;
+  private readonly raycaster = new THREE.Raycaster();
   private stack: ViewStack | null = null;
   private frame = 0;
   private readonly resizeObserver: ResizeObserver;
@@ -58,6 +74,9 @@ export class SheetView3D {
     this.group.add(this.inner);
     this.controls = new OrbitControls(this.camera, canvas);
     this.controls.addEventListener('change', () => this.requestRender());
+    // Arrow keys pan when the canvas has the focus (it is focusable: tabindex 0).
+    if (!canvas.hasAttribute('tabindex')) canvas.tabIndex = 0;
+    this.controls.listenToKeyEvents(canvas as unknown as HTMLElement);
     this.resizeObserver = new ResizeObserver(() => this.resize());
     this.resizeObserver.observe(canvas);
     this.resize();
@@ -82,6 +101,42 @@ export class SheetView3D {
     this.requestRender();
   }
 
+  /** Draws cell `id` white on every surface (-1: none). */
+  setSelected(id: number): void {
+    if (id === this.selected) return;
+    this.selected = id;
+    if (this.stack) this.rebuild();
+    this.requestRender();
+  }
+
+  /** The cell under a point of the canvas (client pixels), on the nearest visible surface. */
+  pickCell(clientX: number, clientY: number): PickedCell | null {
+    const stack = this.stack;
+    if (!stack) return null;
+    const box = this.canvas.getBoundingClientRect();
+    const ndc = new THREE.Vector2(((clientX - box.left) / box.width) * 2 - 1, -((clientY - box.top) / box.height) * 2 + 1);
+    this.raycaster.setFromCamera(ndc, this.camera);
+    const hits = this.raycaster.intersectObjects(this.meshes.filter((m) => m.visible), false);
+    for (const hit of hits) {
+      // The cut removes what lies on the far side of its plane: skip those hits.
+      if (this.cutFraction > 0 && this.clip.distanceToPoint(hit.point) < 0) continue;
+      const index = this.meshes.indexOf(hit.object as THREE.Mesh);
+      const surface = stack.surfaces[index];
+      if (!surface) continue;
+      let cell = -1;
+      const cells = (hit.object as THREE.Mesh).geometry.userData.cells as Int32Array | undefined;
+      if (cells && hit.face) cell = cells[hit.face.a];
+      else if (hit.uv) {
+        const { width, height } = surface.image.grid;
+        const x = Math.min(width - 1, Math.max(0, Math.floor(hit.uv.x * width)));
+        const y = Math.min(height - 1, Math.max(0, Math.floor(hit.uv.y * height)));
+        cell = surface.image.labels[y * width + x];
+      }
+      if (cell >= 0) return { surface: index, cell };
+    }
+    return null;
+  }
+
   /** Visibility of surface `index` of the stack. */
   setSurfaceVisible(index: number, visible: boolean): void {
     const mesh = this.meshes[index];
@@ -98,6 +153,26 @@ export class SheetView3D {
     this.cutFraction = Math.max(0, Math.min(1, fraction));
     this.updateClip();
     this.requestRender();
+  }
+
+  /** The camera's position and orbit target (a project file keeps them). */
+  cameraState(): { position: [number, number, number]; target: [number, number, number] } {
+    const p = this.camera.position;
+    const t = this.controls.target;
+    return { position: [p.x, p.y, p.z], target: [t.x, t.y, t.z] };
+  }
+
+  /** Puts the camera back where `cameraState` found it. */
+  setCameraState(state: { position: readonly number[]; target: readonly number[] }): void {
+    this.camera.position.set(state.position[0], state.position[1], state.position[2]);
+    this.controls.target.set(state.target[0], state.target[1], state.target[2]);
+    this.controls.update();
+    this.updateClip();
+    this.requestRender();
+  }
+
+  get cut(): number {
+    return this.cutFraction;
   }
 
   resetCamera(): void {
@@ -126,6 +201,31 @@ export class SheetView3D {
     return new Promise((resolve, reject) =>
       this.canvas.toBlob((blob) => (blob ? resolve(blob) : reject(new Error('the view could not be encoded'))), type),
     );
+  }
+
+  /**
+   * The view rendered at `width` x `height` pixels (a figure at a chosen DPI), copied to a new
+   * 2D canvas; the on-screen size is restored after. Same camera, so the picture is the view.
+   */
+  renderAt(width: number, height: number): HTMLCanvasElement {
+    const size = this.renderer.getSize(new THREE.Vector2());
+    const aspect = this.camera.aspect;
+    try {
+      this.renderer.setSize(width, height, false);
+      this.camera.aspect = width / height;
+      this.camera.updateProjectionMatrix();
+      this.renderNow();
+      const out = document.createElement('canvas');
+      out.width = width;
+      out.height = height;
+      out.getContext('2d')!.drawImage(this.canvas, 0, 0);
+      return out;
+    } finally {
+      this.renderer.setSize(size.x, size.y, false);
+      this.camera.aspect = aspect;
+      this.camera.updateProjectionMatrix();
+      this.renderNow();
+    }
   }
 
   dispose(): void {
@@ -169,11 +269,20 @@ export class SheetView3D {
         this.inner.add(mesh);
         continue;
       }
-      const { width, height } = surface.image.grid;
-      const rgba = paintSurface(surface, { highlightScutoids: this.highlight, valid: stack.valid, scutoid: stack.scutoid });
-      const texture = new THREE.DataTexture(rgba, width, height, THREE.RGBAFormat, THREE.UnsignedByteType);
-      texture.magFilter = THREE.NearestFilter;
-      texture.minFilter = THREE.LinearFilter;
+      // The exact cells drawn on a canvas: smooth borders, not the label image's texels.
+      const canvas = document.createElement('canvas');
+      drawExactCells(canvas, surface, {
+        scale: exactScale(surface),
+        highlightScutoids: this.highlight,
+        valid: stack.valid,
+        scutoid: stack.scutoid,
+        selected: this.selected,
+      });
+      const texture = new THREE.CanvasTexture(canvas);
+      texture.flipY = false;
+      texture.magFilter = THREE.LinearFilter;
+      texture.minFilter = THREE.LinearMipmapLinearFilter;
+      texture.anisotropy = Math.min(8, this.renderer.capabilities.getMaxAnisotropy());
       texture.colorSpace = THREE.SRGBColorSpace;
       texture.wrapS = config.surface.kind === 'tube' ? THREE.RepeatWrapping : THREE.ClampToEdgeWrapping;
       texture.needsUpdate = true;
@@ -219,7 +328,8 @@ export class SheetView3D {
       const id = cells[v];
       let [r, g, b] = id >= 0 ? RGB[sideColorIndex(surface.sides[id] ?? 0)] : [40, 40, 40];
       const x = positions[3 * v], y = positions[3 * v + 1], z = positions[3 * v + 2];
-      if (this.highlight && id >= 0 && stack.scutoid[id]) {
+      if (id >= 0 && id === this.selected) [r, g, b] = SELECTED_RGB;
+      else if (this.highlight && id >= 0 && stack.scutoid[id]) {
         const phase = (x + y + z) / period;
         if (phase - Math.floor(phase) < 0.4) r = g = b = 20;
       }
@@ -228,7 +338,8 @@ export class SheetView3D {
         g *= 0.25;
         b *= 0.25;
       }
-      const light = 0.6 + 0.4 * Math.max(0, normals[3 * v] * LIGHT.x + normals[3 * v + 1] * LIGHT.y + normals[3 * v + 2] * LIGHT.z);
+      const facing = normals[3 * v] * LIGHT.x + normals[3 * v + 1] * LIGHT.y + normals[3 * v + 2] * LIGHT.z;
+      const light = facing >= LIT_FROM ? 1 : SHADE_MIN + ((1 - SHADE_MIN) * (facing + 1)) / (LIT_FROM + 1);
       color.setRGB((r / 255) * light, (g / 255) * light, (b / 255) * light, THREE.SRGBColorSpace);
       colors[3 * v] = color.r;
       colors[3 * v + 1] = color.g;
@@ -238,6 +349,8 @@ export class SheetView3D {
     geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
     geometry.setAttribute('color', new THREE.BufferAttribute(colors, 3));
     geometry.setIndex(new THREE.BufferAttribute(built.indices, 1));
+    // Picking reads a hit triangle's first vertex's cell.
+    geometry.userData.cells = cells;
     return geometry;
   }
 

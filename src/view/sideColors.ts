@@ -23,7 +23,12 @@ export interface PaintOptions {
   /** 1 for cells counted in the statistics; others are faded. */
   valid?: Uint8Array;
   scutoid?: Uint8Array;
+  /** A picked cell, drawn white (its border stays dark) on every surface; -1 or absent: none. */
+  selected?: number;
 }
+
+/** Fill of a picked cell: white is in no side class, so it cannot be read as one. */
+export const SELECTED_RGB = [255, 255, 255] as const;
 
 /**
  * RGBA bytes of a surface's label image, row-major with row 0 = y 0 (the DataTexture and
@@ -48,7 +53,8 @@ export function paintSurface(surface: ViewSurface, options: PaintOptions = {}): 
           g = (g + 2 * 235) / 3;
           b = (b + 2 * 235) / 3;
         }
-        if (highlight && options.scutoid?.[id] && (x + y) % stripe === 0) {
+        if (id === options.selected) [r, g, b] = SELECTED_RGB;
+        else if (highlight && options.scutoid?.[id] && (x + y) % stripe === 0) {
           r = 20;
           g = 20;
           b = 20;

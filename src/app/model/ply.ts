@@ -10,7 +10,7 @@ import { isClosedConfig } from '../../core/config';
  * 3D view draws (a vertex per texel of its cube-map geometry image), each vertex carrying the
  * data of its texel's cell.
  */
-import { exactVoronoi } from '../../core/exact';
+import { surfacePolygons } from '../../view/cellPolygons';
 import { embed } from '../../core/surface';
 import { closedSurfaceMesh } from '../../view/cubeAtlasMesh';
 import { provenanceLines } from './cellRows';
@@ -23,12 +23,7 @@ export function cellsPly(stack: ViewStack): string {
   const faces: string[] = [];
   for (const surface of stack.surfaces) {
     const { grid } = surface.image;
-    const sites = new Float64Array(surface.cells.length * 2);
-    surface.cells.forEach((cell, i) => {
-      sites[2 * i] = cell.surface[0] / grid.texelX;
-      sites[2 * i + 1] = cell.surface[1] / grid.texelY;
-    });
-    const voronoi = exactVoronoi(grid, sites);
+    const voronoi = surfacePolygons(surface);
     for (const cell of voronoi.cells) {
       const polygon = cell.polygon;
       const count = polygon.length / 2;

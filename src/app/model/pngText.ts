@@ -87,3 +87,40 @@ export function readPngText(png: Uint8Array): Record<string, string> {
   }
   return out;
 }
+
+/**
+ * `png` with a pHYs chunk (PNG 1.2 §4.2.4.3) after IHDR saying `dpi` dots per inch, stored as
+ * pixels per metre (unit 1), so a journal's tools print it at the chosen size. Replaces none:
+ * call it on a PNG without pHYs (canvas.toBlob writes none).
+ */
+export function withPngDpi(png: Uint8Array, dpi: number): Uint8Array {
+  checkSignature(png);
+  if (!(dpi > 0 && dpi <= 10000)) throw new Error(`PNG resolution ${dpi} dpi: choose 1 to 10000`);
+  const ihdrEnd = 8 + 12 + new DataView(png.buffer, png.byteOffset).getUint32(8);
+  const data = new Uint8Array(9);
+  const view = new DataView(data.buffer);
+  const perMetre = Math.round(dpi / 0.0254);
+  view.setUint32(0, perMetre);
+  view.setUint32(4, perMetre);
+  data[8] = 1;
+  const phys = chunk('pHYs', data);
+  const out = new Uint8Array(png.length + phys.length);
+  out.set(png.subarray(0, ihdrEnd), 0);
+  out.set(phys, ihdrEnd);
+  out.set(png.subarray(ihdrEnd), ihdrEnd + phys.length);
+  return out;
+}
+
+/** Dots per inch from a PNG's pHYs chunk (unit metre), null when it has none. */
+export function readPngDpi(png: Uint8Array): number | null {
+  checkSignature(png);
+  const view = new DataView(png.buffer, png.byteOffset, png.byteLength);
+  for (let at = 8; at + 12 <= png.length; ) {
+    const length = view.getUint32(at);
+    const type = String.fromCharCode(...png.subarray(at + 4, at + 8));
+    if (type === 'pHYs' && png[at + 8 + 8] === 1) return view.getUint32(at + 8) * 0.0254;
+    if (type === 'IEND') break;
+    at += 12 + length;
+  }
+  return null;
+}

@@ -1,12 +1,19 @@
 /**
  * Downloads: the result JSON (the same document the CLI writes), the per-cell CSV, the sweep
- * CSV, a PNG of the 3D view and the cells as a PLY mesh. Each carries its provenance: version,
+ * CSV, a PNG of the 3D view, the cells as a PLY mesh and as a legacy VTK file (ParaView), the
+ * unrolled surfaces as SVG, a figure PNG at a chosen DPI and width (legend, scale bar), and a
+ * project file (result, label images, view state); and opening a project or a CLI result JSON. Each carries its provenance: version,
  * seed and the full configuration (CSV and PLY comment lines, PNG tEXt chunks). File names carry the seed and the
  * surface, so several exports of a session stay apart.
  */
 import { cellCsv, provenanceLines } from '../model/cellRows';
 import { withPngText } from '../model/pngText';
 import { cellsPly } from '../model/ply';
+import { cellsVtk } from '../model/vtk';
+import { unrolledSvg } from '../model/svg';
+import { openFile, projectJson, type OpenedFile, type ViewState } from '../model/project';
+import { figurePng } from '../view/figure';
+import type { SheetView3D } from '../../view/sheetView3d';
 import type { ViewStack } from '../../view/stack';
 
 export function download(name: string, data: Blob | string, type = 'text/plain'): void {
@@ -26,6 +33,56 @@ export interface ExportSources {
   sweepCsv(): string;
   viewPng(): Promise<Blob>;
   onError(message: string): void;
+  /** The 3D view (a closed surface's figure is rendered from it), null without WebGL. */
+  view(): SheetView3D | null;
+  viewState(): ViewState;
+  /** Shows an opened project or result file; `note` says where it came from. */
+  onOpen(file: OpenedFile, name: string): Promise<void> | void;
+}
+
+/** The export buttons this module adds beside the page's own (index.html has the first five). */
+const MORE_EXPORTS: [key: string, text: string, title: string][] = [
+  ['vtk', 'Cells as VTK', 'Legacy VTK polygons (ParaView, VisIt) with cell_id, surface, sides, scutoid, valid per cell'],
+  ['svg', 'Unrolled SVG', 'The unrolled surfaces as exact cell polygons in µm, with legend and scale bar'],
+  ['figure', 'Figure PNG', 'The unrolled surfaces (closed surfaces: the 3D view) with legend and scale bar, at the DPI and width chosen'],
+  ['project', 'Save project', 'The result, the pictures and the view (camera, surfaces, cut, picked cell) in one file'],
+];
+
+function addControls(root: HTMLElement): { dpi: HTMLSelectElement; width: HTMLInputElement; file: HTMLInputElement } {
+  for (const [key, text, title] of MORE_EXPORTS) {
+    const button = document.createElement('button');
+    button.type = 'button';
+    button.dataset.export = key;
+    button.textContent = text;
+    button.title = title;
+    root.append(button);
+  }
+  const figure = document.createElement('div');
+  figure.className = 'figure-options';
+  const dpi = document.createElement('select');
+  dpi.id = 'figure-dpi';
+  for (const value of [150, 300, 600]) dpi.append(new Option(`${value} dpi`, String(value), value === 300, value === 300));
+  const width = document.createElement('input');
+  width.id = 'figure-width';
+  width.type = 'number';
+  width.min = '20';
+  width.max = '500';
+  width.step = '1';
+  width.value = '180';
+  const dpiLabel = document.createElement('label');
+  dpiLabel.append('Figure resolution ', dpi);
+  const widthLabel = document.createElement('label');
+  widthLabel.append('width (mm) ', width);
+  const openLabel = document.createElement('label');
+  openLabel.className = 'open-file';
+  const file = document.createElement('input');
+  file.type = 'file';
+  file.id = 'open-file';
+  file.accept = '.json,application/json';
+  openLabel.append('Open project or result JSON ', file);
+  figure.append(dpiLabel, ' ', widthLabel, ' ', openLabel);
+  root.append(figure);
+  return { dpi, width, file };
 }
 
 function baseName(stack: ViewStack): string {
@@ -34,6 +91,18 @@ function baseName(stack: ViewStack): string {
 }
 
 export function bindExports(root: HTMLElement, sources: ExportSources): void {
+  const more = addControls(root);
+  more.file.addEventListener('change', async () => {
+    const chosen = more.file.files?.[0];
+    more.file.value = '';
+    if (!chosen) return;
+    try {
+      if (chosen.size > 256 * 1024 * 1024) throw new Error(`${chosen.name}: ${chosen.size} bytes; a project or result file over 256 MiB is refused.`);
+      await sources.onOpen(openFile(await chosen.text(), chosen.name), chosen.name);
+    } catch (error) {
+      sources.onError((error as Error).message);
+    }
+  });
   const actions: Record<string, () => Promise<void> | void> = {
     json: () => withStack((s) => download(`${baseName(s)}.json`, JSON.stringify(s.result, null, 2), 'application/json')),
     cells: () => withStack((s) => download(`${baseName(s)}-cells.csv`, cellCsv(s), 'text/csv')),
@@ -53,6 +122,23 @@ export function bindExports(root: HTMLElement, sources: ExportSources): void {
       ]);
       download(`${baseName(stack)}-view.png`, new Blob([tagged as BlobPart], { type: 'image/png' }));
     },
+    vtk: () => withStack((s) => download(`${baseName(s)}-cells.vtk`, cellsVtk(s), 'application/octet-stream')),
+    svg: () => withStack((s) => download(`${baseName(s)}-unrolled.svg`, unrolledSvg(s), 'image/svg+xml')),
+    figure: async () => {
+      const stack = sources.stack();
+      if (!stack) throw new Error('Nothing to save yet: the view is empty until a run has finished.');
+      const dpi = Number(more.dpi.value);
+      const png = await figurePng(stack, sources.view(), { dpi, widthMm: Number(more.width.value) });
+      download(`${baseName(stack)}-figure-${dpi}dpi.png`, new Blob([png as BlobPart], { type: 'image/png' }));
+    },
+    project: () =>
+      withStack((s) =>
+        download(
+          `${baseName(s)}.tissue-sheet.json`,
+          projectJson({ result: s.result, labelImages: s.surfaces.map((surface) => surface.image) }, sources.viewState()),
+          'application/json',
+        ),
+      ),
     sweep: () => {
       const csv = sources.sweepCsv();
       if (!csv) throw new Error('Run a sweep first: there is no sweep CSV yet.');

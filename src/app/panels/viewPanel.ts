@@ -1,11 +1,19 @@
 /**
  * The 3D view card: the view itself, a checkbox per surface of the stack (layers included), the
- * cut slider, the scutoid highlight and a camera reset. Without WebGL for the view, the card
- * says so and the rest of the page still works.
+ * cut slider, the scutoid highlight, a camera reset, and the picked cell (a click on a cell in
+ * the 3D view or the unrolled surfaces, or its id typed in the "Cell" field: keyboard users pick
+ * the same way), drawn white on every surface and described under the legend. Without WebGL for
+ * the view, the card says so and the rest of the page still works. `viewState`/`restore` carry
+ * the view in a project file.
  */
 import { SheetView3D } from '../../view/sheetView3d';
 import type { ViewStack } from '../../view/stack';
+import type { ViewState } from '../model/project';
+import { renderCellInfo } from '../view/cellInfo';
 import { drawUnrolled } from '../view/unrolled';
+
+/** A pointer that moved more than this between down and up was a drag (orbit), not a click. */
+const CLICK_SLOP_PX = 4;
 
 export class ViewPanel {
   readonly view: SheetView3D | null;
@@ -13,6 +21,10 @@ export class ViewPanel {
   private readonly hidden = new Set<string>();
   private readonly toggles: HTMLElement;
   private readonly highlight: HTMLInputElement;
+  private readonly cut: HTMLInputElement;
+  private readonly cellInfo: HTMLElement;
+  private readonly cellField: HTMLInputElement;
+  private selected = -1;
 
   constructor(
     root: HTMLElement,
@@ -31,19 +43,59 @@ export class ViewPanel {
     this.view = view;
     this.toggles = root.querySelector<HTMLElement>('#surface-toggles')!;
     this.highlight = root.querySelector<HTMLInputElement>('#highlight')!;
-    const cut = root.querySelector<HTMLInputElement>('#cut')!;
-    cut.addEventListener('input', () => this.view?.setCut(Number(cut.value)));
+    this.cut = root.querySelector<HTMLInputElement>('#cut')!;
+    this.cut.addEventListener('input', () => this.view?.setCut(Number(this.cut.value)));
     this.highlight.addEventListener('change', () => {
       this.view?.setHighlightScutoids(this.highlight.checked);
-      if (this.stack) drawUnrolled(this.unrolled, this.stack, this.highlight.checked);
+      this.drawUnrolled();
     });
     root.querySelector<HTMLButtonElement>('#reset-camera')!.addEventListener('click', () => this.view?.resetCamera());
+
+    // The picked cell: a field (keyboard) and a description (announced politely).
+    const picker = document.createElement('div');
+    picker.className = 'cell-picker';
+    const label = document.createElement('label');
+    this.cellField = document.createElement('input');
+    this.cellField.type = 'number';
+    this.cellField.id = 'cell-id';
+    this.cellField.min = '0';
+    this.cellField.step = '1';
+    this.cellField.placeholder = 'id';
+    this.cellField.title = 'Pick a cell by its id (Enter); Escape clears';
+    label.append('Cell ', this.cellField);
+    this.cellInfo = document.createElement('div');
+    this.cellInfo.id = 'cell-info';
+    this.cellInfo.setAttribute('role', 'status');
+    this.cellInfo.setAttribute('aria-live', 'polite');
+    picker.append(label, this.cellInfo);
+    root.querySelector('#legend')!.after(picker);
+    this.cellField.addEventListener('change', () => this.select(this.cellField.value === '' ? -1 : Number(this.cellField.value)));
+    this.cellField.addEventListener('keydown', (event) => {
+      if (event.key === 'Escape') this.select(-1);
+    });
+    renderCellInfo(this.cellInfo, null, -1);
+
+    let down: { x: number; y: number } | null = null;
+    canvas.addEventListener('pointerdown', (event) => (down = { x: event.clientX, y: event.clientY }));
+    canvas.addEventListener('pointerup', (event) => {
+      if (!down || Math.hypot(event.clientX - down.x, event.clientY - down.y) > CLICK_SLOP_PX) return;
+      down = null;
+      const picked = this.view?.pickCell(event.clientX, event.clientY);
+      this.select(picked ? picked.cell : -1);
+    });
+    canvas.addEventListener('keydown', (event) => {
+      if (event.key === 'Escape') this.select(-1);
+    });
   }
 
   show(stack: ViewStack): void {
     this.stack = stack;
+    if (this.selected >= stack.result.cells.length) this.selected = -1;
+    this.view?.setSelected(this.selected);
     this.view?.setStack(stack);
-    drawUnrolled(this.unrolled, stack, this.highlight.checked);
+    this.drawUnrolled();
+    renderCellInfo(this.cellInfo, stack, this.selected);
+    this.cellField.max = String(stack.result.cells.length - 1);
     this.toggles.replaceChildren();
     for (const surface of stack.surfaces) {
       const label = document.createElement('label');
@@ -62,8 +114,52 @@ export class ViewPanel {
     }
   }
 
+  /** Picks cell `id` (-1: none) on every surface. */
+  select(id: number): void {
+    const count = this.stack?.result.cells.length ?? 0;
+    const cell = Number.isInteger(id) && id >= 0 && id < count ? id : -1;
+    this.selected = cell;
+    this.cellField.value = cell >= 0 ? String(cell) : '';
+    document.body.dataset.selectedCell = String(cell);
+    this.view?.setSelected(cell);
+    if (this.stack) this.drawUnrolled();
+    renderCellInfo(this.cellInfo, this.stack, cell);
+  }
+
+  /** What a project file keeps of the view. */
+  viewState(): ViewState {
+    return {
+      camera: this.view?.cameraState() ?? null,
+      visible: (this.stack?.surfaces ?? []).map((s) => !this.hidden.has(s.name)),
+      cut: Number(this.cut.value),
+      highlightScutoids: this.highlight.checked,
+      selectedCell: this.selected >= 0 ? this.selected : null,
+    };
+  }
+
+  /** Shows `stack` exactly as `state` describes the view. */
+  restore(stack: ViewStack, state: ViewState): void {
+    this.hidden.clear();
+    stack.surfaces.forEach((s, k) => {
+      if (state.visible[k] === false) this.hidden.add(s.name);
+    });
+    this.highlight.checked = state.highlightScutoids;
+    this.view?.setHighlightScutoids(state.highlightScutoids);
+    this.selected = state.selectedCell ?? -1;
+    this.show(stack);
+    this.select(this.selected);
+    if (state.camera) this.view?.setCameraState(state.camera);
+    this.cut.value = String(state.cut);
+    this.view?.setCut(state.cut);
+  }
+
   toBlob(): Promise<Blob> {
     if (!this.view) return Promise.reject(new Error('There is no 3D view to save: this browser does not provide WebGL.'));
     return this.view.toBlob();
+  }
+
+  private drawUnrolled(): void {
+    if (!this.stack) return;
+    drawUnrolled(this.unrolled, this.stack, this.highlight.checked, { selected: this.selected, onPick: (_surface, cell) => this.select(cell) });
   }
 }

@@ -1,6 +1,8 @@
 /**
- * The unrolled diagrams: one 2D canvas per surface of the stack, side by side, drawn from the
- * label images (cells coloured by sides, scutoids striped, border cells faded). Widths keep the
+ * The unrolled diagrams: one 2D canvas per surface of the stack, side by side: planes and tubes
+ * as their exact cells (src/view/exactCells.ts, smooth borders), closed surfaces from the label
+ * images (cells coloured by sides, scutoids striped, border cells faded). A click on a cell
+ * picks it (`onPick`); the picked cell is drawn white on every surface. Widths keep the
  * surfaces' true proportions, so a tube's outer surface is drawn wider than its inner one.
  *
  * Closed surfaces cannot be unrolled: their label images are cube maps (n x 6n atlases, face f
@@ -8,10 +10,17 @@
  * face as stored: i to the right, j down), one strip per surface.
  */
 import { FACE_NAMES } from '../../core/cubemap/cubemap';
+import { drawExactCells, exactScale } from '../../view/exactCells';
 import { flipRows, paintSurface } from '../../view/sideColors';
 import type { ViewStack, ViewSurface } from '../../view/stack';
 
-export function drawUnrolled(container: HTMLElement, stack: ViewStack, highlightScutoids: boolean): void {
+export interface UnrolledOptions {
+  /** Picked cell (-1: none). */
+  selected?: number;
+  onPick?(surface: number, cell: number): void;
+}
+
+export function drawUnrolled(container: HTMLElement, stack: ViewStack, highlightScutoids: boolean, options: UnrolledOptions = {}): void {
   container.replaceChildren();
   container.classList.toggle('closed', stack.closed);
   if (stack.closed) {
@@ -29,24 +38,47 @@ export function drawUnrolled(container: HTMLElement, stack: ViewStack, highlight
     canvas.dataset.surface = surface.name;
     canvas.setAttribute('role', 'img');
     const context = () => canvas.getContext('2d');
-    const rgba = paintSurface(surface, { highlightScutoids, valid: stack.valid, scutoid: stack.scutoid });
+    const paint = { highlightScutoids, valid: stack.valid, scutoid: stack.scutoid, selected: options.selected ?? -1 };
     if (stack.closed) {
+      const rgba = paintSurface(surface, paint);
       const n = width;
       canvas.width = 6 * n;
       canvas.height = n;
       canvas.setAttribute('aria-label', `cube-map labels of the ${surface.name} surface, 6 faces of ${n} x ${n} texels`);
       context()?.putImageData(new ImageData(cubeStrip(rgba, n), 6 * n, n), 0, 0);
     } else {
-      canvas.width = width;
-      canvas.height = height;
-      canvas.setAttribute('aria-label', `unrolled ${surface.name} surface, ${width} x ${height} texels`);
-      context()?.putImageData(new ImageData(flipRows(rgba, width, height), width, height), 0, 0);
+      drawExactCells(canvas, surface, { ...paint, scale: exactScale(surface, 2), flipY: true });
+      canvas.setAttribute('aria-label', `unrolled ${surface.name} surface, exact cells, ${width} x ${height} texels`);
     }
+    canvas.addEventListener('click', (event) => {
+      const cell = cellAt(canvas, surface, stack.closed, event);
+      if (cell >= 0) options.onPick?.(surface.index, cell);
+    });
     const caption = document.createElement('figcaption');
     caption.textContent = captionOf(surface, stack.closed);
     figure.append(canvas, caption);
     container.append(figure);
   }
+}
+
+/** The cell under a click on a surface's canvas (its label image's texel), -1 for none. */
+function cellAt(canvas: HTMLCanvasElement, surface: ViewSurface, closed: boolean, event: MouseEvent): number {
+  const box = canvas.getBoundingClientRect();
+  const fx = (event.clientX - box.left) / box.width;
+  const fy = (event.clientY - box.top) / box.height;
+  const { width, height } = surface.image.grid;
+  if (fx < 0 || fx >= 1 || fy < 0 || fy >= 1) return -1;
+  if (closed) {
+    // Strip of six n x n faces: column f n + i, row j -> atlas row f n + j.
+    const n = width;
+    const column = Math.floor(fx * 6 * n);
+    const face = Math.floor(column / n);
+    const j = Math.floor(fy * n);
+    return surface.image.labels[(face * n + j) * n + (column - face * n)] ?? -1;
+  }
+  const x = Math.floor(fx * width);
+  const y = height - 1 - Math.floor(fy * height);
+  return surface.image.labels[y * width + x] ?? -1;
 }
 
 function captionOf(surface: ViewSurface, closed: boolean): string {

@@ -1,0 +1,246 @@
+/**
+ * Project files and result files opened in the page.
+ *
+ * A project (`.tissue-sheet.json`) holds what the screen shows: the result (the CLI's document),
+ * every label image the views draw (run-length encoded; closed surfaces also their geometry
+ * image), and the view state (camera, visible surfaces, cut, scutoid highlight, picked cell). Opening
+ * it draws exactly that, without running anything.
+ *
+ * A result JSON written by the CLI (`tissue-sheet run`) has no label images. On planes and tubes
+ * the views are drawn from the file's own cells: each surface's label image is the exact Voronoi
+ * diagram of the file's sites on it, rasterized (what the exact engine's views show; a GPU run's
+ * label images differ from it by texels at cell borders, the statistics shown are the file's).
+ * Closed surfaces cannot be drawn from the cells alone: the caller re-runs `result.config`
+ * (the seed makes it reproduce the result) and says so.
+ *
+ * Files are untrusted input: sizes are checked before allocating, label ids against the cells,
+ * and the configuration through the schema; every refusal is one line naming the field.
+ */
+import { validateAnyConfig } from '../../core/config';
+import { exactVoronoi } from '../../core/exact';
+import { rasterizeCells } from '../../core/exactEngine';
+import type { Grid } from '../../core/grid';
+import type { LabelImage, SheetOutput, SheetResult } from '../../run';
+
+export const PROJECT_FORMAT = 'tissue-sheet-project';
+export const PROJECT_FORMAT_VERSION = 1;
+/** Largest label image a file may bring, texels (the page's own runs stay far below). */
+const MAX_TEXELS = 1 << 24;
+
+export interface ViewState {
+  camera: { position: [number, number, number]; target: [number, number, number] } | null;
+  /** Visibility per surface of the stack. */
+  visible: boolean[];
+  cut: number;
+  highlightScutoids: boolean;
+  /** The picked cell, or null. */
+  selectedCell: number | null;
+}
+
+interface StoredImage {
+  name: string;
+  grid: Grid;
+  /** Int32 pairs (label, run length) over the row-major labels, base64. */
+  labelsRle: string;
+  /** Float32 x, y, z per texel, base64 (closed surfaces). */
+  positions?: string;
+}
+
+export interface ProjectFile {
+  format: typeof PROJECT_FORMAT;
+  formatVersion: number;
+  software: SheetResult['software'];
+  savedAt: string;
+  result: SheetResult;
+  labelImages: StoredImage[];
+  view: ViewState;
+}
+
+export function projectJson(output: SheetOutput, view: ViewState): string {
+  const file: ProjectFile = {
+    format: PROJECT_FORMAT,
+    formatVersion: PROJECT_FORMAT_VERSION,
+    software: output.result.software,
+    savedAt: new Date().toISOString(),
+    result: output.result,
+    labelImages: output.labelImages.map((image) => ({
+      name: image.name,
+      grid: { ...image.grid },
+      labelsRle: toBase64(new Uint8Array(runLengths(image.labels).buffer)),
+      ...(image.positions ? { positions: toBase64(new Uint8Array(image.positions.buffer, image.positions.byteOffset, image.positions.byteLength)) } : {}),
+    })),
+    view,
+  };
+  return JSON.stringify(file);
+}
+
+export type OpenedFile =
+  | { kind: 'project'; output: SheetOutput; view: ViewState }
+  | { kind: 'result'; output: SheetOutput; drawnFrom: 'cells' }
+  | { kind: 'result-rerun'; result: SheetResult };
+
+/** A project file or a CLI result JSON, checked; `name` is used in messages. */
+export function openFile(text: string, name: string): OpenedFile {
+  let data: unknown;
+  try {
+    data = JSON.parse(text);
+  } catch {
+    throw new Error(`${name}: not JSON; open a project file (.tissue-sheet.json) or a result JSON written by tissue-sheet run.`);
+  }
+  if (!isObject(data)) throw new Error(`${name}: not a tissue-sheet file (a JSON object was expected).`);
+  if (data.format === PROJECT_FORMAT) {
+    if (data.formatVersion !== PROJECT_FORMAT_VERSION) throw new Error(`${name}: formatVersion ${String(data.formatVersion)}: this page reads project files of version ${PROJECT_FORMAT_VERSION}.`);
+    const result = checkResult(data.result, `${name}: result`);
+    if (!Array.isArray(data.labelImages) || data.labelImages.length !== result.surfaces.length + 1) {
+      throw new Error(`${name}: labelImages: expected ${result.surfaces.length + 1} images, one per surface of the result.`);
+    }
+    const labelImages = data.labelImages.map((image, k) => readImage(image, result.cells.length, `${name}: labelImages[${k}]`));
+    return { kind: 'project', output: { result, labelImages }, view: readView(data.view, labelImages.length, `${name}: view`) };
+  }
+  const result = checkResult(data, name);
+  if (result.closed !== undefined) return { kind: 'result-rerun', result };
+  return { kind: 'result', output: { result, labelImages: labelsFromCells(result) }, drawnFrom: 'cells' };
+}
+
+/** Label images of a plane's or tube's result drawn from its cells (exact cells, rasterized). */
+export function labelsFromCells(result: SheetResult): LabelImage[] {
+  const last = result.surfaces[result.surfaces.length - 1];
+  const seededName = last?.name === 'apical' ? 'basal' : 'apical';
+  const surfaces = [{ name: seededName, grid: result.grid, cells: result.cells }, ...result.surfaces];
+  return surfaces.map((surface) => {
+    const grid = { ...surface.grid };
+    const sites = new Float64Array(result.cells.length * 2);
+    surface.cells.forEach((cell, i) => {
+      sites[2 * i] = cell.surface[0] / grid.texelX;
+      sites[2 * i + 1] = cell.surface[1] / grid.texelY;
+    });
+    return { name: surface.name, grid, labels: rasterizeCells(grid, exactVoronoi(grid, sites)) };
+  });
+}
+
+function checkResult(value: unknown, where: string): SheetResult {
+  if (!isObject(value) || !isObject(value.software) || value.software.name !== 'tissue-sheet') {
+    throw new Error(`${where}: software.name is not "tissue-sheet": not a result written by tissue-sheet.`);
+  }
+  try {
+    validateAnyConfig(value.config);
+  } catch (error) {
+    throw new Error(`${where}: config: ${(error as Error).message}`);
+  }
+  if (!Array.isArray(value.cells) || value.cells.length === 0) throw new Error(`${where}: cells: expected the list of cells.`);
+  if (!Array.isArray(value.surfaces) || !Array.isArray(value.analyses)) throw new Error(`${where}: surfaces and analyses: expected lists.`);
+  const n = value.cells.length;
+  value.cells.forEach((cell, i) => {
+    if (!isObject(cell) || cell.id !== i || !Array.isArray(cell.surface) || !Array.isArray(cell.neighbours)) throw new Error(`${where}: cells[${i}]: expected id ${i}, surface [u, v] and neighbours.`);
+  });
+  value.surfaces.forEach((surface, k) => {
+    if (!isObject(surface) || !Array.isArray(surface.cells) || surface.cells.length !== n || !isObject(surface.grid)) {
+      throw new Error(`${where}: surfaces[${k}]: expected a grid and ${n} cells.`);
+    }
+  });
+  checkGrid(value.grid, `${where}: grid`);
+  return value as unknown as SheetResult;
+}
+
+function checkGrid(value: unknown, where: string): Grid {
+  if (!isObject(value)) throw new Error(`${where}: expected a grid.`);
+  const { width, height, texelX, texelY, periodicX, periodicY } = value;
+  const whole = (x: unknown) => Number.isInteger(x) && (x as number) > 0;
+  if (!whole(width) || !whole(height) || (width as number) * (height as number) > MAX_TEXELS) {
+    throw new Error(`${where}: width and height: positive integers, at most ${MAX_TEXELS} texels in all.`);
+  }
+  if (!((texelX as number) > 0) || !((texelY as number) > 0) || typeof periodicX !== 'boolean' || typeof periodicY !== 'boolean') {
+    throw new Error(`${where}: texelX, texelY (> 0) and periodicX, periodicY (booleans) are required.`);
+  }
+  return { width, height, texelX, texelY, periodicX, periodicY } as Grid;
+}
+
+function readImage(value: unknown, cellCount: number, where: string): LabelImage {
+  if (!isObject(value) || typeof value.name !== 'string' || typeof value.labelsRle !== 'string') throw new Error(`${where}: expected name, grid and labelsRle.`);
+  const grid = checkGrid(value.grid, `${where}.grid`);
+  const texels = grid.width * grid.height;
+  const runs = new Int32Array(fromBase64(value.labelsRle, `${where}.labelsRle`, 8 * texels).buffer);
+  const labels = new Int32Array(texels);
+  let at = 0;
+  for (let k = 0; k + 1 < runs.length; k += 2) {
+    const [id, count] = [runs[k], runs[k + 1]];
+    if (id < -1 || id >= cellCount || count <= 0 || at + count > texels) throw new Error(`${where}.labelsRle: run ${k / 2} (id ${id}, length ${count}) does not fit ${texels} texels of ${cellCount} cells.`);
+    labels.fill(id, at, at + count);
+    at += count;
+  }
+  if (at !== texels) throw new Error(`${where}.labelsRle: covers ${at} of ${texels} texels.`);
+  if (value.positions === undefined) return { name: value.name, grid, labels };
+  const bytes = fromBase64(String(value.positions), `${where}.positions`, 12 * texels);
+  if (bytes.length !== 12 * texels) throw new Error(`${where}.positions: expected x, y, z for each of ${texels} texels.`);
+  return { name: value.name, grid, labels, positions: new Float32Array(bytes.buffer) };
+}
+
+function readView(value: unknown, surfaces: number, where: string): ViewState {
+  if (!isObject(value)) throw new Error(`${where}: expected the view state.`);
+  const vec = (v: unknown) => Array.isArray(v) && v.length === 3 && v.every((x) => Number.isFinite(x));
+  const camera = isObject(value.camera) && vec(value.camera.position) && vec(value.camera.target)
+    ? { position: value.camera.position as [number, number, number], target: value.camera.target as [number, number, number] }
+    : null;
+  const visible = Array.isArray(value.visible) ? Array.from({ length: surfaces }, (_, k) => (value.visible as unknown[])[k] !== false) : Array(surfaces).fill(true);
+  const cut = Number.isFinite(value.cut) ? Math.max(0, Math.min(1, value.cut as number)) : 0;
+  const selected = Number.isInteger(value.selectedCell) ? (value.selectedCell as number) : null;
+  return { camera, visible, cut, highlightScutoids: value.highlightScutoids !== false, selectedCell: selected };
+}
+
+/** (label, run length) pairs of `labels`. */
+function runLengths(labels: Int32Array): Int32Array {
+  const runs: number[] = [];
+  for (let i = 0; i < labels.length; ) {
+    let j = i + 1;
+    while (j < labels.length && labels[j] === labels[i]) j++;
+    runs.push(labels[i], j - i);
+    i = j;
+  }
+  return Int32Array.from(runs);
+}
+
+function toBase64(bytes: Uint8Array): string {
+  let text = '';
+  for (let k = 0; k < bytes.length; k += 0x8000) text += String.fromCharCode(...bytes.subarray(k, k + 0x8000));
+  return btoa(text);
+}
+
+function fromBase64(text: string, where: string, maxBytes: number): Uint8Array {
+  if (text.length > (maxBytes * 4) / 3 + 4) throw new Error(`${where}: larger than the image it describes.`);
+  let binary: string;
+  try {
+    binary = atob(text);
+  } catch {
+    throw new Error(`${where}: not base64.`);
+  }
+  if (binary.length % 4 !== 0) throw new Error(`${where}: not a whole number of 4-byte values.`);
+  return Uint8Array.from(binary, (ch) => ch.charCodeAt(0));
+}
+
+function isObject(value: unknown): value is Record<string, unknown> {
+  return typeof value === 'object' && value !== null && !Array.isArray(value);
+}
+
+/**
+ * Says whether a re-run of a closed-surface result's configuration reproduced the file: same
+ * number of cells, every site within 1e-3 µm (relative to the sheet) of the file's.
+ */
+export function rerunNote(file: SheetResult, shown: { result: SheetResult } | null): string {
+  const base = 'a result JSON holds no label images and a closed surface cannot be drawn from its cells, so its configuration was run again';
+  if (!shown) return `${base}, and the run did not finish.`;
+  const a = file.cells;
+  const b = shown.result.cells;
+  if (a.length !== b.length) return `${base}: the run gave ${b.length} cells, the file has ${a.length}; the page shows the run's statistics.`;
+  let worst = 0;
+  let scale = 0;
+  for (let i = 0; i < a.length; i++) {
+    for (let k = 0; k < 3; k++) {
+      worst = Math.max(worst, Math.abs(a[i].position[k] - b[i].position[k]));
+      scale = Math.max(scale, Math.abs(a[i].position[k]));
+    }
+  }
+  const same = worst <= 1e-3 * Math.max(1, scale);
+  return same
+    ? `${base}; it reproduced the file's sites (largest difference ${worst.toExponential(2)} µm).`
+    : `${base}; its sites differ from the file's by up to ${worst.toPrecision(3)} µm (another version or engine?): the page shows the run's statistics.`;
+}

@@ -1,0 +1,67 @@
+/**
+ * What the page says about a picked cell: its id, valid and scutoid flags, its sides on every
+ * surface, and the neighbours it wins and loses between the seeded surface and the other one
+ * (ids). Planes and tubes: neighbours from the exact cells (the adjacency the headline uses);
+ * closed surfaces: the result's neighbours (label images). The analysis' own won / lost counts
+ * (accumulated over layers under the lab protocol) are shown beside them.
+ */
+import { surfacePolygons } from '../../view/cellPolygons';
+import type { ViewStack, ViewSurface } from '../../view/stack';
+
+export interface CellSummary {
+  id: number;
+  valid: boolean;
+  scutoid: boolean;
+  sides: { surface: string; sides: number }[];
+  /** Ids, ascending. */
+  won: number[];
+  lost: number[];
+  neighbourSource: 'exact' | 'labels';
+}
+
+export function neighbourIds(stack: ViewStack, surface: ViewSurface, id: number): number[] {
+  if (!stack.closed) return Array.from(surfacePolygons(surface).cells[id]?.neighbours ?? []);
+  return (surface.cells[id]?.neighbours ?? []).map((n) => n.id).sort((a, b) => a - b);
+}
+
+export function cellSummary(stack: ViewStack, id: number): CellSummary {
+  const first = stack.surfaces[0];
+  const last = stack.surfaces[stack.surfaces.length - 1];
+  const seeded = new Set(neighbourIds(stack, first, id));
+  const other = new Set(neighbourIds(stack, last, id));
+  return {
+    id,
+    valid: stack.valid[id] === 1,
+    scutoid: stack.scutoid[id] === 1,
+    sides: stack.surfaces.map((s) => ({ surface: s.name, sides: s.sides[id] })),
+    won: [...other].filter((n) => !seeded.has(n)).sort((a, b) => a - b),
+    lost: [...seeded].filter((n) => !other.has(n)).sort((a, b) => a - b),
+    neighbourSource: stack.closed ? 'labels' : 'exact',
+  };
+}
+
+export function renderCellInfo(container: HTMLElement, stack: ViewStack | null, id: number): void {
+  container.replaceChildren();
+  if (!stack || id < 0 || id >= stack.result.cells.length) {
+    container.textContent = 'Click a cell in the 3D view or the unrolled surfaces, or type its id, to see its neighbours.';
+    return;
+  }
+  const s = cellSummary(stack, id);
+  const stats = stack.analysis?.cells[id];
+  const first = stack.surfaces[0].name;
+  const last = stack.surfaces[stack.surfaces.length - 1].name;
+  const lines = [
+    `Cell ${s.id}: ${s.valid ? 'valid' : 'border cell (not counted)'}, ${s.scutoid ? 'scutoid' : 'not a scutoid'}.`,
+    `Sides: ${s.sides.map((x) => `${x.surface} ${x.sides}`).join(', ')}.`,
+    `Won from ${first} to ${last}: ${s.won.length ? s.won.join(', ') : 'none'}; lost: ${s.lost.length ? s.lost.join(', ') : 'none'} (${s.neighbourSource} neighbours).`,
+  ];
+  if (stats) lines.push(`Analysis (${stack.analysis!.method}): won ${stats.won}, lost ${stats.lost}, transitions ${stats.transitions}, 3D neighbours ${stats.neighbours3D}.`);
+  for (const line of lines) {
+    const p = document.createElement('p');
+    p.textContent = line;
+    container.append(p);
+  }
+  container.dataset.cell = String(id);
+  container.dataset.won = s.won.join(' ');
+  container.dataset.lost = s.lost.join(' ');
+}

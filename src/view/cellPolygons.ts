@@ -1,0 +1,25 @@
+/**
+ * The exact cells of a planar surface of the stack (plane or tube), computed from the cells'
+ * sites on that surface with core/exact.ts (Delaunay, periodic copies around a tube, clipped at
+ * open edges): the polygons the PLY, VTK and SVG exports and the smooth 3D borders are made of.
+ * Exact whatever engine ran: the label images only approximate these polygons by texels.
+ */
+import { exactVoronoi, type ExactVoronoi } from '../core/exact';
+import type { ViewSurface } from './stack';
+
+const cache = new WeakMap<ViewSurface, ExactVoronoi>();
+
+/** Exact Voronoi cells of `surface`'s sites, polygons in texel units (cached per surface). */
+export function surfacePolygons(surface: ViewSurface): ExactVoronoi {
+  const known = cache.get(surface);
+  if (known) return known;
+  const { grid } = surface.image;
+  const sites = new Float64Array(surface.cells.length * 2);
+  surface.cells.forEach((cell, i) => {
+    sites[2 * i] = cell.surface[0] / grid.texelX;
+    sites[2 * i + 1] = cell.surface[1] / grid.texelY;
+  });
+  const voronoi = exactVoronoi(grid, sites);
+  cache.set(surface, voronoi);
+  return voronoi;
+}
