@@ -258,6 +258,11 @@ function totalBoundary(grid: Grid, labels: Int32Array): number {
   return total;
 }
 
+/** The staircase (plain sum of texel edges) between cells a and b. */
+function staircase(adjacency: LabelAdjacency, a: number, b: number): number {
+  return sharedLength({ ...adjacency, lengths: adjacency.staircaseLengths }, a, b);
+}
+
 function checkStructure(adjacency: LabelAdjacency, count: number) {
   expect(adjacency.offsets.length).toBe(count + 1);
   expect(adjacency.offsets[0]).toBe(0);
@@ -268,6 +273,11 @@ function checkStructure(adjacency: LabelAdjacency, count: number) {
       if (k > adjacency.offsets[c]) expect(n).toBeGreaterThan(adjacency.neighbours[k - 1]);
       expect(adjacency.lengths[k]).toBeGreaterThan(0);
       expect(sharedLength(adjacency, n, c)).toBe(adjacency.lengths[k]);
+      expect(staircase(adjacency, n, c)).toBe(adjacency.staircaseLengths[k]);
+      // Unbiased length of a boundary of h horizontal and v vertical edges: between the
+      // longer of h, v (never shorter than 1/sqrt(2) of the staircase) and the staircase.
+      expect(adjacency.lengths[k]).toBeLessThanOrEqual(adjacency.staircaseLengths[k]);
+      expect(adjacency.lengths[k]).toBeGreaterThanOrEqual(adjacency.staircaseLengths[k] / Math.SQRT2 - 1e-12);
     }
   }
 }
@@ -280,7 +290,7 @@ describe('labelAdjacency', () => {
         const labels = bruteForceLabels(grid, randomSites(grid, count, seed++));
         const adjacency = labelAdjacency(grid, labels, count);
         checkStructure(adjacency, count);
-        const sum = adjacency.lengths.reduce((a, b) => a + b, 0);
+        const sum = adjacency.staircaseLengths.reduce((a, b) => a + b, 0);
         expect(sum).toBeCloseTo(2 * totalBoundary(grid, labels), 6);
         const area = adjacency.area.reduce((a, b) => a + b, 0);
         expect(area).toBeCloseTo(grid.width * grid.texelX * grid.height * grid.texelY, 6);
@@ -328,9 +338,13 @@ describe('labelAdjacency', () => {
     ]);
     expect(Array.from(adjacency.touchesBorder)).toEqual([1, 1, 1, 1, 0]);
     expect(sharedLength(adjacency, 0, 1)).toBe(1);
-    expect(sharedLength(adjacency, 0, 2)).toBe(3); // (0,1)|(1,1), (1,0)-(1,1), (0,1)-(0,2)
+    // (0,1)|(1,1) vertical; (1,0)-(1,1), (0,1)-(0,2) horizontal: a staircase of 3 edges, a
+    // diagonal boundary of length sqrt(2² + 1²).
+    expect(staircase(adjacency, 0, 2)).toBe(3);
+    expect(sharedLength(adjacency, 0, 2)).toBe(Math.sqrt(5));
     expect(sharedLength(adjacency, 2, 3)).toBe(2);
-    expect(sharedLength(adjacency, 1, 3)).toBe(3); // (2,0)-(2,1), (3,1)|(2,1), (3,1)-(3,2)
+    expect(staircase(adjacency, 1, 3)).toBe(3); // (2,0)-(2,1), (3,1)|(2,1), (3,1)-(3,2)
+    expect(sharedLength(adjacency, 1, 3)).toBe(Math.sqrt(5));
     expect(sharedLength(adjacency, 1, 2)).toBe(0); // diagonal only
     expect(sharedLength(adjacency, 0, 3)).toBe(0);
     expect(Array.from(adjacency.texels)).toEqual([3, 3, 3, 3, 0]);
