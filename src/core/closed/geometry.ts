@@ -195,8 +195,13 @@ export interface CubeLabelAdjacency {
   readonly count: number;
   readonly offsets: Int32Array;
   readonly neighbours: Int32Array;
-  /** Shared boundary length, µm. */
+  /** Shared boundary length, µm, without the staircase bias (see cubeLabelAdjacency). */
   readonly lengths: Float64Array;
+  /**
+   * The staircase: the plain sum of the shared texel edges, µm (1 to 1.41, on average 4/π,
+   * times a straight contact's length). Never compare it with a length in µm.
+   */
+  readonly staircaseLengths: Float64Array;
   readonly texels: Int32Array;
   /** Cell area, µm² (sum of the area elements of its texels). */
   readonly area: Float64Array;
@@ -206,10 +211,29 @@ export interface CubeLabelAdjacency {
 
 /**
  * Every pair of edge-adjacent texels (4-neighbourhood, across face edges through the edge
- * table) with different labels adds their shared texel edge to both cells' boundary. The edge
- * length is estimated as (A_k + A_l) / (2 |p_k - p_l|): the texels' area over the distance
- * between their centres, i.e. their extent across the line joining them (staircase lengths,
- * like the planar labels method).
+ * table) with different labels adds their shared texel edge to both cells' boundary.
+ *
+ * `staircaseLengths` sums the edges, each estimated as (A_k + A_l) / (2 |p_k - p_l|) (the
+ * texels' extent across the line joining their centres): a staircase, 1 to 1.41 times the
+ * true length of a contact.
+ *
+ * `lengths` removes that bias. Each shared texel edge is taken as a 3D vector: it runs along
+ * the parameter line between the two texels (the other axis than the step between them), from
+ * the central difference of the texel's wrapped neighbours, and is oriented so that the cell
+ * with the smaller id lies on its left (the cube faces' (s, t) frames all have the same
+ * handedness about the outward normal, so this holds across face edges too). Oriented edges of
+ * a staircase add up to the vector between its ends (the back-and-forth steps cancel), so per
+ * pair and per cube face the length of the summed vector is the chord of that piece of the
+ * contact, and the pair's length is the sum of those chords over the faces. A contact is a
+ * plane section of the surface (a bisector plane): on a sphere a great-circle arc, which the
+ * gnomonic cube map draws as a straight line on each face, so the per-face chord is its length
+ * up to about one texel edge; on an ellipsoid or a mesh the arcs are nearly straight over one
+ * cell (chord/arc - 1 is about θ²/24 for an arc turning by θ). Chosen over summing the two
+ * axes' edges separately and taking sqrt(Lu² + Lv²) (the planar labels' rule) because the
+ * face frames here are not orthogonal (60° to 120° between the axes near cube corners), which
+ * that rule cannot see, and over a sub-texel polyline because it needs only the labels.
+ * Splitting by face keeps a contact that goes all round the surface (two cells) from summing to
+ * 0. Measured against the restricted Voronoi diagram: tests/closed/labelLengths.test.ts.
  */
 export function cubeLabelAdjacency(
   surface: CubeSurfaceSample,
@@ -219,9 +243,13 @@ export function cubeLabelAdjacency(
 ): CubeLabelAdjacency {
   const { position: P, area: A } = surface;
   const texelCount = labels.length;
+  const perFace = surface.n * surface.n;
   const texels = new Int32Array(count);
   const area = new Float64Array(count);
   const pairs = new Map<number, number>();
+  // Per (pair, face): slot of its summed oriented edge vector in `chords` (x, y, z per slot).
+  const slots = new Map<number, number>();
+  let chords = new Float64Array(3 * 1024);
   for (let k = 0; k < texelCount; k++) {
     const a = labels[k];
     if (a < 0) continue;
@@ -238,7 +266,34 @@ export function cubeLabelAdjacency(
       const length = d > 0 ? (A[k] + A[l]) / (2 * d) : 0;
       const key = Math.min(a, b) * count + Math.max(a, b);
       pairs.set(key, (pairs.get(key) ?? 0) + length);
+
+      // The shared edge: along j for a step in i (s = 0, 1), along i for a step in j (s = 2, 3);
+      // steps +i, -j give +axis and -i, +j give -axis (the step turned by +90° in the face
+      // frame), with the smaller id on k's side; flipped otherwise.
+      const along = s < 2 ? 2 : 0;
+      const from = neighbours[4 * k + along], to = neighbours[4 * k + along + 1];
+      const sign = (s === 1 || s === 2 ? 0.5 : -0.5) * (a < b ? 1 : -1);
+      const slotKey = key * 6 + Math.floor(k / perFace);
+      let slot = slots.get(slotKey);
+      if (slot === undefined) {
+        slot = slots.size;
+        slots.set(slotKey, slot);
+        if (3 * slot + 3 > chords.length) {
+          const grown = new Float64Array(2 * chords.length);
+          grown.set(chords);
+          chords = grown;
+        }
+      }
+      chords[3 * slot] += sign * (P[3 * to] - P[3 * from]);
+      chords[3 * slot + 1] += sign * (P[3 * to + 1] - P[3 * from + 1]);
+      chords[3 * slot + 2] += sign * (P[3 * to + 2] - P[3 * from + 2]);
     }
+  }
+  const unbiased = new Map<number, number>();
+  for (const [slotKey, slot] of slots) {
+    const key = Math.floor(slotKey / 6);
+    const chord = Math.hypot(chords[3 * slot], chords[3 * slot + 1], chords[3 * slot + 2]);
+    unbiased.set(key, (unbiased.get(key) ?? 0) + chord);
   }
   const degree = new Int32Array(count + 1);
   for (const key of pairs.keys()) {
@@ -249,16 +304,20 @@ export function cubeLabelAdjacency(
   const offsets = degree;
   const neighboursOut = new Int32Array(offsets[count]);
   const lengths = new Float64Array(offsets[count]);
+  const staircaseLengths = new Float64Array(offsets[count]);
   const cursor = offsets.slice(0, count);
   const sorted = [...pairs.entries()].sort((x, y) => x[0] - y[0]);
-  for (const [key, length] of sorted) {
+  for (const [key, staircase] of sorted) {
     const a = Math.floor(key / count), b = key % count;
+    const length = unbiased.get(key)!;
     neighboursOut[cursor[a]] = b;
+    staircaseLengths[cursor[a]] = staircase;
     lengths[cursor[a]++] = length;
     neighboursOut[cursor[b]] = a;
+    staircaseLengths[cursor[b]] = staircase;
     lengths[cursor[b]++] = length;
   }
-  return { count, offsets, neighbours: neighboursOut, lengths, texels, area, touchesBorder: new Uint8Array(count) };
+  return { count, offsets, neighbours: neighboursOut, lengths, staircaseLengths, texels, area, touchesBorder: new Uint8Array(count) };
 }
 
 /**
