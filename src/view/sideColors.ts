@@ -7,7 +7,13 @@ import type { ViewSurface } from './stack';
 
 /** Side classes 3..9 and 10+, as in the polygon distribution. */
 export const SIDE_LABELS = ['3', '4', '5', '6', '7', '8', '9', '10+'] as const;
-export const SIDE_COLORS = ['#6a3d9a', '#1f78b4', '#33a02c', '#f2e394', '#ff7f00', '#e31a1c', '#8c510a', '#4d4d4d'] as const;
+/**
+ * Colour-blind-safe: the Okabe-Ito palette (Okabe & Ito 2008, "Color Universal Design") with a
+ * dark grey for 10+; every pair stays apart (CIE76 ΔE >= 15) under simulated protanopia,
+ * deuteranopia and tritanopia (Machado et al. 2009), checked in e2e/app-publish.spec.ts.
+ * Hexagons, the commonest class, get the light yellow.
+ */
+export const SIDE_COLORS = ['#cc79a7', '#0072b2', '#56b4e9', '#f0e442', '#e69f00', '#d55e00', '#009e73', '#4d4d4d'] as const;
 const NO_CELL = [40, 40, 40] as const;
 
 export const RGB = SIDE_COLORS.map((hex) => [1, 3, 5].map((k) => parseInt(hex.slice(k, k + 2), 16)));

@@ -6,8 +6,9 @@ export function renderLegend(container: HTMLElement): void {
   const list = document.createElement('ul');
   list.className = 'legend';
   SIDE_LABELS.forEach((label, k) => list.append(item(`${label} sides`, `background:${SIDE_COLORS[k]}`)));
-  list.append(item('scutoid (striped)', `background:repeating-linear-gradient(45deg,#141414 0 3px,#33a02c 3px 9px)`));
+  list.append(item('scutoid (striped)', `background:repeating-linear-gradient(45deg,#141414 0 3px,#f0e442 3px 9px)`));
   list.append(item('border cell (not counted)', 'background:#e6e6e6'));
+  list.append(item('picked cell', 'background:#ffffff;border:1px solid #333'));
   container.append(list);
 }
 
