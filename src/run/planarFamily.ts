@@ -2,7 +2,7 @@ import { LAB_PROTOCOL, labelContactThresholdTexels, labInvalidCells, labMinBound
 import { checkFeasible, checkSheet, layerStepOf, makeGrid, minContactPixelsOf, type Config } from '../core/config';
 import { densityField, type GrayImage } from '../core/density';
 import { exactVoronoi } from '../core/exact';
-import { ExactLloydRun, exactDensity, rasterizeCells } from '../core/exactEngine';
+import { ExactLloydRun, exactDensity, exactSurface, rasterizeCells } from '../core/exactEngine';
 import type { Grid } from '../core/grid';
 import { labelAdjacency } from '../core/labels';
 import { projectSites, surfaceStack, type StackSurface } from '../core/sheetGeometry';
@@ -91,15 +91,21 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
     return { reported: length, perLayer: layers.map(() => length) };
   },
 
+  // Once per seeded surface and settings: a sweep over ratios asks again for every ratio.
   protocolInvalid(config, geometry, sites) {
     if (config.sheet.protocol !== 'lab') return null;
-    return labInvalidCells(geometry.grid, sites, labSettings(config.sheet));
+    const settings = labSettings(config.sheet);
+    return memo(sites, `lab ${settings.layerStep} ${settings.validityMaxRatio}`, () =>
+      labInvalidCells(geometry.grid, sites, settings, (grid, layerSites, label) => exactSurface(grid, layerSites, label)),
+    );
   },
 
   // The exact Delaunay needs no threshold: every contact of positive length counts.
   exactMinContactLengths: () => null,
 
-  exactAdjacency: (_config, _geometry, layer, _sites, projected) => surfaceFromExact(exactVoronoi(layer.grid, projected), layer.name),
+  // Kept per seeded surface: runs that differ in the sheet share most of their layers.
+  exactAdjacency: (_config, _geometry, layer, sites, projected) =>
+    memo(sites, `exact ${layer.name} ${layer.grid.width} ${layer.grid.texelX}`, () => surfaceFromExact(exactVoronoi(layer.grid, projected), layer.name)),
 
   cellPlacement(config, layer, _sites, projected, id) {
     const x = projected[2 * id];
@@ -126,6 +132,20 @@ export function defaultMinContactLength(grid: Grid, cells: number): number {
 function placementDensity(config: Config, density: Float32Array): Float32Array | undefined {
   if (config.density.kind === 'uniform') return undefined;
   return density.map(Math.sqrt);
+}
+
+/**
+ * Values computed from a seeded surface's sites, kept while those sites live (SheetRunner keeps
+ * the last seeded surface): the lab's valid cells and the exact diagrams of the stack's layers,
+ * which a sweep over `sheet.*` would otherwise compute again for every run.
+ */
+const memos = new WeakMap<PlanarSites, Map<string, unknown>>();
+
+function memo<T>(sites: PlanarSites, key: string, compute: () => T): T {
+  let values = memos.get(sites);
+  if (!values) memos.set(sites, (values = new Map()));
+  if (!values.has(key)) values.set(key, compute());
+  return values.get(key) as T;
 }
 
 /** The exact engine's seeded surface has no label image (the stack draws its cells for views). */
