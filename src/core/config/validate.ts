@@ -1,7 +1,7 @@
 /** Validation of a configuration against the schema, with one-line errors naming the field. */
-import Ajv, { type ErrorObject } from 'ajv';
+import type { ErrorObject } from 'ajv';
+import { validate as generatedValidate } from './configValidator.generated';
 import { defaultResolution } from './feasibility';
-import { configSchema } from './schema';
 import type { AnyConfig, Config } from './types';
 import { isClosedConfig } from './types';
 
@@ -21,14 +21,16 @@ export class ConfigError extends Error {
 
 type SchemaNode = Record<string, unknown>;
 
-// One compiled validator per module: compiling is the slow part, validating is cheap.
-// verbose: errors carry their schema node, which is where messages find ranges and units.
-const ajv = new Ajv({ useDefaults: true, allErrors: false, discriminator: true, verbose: true, strict: true, strictRequired: false });
-// strictRequired is off because the discriminator's `required: ['kind']` is defined in the branches.
-ajv.addVocabulary(['unit']);
 /** What the schema validates: an AnyConfig whose resolution may still be null. */
 type Unresolved<T> = T extends unknown ? Omit<T, 'resolution'> & { resolution: number | null } : never;
-const validate = ajv.compile<Unresolved<AnyConfig>>(configSchema);
+/**
+ * The schema's validator, compiled ahead of time from configSchema by scripts/validators.ts
+ * (npm run validators:write; `npm test` checks it is current): the page's Content-Security-Policy
+ * has no 'unsafe-eval', so ajv cannot compile it at run time. It fills defaults in place, stops at
+ * the first error and gives verbose errors (their schema node is where messages find ranges and
+ * units).
+ */
+const validate = generatedValidate as unknown as ((data: unknown) => data is Unresolved<AnyConfig>) & { errors?: ErrorObject[] | null };
 
 /**
  * Checks `input`, fills every default and returns a fresh object (the input is never modified).
@@ -65,6 +67,9 @@ export function validateConfig(input: unknown): Config {
   return config;
 }
 
+/** Keys that reach an object's prototype when assigned or walked: refused anywhere in a config. */
+export const PROTOTYPE_KEYS: ReadonlySet<string> = new Set(['__proto__', 'constructor', 'prototype']);
+
 function cloneJson(value: unknown, path: (string | number)[]): unknown {
   if (value === null || typeof value === 'string' || typeof value === 'boolean') return value;
   if (typeof value === 'number') {
@@ -78,8 +83,14 @@ function cloneJson(value: unknown, path: (string | number)[]): unknown {
   if (typeof value === 'object' && (Object.getPrototypeOf(value) === Object.prototype || Object.getPrototypeOf(value) === null)) {
     const out: Record<string, unknown> = {};
     for (const [key, item] of Object.entries(value as Record<string, unknown>)) {
+      // JSON.parse keeps "__proto__" as an own key; `out[key] = ...` would then set the
+      // prototype. Refuse these keys, and define properties rather than assign them.
+      if (PROTOTYPE_KEYS.has(key)) {
+        const field = formatPath([...path, key]);
+        throw new ConfigError(field, `${field}: "${key}" is not allowed as a key (it would reach an object prototype); remove it`);
+      }
       if (item === undefined) continue; // `{radius: undefined}` means "not given", as in JSON.
-      out[key] = cloneJson(item, [...path, key]);
+      Object.defineProperty(out, key, { value: cloneJson(item, [...path, key]), enumerable: true, writable: true, configurable: true });
     }
     return out;
   }

@@ -15,9 +15,14 @@
  * Errors are SweepSpecErrors whose message is one line starting with the field
  * (`realizations`, `vary["sheet.layers"][1]`, `base.cells`).
  */
-import Ajv from 'ajv';
+import type { ErrorObject } from 'ajv';
 import { configSchema, ConfigError, validateAnyConfig, type AnyConfig } from '../config';
 import { countRuns, FORBIDDEN_KEYS, setPath, type SweepSpec } from './expand';
+import { DEFAULT_MAX_RUNS, MAX_REALIZATIONS, MAX_VALUES_PER_FIELD, SEED_MODES, sweepSpecSchema } from './specSchema';
+import { validate as validateSweepSpecShape } from './specValidator.generated';
+
+/** A standalone ajv validator: true when valid, else `errors[0]` says why. */
+type GeneratedValidator = ((data: unknown) => boolean) & { errors?: ErrorObject[] | null };
 
 /** A sweep-spec problem: a ConfigError whose `field` is a path in the spec (`vary["sheet.layers"][1]`). */
 export class SweepSpecError extends ConfigError {
@@ -27,43 +32,11 @@ export class SweepSpecError extends ConfigError {
   }
 }
 
-export const DEFAULT_MAX_RUNS = 100_000;
-export const MAX_REALIZATIONS = 1_000_000;
-export const MAX_VALUES_PER_FIELD = 100_000;
-export const SEED_MODES = ['per-realization', 'per-run'] as const;
+export { DEFAULT_MAX_RUNS, MAX_REALIZATIONS, MAX_VALUES_PER_FIELD, SEED_MODES, sweepSpecSchema } from './specSchema';
 
-export const sweepSpecSchema = {
-  $schema: 'http://json-schema.org/draft-07/schema#',
-  title: 'tissue-sheet sweep spec',
-  type: 'object',
-  additionalProperties: false,
-  required: ['base'],
-  properties: {
-    base: { type: 'object', description: 'The configuration every run starts from (docs/config.md).' },
-    vary: {
-      type: 'object',
-      description: 'Dotted config paths, each with a non-empty array of values; the runs are their Cartesian product.',
-      additionalProperties: { type: 'array', minItems: 1, maxItems: MAX_VALUES_PER_FIELD },
-    },
-    realizations: {
-      type: 'integer',
-      minimum: 1,
-      maximum: MAX_REALIZATIONS,
-      default: 1,
-      description: `Runs per grid point with different seeds, integer 1..${MAX_REALIZATIONS}. Default 1.`,
-    },
-    seed: { type: 'integer', minimum: 0, maximum: 4294967295, description: 'Base seed, integer 0..4294967295. Default: base.seed.' },
-    seedMode: {
-      type: 'string',
-      enum: SEED_MODES,
-      default: 'per-realization',
-      description: '"per-realization": every grid point of a realization shares its sites; "per-run": every run its own. Default "per-realization".',
-    },
-  },
-} as const;
-
-const ajv = new Ajv({ useDefaults: true, allErrors: false, strict: true });
-const validateShape = ajv.compile(sweepSpecSchema);
+// The shape check is compiled ahead of time (npm run validators:write) from specSchema.ts: the
+// page's Content-Security-Policy has no 'unsafe-eval', so ajv cannot compile it at run time.
+const validateShape = validateSweepSpecShape as unknown as GeneratedValidator;
 
 export type ValidSweepSpec = SweepSpec<AnyConfig & Record<string, unknown>> & { realizations: number; seedMode: 'per-run' | 'per-realization' };
 
