@@ -132,7 +132,7 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
     positions: layer.sample.position,
   }),
 
-  labelAdjacency: (geometry, layer, labels, count) => surfaceFromLabels(cubeLabelAdjacency(layer.sample, labels, count, geometry.neighbours), layer.name),
+  labelAdjacency: (_config, geometry, layer, labels, count) => surfaceFromLabels(cubeLabelAdjacency(layer.sample, labels, count, geometry.neighbours), layer.name),
 
 
   minContactLengths(config, geometry, layers) {

@@ -95,7 +95,7 @@ export interface SurfaceFamily<C extends AnyConfig, Geometry, Sites, Layer exten
   exactLabels(geometry: Geometry, layer: Layer, projected: Projected): Int32Array;
   labelImage(geometry: Geometry, layer: Layer, labels: Int32Array): LabelImage;
   /** Neighbours, contact lengths (µm), areas and border contacts from a layer's label image. */
-  labelAdjacency(geometry: Geometry, layer: Layer, labels: Int32Array, count: number): LabelSurfaceAdjacency;
+  labelAdjacency(config: C, geometry: Geometry, layer: Layer, labels: Int32Array, count: number): LabelSurfaceAdjacency;
   /** The shortest contact (µm) the labels method counts on each layer, and the value reported. */
   minContactLengths(config: C, geometry: Geometry, layers: Layer[]): { reported: number; perLayer: number[] };
   /** The protocol's invalid cells beyond those touching an open end of the stack (lab: any validity layer), or null. */

@@ -76,7 +76,13 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
 
   labelImage: (_geometry, layer, labels) => ({ name: layer.name, grid: layer.grid, labels }),
 
-  labelAdjacency: (_geometry, layer, labels, count) => surfaceFromLabels(labelAdjacency(layer.grid, labels, count), layer.name),
+  // Contact lengths without the staircase bias, except under a pixel rule (the lab's 6 px),
+  // which counts texel edges: there the staircase is the quantity the rule is about.
+  labelAdjacency(config, _geometry, layer, labels, count) {
+    const adjacency = labelAdjacency(layer.grid, labels, count);
+    const pixelRule = minContactPixelsOf(config.sheet) !== null;
+    return surfaceFromLabels(pixelRule ? { ...adjacency, lengths: adjacency.staircaseLengths } : adjacency, layer.name);
+  },
 
 
   // A pixel rule (texel edges, e.g. the lab's 6 px around a 512 px tube) or a length in µm;

@@ -60,7 +60,7 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
         await yieldToEventLoop();
       }
       labelImages.push(family.labelImage(geometry, layer, labels));
-      labelled.push(family.labelAdjacency(geometry, layer, labels, config.cells));
+      labelled.push(family.labelAdjacency(config, geometry, layer, labels, config.cells));
     }
 
     // The protocol: which cells are valid, how intercalations are counted (docs/protocols.md).

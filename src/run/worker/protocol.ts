@@ -18,6 +18,8 @@ export type ToWorker =
       readonly meshFile?: MeshFile;
       /** false: send the result without label images (see RunCallbacks.views). */
       readonly views?: boolean;
+      /** Options of the worker's Presenter (servePipeline.ts); absent: nothing presented. */
+      readonly present?: unknown;
     }
   | { readonly type: 'cancel'; readonly id: number };
 
@@ -31,5 +33,6 @@ export type FromWorker =
   /** The worker could not create a WebGL2 context on an OffscreenCanvas: run on the page. */
   | { readonly type: 'unavailable'; readonly id: number; readonly reason: string }
   | { readonly type: 'iteration'; readonly id: number; readonly record: IterationRecord; readonly maxIterations: number }
-  | { readonly type: 'result'; readonly id: number; readonly output: SheetOutput }
+  /** `presented`: what the worker's Presenter made of the output, when the run asked for it. */
+  | { readonly type: 'result'; readonly id: number; readonly output: SheetOutput; readonly presented?: unknown }
   | { readonly type: 'error'; readonly id: number; readonly error: SerializedError };

@@ -8,10 +8,18 @@ import type { FromWorker, SerializedError, ToWorker } from './protocol';
 /** Where a WorkerSheetRunner computes. */
 export type ComputeSite = { readonly where: 'worker' } | { readonly where: 'page'; readonly reason: string };
 
+/** A run's callbacks, and what to ask of the worker's Presenter (servePipeline.ts). */
+export interface WorkerRunCallbacks extends RunCallbacks {
+  /** Options for the worker's Presenter; absent: nothing is presented. */
+  present?: unknown;
+  /** Called before the run resolves with what the worker presented (never on the page fallback). */
+  onPresented?: (presented: unknown) => void;
+}
+
 interface Pending {
   readonly resolve: (output: SheetOutput) => void;
   readonly reject: (error: unknown) => void;
-  readonly callbacks: RunCallbacks;
+  readonly callbacks: WorkerRunCallbacks;
   readonly message: Extract<ToWorker, { type: 'run' }>;
 }
 
@@ -45,8 +53,8 @@ export class WorkerSheetRunner {
     }
   }
 
-  run(config: AnyConfig, callbacks: RunCallbacks = {}): Promise<SheetOutput> {
-    if (!this.worker) return this.onPage().run(config, callbacks);
+  run(config: AnyConfig, callbacks: WorkerRunCallbacks = {}): Promise<SheetOutput> {
+    if (!this.worker) return this.onPage().run(config, pageCallbacks(callbacks));
     const { signal } = callbacks;
     if (signal?.aborted) return Promise.reject(abortError());
     const id = this.nextId++;
@@ -57,6 +65,7 @@ export class WorkerSheetRunner {
       ...(callbacks.densityImage ? { densityImage: callbacks.densityImage } : {}),
       ...(callbacks.meshFile ? { meshFile: callbacks.meshFile } : {}),
       ...(callbacks.views === false ? { views: false } : {}),
+      ...(callbacks.present !== undefined ? { present: callbacks.present } : {}),
     };
     return new Promise<SheetOutput>((resolve, reject) => {
       this.pending.set(id, { resolve, reject, callbacks, message });
@@ -86,6 +95,7 @@ export class WorkerSheetRunner {
         return;
       case 'result':
         this.pending.delete(message.id);
+        if (message.presented !== undefined) pending.callbacks.onPresented?.(message.presented);
         pending.resolve(message.output);
         return;
       case 'error':
@@ -106,7 +116,7 @@ export class WorkerSheetRunner {
     const waiting = [...this.pending.values()];
     this.pending.clear();
     for (const { resolve, reject, callbacks, message } of waiting) {
-      this.onPage().run(message.config, callbacks).then(resolve, reject);
+      this.onPage().run(message.config, pageCallbacks(callbacks)).then(resolve, reject);
     }
   }
 
@@ -114,6 +124,11 @@ export class WorkerSheetRunner {
     this.pageRunner ??= new SheetRunner(this.pageContext());
     return this.pageRunner;
   }
+}
+
+/** The callbacks a SheetRunner on the page takes (nothing is presented there). */
+function pageCallbacks({ present: _present, onPresented: _onPresented, ...callbacks }: WorkerRunCallbacks): RunCallbacks {
+  return callbacks;
 }
 
 function abortError(): DOMException {
