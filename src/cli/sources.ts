@@ -85,10 +85,14 @@ export class Sources {
     if (declared > maxBytes) throw new InputError(`${field}: "${url}" is ${declared} bytes, more than the ${maxBytes} allowed`);
     const chunks: Uint8Array[] = [];
     let total = 0;
-    for await (const chunk of response.body as unknown as AsyncIterable<Uint8Array>) {
-      total += chunk.length;
-      if (total > maxBytes) throw new InputError(`${field}: "${url}" is more than the ${maxBytes} bytes allowed`);
-      chunks.push(chunk);
+    const reader = response.body.getReader();
+    for (let part = await reader.read(); !part.done; part = await reader.read()) {
+      total += part.value.length;
+      if (total > maxBytes) {
+        await reader.cancel();
+        throw new InputError(`${field}: "${url}" is more than the ${maxBytes} bytes allowed`);
+      }
+      chunks.push(part.value);
     }
     return Buffer.concat(chunks);
   }

@@ -12,7 +12,8 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import type { ViewStack, ViewSurface } from './stack';
 import { closedSurfaceMesh } from './cubeAtlasMesh';
 import { RGB, SELECTED_RGB, sideColorIndex } from './sideColors';
-import { drawExactCells, exactScale } from './exactCells';
+import { drawExactCells } from './exactCells';
+import { PICTURE_LAYOUT, workerPicture } from './workerPictures';
 import { surfaceGeometry } from './surfaceGeometry';
 
 /** A fixed light (world space, from the default camera's side) baked into closed surfaces' colours. */
@@ -76,7 +77,7 @@ export class SheetView3D {
     this.controls.addEventListener('change', () => this.requestRender());
     // Arrow keys pan when the canvas has the focus (it is focusable: tabindex 0).
     if (!canvas.hasAttribute('tabindex')) canvas.tabIndex = 0;
-    this.controls.listenToKeyEvents(canvas as unknown as HTMLElement);
+    this.controls.listenToKeyEvents(canvas);
     this.resizeObserver = new ResizeObserver(() => this.resize());
     this.resizeObserver.observe(canvas);
     this.resize();
@@ -269,16 +270,17 @@ export class SheetView3D {
         this.inner.add(mesh);
         continue;
       }
-      // The exact cells drawn on a canvas: smooth borders, not the label image's texels.
-      const canvas = document.createElement('canvas');
-      drawExactCells(canvas, surface, {
-        scale: exactScale(surface),
-        highlightScutoids: this.highlight,
-        valid: stack.valid,
-        scutoid: stack.scutoid,
-        selected: this.selected,
-      });
-      const texture = new THREE.CanvasTexture(canvas);
+      // The exact cells drawn on a canvas: smooth borders, not the label image's texels (drawn
+      // in the pipeline's worker when it could: workerPictures.ts).
+      const paint = { highlightScutoids: this.highlight, selected: this.selected };
+      const picture = workerPicture(surface, 'texture', paint);
+      let texture: THREE.Texture;
+      if (picture) texture = new THREE.Texture(picture);
+      else {
+        const canvas = document.createElement('canvas');
+        drawExactCells(canvas, surface, { ...paint, ...PICTURE_LAYOUT.texture(surface), valid: stack.valid, scutoid: stack.scutoid });
+        texture = new THREE.CanvasTexture(canvas);
+      }
       texture.flipY = false;
       texture.magFilter = THREE.LinearFilter;
       texture.minFilter = THREE.LinearMipmapLinearFilter;

@@ -139,7 +139,8 @@ function checkResult(value: unknown, where: string): SheetResult {
     }
   });
   checkGrid(value.grid, `${where}: grid`);
-  return value as unknown as SheetResult;
+  // Checked above field by field: the shape of a SheetResult.
+  return value as typeof value & SheetResult;
 }
 
 function checkGrid(value: unknown, where: string): Grid {

@@ -155,9 +155,9 @@ export class ConfigControls {
     if (value === undefined) return;
     if (spec.set) this.draft = spec.set(this.draft, value);
     else {
-      const next = structuredClone(this.draft) as unknown as Record<string, unknown>;
+      const next = structuredClone(this.draft);
       setPath(next, spec.path, value);
-      this.draft = next as unknown as Config;
+      this.draft = next;
     }
     this.refresh();
     this.events.onEdit(this.config, live);

@@ -160,7 +160,7 @@ export function readCsvTable(text: string): CsvTable {
 export function flattenSummary(value: unknown, prefix = '', out: Record<string, unknown> = {}): Record<string, unknown> {
   if (value !== null && typeof value === 'object') {
     const entries: [string, unknown][] = ArrayBuffer.isView(value) && !(value instanceof DataView)
-      ? Array.from(value as unknown as ArrayLike<unknown>, (v, k) => [String(k), v])
+      ? Array.from(value as ArrayBufferView & ArrayLike<unknown>, (v, k) => [String(k), v])
       : Array.isArray(value)
         ? value.map((v, k) => [String(k), v])
         : Object.entries(value as Record<string, unknown>);

@@ -95,9 +95,9 @@ export function getPath(obj: unknown, path: string): unknown {
  * and forbidden keys are refused, so no path reaches a prototype; the value is defined as an
  * own data property (never through a setter).
  */
-export function setPath(obj: Record<string, unknown>, path: string, value: unknown): void {
+export function setPath(obj: object, path: string, value: unknown): void {
   const parts = pathParts(path);
-  let cur: Record<string, unknown> = obj;
+  let cur = obj as Record<string, unknown>;
   for (let k = 0; k < parts.length - 1; k++) {
     const next = hasOwn(cur, parts[k]) ? cur[parts[k]] : undefined;
     if (next === undefined || next === null) defineOwn(cur, parts[k], {});
