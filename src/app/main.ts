@@ -5,7 +5,7 @@
  */
 import { ConfigError, validateAnyConfig, type AnyConfig as Config } from '../core/config';
 import { GpuCapabilityError, type SheetOutput } from '../run';
-import { computeContext, isAbort, LatestRunner, onComputeSite } from '../view/pageRunner';
+import { computeContext, isAbort, LatestRunner, onComputeSite, runInPage } from '../view/pageRunner';
 import { initialConfig, readLink, saveConfig, urlWithConfig } from './model/settings';
 import { checkPageBudget } from '../view/pageBudget';
 import { pendingSources } from '../view/sources';
@@ -35,6 +35,8 @@ const EDIT_DEBOUNCE_MS = 400;
 let stack: ViewStack | null = null;
 /** The draft of the latest run asked for (JSON). */
 let lastDraft = '';
+/** Whether the latest run asked for was a slider's live run (its pictures are drafts). */
+let lastRunLive = false;
 let runs = 0;
 const runner = new LatestRunner();
 
@@ -79,8 +81,12 @@ const viewPanel = new ViewPanel($('main'), $('#unrolled'));
 const charts = new Charts($('#chart-polygons'), $('#chart-energy'), $('#chart-sweep'), $('#chart-lewis'), $('#chart-aboav'));
 const controls = new ConfigControls($('#controls'), initialConfig(link), {
   onEdit: (draft, live) => {
-    // A slider's "change" after its last "input" asks for the run already under way: skip it.
-    if (JSON.stringify(draft) === lastDraft) return;
+    // A slider's "change" after its last "input" asks for the run already under way: skip it,
+    // but draw the drag's draft pictures again in full once it has settled.
+    if (JSON.stringify(draft) === lastDraft) {
+      if (!live && lastRunLive) runner.debounced(EDIT_DEBOUNCE_MS, () => void redrawInFull());
+      return;
+    }
     if (live) void run(draft, true);
     else runner.debounced(EDIT_DEBOUNCE_MS, () => void run(draft));
   },
@@ -147,6 +153,7 @@ async function show(output: SheetOutput): Promise<void> {
  */
 async function run(draft: Config, live = false): Promise<void> {
   lastDraft = JSON.stringify(draft);
+  lastRunLive = live;
   let config: Config;
   try {
     config = validateAnyConfig(draft);
@@ -208,6 +215,24 @@ async function run(draft: Config, live = false): Promise<void> {
     setState(error instanceof GpuCapabilityError ? 'no-webgl' : 'error');
   } finally {
     cancelButton.disabled = !runner.running;
+  }
+}
+
+/**
+ * A drag's results are shown with draft pictures (LatestRunner.live): once it has settled, the
+ * result on screen is fetched again (the worker's cached surfaces: same numbers) with the full
+ * pictures and only the views are redrawn; the run count and state are untouched.
+ */
+async function redrawInFull(): Promise<void> {
+  const shown = stack;
+  if (!shown || runner.running) return;
+  try {
+    const output = await runInPage({ config: shown.result.config });
+    if (stack !== shown || runner.running) return;
+    stack = viewStack(output);
+    viewPanel.show(stack);
+  } catch {
+    // The draft pictures stay: they show the same result.
   }
 }
 

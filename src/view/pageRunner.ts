@@ -6,9 +6,12 @@
  *
  * One shared runner serves every caller on the page (its runs are taken in order in the
  * worker); it keeps the converged seeded surface, so a change of `sheet.*` only (the live
- * surface-ratio and thickness sliders) recomputes the other side and the analysis. Sweeps take
- * their own runner (`createPipelineRunner`), so a sweep and the live view never evict each
- * other's seeded surface.
+ * surface-ratio and thickness sliders) recomputes the other side and the analysis. The worker
+ * (viewWorker.ts) also draws the views' pictures of each result (workerPictures.ts), so the main
+ * thread only uploads them. Sweeps and the Lloyd movie take their own runner
+ * (`acquirePipelineRunner`), so they and the live view never evict each other's seeded surface;
+ * an idle one is kept for the next (terminating a worker that holds a WebGL context costs the
+ * main thread one task of 50-160 ms on a software renderer).
  *
  * Mesh uploads: the seeded surface is keyed by the config, which names an uploaded mesh by its
  * file name only. When other bytes arrive under a name already run, the runner is replaced, so
@@ -17,8 +20,10 @@
 import type { AnyConfig } from '../core/config';
 import type { GrayImage } from '../core/density';
 import { createCanvasContext, WorkerSheetRunner, type ComputeSite, type GpuContext, type IterationRecord, type MeshFile, type SheetOutput } from '../run';
+import type { WorkerRunCallbacks } from '../run/worker/workerRunner';
 import { decodeGrayImage } from './densityImage';
 import { meshFileFor } from './meshFiles';
+import { rememberPictures, type PictureRequest } from './workerPictures';
 
 let sharedContext: GpuContext | null = null;
 let sharedRunner: WorkerSheetRunner | null = null;
@@ -35,9 +40,24 @@ export function computeContext(): GpuContext {
   return sharedContext;
 }
 
-/** A new pipeline runner in its own worker (a sweep's); dispose it when done. */
+/** A new pipeline runner in its own worker (the view's worker: it can draw the views' pictures). */
 export function createPipelineRunner(): WorkerSheetRunner {
-  return new WorkerSheetRunner(computeContext);
+  return new WorkerSheetRunner(computeContext, () => new Worker(new URL('./viewWorker.ts', import.meta.url), { type: 'module' }));
+}
+
+/** Idle runners of sweeps and movies, kept for the next one (see the module's comment). */
+const idleRunners: WorkerSheetRunner[] = [];
+const MAX_IDLE_RUNNERS = 1;
+
+/** A pipeline runner of its own for a sweep or a movie; give it back with releasePipelineRunner. */
+export function acquirePipelineRunner(): WorkerSheetRunner {
+  return idleRunners.pop() ?? createPipelineRunner();
+}
+
+/** Gives back a runner from acquirePipelineRunner: kept for the next caller, or disposed. */
+export function releasePipelineRunner(runner: WorkerSheetRunner): void {
+  if (idleRunners.length < MAX_IDLE_RUNNERS && runner.site.where === 'worker' && !idleRunners.includes(runner)) idleRunners.push(runner);
+  else if (!idleRunners.includes(runner)) runner.dispose();
 }
 
 function pipeline(): WorkerSheetRunner {
@@ -64,6 +84,11 @@ export interface RunRequest {
   densityImage?: GrayImage;
   /** A mesh file for `surface.kind = "mesh"` (else an upload of that name, or `src` fetched). */
   meshFile?: MeshFile | null;
+  /**
+   * How the worker draws the views' pictures (workerPictures.ts); default: scutoids highlighted,
+   * no picked cell, as the views show a result first. false: none drawn there.
+   */
+  pictures?: PictureRequest | false;
 }
 
 const decoded = new Map<string, Promise<GrayImage>>();
@@ -107,8 +132,13 @@ export async function runInPage(request: RunRequest): Promise<SheetOutput> {
     sharedRunner = null;
   }
   const runner = pipeline();
+  let presented: unknown;
+  const pictures = request.pictures ?? { highlightScutoids: true, selected: -1 };
+  const callbacks: WorkerRunCallbacks = { signal, onIteration, ...inputs, ...(pictures ? { present: pictures, onPresented: (p) => (presented = p) } : {}) };
   try {
-    return await runner.run(config, { signal, onIteration, ...inputs });
+    const output = await runner.run(config, callbacks);
+    rememberPictures(output, presented);
+    return output;
   } finally {
     for (const listener of siteListeners) listener(runner.site);
   }
@@ -158,7 +188,9 @@ export class LatestRunner {
     return this.launch(request);
   }
 
-  live(request: Omit<RunRequest, 'signal'>): Promise<SheetOutput> {
+  /** (Results of `live` runs get draft pictures from the worker: workerPictures.ts.) */
+  live(live: Omit<RunRequest, 'signal'>): Promise<SheetOutput> {
+    const request = { ...live, pictures: live.pictures ?? { highlightScutoids: true, selected: -1, draft: true } };
     clearTimeout(this.timer);
     if (!this.controller) return this.launch(request);
     this.dropWaiting();

@@ -12,7 +12,7 @@
  * - a previous runs.csv of the same spec (a download) resumes the sweep: planResume keeps its
  *   valid rows (bad ones are reported and computed again), only the missing runs are computed;
  * - cancelling (the signal) keeps every finished run: the result then has `aborted: true`.
- * The pipeline runs in a worker of the sweep's own (createPipelineRunner), disposed at the end.
+ * The pipeline runs in a worker of the sweep's own (acquirePipelineRunner), given back at the end.
  */
 import { checkClosedFeasible, checkFeasible, ConfigError, isClosedConfig, makeGrid, validateAnyConfig, type AnyConfig, type Config } from '../core/config';
 import {
@@ -38,7 +38,7 @@ import {
   type ValidSweepSpec,
 } from '../core/sweep';
 import { seededKey, sweepSummary, type WorkerSheetRunner } from '../run';
-import { createPipelineRunner, isAbort, runInputs } from './pageRunner';
+import { acquirePipelineRunner, isAbort, releasePipelineRunner, runInputs } from './pageRunner';
 
 type Run = SweepRun<AnyConfig & Record<string, unknown>>;
 
@@ -150,7 +150,7 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
   let csv = resumed.cleanText;
   const rows = [...resumed.rows];
   const started = performance.now();
-  const runner: WorkerSheetRunner = createPipelineRunner();
+  const runner: WorkerSheetRunner = acquirePipelineRunner();
   let aborted = false;
   let result: Awaited<ReturnType<typeof runSweep>> | null = null;
   try {
@@ -194,7 +194,7 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
     if (!(isAbort(error) && options.signal?.aborted)) throw error;
     aborted = true;
   } finally {
-    runner.dispose();
+    releasePipelineRunner(runner);
   }
   const aggregate = aggregateRows(rows, fields, summary.filter((c) => !TEXT_COLUMNS.has(c)));
   return {

@@ -8,7 +8,7 @@
  */
 import { isClosedConfig, type AnyConfig as Config } from '../../core/config';
 import type { SheetOutput } from '../../run';
-import { createPipelineRunner, isAbort, runInputs } from '../../view/pageRunner';
+import { acquirePipelineRunner, isAbort, releasePipelineRunner, runInputs } from '../../view/pageRunner';
 import { flipRows, paintSurface } from '../../view/sideColors';
 import { viewStack } from '../../view/stack';
 import { download } from './exports';
@@ -55,7 +55,7 @@ export class LloydMovie {
     this.controller = controller;
     clearInterval(this.timer);
     this.frames = [];
-    const runner = createPipelineRunner();
+    const runner = acquirePipelineRunner();
     try {
       const config = this.events.config();
       if (isClosedConfig(config)) throw new Error('The Lloyd movie shows planes and tubes; a closed surface has no flat picture.');
@@ -76,7 +76,7 @@ export class LloydMovie {
     } catch (error) {
       if (!isAbort(error)) this.events.onError((error as Error).message);
     } finally {
-      runner.dispose();
+      releasePipelineRunner(runner);
       if (this.controller === controller) this.controller = null;
     }
   }

@@ -10,7 +10,8 @@
  * face as stored: i to the right, j down), one strip per surface.
  */
 import { FACE_NAMES } from '../../core/cubemap/cubemap';
-import { drawExactCells, exactScale } from '../../view/exactCells';
+import { drawExactCells } from '../../view/exactCells';
+import { PICTURE_LAYOUT, workerPicture, workerRgba } from '../../view/workerPictures';
 import { flipRows, paintSurface } from '../../view/sideColors';
 import type { ViewStack, ViewSurface } from '../../view/stack';
 
@@ -40,14 +41,21 @@ export function drawUnrolled(container: HTMLElement, stack: ViewStack, highlight
     const context = () => canvas.getContext('2d');
     const paint = { highlightScutoids, valid: stack.valid, scutoid: stack.scutoid, selected: options.selected ?? -1 };
     if (stack.closed) {
-      const rgba = paintSurface(surface, paint);
+      const rgba = workerRgba(surface, paint) ?? paintSurface(surface, paint);
       const n = width;
       canvas.width = 6 * n;
       canvas.height = n;
       canvas.setAttribute('aria-label', `cube-map labels of the ${surface.name} surface, 6 faces of ${n} x ${n} texels`);
       context()?.putImageData(new ImageData(cubeStrip(rgba, n), 6 * n, n), 0, 0);
     } else {
-      drawExactCells(canvas, surface, { ...paint, scale: exactScale(surface, 2), flipY: true });
+      // Drawn in the pipeline's worker when it could (workerPictures.ts).
+      const picture = workerPicture(surface, 'unrolled', paint);
+      if (picture) {
+        canvas.width = picture.width;
+        canvas.height = picture.height;
+        if (picture instanceof ImageData) context()?.putImageData(picture, 0, 0);
+        else context()?.drawImage(picture, 0, 0);
+      } else drawExactCells(canvas, surface, { ...paint, ...PICTURE_LAYOUT.unrolled(surface) });
       canvas.setAttribute('aria-label', `unrolled ${surface.name} surface, exact cells, ${width} x ${height} texels`);
     }
     canvas.addEventListener('click', (event) => {
