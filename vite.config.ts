@@ -8,7 +8,8 @@ export default defineConfig({
   build: { target: 'es2022', outDir: 'dist/app' },
   // Scan every page up front: otherwise Vite discovers a dependency on first load, re-optimizes
   // and reloads the page under a running test.
-  optimizeDeps: { entries: ['index.html', 'e2e/pages/*.html', 'bench/page/*.html', 'examples/*.html'] },
+  // The measuring worker's decoders are imported by no page module, so the scan cannot see them.
+  optimizeDeps: { entries: ['index.html', 'e2e/pages/*.html', 'bench/page/*.html', 'examples/*.html'], include: ['fast-png', 'tiff'] },
   test: {
     include: ['tests/**/*.test.ts'],
     // headless-gl is a native module: one process per test file, not worker threads.

@@ -9,3 +9,4 @@ export * from './layerPlan';
 export * from './measuredResult';
 export * from './measureTissue';
 export * from './compare';
+export * from './compareMeasured';

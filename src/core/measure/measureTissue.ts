@@ -6,6 +6,7 @@
 import { analysisRecord, analyzeSurfaces, csrFromLists, labMinBoundaryLength, withMinBoundaryLength, type SurfaceAdjacency } from '../analysis';
 import { BORDER_NAMES, countContacts, type LayerContacts } from './contacts';
 import { MeasureInputError } from './errors';
+import type { LabelPixels } from './labelImage';
 import { decodeLayer, planLayers, type LabelFileInput, type LayerPlan } from './layerPlan';
 import type {
   BorderTouch,
@@ -28,6 +29,13 @@ export interface MeasureOptions {
   readonly version: string;
   /** Progress lines (optional). */
   readonly onProgress?: (line: string) => void;
+  /**
+   * Called with each layer's decoded labels (layer index, basal first) once its contacts are
+   * counted, before the next layer is decoded: the result holds no pixels, so a caller that
+   * draws the tissue keeps (or reduces) them here. The array is not used by the measurement
+   * afterwards.
+   */
+  readonly onLayerPixels?: (layer: number, pixels: LabelPixels) => void;
 }
 
 const now = () => performance.now();
@@ -59,6 +67,7 @@ export function measureTissue(files: LabelFileInput[], options: MeasureOptions):
       throw new MeasureInputError(file, `${plan.files.length === 1 ? `page ${layer.page + 1}: ` : ''}no labels (every pixel is 0)`);
     }
     contacts.push(counted);
+    options.onLayerPixels?.(contacts.length - 1, pixels);
     options.onProgress?.(`${layer.name}: ${file}${plan.files.length === 1 ? ` page ${layer.page + 1}` : ''}, ${pixels.width} x ${pixels.height}, ${counted.labels} labels, ${counted.edges.size} contacts`);
   }
   bytes = null;

@@ -1,0 +1,231 @@
+/**
+ * "Measure a tissue" (docs/app.md): label images dropped anywhere on the page, or chosen with
+ * the file picker — two or more PNG/TIFF layers (basal first) or one 3D TIFF — are measured in a
+ * worker (src/view/measureClient.ts: decoding and counting never run on the main thread), drawn
+ * with the simulated surfaces' side colours with cell picking, and their statistics shown
+ * beside the best-matching Voronoi model's (the CLI's --compare). Options: pixel size, periodic
+ * x, min contact, model realizations. A bad file shows a role="alert" line naming the file and
+ * the problem; what is already shown stays.
+ */
+import type { MeasuredResult, ModelComparison } from '../../core/measure';
+import { MeasureClient, MeasureFileError } from '../../view/measureClient';
+import type { LayerPicture } from '../../view/measurePicture';
+import type { MeasureRequestOptions } from '../../view/measureProtocol';
+import { MeasureLayers } from '../view/measureLayers';
+import { MeasureChart, renderHeadline, summaryTable } from './measureStats';
+import './measurePanel.css';
+
+const TEMPLATE = `
+  <h2 id="measure-title">Measure a tissue</h2>
+  <p class="small">Segmented label images of one tissue at two or more depths (0 = background, the same label is the same
+  cell in every layer): measured with the same definitions as a simulated sheet (docs/measure.md), beside the Voronoi model
+  whose basal polygon distribution matches best.</p>
+  <div id="measure-drop" class="measure-drop">
+    <p>Drop label images anywhere on the page — <b>two or more PNG/TIFF layers, basal first</b>, or <b>one 3D TIFF</b> —
+    or <label class="measure-pick">choose files <input id="measure-files" type="file" multiple accept=".png,.tif,.tiff,image/png,image/tiff" /></label></p>
+  </div>
+  <div class="measure-options">
+    <label title="Edge of one square pixel in micrometres; empty: from the TIFF metadata">Pixel size (µm)
+      <input id="measure-pixel-size" type="number" min="0" step="any" placeholder="from the files" /></label>
+    <label title="The images are an unrolled tube: the last column touches the first"><input id="measure-periodic" type="checkbox" /> periodic x (unrolled tube)</label>
+    <label title="Shortest shared boundary that makes two cells neighbours; empty: the lab's 6 px for cells 102.4 px across, scaled to this tissue">Min contact (µm)
+      <input id="measure-min-contact" type="number" min="0" step="any" placeholder="default" /></label>
+    <label title="Realizations of the Voronoi model (0: no comparison)">Model realizations
+      <input id="measure-realizations" type="number" min="0" max="100" step="1" value="10" /></label>
+    <button type="button" id="measure-again" disabled>Measure again</button>
+    <button type="button" id="measure-reverse" disabled title="The first file is the basal layer">Reverse layer order</button>
+  </div>
+  <p id="measure-status" class="small" role="status" aria-live="polite"></p>
+  <div id="measure-alert" class="alert measure-alert" role="alert" hidden><p class="message"></p><button type="button" data-dismiss>Dismiss</button></div>
+  <div id="measure-results" hidden>
+    <p class="headline"><output id="measured-percent">–</output> scutoids measured;
+      model <output id="model-percent">–</output> <span id="model-caption" class="small"></span></p>
+    <p id="measure-info" class="small"></p>
+    <div id="measure-layers" class="unrolled-row"></div>
+    <div id="measure-cell" class="small"></div>
+    <div class="measure-stats"><div id="measure-summary-box" class="table-box"></div><div id="measure-chart" class="chart"></div></div>
+  </div>`;
+
+/** Lets the browser handle input between the parts of drawing (no task over ~50 ms). */
+const nextTask = () => new Promise<void>((resolve) => setTimeout(resolve, 0));
+
+/** The core's messages name the CLI's options; the page names its fields. */
+function inPageWords(message: string): string {
+  return message
+    .replace(/--pixel-size µm \(--pixel-size 1 measures in pixels\)/g, 'a pixel size (µm) above (1 measures in pixels)')
+    .replace(/--pixel-size/g, 'the pixel size (µm) field')
+    .replace(/--min-contact/g, 'the min contact field')
+    .replace(/--periodic-x/g, 'periodic x');
+}
+
+export class MeasurePanel {
+  private readonly client = new MeasureClient();
+  private readonly layers: MeasureLayers;
+  private readonly chart: MeasureChart;
+  /** The files of the latest attempt (Measure again, Reverse), basal first. */
+  private files: File[] = [];
+  private result: MeasuredResult | null = null;
+  private shown = 0;
+
+  constructor(private readonly root: HTMLElement) {
+    root.innerHTML = TEMPLATE;
+    this.layers = new MeasureLayers(this.$('#measure-layers'), this.$('#measure-cell'));
+    this.chart = new MeasureChart(this.$('#measure-chart'));
+    const input = this.$<HTMLInputElement>('#measure-files');
+    input.addEventListener('change', () => {
+      if (input.files && input.files.length > 0) void this.measure([...input.files]);
+      input.value = '';
+    });
+    this.$('#measure-again').addEventListener('click', () => void this.measure(this.files));
+    this.$('#measure-reverse').addEventListener('click', () => void this.measure([...this.files].reverse()));
+    this.$('#measure-alert [data-dismiss]').addEventListener('click', () => (this.$('#measure-alert').hidden = true));
+    this.bindDrop();
+  }
+
+  private $<T extends HTMLElement = HTMLElement>(selector: string): T {
+    return this.root.querySelector<T>(selector)!;
+  }
+
+  /** Files dropped anywhere on the page (except on another file input, which takes its own). */
+  private bindDrop(): void {
+    const hasFiles = (event: DragEvent) => event.dataTransfer?.types.includes('Files') ?? false;
+    const ownDrop = (event: DragEvent) => !(event.target instanceof HTMLInputElement && event.target.type === 'file');
+    document.addEventListener('dragover', (event) => {
+      if (!hasFiles(event) || !ownDrop(event)) return;
+      event.preventDefault();
+      this.root.classList.add('dragging');
+    });
+    document.addEventListener('dragleave', (event) => {
+      if (event.relatedTarget === null) this.root.classList.remove('dragging');
+    });
+    document.addEventListener('drop', (event) => {
+      this.root.classList.remove('dragging');
+      if (!hasFiles(event) || !ownDrop(event)) return;
+      event.preventDefault();
+      const files = [...(event.dataTransfer?.files ?? [])];
+      if (files.length > 0) void this.measure(files);
+    });
+  }
+
+  private alert(message: string): void {
+    const box = this.$('#measure-alert');
+    box.querySelector('.message')!.textContent = message;
+    box.hidden = false;
+  }
+
+  private status(text: string): void {
+    this.$('#measure-status').textContent = text;
+  }
+
+  /** The options fields, checked; a bad one is reported naming the field. */
+  private options(): MeasureRequestOptions {
+    const value = (id: string) => this.$<HTMLInputElement>(id).value.trim();
+    const pixel = value('#measure-pixel-size');
+    const contact = value('#measure-min-contact');
+    const realizations = Number(value('#measure-realizations') || '0');
+    if (pixel !== '' && !(Number(pixel) > 0 && Number.isFinite(Number(pixel)))) throw new MeasureFileError('pixel size', `pixel size (µm): ${pixel} is not a number > 0`);
+    if (contact !== '' && !(Number(contact) >= 0 && Number.isFinite(Number(contact)))) throw new MeasureFileError('min contact', `min contact (µm): ${contact} is not a number >= 0`);
+    if (!Number.isInteger(realizations) || realizations < 0 || realizations > 100) {
+      throw new MeasureFileError('model realizations', `model realizations: ${value('#measure-realizations')} is not an integer 0..100`);
+    }
+    return {
+      pixelSize: pixel === '' ? undefined : Number(pixel),
+      periodicX: this.$<HTMLInputElement>('#measure-periodic').checked,
+      minContact: contact === '' ? undefined : Number(contact),
+      realizations,
+      seed: 1,
+    };
+  }
+
+  async measure(files: File[]): Promise<void> {
+    if (files.length === 0) return;
+    this.files = files;
+    for (const id of ['#measure-again', '#measure-reverse']) this.$<HTMLButtonElement>(id).disabled = false;
+    let options: MeasureRequestOptions;
+    try {
+      options = this.options();
+    } catch (error) {
+      this.alert((error as Error).message);
+      return;
+    }
+    this.$('#measure-alert').hidden = true;
+    this.root.dataset.state = 'measuring';
+    this.status(`Measuring ${files.map((f) => f.name).join(', ')} (basal first)…`);
+    let measured: Promise<void> = Promise.resolve();
+    try {
+      await this.client.measure(files, options, {
+        onProgress: (line) => this.status(line),
+        onMeasured: (result, pictures) => {
+          measured = this.showMeasured(result, pictures);
+        },
+        onCompared: (comparison, note) => {
+          void measured.then(() => this.showComparison(comparison, note));
+        },
+      });
+      await measured;
+    } catch (error) {
+      if (error instanceof MeasureFileError && error.message.startsWith('superseded')) return;
+      this.alert(inPageWords(error instanceof Error ? error.message : String(error)));
+      this.status(this.result ? 'Not measured; the previous tissue is still shown.' : 'Not measured.');
+      this.root.dataset.state = this.result ? 'shown' : 'error';
+    }
+  }
+
+  private async showMeasured(result: MeasuredResult, pictures: LayerPicture[]): Promise<void> {
+    const shown = ++this.shown;
+    this.result = result;
+    this.$('#measure-results').hidden = false;
+    renderHeadline(this.root, result, null, null);
+    this.$('#measure-info').textContent = describe(result);
+    this.layers.show(result, pictures);
+    await nextTask();
+    if (shown !== this.shown) return;
+    this.$('#measure-summary-box').replaceChildren(summaryTable(result, null));
+    await nextTask();
+    if (shown !== this.shown) return;
+    this.chart.show(result, null);
+    this.root.dataset.state = 'measured';
+    this.status(`Measured in ${(result.timings.totalMs / 1000).toFixed(2)} s (in a worker); comparing with the Voronoi model…`);
+  }
+
+  private async showComparison(comparison: ModelComparison | null, note: string | null): Promise<void> {
+    const result = this.result;
+    if (!result) return;
+    const shown = this.shown;
+    renderHeadline(this.root, result, comparison, note);
+    this.$('#measure-summary-box').replaceChildren(summaryTable(result, comparison));
+    await nextTask();
+    if (shown !== this.shown) return;
+    this.chart.show(result, comparison);
+    this.root.dataset.state = 'compared';
+    this.status(
+      comparison
+        ? `Measured and compared: Voronoi ${comparison.bestK} matches best; at s = ${comparison.surfaceRatio.toFixed(3)} it gives ${comparison.meanPercentScutoids.toFixed(1)} ± ${comparison.sdPercentScutoids.toFixed(1)} % scutoids.`
+        : `Measured; ${note ?? 'no comparison'}.`,
+    );
+  }
+}
+
+function describe(result: MeasuredResult): string {
+  const s = result.analyses[0].summary;
+  const p = result.inputs.pixelSize;
+  const layers = result.inputs.layers.map((l) => `${l.name} ${l.file}${result.inputs.files.length === 1 ? ` page ${l.page + 1}` : ''}`).join(', ');
+  const warnings = result.warnings.length ? ` Warnings: ${result.warnings.map(inPageWords).join('; ')}.` : '';
+  return (
+    `${s.cells} cells, ${s.validCells} valid (${result.exclusions.touchesBorder} touch an open border, ${result.exclusions.missing} missing from a layer), ` +
+    `${s.surfaces} layers (${layers}); pixel size ${p.value} µm (${p.source === 'option' ? 'given' : `${p.detail}, ${p.file}`}), ` +
+    `min contact ${result.analyses[0].minContactLength.toPrecision(3)} µm (${result.inputs.options.minContactSource}), ` +
+    `surface ratio ${result.surfaceRatio.value.toFixed(3)} (from the ${result.surfaceRatio.source}), ${result.inputs.options.periodicX ? 'periodic x' : 'not periodic'}; ` +
+    `pixel-based adjacency.${warnings}`
+  );
+}
+
+/** Mounts the panel as a card at the end of `main`. */
+export function mountMeasurePanel(main: HTMLElement): MeasurePanel {
+  const section = document.createElement('section');
+  section.className = 'card wide measure';
+  section.id = 'measure';
+  section.setAttribute('aria-labelledby', 'measure-title');
+  main.append(section);
+  return new MeasurePanel(section);
+}

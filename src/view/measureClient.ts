@@ -1,0 +1,94 @@
+/**
+ * The page's side of the measuring worker (measureWorker.ts): reads the chosen files (File ->
+ * ArrayBuffer, asynchronously), hands them to the worker, and reports progress, the measured
+ * result with its pictures, then the model comparison. A newer request supersedes an older one
+ * (its late messages are ignored).
+ */
+import type { MeasuredResult, ModelComparison } from '../core/measure';
+import type { LayerPicture } from './measurePicture';
+import type { FromMeasureWorker, MeasureRequestOptions, ToMeasureWorker } from './measureProtocol';
+
+/** Largest file read (as the CLI): 1 GiB. */
+export const MAX_MEASURE_FILE_BYTES = 2 ** 30;
+
+/** A problem with one input file: shown as "FILE: problem". */
+export class MeasureFileError extends Error {
+  constructor(
+    readonly file: string | null,
+    message: string,
+  ) {
+    super(message);
+    this.name = 'MeasureFileError';
+  }
+}
+
+export interface MeasureCallbacks {
+  onProgress?(line: string): void;
+  /** The measured tissue (the comparison follows in onCompared when asked for). */
+  onMeasured?(result: MeasuredResult, pictures: LayerPicture[]): void;
+  onCompared?(comparison: ModelComparison | null, note: string | null): void;
+}
+
+export class MeasureClient {
+  private worker: Worker | null = null;
+  private latest = 0;
+
+  constructor(private readonly createWorker: () => Worker = () => new Worker(new URL('./measureWorker.ts', import.meta.url), { type: 'module' })) {}
+
+  /**
+   * Measures `files` (basal first). Resolves once the result (and the comparison, when asked)
+   * has been delivered; rejects with MeasureFileError for a bad file, or when superseded.
+   */
+  async measure(files: readonly File[], options: MeasureRequestOptions, callbacks: MeasureCallbacks = {}): Promise<void> {
+    const id = ++this.latest;
+    for (const file of files) {
+      if (file.size > MAX_MEASURE_FILE_BYTES) throw new MeasureFileError(file.name, `${file.name}: ${file.size} bytes is over the limit of 1 GiB per file`);
+    }
+    const buffers = await Promise.all(files.map((f) => f.arrayBuffer()));
+    if (id !== this.latest) throw new MeasureFileError(null, 'superseded by a newer measurement');
+    const message: ToMeasureWorker = { type: 'measure', id, files: files.map((f, k) => ({ name: f.name, bytes: buffers[k] })), options };
+    const worker = this.start();
+    return new Promise<void>((resolve, reject) => {
+      const stop = () => {
+        worker.removeEventListener('message', listen);
+        worker.removeEventListener('error', crashed);
+      };
+      const fail = (error: MeasureFileError) => {
+        stop();
+        reject(error);
+      };
+      const listen = (event: MessageEvent<FromMeasureWorker>) => {
+        const data = event.data;
+        if (data.id !== id) return;
+        if (id !== this.latest) return fail(new MeasureFileError(null, 'superseded by a newer measurement'));
+        if (data.type === 'progress') callbacks.onProgress?.(data.line);
+        else if (data.type === 'measured') {
+          callbacks.onMeasured?.(data.result, data.pictures);
+          if (options.realizations <= 0) {
+            stop();
+            resolve();
+          }
+        } else if (data.type === 'compared') {
+          callbacks.onCompared?.(data.comparison, data.note);
+          stop();
+          resolve();
+        } else fail(new MeasureFileError(data.file, data.message));
+      };
+      // A worker that cannot start, or dies (e.g. out of memory), fails the request and is replaced next time.
+      const crashed = (event: ErrorEvent) => {
+        event.preventDefault();
+        worker.terminate();
+        if (this.worker === worker) this.worker = null;
+        fail(new MeasureFileError(null, `the measuring worker stopped (${event.message || 'no details'})`));
+      };
+      worker.addEventListener('message', listen);
+      worker.addEventListener('error', crashed);
+      worker.postMessage(message, buffers);
+    });
+  }
+
+  private start(): Worker {
+    this.worker ??= this.createWorker();
+    return this.worker;
+  }
+}
