@@ -131,7 +131,28 @@ async function openInPage(file: OpenedFile, name: string): Promise<void> {
 /** Lets the browser handle input between the parts of drawing a result (no task over ~50 ms). */
 const nextTask = () => new Promise<void>((resolve) => setTimeout(resolve, 0));
 
-async function show(output: SheetOutput): Promise<void> {
+/** During a drag, the charts follow the results at most this often (ms), and once it pauses. */
+const LIVE_CHARTS_MS = 300;
+let chartsTimer: ReturnType<typeof setTimeout> | undefined;
+let chartsDrawnAt = 0;
+
+/**
+ * Draws the charts of `shown`; during a drag (`live`) at most every LIVE_CHARTS_MS: four uPlot
+ * canvases redrawn for every streamed result kept a software GPU busy enough to stall the main
+ * thread (its 2D canvas commands wait for the GPU process) for 100-500 ms.
+ */
+function showCharts(shown: ViewStack, live: boolean): void {
+  clearTimeout(chartsTimer);
+  const wait = live ? chartsDrawnAt + LIVE_CHARTS_MS - performance.now() : 0;
+  if (wait > 0) {
+    chartsTimer = setTimeout(() => stack === shown && showCharts(shown, false), wait);
+    return;
+  }
+  chartsDrawnAt = performance.now();
+  charts.showStack(shown);
+}
+
+async function show(output: SheetOutput, live = false): Promise<void> {
   const shown = viewStack(output);
   stack = shown;
   try {
@@ -144,7 +165,7 @@ async function show(output: SheetOutput): Promise<void> {
   renderResults($('main'), shown);
   await nextTask();
   if (stack !== shown) return;
-  charts.showStack(shown);
+  showCharts(shown, live);
 }
 
 /**
@@ -193,7 +214,7 @@ async function run(draft: Config, live = false): Promise<void> {
         statusLine.textContent = `Lloyd iteration ${record.iteration} / ${total}, energy ${record.energy.toPrecision(6)} µm⁴`;
       },
     });
-    await show(output);
+    await show(output, live);
     // Saved once it ran: the URL and the session hold the configuration of the result on screen.
     saveConfig(config, linkConfig);
     runs += 1;
