@@ -78,7 +78,7 @@ test.describe('measure a tissue in the app', () => {
     inputs = makeInputs(testInfo.outputPath('labels'));
   });
 
-  test('dropped label PNGs give the CLI numbers and the model comparison, without long tasks; cells can be picked', async ({ page }) => {
+  test('dropped label PNGs give the CLI numbers and the model comparison, without long tasks; cells can be picked', async ({ page }, testInfo) => {
     const cli = inputs.cli;
     expect(cli.analyses[0].summary.validCells).toBeGreaterThan(20);
     expect(cli.comparison).not.toBeNull();
@@ -136,6 +136,7 @@ test.describe('measure a tissue in the app', () => {
       }),
     );
     expect(whiteOnEvery.every((n) => n > 0)).toBe(true);
+    await page.locator('#measure').screenshot({ path: process.env.MEASURE_SHOT ?? testInfo.outputPath('measure-panel.png') });
   });
 
   test('a bad file shows an alert naming it and leaves the measured tissue shown; one PNG from the picker is refused', async ({ page }) => {

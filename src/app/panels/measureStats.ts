@@ -58,7 +58,7 @@ export function summaryTable(result: MeasuredResult, comparison: ModelComparison
   table.className = 'summary';
   table.id = 'measure-summary';
   const columns: { name: string; summary: ScutoidSummary }[] = [{ name: `measured (labels, min contact ${fmt(result.analyses[0].minContactLength, 3)} µm)`, summary: result.analyses[0].summary }];
-  if (comparison) columns.push({ name: `model Voronoi ${comparison.bestK} (exact)`, summary: comparison.summary });
+  if (comparison) columns.push({ name: `model Voronoi ${comparison.bestK} (exact; realization 1, % scutoids: mean)`, summary: comparison.summary });
   table.append(row(['', ...columns.map((c) => c.name)], true));
   const line = (key: keyof ScutoidSummary, label: string, digits: number, values = columns.map((c) => num(c.summary[key] as number))) =>
     table.append(row([label, ...values.map((v) => fmt(v, digits))], false, String(key), values));

@@ -28,7 +28,11 @@ export class MeasureLayers {
     this.byLabel = new Map(result.cells.map((c) => [c.label, c]));
     this.selected = 0;
     this.container.replaceChildren();
-    const widest = Math.max(...result.inputs.layers.map((l) => l.width));
+    // True proportions: the same µm per screen pixel on every layer, all layers side by side
+    // in the card's width (at most PICTURE_HEIGHT_PX high).
+    const aspects = result.inputs.layers.map((l) => l.width / l.height);
+    const room = Math.max(240, (this.container.clientWidth || 900) - 16 * aspects.length);
+    const height = Math.max(80, Math.min(PICTURE_HEIGHT_PX, room / aspects.reduce((a, b) => a + b, 0)));
     this.canvases = pictures.map((picture, k) => {
       const layer = result.inputs.layers[k];
       const figure = document.createElement('figure');
@@ -39,11 +43,8 @@ export class MeasureLayers {
       canvas.dataset.layer = picture.name;
       canvas.setAttribute('role', 'img');
       canvas.setAttribute('aria-label', `measured ${picture.name} layer, ${layer.width} x ${layer.height} pixels${picture.step > 1 ? `, drawn at 1/${picture.step}` : ''}; click a cell to pick it`);
-      // True proportions: the same µm per screen pixel on every layer.
-      canvas.style.height = `${PICTURE_HEIGHT_PX}px`;
-      canvas.style.width = `${(PICTURE_HEIGHT_PX * layer.width) / layer.height}px`;
-      canvas.style.maxWidth = `${(100 * layer.width) / widest}%`;
-      canvas.style.objectFit = 'contain';
+      canvas.style.height = `${height}px`;
+      canvas.style.width = `${height * aspects[k]}px`;
       canvas.getContext('2d')?.putImageData(new ImageData(picture.rgba, picture.width, picture.height), 0, 0);
       canvas.addEventListener('click', (event) => this.pick(this.labelAt(k, canvas, event)));
       const caption = document.createElement('figcaption');
