@@ -38,7 +38,9 @@ export function drawUnrolled(container: HTMLElement, stack: ViewStack, highlight
     const canvas = document.createElement('canvas');
     canvas.dataset.surface = surface.name;
     canvas.setAttribute('role', 'img');
-    const context = () => canvas.getContext('2d');
+    // A software canvas: pictures are copied in, never drawn, and an accelerated canvas's
+    // uploads took the (software) GPU process ~90 ms per result, delaying the page's frames.
+    const context = () => canvas.getContext('2d', { willReadFrequently: true });
     const paint = { highlightScutoids, valid: stack.valid, scutoid: stack.scutoid, selected: options.selected ?? -1 };
     if (stack.closed) {
       const rgba = workerRgba(surface, paint) ?? paintSurface(surface, paint);
