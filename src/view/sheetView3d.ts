@@ -282,9 +282,17 @@ export class SheetView3D {
         texture = new THREE.CanvasTexture(canvas);
       }
       texture.flipY = false;
-      texture.magFilter = THREE.LinearFilter;
-      texture.minFilter = THREE.LinearMipmapLinearFilter;
-      texture.anisotropy = Math.min(8, this.renderer.capabilities.getMaxAnisotropy());
+      if (picture instanceof ImageData) {
+        // A drag's draft (the label image, one texel per pixel): sampled as texels, no mipmaps
+        // or anisotropy, which cost a software GPU most of a frame per streamed result.
+        texture.magFilter = THREE.NearestFilter;
+        texture.minFilter = THREE.LinearFilter;
+        texture.generateMipmaps = false;
+      } else {
+        texture.magFilter = THREE.LinearFilter;
+        texture.minFilter = THREE.LinearMipmapLinearFilter;
+        texture.anisotropy = Math.min(8, this.renderer.capabilities.getMaxAnisotropy());
+      }
       texture.colorSpace = THREE.SRGBColorSpace;
       texture.wrapS = config.surface.kind === 'tube' ? THREE.RepeatWrapping : THREE.ClampToEdgeWrapping;
       texture.needsUpdate = true;
