@@ -136,6 +136,13 @@ test.describe('measure a tissue in the app', () => {
       }),
     );
     expect(whiteOnEvery.every((n) => n > 0)).toBe(true);
+    // The result JSON: the CLI's document (timings and file paths aside).
+    const [download] = await Promise.all([page.waitForEvent('download'), page.locator('#measure-json').click()]);
+    const saved = JSON.parse(readFileSync((await download.path())!, 'utf8')) as MeasuredResult;
+    expect(saved.analyses).toEqual(cli.analyses);
+    expect(saved.cells).toEqual(cli.cells);
+    expect(saved.comparison!.bestK).toBe(comparison.bestK);
+    expect(saved.comparison!.percentScutoids).toEqual(comparison.percentScutoids);
     await page.locator('#measure').screenshot({ path: process.env.MEASURE_SHOT ?? testInfo.outputPath('measure-panel.png') });
   });
 

@@ -34,6 +34,7 @@ const TEMPLATE = `
       <input id="measure-realizations" type="number" min="0" max="100" step="1" value="10" /></label>
     <button type="button" id="measure-again" disabled>Measure again</button>
     <button type="button" id="measure-reverse" disabled title="The first file is the basal layer">Reverse layer order</button>
+    <button type="button" id="measure-json" disabled title="The measured result with its comparison, as tissue-sheet measure writes it">Result JSON</button>
   </div>
   <p id="measure-status" class="small" role="status" aria-live="polite"></p>
   <div id="measure-alert" class="alert measure-alert" role="alert" hidden><p class="message"></p><button type="button" data-dismiss>Dismiss</button></div>
@@ -65,6 +66,7 @@ export class MeasurePanel {
   /** The files of the latest attempt (Measure again, Reverse), basal first. */
   private files: File[] = [];
   private result: MeasuredResult | null = null;
+  private comparison: ModelComparison | null = null;
   private shown = 0;
 
   constructor(private readonly root: HTMLElement) {
@@ -78,6 +80,7 @@ export class MeasurePanel {
     });
     this.$('#measure-again').addEventListener('click', () => void this.measure(this.files));
     this.$('#measure-reverse').addEventListener('click', () => void this.measure([...this.files].reverse()));
+    this.$('#measure-json').addEventListener('click', () => this.download());
     this.$('#measure-alert [data-dismiss]').addEventListener('click', () => (this.$('#measure-alert').hidden = true));
     this.bindDrop();
   }
@@ -174,6 +177,8 @@ export class MeasurePanel {
   private async showMeasured(result: MeasuredResult, pictures: LayerPicture[]): Promise<void> {
     const shown = ++this.shown;
     this.result = result;
+    this.comparison = null;
+    this.$<HTMLButtonElement>('#measure-json').disabled = false;
     this.$('#measure-results').hidden = false;
     renderHeadline(this.root, result, null, null);
     this.$('#measure-info').textContent = describe(result);
@@ -192,6 +197,7 @@ export class MeasurePanel {
     const result = this.result;
     if (!result) return;
     const shown = this.shown;
+    this.comparison = comparison;
     renderHeadline(this.root, result, comparison, note);
     this.$('#measure-summary-box').replaceChildren(summaryTable(result, comparison));
     await nextTask();
@@ -203,6 +209,18 @@ export class MeasurePanel {
         ? `Measured and compared: Voronoi ${comparison.bestK} matches best; at s = ${comparison.surfaceRatio.toFixed(3)} it gives ${comparison.meanPercentScutoids.toFixed(1)} ± ${comparison.sdPercentScutoids.toFixed(1)} % scutoids.`
         : `Measured; ${note ?? 'no comparison'}.`,
     );
+  }
+
+  /** The result JSON of the tissue shown, in the CLI's shape (comparison included once made). */
+  private download(): void {
+    if (!this.result) return;
+    const result = { ...this.result, comparison: this.comparison };
+    const text = JSON.stringify(result, null, result.cells.length > 5000 ? undefined : 2) + '\n';
+    const link = document.createElement('a');
+    link.href = URL.createObjectURL(new Blob([text], { type: 'application/json' }));
+    link.download = 'measured.json';
+    link.click();
+    setTimeout(() => URL.revokeObjectURL(link.href), 10_000);
   }
 }
 
