@@ -3,8 +3,16 @@
  * longer side and stored in the config as a PNG data URL (density.src), so the URL and the
  * saved session carry it and a shared link reproduces the run. Decoding gives the GrayImage
  * runSheet needs.
+ *
+ * Untrusted input: the bytes are read first (a link's src through fetchSourceBytes, which asks
+ * before any other origin), the size is read from the header and bounded, and a truncated PNG
+ * is refused (imageHeader.ts) before the browser decodes anything; the browser decodes a blob:
+ * URL of the checked bytes, so the page's img-src needs no other origin.
  */
+import { ConfigError } from '../core/config';
 import type { GrayImage } from '../core/density';
+import { ImageHeaderError, readImageSize } from './imageHeader';
+import { fetchSourceBytes } from './sources';
 
 const MAX_SIDE = 128;
 
@@ -27,8 +35,10 @@ function draw(image: CanvasImageSource, width: number, height: number): CanvasRe
   return context;
 }
 
-/** A small grayscale PNG data URL of an uploaded image file. */
+/** A small grayscale PNG data URL of an uploaded image file (size checked from its header first). */
 export async function imageFileToDataUrl(file: Blob): Promise<string> {
+  const name = file instanceof File ? file.name : 'the image';
+  readImageSize(new Uint8Array(await file.arrayBuffer()), `density image ${name}`);
   const url = URL.createObjectURL(file);
   try {
     const image = await loadImage(url);
@@ -49,9 +59,27 @@ export async function imageFileToDataUrl(file: Blob): Promise<string> {
   }
 }
 
-/** Decodes an image (URL or data URL) into luminance 0..1, row 0 = top. */
+/**
+ * Decodes an image (URL or data URL) into luminance 0..1, row 0 = top. A foreign URL loads only
+ * once approved; the header is checked before decoding. Errors are ConfigErrors on density.src.
+ */
 export async function decodeGrayImage(src: string): Promise<GrayImage> {
-  const image = await loadImage(src);
+  const bytes = new Uint8Array(await fetchSourceBytes('density.src', src));
+  const what = `density.src: density image ${src.startsWith('data:') ? 'from the data: URL' : src}`;
+  let format: string;
+  try {
+    format = readImageSize(bytes, what).format;
+  } catch (error) {
+    if (error instanceof ImageHeaderError) throw new ConfigError('density.src', error.message);
+    throw error;
+  }
+  const url = URL.createObjectURL(new Blob([bytes], { type: `image/${format}` }));
+  let image: HTMLImageElement;
+  try {
+    image = await loadImage(url);
+  } finally {
+    URL.revokeObjectURL(url);
+  }
   const width = image.naturalWidth;
   const height = image.naturalHeight;
   const pixels = draw(image, width, height).getImageData(0, 0, width, height).data;

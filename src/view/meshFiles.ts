@@ -5,7 +5,8 @@
  * "/"); a link or a later visit with such a name asks for the file again.
  */
 import { ConfigError, type AnyConfig } from '../core/config';
-import { fetchMeshFile, type MeshFile } from '../run';
+import type { MeshFile } from '../run';
+import { fetchSourceBytes } from './sources';
 
 /** A src without a "/" (and not a data: URL) names a file the user uploaded. */
 export function isUploadName(src: string): boolean {
@@ -44,7 +45,8 @@ export async function meshFileFor(config: AnyConfig, given?: MeshFile | null): P
   }
   if (!fetched.has(src)) {
     if (fetched.size > 8) fetched.clear();
-    const job = fetchMeshFile(src);
+    // Through the source gate: a foreign URL loads only once the user approved it (sources.ts).
+    const job = fetchSourceBytes('surface.src', src).then((data): MeshFile => ({ data, name: src }));
     job.catch(() => fetched.delete(src));
     fetched.set(src, job);
   }
