@@ -1,0 +1,54 @@
+/**
+ * Issue 19: `__proto__`, `constructor` and `prototype` are refused anywhere in a config with one
+ * line naming the path, and validation never reaches Object.prototype. Inputs come from
+ * JSON.parse, which keeps "__proto__" as an own key (as a link or a file does).
+ */
+import { afterEach, describe, expect, it } from 'vitest';
+import { ConfigError, validateAnyConfig } from '../../src/core/config';
+
+const POLLUTED = ['polluted', 'cells', 'layers', 'radius'];
+
+afterEach(() => {
+  for (const key of POLLUTED) delete (Object.prototype as Record<string, unknown>)[key];
+});
+
+function refusal(json: string): ConfigError {
+  try {
+    validateAnyConfig(JSON.parse(json));
+  } catch (error) {
+    expect(error).toBeInstanceOf(ConfigError);
+    return error as ConfigError;
+  }
+  throw new Error(`expected ${json} to be refused`);
+}
+
+describe('prototype keys in a config', () => {
+  const cases: [json: string, field: string][] = [];
+  for (const key of ['__proto__', 'constructor', 'prototype']) {
+    cases.push([`{"${key}": {"polluted": 1}}`, key]);
+    cases.push([`{"cells": 20, "sheet": {"${key}": {"layers": 3}}}`, `sheet.${key}`]);
+    cases.push([`{"surface": {"kind": "tube", "radius": 10, "length": 100, "${key}": {"polluted": true}}}`, `surface.${key}`]);
+    cases.push([`{"density": {"kind": "gaussian", "center": [1, {"${key}": 2}]}}`, `density.center[1].${key}`]);
+  }
+  it.each(cases)('%s is refused naming %s', (json, field) => {
+    const error = refusal(json);
+    expect(error.field).toBe(field);
+    const key = field.split(/[.[\]]/).filter(Boolean).pop()!;
+    expect(error.message).toBe(`${field}: "${key}" is not allowed as a key (it would reach an object prototype); remove it`);
+    expect(error.message).not.toContain('\n');
+    for (const name of POLLUTED) expect(Object.prototype.hasOwnProperty.call(Object.prototype, name), name).toBe(false);
+    expect(({} as Record<string, unknown>).polluted).toBeUndefined();
+  });
+
+  it('a valid config is returned with plain objects whose keys are own properties', () => {
+    const config = validateAnyConfig(JSON.parse('{"cells": 30, "sheet": {"layers": 2}}')) as unknown as Record<string, Record<string, unknown>>;
+    expect(Object.getPrototypeOf(config.sheet)).toBe(Object.prototype);
+    expect(Object.keys(config.sheet)).toContain('layers');
+    expect(config.sheet.layers).toBe(2);
+  });
+
+  it('a key that merely contains the words is accepted by the prototype check (the schema decides)', () => {
+    const error = refusal('{"cells": 20, "sheet": {"my__proto__": 1}}');
+    expect(error.message).toMatch(/^sheet\.my__proto__: unknown field/);
+  });
+});
