@@ -66,6 +66,12 @@ test.describe('the app stays responsive', () => {
     });
     await waitForRun(page, before);
     await expect(page.locator('input[name="sheet.surfaceRatio"]')).toHaveValue('3.2');
+    // The drag showed drafts (one pixel per texel); once it settles the pictures are drawn in
+    // full: the unrolled basal surface at twice its texels (exactScale(surface, 2) here).
+    const basal = page.locator('#unrolled canvas').first();
+    const texels = Number(/(\d+) x \d+ texels/.exec((await basal.getAttribute('aria-label')) ?? '')?.[1]);
+    expect(texels).toBeGreaterThan(0);
+    await expect.poll(() => basal.evaluate((c: HTMLCanvasElement) => c.width), { timeout: 10_000 }).toBe(2 * texels);
     const duringDrag = await takeLongTasks(page);
 
     await page.locator('[name="sweep-to"]').fill('2.5');
@@ -164,6 +170,28 @@ test.describe('<tissue-sheet>.sweep()', () => {
     const sorted = (rows: unknown) => [...(rows as Record<string, string>[])].sort((a, b) => a.key.localeCompare(b.key));
     expect(sorted(resumed.runs)).toEqual(sorted(full.runs));
     expect(resumed.aggregateCsv).toBe(full.aggregateCsv);
+  });
+
+  test("the worker's pictures are the views' own: exact cells in full, painted label images in drafts", async ({ page }) => {
+    const config = { surface: { kind: 'tube', radius: 128 / (2 * Math.PI), length: 256 }, resolution: 128, cells: 40, seed: 4, lloyd: { maxIterations: 2 }, sheet: { surfaceRatio: 2 } };
+    const rows = await page.evaluate(
+      (config) => (window as unknown as { tissueSheetInteractive: { pictures(c: unknown): Promise<Record<string, unknown>[]> } }).tissueSheetInteractive.pictures(config),
+      config,
+    );
+    console.log(`worker pictures: ${JSON.stringify(rows)}`);
+    // basal and apical, each for the 3D view's texture and the unrolled diagram
+    expect(rows).toHaveLength(4);
+    for (const row of rows) {
+      expect(row.full).toBe('ImageBitmap');
+      expect(row.fullDiffering).toBeLessThanOrEqual(1e-3);
+      expect(row.draftDiffering).toBe(0);
+    }
+    // Full pictures at the views' scales; drafts at one pixel per texel.
+    for (const row of rows as { grid: number[]; scale: number; fullSize: number[]; draftSize: number[] }[]) {
+      expect(row.fullSize).toEqual(row.grid.map((n) => Math.round(n * row.scale)));
+      expect(row.draftSize).toEqual(row.grid);
+      expect(row.scale).toBeGreaterThan(1);
+    }
   });
 
   test('a bad spec is refused with the field named, before any run', async ({ page }) => {
