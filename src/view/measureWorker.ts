@@ -8,7 +8,12 @@ import { version } from '../version';
 import { cellsByLabel, paintLayer, reduceLabels, type LayerLabels, type LayerPicture } from './measurePicture';
 import type { FromMeasureWorker, ToMeasureWorker } from './measureProtocol';
 
-const post = (message: FromMeasureWorker, transfer: Transferable[] = []) => (self as unknown as Worker).postMessage(message, transfer);
+/** What this worker uses of its global scope (the DOM typings describe a window). */
+interface MeasureWorkerScope {
+  postMessage(message: FromMeasureWorker, options?: StructuredSerializeOptions): void;
+}
+const scope = self as MeasureWorkerScope;
+const post = (message: FromMeasureWorker, transfer: Transferable[] = []) => scope.postMessage(message, { transfer });
 
 self.onmessage = (event: MessageEvent<ToMeasureWorker>) => {
   const { id, files, options } = event.data;

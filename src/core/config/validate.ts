@@ -30,7 +30,7 @@ type Unresolved<T> = T extends unknown ? Omit<T, 'resolution'> & { resolution: n
  * the first error and gives verbose errors (their schema node is where messages find ranges and
  * units).
  */
-const validate = generatedValidate as unknown as ((data: unknown) => data is Unresolved<AnyConfig>) & { errors?: ErrorObject[] | null };
+const validate = generatedValidate as ((data: unknown) => data is Unresolved<AnyConfig>) & { errors?: ErrorObject[] | null };
 
 /**
  * Checks `input`, fills every default and returns a fresh object (the input is never modified).

@@ -112,7 +112,7 @@ function defineOwn(obj: Record<string, unknown>, key: string, value: unknown): v
 }
 
 /** The number of runs a spec expands to, computed without expanding it. */
-export function countRuns(spec: SweepSpec): number {
+export function countRuns(spec: Pick<SweepSpec, 'vary' | 'realizations'>): number {
   let n = spec.realizations ?? 1;
   for (const values of Object.values(spec.vary ?? {})) n *= Array.isArray(values) ? values.length : 0;
   return n;

@@ -22,7 +22,15 @@ import { DEFAULT_MAX_RUNS, MAX_REALIZATIONS, MAX_VALUES_PER_FIELD, SEED_MODES, s
 import { validate as validateSweepSpecShape } from './specValidator.generated';
 
 /** A standalone ajv validator: true when valid, else `errors[0]` says why. */
-type GeneratedValidator = ((data: unknown) => boolean) & { errors?: ErrorObject[] | null };
+/** What the shape check guarantees (base is checked against the config schema afterwards). */
+interface SweepSpecShape {
+  base: unknown;
+  vary?: Record<string, readonly unknown[]>;
+  realizations: number;
+  seed?: number;
+  seedMode: 'per-run' | 'per-realization';
+}
+type GeneratedValidator = ((data: unknown) => data is SweepSpecShape) & { errors?: ErrorObject[] | null };
 
 /** A sweep-spec problem: a ConfigError whose `field` is a path in the spec (`vary["sheet.layers"][1]`). */
 export class SweepSpecError extends ConfigError {
@@ -36,7 +44,7 @@ export { DEFAULT_MAX_RUNS, MAX_REALIZATIONS, MAX_VALUES_PER_FIELD, SEED_MODES, s
 
 // The shape check is compiled ahead of time (npm run validators:write) from specSchema.ts: the
 // page's Content-Security-Policy has no 'unsafe-eval', so ajv cannot compile it at run time.
-const validateShape = validateSweepSpecShape as unknown as GeneratedValidator;
+const validateShape = validateSweepSpecShape as GeneratedValidator;
 
 export type ValidSweepSpec = SweepSpec<AnyConfig & Record<string, unknown>> & { realizations: number; seedMode: 'per-run' | 'per-realization' };
 
@@ -56,7 +64,7 @@ export function validateSweepSpec(input: unknown, options: SweepSpecOptions = {}
     const key = [...FORBIDDEN_KEYS].find((k) => forbidden.includes(k)) ?? forbidden;
     throw new SweepSpecError(forbidden, `${forbidden}: "${key}" is not allowed as a key or path part (it would reach an object prototype); remove it`);
   }
-  const spec = structuredClone(input) as Record<string, unknown>;
+  const spec: unknown = structuredClone(input);
   if (!validateShape(spec)) throw shapeError(validateShape.errors?.[0]);
   const vary = (spec.vary ?? {}) as Record<string, unknown[]>;
 
@@ -70,7 +78,7 @@ export function validateSweepSpec(input: unknown, options: SweepSpecOptions = {}
   for (const path of Object.keys(vary)) checkVariedPath(path);
 
   const maxRuns = options.maxRuns ?? DEFAULT_MAX_RUNS;
-  const runs = countRuns(spec as unknown as SweepSpec);
+  const runs = countRuns(spec);
   if (runs > maxRuns) {
     const sizes = Object.entries(vary).map(([p, v]) => `${v.length} ${p}`);
     throw new SweepSpecError(
@@ -95,7 +103,7 @@ export function validateSweepSpec(input: unknown, options: SweepSpecOptions = {}
     });
   }
   void base;
-  return spec as unknown as ValidSweepSpec;
+  return spec as ValidSweepSpec;
 }
 
 /** The first key named __proto__, constructor or prototype, as a path; undefined when none. */
@@ -120,7 +128,7 @@ export function checkVariedPath(path: string): void {
   if (path === 'seed') {
     throw new SweepSpecError(field, `${field}: the seed is derived per run from "seed" and "seedMode"; vary "realizations" instead`);
   }
-  let nodes: SchemaNode[] = [configSchema as unknown as SchemaNode];
+  let nodes: SchemaNode[] = [configSchema as SchemaNode];
   const parts = path.split('.');
   for (let k = 0; k < parts.length; k++) {
     const part = parts[k];
