@@ -53,6 +53,12 @@ try {
   const latencies: number[] = [];
   for (const ratio of ratios) latencies.push(await ratioToPicture(app, ratio));
   const appLongest = Math.max(0, ...(await app.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks)));
+  // One slider step (input then change at once, as a key press or a click on the track): the
+  // draft picture, then the full one after the app's settle delay.
+  await app.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks.splice(0));
+  const steps: number[] = [];
+  for (const ratio of ratios.slice(0, 6)) steps.push(await stepToFullPicture(app, ratio + 0.1));
+  const stepLongest = Math.max(0, ...(await app.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks)));
   await app.close();
 
   // 2. Compute only: main thread (baseline) against the worker.
@@ -80,6 +86,7 @@ try {
   const p50 = quantile(latencies, 0.5);
   const p95 = quantile(latencies, 0.95);
   say(`app ratio change, input -> picture, ${latencies.length} changes: median ${fmt(p50)}, p95 ${fmt(p95)}; longest main-thread task ${fmt(appLongest)}`);
+  say(`app slider step (input + change), input -> full picture (draft first, full after the 400 ms settle): median ${fmt(quantile(steps, 0.5))} of ${steps.length}; longest main-thread task ${fmt(stepLongest)}`);
   say(`compute only, ratio change: main thread (baseline) median ${fmt(onPage.median)}, longest task ${fmt(onPage.longestTask)} | worker median ${fmt(inWorker.median)} (x${(inWorker.median / onPage.median).toFixed(2)} of baseline), longest task ${fmt(inWorker.longestTask)}`);
   say(`app latency / worker compute median: x${(p50 / inWorker.median).toFixed(2)} (the rest is transfer and drawing)`);
   say(`sweep of ${runs} runs: page ${(page.runs / page.seconds).toFixed(2)} runs/s (longest task ${fmt(page.longestTask)}) | CLI ${(runs / cliSeconds).toFixed(2)} runs/s incl. start-up (baseline); page/CLI x${(page.runs / page.seconds / (runs / cliSeconds)).toFixed(2)}`);
@@ -102,5 +109,20 @@ async function ratioToPicture(page: Page, ratio: number): Promise<number> {
     const elapsed = performance.now() - started;
     slider.dispatchEvent(new Event('change', { bubbles: true }));
     return elapsed;
+  }, ratio);
+}
+
+/** A slider step (input and change together): time until the full pictures are on screen. */
+async function stepToFullPicture(page: Page, ratio: number): Promise<number> {
+  return page.evaluate(async (ratio) => {
+    const slider = document.querySelector<HTMLInputElement>('input[name="sheet.surfaceRatio"]')!;
+    const before = Number(document.body.dataset.runs);
+    const started = performance.now();
+    slider.value = String(ratio);
+    slider.dispatchEvent(new Event('input', { bubbles: true }));
+    slider.dispatchEvent(new Event('change', { bubbles: true }));
+    while (!(Number(document.body.dataset.runs) > before && document.body.dataset.state === 'done' && document.body.dataset.pictures === 'full')) await new Promise((resolve) => setTimeout(resolve, 5));
+    await new Promise((resolve) => requestAnimationFrame(resolve));
+    return performance.now() - started;
   }, ratio);
 }

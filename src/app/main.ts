@@ -162,6 +162,8 @@ function showCharts(shown: ViewStack, live: boolean): void {
 async function show(output: SheetOutput, live = false): Promise<void> {
   const shown = viewStack(output);
   stack = shown;
+  // Which pictures are on screen: a drag's drafts, or full (redrawInFull follows a drag).
+  document.body.dataset.pictures = live ? 'draft' : 'full';
   try {
     viewPanel.show(shown);
   } catch (error) {
@@ -260,6 +262,7 @@ async function redrawInFull(): Promise<void> {
     if (stack !== shown || runner.running) return;
     stack = viewStack(output);
     viewPanel.show(stack);
+    document.body.dataset.pictures = 'full';
   } catch {
     // The draft pictures stay: they show the same result.
   }
