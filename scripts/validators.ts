@@ -1,7 +1,8 @@
 /**
  * Precompiled validators (scripts/validatorsCode.ts). `tsx scripts/validators.ts write` writes
  * them; `tsx scripts/validators.ts check` regenerates them in memory and exits 1, naming the
- * file, when a committed one differs (CI runs it through `npm test`).
+ * file, when the written one differs (CI runs it through `npm test`). The modules are generated,
+ * not committed (.gitignore): `npm ci` / `npm install` write them in their `prepare` step.
  */
 import { readFileSync, writeFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
@@ -18,14 +19,14 @@ if (mode === 'write') {
 } else if (mode === 'check') {
   let stale = 0;
   for (const file of files) {
-    let committed = '';
+    let written = '';
     try {
-      committed = readFileSync(`${root}${file.path}`, 'utf8');
+      written = readFileSync(`${root}${file.path}`, 'utf8');
     } catch {
       // reported below as differing
     }
-    if (committed !== file.text) {
-      console.error(`validators: ${file.path} differs from its schema; run npm run validators:write and commit it`);
+    if (written !== file.text) {
+      console.error(`validators: ${file.path} differs from its schema; run npm run validators:write (npm install and npm ci run it as the prepare step)`);
       stale++;
     }
   }

@@ -7,7 +7,7 @@
  */
 import { closeSync, lstatSync, openSync, readSync, renameSync, rmSync, writeFileSync } from 'node:fs';
 import { basename, dirname, join, resolve } from 'node:path';
-import { compareWithModel, MeasureInputError, measureTissue, type MeasuredResult } from '../core/measure';
+import { compareMeasured, MeasureInputError, measureTissue, type MeasuredResult } from '../core/measure';
 import { labelFileFromPath } from '../node/labelImages';
 import { version } from '../version';
 
@@ -145,25 +145,11 @@ export async function measureCommand(args: string[], log: (line: string) => void
 }
 
 function withComparison(result: MeasuredResult, a: MeasureArgs, log: (line: string) => void): MeasuredResult {
-  const basal = result.inputs.layers[0];
-  const distribution = result.analyses[0].summary.perSurface[0].polygonDistribution;
-  if (result.analyses[0].summary.validCells === 0 || basal.labels < 3) {
-    log('warning: no comparison with the model: the basal layer has no valid cell');
-    return { ...result, warnings: [...result.warnings, 'no comparison with the model: the basal layer has no valid cell'] };
+  const { comparison, note } = compareMeasured(result, { realizations: a.realizations, seed: a.seed, onProgress: log });
+  if (!comparison) {
+    log(`warning: ${note}`);
+    return { ...result, warnings: [...result.warnings, note] };
   }
-  const comparison = compareWithModel({
-    width: basal.width,
-    height: basal.height,
-    pixelSize: result.inputs.pixelSize.value,
-    periodicX: result.inputs.options.periodicX,
-    cells: basal.labels,
-    distribution,
-    layers: result.inputs.layers.length,
-    surfaceRatio: result.surfaceRatio.value,
-    realizations: a.realizations,
-    seed: a.seed,
-    onProgress: log,
-  });
   log(
     `model: Voronoi ${comparison.bestK} matches best (L1 ${comparison.candidates[comparison.bestK - 1].distance.toFixed(3)}); ` +
       `at ratio ${comparison.surfaceRatio.toFixed(3)} it gives ${comparison.meanPercentScutoids.toFixed(1)} ± ${comparison.sdPercentScutoids.toFixed(1)} % scutoids ` +

@@ -1,7 +1,6 @@
 /** The element's events and their typed `detail`. */
-import type { Aggregate } from '../core/sweep';
 import type { SheetResult } from '../run';
-import type { PageSweepProgress } from '../view/pageSweep';
+import type { PageSweepProgress, PageSweepResult } from '../view/pageSweep';
 
 export interface TissueSheetProgressDetail {
   /** 1-based Lloyd iteration just finished. */
@@ -43,20 +42,12 @@ export interface TissueSheetSweepOptions {
   resume?: string;
 }
 
-export interface TissueSheetSweepResult {
-  /** runs.csv's columns (the CLI's). */
-  header: string[];
-  /** runs.csv's rows as text cells, resumed ones first. */
-  runs: Record<string, string>[];
-  /** Per grid point: mean, sd, se, n of every numeric column (the CLI's aggregate). */
-  aggregate: Aggregate;
-  runsCsv: string;
-  aggregateCsv: string;
-  completed: number;
-  skipped: number;
-  /** True when the signal stopped it: `runs` holds the runs finished until then. */
-  aborted: boolean;
-}
+/**
+ * What `sweep()` resolves with: runs.csv's `header` and rows (`runs`, text cells, resumed ones
+ * first), the CLI's `aggregate` (mean, sd, se, n per grid point and numeric column), both files'
+ * text, how many runs were `completed` and `skipped`, and whether the signal `aborted` it.
+ */
+export type TissueSheetSweepResult = Pick<PageSweepResult, 'header' | 'runs' | 'aggregate' | 'runsCsv' | 'aggregateCsv' | 'completed' | 'skipped' | 'aborted'>;
 
 export interface TissueSheetEventMap {
   progress: CustomEvent<TissueSheetProgressDetail>;
