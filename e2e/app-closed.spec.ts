@@ -49,7 +49,8 @@ test('a sphere runs: concentric spheres keep every neighbour (0 % scutoids)', as
     const [file] = await Promise.all([page.waitForEvent('download'), page.locator(`[data-export="${name}"]`).click()]);
     return readFileSync((await file.path())!, 'utf8');
   };
-  const csv = (await download('cells')).trim().split('\n');
+  // Provenance comment lines (# ...) first, then the table.
+  const csv = (await download('cells')).trim().split('\n').filter((line) => !line.startsWith('#'));
   expect(csv[0]).toContain('longitude_deg,latitude_deg');
   expect(csv).toHaveLength(101);
   const ply = await download('ply');

@@ -1,5 +1,6 @@
+import { tmpdir } from 'node:os';
 import { execFileSync } from 'node:child_process';
-import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
 import type { MeasuredResult } from '../src/core/measure';
@@ -74,8 +75,9 @@ const dataValue = async (page: Page, selector: string) => Number(await page.loca
 
 test.describe('measure a tissue in the app', () => {
   let inputs: Inputs;
-  test.beforeAll(async ({}, testInfo) => {
-    inputs = makeInputs(testInfo.outputPath('labels'));
+  test.beforeAll(async () => {
+    // A folder of its own: a test's output folder is emptied when that test (re)starts.
+    inputs = makeInputs(mkdtempSync(join(tmpdir(), 'tissue-sheet-measure-')));
   });
 
   test('dropped label PNGs give the CLI numbers and the model comparison, without long tasks; cells can be picked', async ({ page }, testInfo) => {

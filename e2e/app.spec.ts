@@ -68,8 +68,8 @@ test('an impossible configuration is explained in words and the previous result 
   const shown = await percentScutoids(page);
   const table = await page.locator('#summary').textContent();
 
-  await page.getByLabel('Cells').fill('100000');
-  await page.getByLabel('Cells').press('Enter');
+  await page.getByLabel('Cells', { exact: true }).fill('100000');
+  await page.getByLabel('Cells', { exact: true }).press('Enter');
   await expect(page.locator('#error')).toBeVisible({ timeout: 60_000 });
   await expect(page.locator('#error')).toContainText('cells: 100000 cells need at least');
   await expect(page.locator('#error')).toContainText('raise resolution');

@@ -94,7 +94,9 @@ test('the element fires result with the same numbers as the CLI for the same con
     element.setAttribute('seed', '3');
     element.setAttribute('surface-ratio', '2');
     element.setAttribute('iterations', '4');
-    element.config = { centroidPath: 'blend' };
+    // The GPU engine on both sides (auto takes the exact CPU engine on software renderers):
+    // Chromium's blend path against headless-gl's readback.
+    element.config = { centroidPath: 'blend', engine: 'gpu' };
     document.body.append(element);
     const detail = new Promise<unknown>((resolve) => element.addEventListener('result', (e) => resolve(e.detail), { once: true }));
     await element.run();
