@@ -13,7 +13,9 @@
 import { validateAnyConfig, type AnyConfig as Config } from '../../core/config';
 import { readCsvTable } from '../../core/sweep';
 import { isAbort } from '../../view/pageRunner';
+import { FLINTSTONES_RATIO, sweepFlintstones } from '../../core/sweep';
 import { planSweep, sweepInPage, type SweepPlan } from '../../view/pageSweep';
+import { FlintstonesChart } from './flintstonesChart';
 import { version } from '../../version';
 import { download } from './exports';
 import { FIELDS } from './fields';
@@ -37,6 +39,8 @@ interface Choice {
 export class SweepPanel {
   private controller: AbortController | null = null;
   private readonly chart: SweepChart;
+  /** The Flintstones law fitted after a sweep over the surface ratio. */
+  private readonly flintstones: FlintstonesChart;
   /** The sweep on screen: its spec (plain JSON) and its runs.csv so far. */
   private spec: unknown = null;
   private runsCsv = '';
@@ -48,6 +52,10 @@ export class SweepPanel {
     private readonly events: SweepPanelEvents,
   ) {
     this.chart = new SweepChart(root.querySelector<HTMLElement>('#chart-sweep') ?? root);
+    const fits = document.createElement('div');
+    fits.id = 'chart-flintstones';
+    (root.querySelector<HTMLElement>('#chart-sweep') ?? root).after(fits);
+    this.flintstones = new FlintstonesChart(fits);
     this.field = document.createElement('select');
     this.field.name = 'sweep-field';
     this.field.setAttribute('aria-label', 'field to sweep');
@@ -197,6 +205,8 @@ export class SweepPanel {
       });
       this.runsCsv = result.runsCsv;
       this.aggregateCsv = result.aggregateCsv;
+      // Over the surface ratio: the aggregate's Flintstones fits (one per Voronoi k), drawn.
+      this.flintstones.show(plan.fields.includes(FLINTSTONES_RATIO) ? sweepFlintstones(result.runs, plan.runs, plan.fields) : [], result.runs);
       const done = result.runs.length;
       this.root.dataset.finished = String(done);
       this.root.dataset.done = String(done);

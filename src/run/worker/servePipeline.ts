@@ -16,7 +16,7 @@ import type { FromWorker, SerializedError, ToWorker } from './protocol';
 
 /** What this module uses of the worker's global scope (the DOM typings describe a window). */
 interface WorkerScope {
-  postMessage(message: FromWorker, transfer?: Transferable[]): void;
+  postMessage(message: FromWorker, options?: StructuredSerializeOptions): void;
   onmessage: ((event: MessageEvent<ToWorker>) => void) | null;
 }
 
@@ -24,13 +24,13 @@ interface WorkerScope {
 export type Presenter = (output: SheetOutput, options: unknown) => { presented: unknown; transfer: Transferable[] };
 
 export function servePipeline(presenter?: Presenter): void {
-  const scope = self as unknown as WorkerScope;
+  const scope = self as WorkerScope;
   let runner: SheetRunner | null = null;
   let unavailable: string | null = null;
   const controllers = new Map<number, AbortController>();
   let queue: Promise<unknown> = Promise.resolve();
 
-  const post = (message: FromWorker, transfer: Transferable[] = []) => scope.postMessage(message, transfer);
+  const post = (message: FromWorker, transfer: Transferable[] = []) => scope.postMessage(message, { transfer });
 
   function sheetRunner(): SheetRunner | null {
     if (runner || unavailable) return runner;
