@@ -110,7 +110,10 @@ function parallelEllipsoid(surface: EllipsoidSurface, sites: ArrayLike<number>, 
   const lo = Math.min(a, b, c), hi = Math.max(a, b, c);
   const rho = (lo * lo) / hi + t; // smallest radius of curvature of the parallel surface
   if (!(rho > 0)) throw new Error(`sheet.thickness: an inward offset of ${-t} µm reaches the smallest radius of curvature of the ellipsoid (${((lo * lo) / hi).toPrecision(4)} µm), where the offset surface folds over itself; use less or direction "outward"`);
-  const maxDeviation = options.maxDeviation ?? 1e-3 * Math.sqrt((4 * Math.PI * (hi + Math.abs(t)) ** 2) / Math.max(1, count));
+  // 1 % of the cell spacing: against 0.1 % it changed no neighbour set after the minimum contact
+  // length (3,200 cells: 90:45:45, offsets -8 to 16 µm, 4 seeds) and contact lengths by < 0.4 %,
+  // at a quarter of the cost (the diagram of every layer of a stack triangulates one).
+  const maxDeviation = options.maxDeviation ?? 1e-2 * Math.sqrt((4 * Math.PI * (hi + Math.abs(t)) ** 2) / Math.max(1, count));
   const maxTriangles = options.maxTriangles ?? 2_000_000;
   if (!(maxDeviation > 0)) throw new Error(`maxDeviation: ${maxDeviation} µm is not a positive distance`);
   // Longest edge of an icosphere of frequency f on the unit sphere is about 1.15 / f rad; the
