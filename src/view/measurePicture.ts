@@ -10,7 +10,7 @@
  */
 import type { LabelPixels } from '../core/measure';
 import type { MeasuredCellRecord } from '../core/measure';
-import { RGB, SELECTED_RGB, sideColorIndex } from './sideColors';
+import { RGB, SELECTED_RGB, sideColorIndex, writePixel } from './sideColors';
 
 /** One layer's labels at picture resolution: raw labels (0 = background), row 0 = top. */
 export interface LayerLabels {
@@ -95,15 +95,7 @@ export function paintLayer(layer: LayerLabels, k: number, cells: CellsByLabel, p
           b = (b + 2 * 235) / 3;
         } else if (cells.scutoid[label] && (x + y) % stripe === 0) r = g = b = 20;
       }
-      if (isLayerBoundary(layer, periodicX, x, y)) {
-        r *= 0.25;
-        g *= 0.25;
-        b *= 0.25;
-      }
-      out[index * 4] = r;
-      out[index * 4 + 1] = g;
-      out[index * 4 + 2] = b;
-      out[index * 4 + 3] = 255;
+      writePixel(out, index, r, g, b, isLayerBoundary(layer, periodicX, x, y));
     }
   }
   return out;

@@ -66,18 +66,19 @@ export function paintSurface(surface: ViewSurface, options: PaintOptions = {}): 
           b = 20;
         }
       }
-      if (isBoundary(labels, width, height, grid.periodicX, x, y, id)) {
-        r *= 0.25;
-        g *= 0.25;
-        b *= 0.25;
-      }
-      out[index * 4] = r;
-      out[index * 4 + 1] = g;
-      out[index * 4 + 2] = b;
-      out[index * 4 + 3] = 255;
+      writePixel(out, index, r, g, b, isBoundary(labels, width, height, grid.periodicX, x, y, id));
     }
   }
   return out;
+}
+
+/** Writes an opaque RGBA pixel, darkened to a quarter on a cell boundary. */
+export function writePixel(out: Uint8Array | Uint8ClampedArray, index: number, r: number, g: number, b: number, boundary: boolean): void {
+  const shade = boundary ? 0.25 : 1;
+  out[index * 4] = r * shade;
+  out[index * 4 + 1] = g * shade;
+  out[index * 4 + 2] = b * shade;
+  out[index * 4 + 3] = 255;
 }
 
 function isBoundary(labels: Int32Array, width: number, height: number, periodicX: boolean, x: number, y: number, id: number): boolean {
