@@ -3,6 +3,7 @@
  * (apical) surfaces, label adjacency across face edges, a brute-force nearest-site reference,
  * and the curvature bound for offsets of a mesh.
  */
+import type { LabelAdjacency } from '../labels';
 import { texelFromIndex, texelIndex, wrapTexel, type Vec3 } from '../cubemap/cubemap';
 import type { CubeGeometryImage } from '../cubemap/sample';
 import type { TriangleMesh } from '../mesh/types';
@@ -190,24 +191,12 @@ export function offsetSurface(image: CubeGeometryImage, t: number, neighbours = 
   return { n, position, area, totalArea: total };
 }
 
-/** Cell adjacency of a cube-map label image (the planar LabelAdjacency's fields). */
-export interface CubeLabelAdjacency {
-  readonly count: number;
-  readonly offsets: Int32Array;
-  readonly neighbours: Int32Array;
-  /** Shared boundary length, µm, without the staircase bias (see cubeLabelAdjacency). */
-  readonly lengths: Float64Array;
-  /**
-   * The staircase: the plain sum of the shared texel edges, µm (1 to 1.41, on average 4/π,
-   * times a straight contact's length). Never compare it with a length in µm.
-   */
-  readonly staircaseLengths: Float64Array;
-  readonly texels: Int32Array;
-  /** Cell area, µm² (sum of the area elements of its texels). */
-  readonly area: Float64Array;
-  /** Always 0: a closed surface has no open edge. */
-  readonly touchesBorder: Uint8Array;
-}
+/**
+ * Cell adjacency of a cube-map label image: the planar LabelAdjacency's fields (lengths without
+ * the staircase bias, see cubeLabelAdjacency; areas as sums of the texels' area elements),
+ * without border sides: `touchesBorder` is all 0, a closed surface has no open edge.
+ */
+export type CubeLabelAdjacency = Omit<LabelAdjacency, 'borderSides'>;
 
 /**
  * Every pair of edge-adjacent texels (4-neighbourhood, across face edges through the edge
