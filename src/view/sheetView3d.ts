@@ -11,20 +11,10 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import type { ViewStack, ViewSurface } from './stack';
 import { closedSurfaceMesh } from './cubeAtlasMesh';
-import { RGB, SELECTED_RGB, sideColorIndex } from './sideColors';
+import { closedVertexColors } from './closedColors';
 import { drawExactCells } from './exactCells';
 import { PICTURE_LAYOUT, workerPicture } from './workerPictures';
 import { surfaceGeometry } from './surfaceGeometry';
-
-/** A fixed light (world space, from the default camera's side) baked into closed surfaces' colours. */
-const LIGHT = new THREE.Vector3(0.35, 0.6, 0.75).normalize();
-/**
- * Shading of closed surfaces: 1 (the legend's colour exactly) wherever the surface faces the
- * light by at least LIT_FROM (n·l), darker only towards the back, down to SHADE_MIN at n·l = -1,
- * so the shape reads without changing the colours a reader matches to the legend.
- */
-const LIT_FROM = 0.2;
-const SHADE_MIN = 0.7;
 
 /** A picked cell: which surface of the stack it was picked on, and its id. */
 export interface PickedCell {
@@ -330,31 +320,8 @@ export class SheetView3D {
   /** A closed surface: colours by sides, dark cell boundaries, striped scutoids, a baked light. */
   private closedGeometry(stack: ViewStack, surface: ViewSurface): THREE.BufferGeometry {
     const built = closedSurfaceMesh(surface.image);
-    const { positions, normals, cells, boundary } = built;
-    const colors = new Float32Array(positions.length);
-    const period = Math.max(1e-6, 3 * built.edgeLength);
-    const color = new THREE.Color();
-    for (let v = 0; v < cells.length; v++) {
-      const id = cells[v];
-      let [r, g, b] = id >= 0 ? RGB[sideColorIndex(surface.sides[id] ?? 0)] : [40, 40, 40];
-      const x = positions[3 * v], y = positions[3 * v + 1], z = positions[3 * v + 2];
-      if (id >= 0 && id === this.selected) [r, g, b] = SELECTED_RGB;
-      else if (this.highlight && id >= 0 && stack.scutoid[id]) {
-        const phase = (x + y + z) / period;
-        if (phase - Math.floor(phase) < 0.4) r = g = b = 20;
-      }
-      if (boundary[v]) {
-        r *= 0.25;
-        g *= 0.25;
-        b *= 0.25;
-      }
-      const facing = normals[3 * v] * LIGHT.x + normals[3 * v + 1] * LIGHT.y + normals[3 * v + 2] * LIGHT.z;
-      const light = facing >= LIT_FROM ? 1 : SHADE_MIN + ((1 - SHADE_MIN) * (facing + 1)) / (LIT_FROM + 1);
-      color.setRGB((r / 255) * light, (g / 255) * light, (b / 255) * light, THREE.SRGBColorSpace);
-      colors[3 * v] = color.r;
-      colors[3 * v + 1] = color.g;
-      colors[3 * v + 2] = color.b;
-    }
+    const { positions, cells } = built;
+    const colors = closedVertexColors(built, surface.sides, stack.scutoid, this.selected, this.highlight);
     const geometry = new THREE.BufferGeometry();
     geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
     geometry.setAttribute('color', new THREE.BufferAttribute(colors, 3));
