@@ -2,6 +2,7 @@ import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
+import { runs, waitForRun } from './appHelpers';
 
 /**
  * Closed surfaces in the page (sphere, ellipsoid, meshes from public/meshes/ or uploaded) on
@@ -15,17 +16,7 @@ const eggChamber = { ...SMALL, surface: { kind: 'mesh', src: '/meshes/egg-chambe
 
 const withConfig = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
 
-async function runs(page: Page): Promise<number> {
-  return Number((await page.locator('body').getAttribute('data-runs')) ?? 0);
-}
 
-async function waitForRun(page: Page, after = 0): Promise<void> {
-  await page.waitForFunction(
-    (after) => document.body.dataset.state === 'done' && Number(document.body.dataset.runs ?? 0) > after,
-    after,
-    { timeout: 120_000 },
-  );
-}
 
 async function percentScutoids(page: Page): Promise<number> {
   return Number(await page.locator('#percent-scutoids').getAttribute('data-value'));

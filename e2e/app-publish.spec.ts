@@ -3,6 +3,7 @@ import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
+import { runs, waitForRun } from './appHelpers';
 import { readPngDpi, readPngText } from '../src/app/model/pngText';
 import { SIDE_COLORS } from '../src/view/sideColors';
 
@@ -16,17 +17,7 @@ const TUBE = { resolution: 128, cells: 60, seed: 5, lloyd: { maxIterations: 3 },
 const SPHERE = { resolution: 24, cells: 60, seed: 3, lloyd: { maxIterations: 2 }, surface: { kind: 'sphere', radius: 50 }, sheet: { thickness: 10 } };
 const linkTo = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
 
-async function runs(page: Page): Promise<number> {
-  return Number((await page.locator('body').getAttribute('data-runs')) ?? 0);
-}
 
-async function waitForRun(page: Page, after = 0): Promise<void> {
-  await page.waitForFunction(
-    (after) => document.body.dataset.state === 'done' && Number(document.body.dataset.runs ?? 0) > after,
-    after,
-    { timeout: 120_000 },
-  );
-}
 
 async function download(page: Page, key: string): Promise<{ name: string; bytes: Buffer; text: string }> {
   const [file] = await Promise.all([page.waitForEvent('download'), page.locator(`[data-export="${key}"]`).click()]);

@@ -1,5 +1,6 @@
 import { readFileSync } from 'node:fs';
-import { expect, test, type Page } from '@playwright/test';
+import { expect, test } from '@playwright/test';
+import { runs, waitForRun } from './appHelpers';
 import { readPngText } from '../src/app/model/pngText';
 import { parseCsv } from '../src/core/sweep/csv';
 
@@ -14,17 +15,7 @@ const SMALL = { surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 51
 
 const linkTo = (config: unknown) => `/?config=${encodeURIComponent(typeof config === 'string' ? config : JSON.stringify(config))}`;
 
-async function waitForRun(page: Page, after = 0): Promise<void> {
-  await page.waitForFunction(
-    (after) => document.body.dataset.state === 'done' && Number(document.body.dataset.runs ?? 0) > after,
-    after,
-    { timeout: 120_000 },
-  );
-}
 
-async function runs(page: Page): Promise<number> {
-  return Number((await page.locator('body').getAttribute('data-runs')) ?? 0);
-}
 
 const STORAGE_KEY = 'tissue-sheet:last-config';
 

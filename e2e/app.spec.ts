@@ -1,4 +1,5 @@
 import { expect, test, type Page } from '@playwright/test';
+import { runs, waitForRun } from './appHelpers';
 
 /**
  * The biologist's page on Debian's Chromium (SwiftShader WebGL2). The default run is small
@@ -6,18 +7,7 @@ import { expect, test, type Page } from '@playwright/test';
  * Screenshot tolerance: maxDiffPixelRatio 0.02 (playwright.config.ts); the timings are masked.
  */
 
-async function runs(page: Page): Promise<number> {
-  return Number((await page.locator('body').getAttribute('data-runs')) ?? 0);
-}
 
-/** Waits until the page has finished more than `after` runs and is idle. */
-async function waitForRun(page: Page, after = 0): Promise<void> {
-  await page.waitForFunction(
-    (after) => document.body.dataset.state === 'done' && Number(document.body.dataset.runs ?? 0) > after,
-    after,
-    { timeout: 120_000 },
-  );
-}
 
 async function percentScutoids(page: Page): Promise<number> {
   return Number(await page.locator('#percent-scutoids').getAttribute('data-value'));
