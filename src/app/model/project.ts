@@ -3,7 +3,7 @@
  *
  * A project (`.tissue-sheet.json`) holds what the screen shows: the result (the CLI's document),
  * every label image the views draw (run-length encoded; closed surfaces also their geometry
- * image), and the view state (camera, visible surfaces, cut, scutoid highlight, picked cell). Opening
+ * image), and the view state (camera, visible surfaces, cut, scutoid highlight, picked cell, its solid). Opening
  * it draws exactly that, without running anything.
  *
  * A result JSON written by the CLI (`tissue-sheet run`) has no label images. On planes and tubes
@@ -35,6 +35,8 @@ export interface ViewState {
   highlightScutoids: boolean;
   /** The picked cell, or null. */
   selectedCell: number | null;
+  /** The picked cell drawn as a 3D solid (absent in older files: off). */
+  cellSolid?: boolean;
 }
 
 interface StoredImage {
@@ -185,7 +187,7 @@ function readView(value: unknown, surfaces: number, where: string): ViewState {
   const visible = Array.isArray(value.visible) ? Array.from({ length: surfaces }, (_, k) => (value.visible as unknown[])[k] !== false) : Array(surfaces).fill(true);
   const cut = Number.isFinite(value.cut) ? Math.max(0, Math.min(1, value.cut as number)) : 0;
   const selected = Number.isInteger(value.selectedCell) ? (value.selectedCell as number) : null;
-  return { camera, visible, cut, highlightScutoids: value.highlightScutoids !== false, selectedCell: selected };
+  return { camera, visible, cut, highlightScutoids: value.highlightScutoids !== false, selectedCell: selected, cellSolid: value.cellSolid === true };
 }
 
 /** (label, run length) pairs of `labels`. */

@@ -2,14 +2,17 @@
  * The 3D view card: the view itself, a checkbox per surface of the stack (layers included), the
  * cut slider, the scutoid highlight, a camera reset, and the picked cell (a click on a cell in
  * the 3D view or the unrolled surfaces, or its id typed in the "Cell" field: keyboard users pick
- * the same way), drawn white on every surface and described under the legend. Without WebGL for
+ * the same way), drawn white on every surface and described under the legend, and optionally
+ * drawn as a 3D solid through the layers ("Show picked cell as a 3D solid"). Hovering the 3D view
+ * shows the cell under the pointer in a tooltip (cellHover.ts: one pick per frame). Without WebGL for
  * the view, the card says so and the rest of the page still works. `viewState`/`restore` carry
  * the view in a project file.
  */
 import { SheetView3D } from '../../view/sheetView3d';
 import type { ViewStack } from '../../view/stack';
 import type { ViewState } from '../model/project';
-import { renderCellInfo } from '../view/cellInfo';
+import { trackCellHover } from '../../view/cellHover';
+import { hoverText, renderCellInfo } from '../view/cellInfo';
 import { drawUnrolled } from '../view/unrolled';
 
 /** A pointer that moved more than this between down and up was a drag (orbit), not a click. */
@@ -24,6 +27,8 @@ export class ViewPanel {
   private readonly cut: HTMLInputElement;
   private readonly cellInfo: HTMLElement;
   private readonly cellField: HTMLInputElement;
+  private readonly solidBox: HTMLInputElement;
+  private readonly hoverTip: HTMLElement;
   private selected = -1;
 
   constructor(
@@ -67,7 +72,16 @@ export class ViewPanel {
     this.cellInfo.id = 'cell-info';
     this.cellInfo.setAttribute('role', 'status');
     this.cellInfo.setAttribute('aria-live', 'polite');
-    picker.append(label, this.cellInfo);
+    // The picked cell as a solid through the layers (the scutoid itself).
+    const solidLabel = document.createElement('label');
+    this.solidBox = document.createElement('input');
+    this.solidBox.type = 'checkbox';
+    this.solidBox.id = 'cell-solid';
+    solidLabel.title =
+      'Draws the picked cell as a solid through every surface of the stack, in front of the surfaces: its cross-section on each surface is its cell there (exact on planes and tubes, traced on closed surfaces)';
+    solidLabel.append(this.solidBox, ' Show picked cell as a 3D solid');
+    this.solidBox.addEventListener('change', () => this.updateSolid());
+    picker.append(label, solidLabel, this.cellInfo);
     root.querySelector('#legend')!.after(picker);
     this.cellField.addEventListener('change', () => this.select(this.cellField.value === '' ? -1 : Number(this.cellField.value)));
     this.cellField.addEventListener('keydown', (event) => {
@@ -86,6 +100,30 @@ export class ViewPanel {
     canvas.addEventListener('keydown', (event) => {
       if (event.key === 'Escape') this.select(-1);
     });
+
+    // Hover: a tooltip near the pointer with the cell under it.
+    this.hoverTip = document.createElement('div');
+    this.hoverTip.id = 'cell-hover';
+    this.hoverTip.setAttribute('role', 'tooltip');
+    this.hoverTip.hidden = true;
+    this.hoverTip.style.cssText =
+      'position:fixed;z-index:10;pointer-events:none;max-width:22rem;padding:2px 6px;border-radius:3px;background:rgba(20,20,20,0.85);color:#fff;font:12px/1.4 system-ui,sans-serif';
+    document.body.append(this.hoverTip);
+    if (view) {
+      trackCellHover(canvas, view, ({ picked, clientX, clientY }) => {
+        if (!picked || !this.stack) {
+          this.hoverTip.hidden = true;
+          delete this.hoverTip.dataset.cell;
+          return;
+        }
+        this.hoverTip.textContent = hoverText(this.stack, picked);
+        this.hoverTip.dataset.cell = String(picked.cell);
+        this.hoverTip.dataset.surface = String(picked.surface);
+        this.hoverTip.style.left = `${clientX + 14}px`;
+        this.hoverTip.style.top = `${clientY + 14}px`;
+        this.hoverTip.hidden = false;
+      });
+    }
   }
 
   show(stack: ViewStack): void {
@@ -93,6 +131,8 @@ export class ViewPanel {
     if (this.selected >= stack.result.cells.length) this.selected = -1;
     this.view?.setSelected(this.selected);
     this.view?.setStack(stack);
+    this.view?.acceleratePicking();
+    this.updateSolid();
     this.drawUnrolled();
     renderCellInfo(this.cellInfo, stack, this.selected);
     this.cellField.max = String(stack.result.cells.length - 1);
@@ -122,6 +162,7 @@ export class ViewPanel {
     this.cellField.value = cell >= 0 ? String(cell) : '';
     document.body.dataset.selectedCell = String(cell);
     this.view?.setSelected(cell);
+    this.updateSolid();
     if (this.stack) this.drawUnrolled();
     renderCellInfo(this.cellInfo, this.stack, cell);
   }
@@ -134,6 +175,7 @@ export class ViewPanel {
       cut: Number(this.cut.value),
       highlightScutoids: this.highlight.checked,
       selectedCell: this.selected >= 0 ? this.selected : null,
+      cellSolid: this.solidBox.checked,
     };
   }
 
@@ -146,6 +188,7 @@ export class ViewPanel {
     this.highlight.checked = state.highlightScutoids;
     this.view?.setHighlightScutoids(state.highlightScutoids);
     this.selected = state.selectedCell ?? -1;
+    this.solidBox.checked = state.cellSolid === true;
     this.show(stack);
     this.select(this.selected);
     if (state.camera) this.view?.setCameraState(state.camera);
@@ -156,6 +199,13 @@ export class ViewPanel {
   toBlob(): Promise<Blob> {
     if (!this.view) return Promise.reject(new Error('There is no 3D view to save: this browser does not provide WebGL.'));
     return this.view.toBlob();
+  }
+
+  /** The picked cell's solid, drawn while the box is ticked and a cell is picked. */
+  private updateSolid(): void {
+    if (!this.view) return;
+    const solid = this.view.showCellSolid(this.solidBox.checked && this.stack ? this.selected : -1);
+    document.body.dataset.cellSolid = solid ? `${solid.cell}:${solid.sections.map((s) => s.corners).join(',')}` : '';
   }
 
   private drawUnrolled(): void {

@@ -65,3 +65,15 @@ export function renderCellInfo(container: HTMLElement, stack: ViewStack | null, 
   container.dataset.won = s.won.join(' ');
   container.dataset.lost = s.lost.join(' ');
 }
+
+/**
+ * The hover tooltip's text for the cell under the pointer: its id, the surface it is on, its sides
+ * on every surface (from the analysis shown) and whether it is a scutoid or a border cell.
+ */
+export function hoverText(stack: ViewStack, picked: { surface: number; cell: number }): string {
+  const id = picked.cell;
+  const on = stack.surfaces[picked.surface]?.name ?? '';
+  const sides = stack.surfaces.map((s) => `${s.name} ${s.sides[id]}`).join(', ');
+  const flag = stack.valid[id] !== 1 ? 'border cell (not counted)' : stack.scutoid[id] === 1 ? 'scutoid' : 'not a scutoid';
+  return `Cell ${id} (on ${on}) · sides ${sides} · ${flag}`;
+}
