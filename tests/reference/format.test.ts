@@ -53,7 +53,7 @@ describe('reference curves, JSON', () => {
     ['empty source', docOf({ curves: [curve({ points: [point(1, 2, { source: '  ' })] })] }), /^curves\[0\]\.points\[0\]\.source: every point needs a source/],
     ['percent above 100', docOf({ curves: [curve({ points: [point(1, 120)] })] }), /^curves\[0\]\.points\[0\]\.percent: 120 is outside 0\.\.100/],
     ['percent below 0', docOf({ curves: [curve({ points: [point(1, -1)] })] }), /percent: -1 is outside 0\.\.100/],
-    ['percent as text', docOf({ curves: [curve({ points: [point(1, '5')] })] }), /percent: must be a finite number, got "5"/],
+    ['percent as text', docOf({ curves: [curve({ points: [point(1, '5' as unknown as number)] })] }), /percent: must be a finite number, got "5"/],
     ['x null (NaN in JSON)', docOf({ curves: [curve({ points: [point(Number.NaN, 5)] })] }), /points\[0\]\.x: must be a finite number, got null/],
     ['negative sd', docOf({ curves: [curve({ points: [point(1, 5, { sd: -1 })] })] }), /sd: -1 is negative/],
     ['fractional n', docOf({ curves: [curve({ points: [point(1, 5, { n: 2.5 })] })] }), /n: 2\.5 is not a whole number/],
@@ -155,7 +155,7 @@ describe('matching curves to a sweep', () => {
   it('draws only curves whose x is the swept field, says why the others are not drawn', () => {
     const overlay = overlayFor(curves, 'sheet.thickness', {});
     expect(overlay.drawn).toEqual([]);
-    expect(overlay.skipped[0].reason).toBe('its x is surfaceRatio, the sweep varies sheet.thickness');
+    expect(overlay.skipped[0].reason).toBe('x is surfaceRatio, the sweep varies sheet.thickness');
     const byK = overlayFor(curves, 'lloyd.maxIterations', { sheet: { surfaceRatio: 2 } });
     expect(byK.drawn.map((x) => x.id)).toEqual(['s2']);
   });
@@ -163,7 +163,7 @@ describe('matching curves to a sweep', () => {
   it('keeps the curves at the sweep\'s own fixed values when some match, all of them otherwise', () => {
     const at4 = overlayFor(curves, 'sheet.surfaceRatio', { lloyd: { maxIterations: 3 } });
     expect(at4.drawn.map((x) => x.id)).toEqual(['k4']);
-    expect(at4.skipped.find((s) => s.curve.id === 'k1')!.reason).toBe('it is at voronoiK = 1, the sweep at voronoiK = 4');
+    expect(at4.skipped.find((s) => s.curve.id === 'k1')!.reason).toBe("held at another voronoiK than the sweep's voronoiK = 4");
     expect(overlayFor(curves, 'sheet.surfaceRatio', { lloyd: { maxIterations: 49 } }).drawn.map((x) => x.id)).toEqual(['k1', 'k4', 'free']);
   });
 

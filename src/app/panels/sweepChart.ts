@@ -3,12 +3,25 @@
  * (mean over the realizations finished so far) with its 95 % confidence band (t interval of the
  * mean, clamped to 0-100 %). Rows are added one at a time as runs finish; the chart is redrawn
  * at most once per animation frame, by updating its data, not rebuilding it.
+ *
+ * Reference curves (src/core/reference, chosen by referenceOverlay.ts) are drawn over it dashed,
+ * each with its own legend entry (label and kind); the legend value of a reference point is its
+ * percent, SD and n when given, and the number of its source in the Sources list under the chart.
+ * They share the x axis and nothing else: points(), and so every export, hold the runs only.
  */
 import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
 import { meanInterval } from '../../view/pageSweep';
+import type { ReferenceCurve, ReferencePoint } from '../../core/reference';
 
 const COLORS: Record<string, string> = { exact: '#1f5fa8', labels: '#c0392b' };
+const REFERENCE_COLORS = ['#2e8b57', '#8e44ad', '#d35400', '#16a085', '#7f8c8d', '#b7950b', '#5d6d7e', '#a04000'];
+
+/** A reference curve as drawn: the curve and the number of each of its points' sources. */
+export interface ReferenceSeries {
+  curve: ReferenceCurve;
+  sourceNumber: (point: ReferencePoint) => number;
+}
 
 export interface SweepChartSetup {
   /** Axis label of the swept value. */
@@ -27,8 +40,20 @@ export class SweepChart {
   /** x -> method -> % scutoids of each finished run. */
   private readonly values = new Map<number, Map<string, number[]>>();
   private frame = 0;
+  private reference: readonly ReferenceSeries[] = [];
+  /** Series labels of the plot on screen: a new set rebuilds it. */
+  private shape = '';
+  /** The x values on screen (legend values read them: setData keeps the series' closures). */
+  private xs: number[] = [];
 
   constructor(private readonly root: HTMLElement) {}
+
+  /** Reference curves drawn over the sweep (none: `[]`); redrawn at the next frame. */
+  setReference(reference: readonly ReferenceSeries[]): void {
+    this.reference = reference;
+    this.root.dataset.referenceCurves = String(reference.length);
+    if (!this.frame) this.frame = requestAnimationFrame(() => this.draw());
+  }
 
   /** Starts an empty chart for a sweep. */
   reset(setup: SweepChartSetup): void {
@@ -68,35 +93,60 @@ export class SweepChart {
     this.frame = 0;
     const setup = this.setup;
     if (!setup) return;
-    const xs = [...this.values.keys()].sort((a, b) => a - b);
+    const runXs = [...this.values.keys()].sort((a, b) => a - b);
+    // One x axis for runs and reference curves: their x values, merged.
+    const xs = [...new Set([...runXs, ...this.reference.flatMap((r) => r.curve.points.map((p) => p.x))])].sort((a, b) => a - b);
+    this.xs = xs;
     const data: (number | null)[][] = [xs];
     const series: uPlot.Series[] = [{ label: setup.label }];
     const bands: uPlot.Band[] = [];
     for (const method of setup.methods) {
       const color = COLORS[method] ?? '#555';
-      const stats = xs.map((x) => meanInterval(this.values.get(x)!.get(method) ?? []));
+      const stats = xs.map((x) => meanInterval(this.values.get(x)?.get(method) ?? []));
       const at = data.length;
       data.push(stats.map((s) => (Number.isFinite(s.mean) ? s.mean : null)));
       data.push(stats.map((s) => (Number.isFinite(s.high) ? s.high : null)));
       data.push(stats.map((s) => (Number.isFinite(s.low) ? s.low : null)));
       const value = (_u: uPlot, v: number | null) => (v === null ? '' : `${v.toFixed(1)} %`);
       series.push(
-        { label: `${method}: mean % scutoids`, stroke: color, width: 2, points: { show: true, size: 6 }, value },
-        { label: `${method}: 95 % CI high`, stroke: `${color}55`, width: 1, points: { show: false }, value },
-        { label: `${method}: 95 % CI low`, stroke: `${color}55`, width: 1, points: { show: false }, value },
+        { label: `${method}: mean % scutoids`, stroke: color, width: 2, points: { show: true, size: 6 }, value, spanGaps: true },
+        { label: `${method}: 95 % CI high`, stroke: `${color}55`, width: 1, points: { show: false }, value, spanGaps: true },
+        { label: `${method}: 95 % CI low`, stroke: `${color}55`, width: 1, points: { show: false }, value, spanGaps: true },
       );
       bands.push({ series: [at + 1, at + 2], fill: `${color}22` });
     }
-    this.root.dataset.points = String(xs.length);
-    if (this.plot && this.plot.series.length === series.length) {
+    this.reference.forEach(({ curve, sourceNumber }, k) => {
+      const color = REFERENCE_COLORS[k % REFERENCE_COLORS.length];
+      const byX = new Map(curve.points.map((p) => [p.x, p]));
+      data.push(xs.map((x) => byX.get(x)?.percent ?? null));
+      const value = (_u: uPlot, _v: number | null, _series: number, index: number | null) => {
+        const point = index === null ? undefined : byX.get(this.xs[index]);
+        if (!point) return '';
+        const spread = [point.sd !== null ? `SD ${point.sd.toFixed(1)}` : '', point.n !== null ? `n ${point.n}` : ''].filter(Boolean).join(', ');
+        return `${point.percent.toFixed(1)} %${spread ? ` (${spread})` : ''} [source ${sourceNumber(point)}]`;
+      };
+      series.push({
+        label: `${curve.label} (${curve.kind})`,
+        stroke: color,
+        width: 1.5,
+        dash: curve.kind === 'model' ? [8, 4] : [3, 3],
+        points: { show: curve.kind === 'data', size: 5 },
+        spanGaps: true,
+        value,
+      });
+    });
+    this.root.dataset.points = String(runXs.length);
+    const shape = series.map((s) => s.label).join('\n');
+    if (this.plot && this.shape === shape) {
       this.plot.setData(data as uPlot.AlignedData);
       return;
     }
+    this.shape = shape;
     this.plot?.destroy();
     const width = Math.max(240, Math.floor(this.root.clientWidth || 320));
     this.plot = new uPlot(
       {
-        title: `% scutoids vs ${setup.label} (mean, 95 % CI)`,
+        title: `% scutoids vs ${setup.label} (mean, 95 % CI)${this.reference.length > 0 ? '; dashed: reference curves' : ''}`,
         width,
         height: 200,
         scales: { x: { time: false }, y: { range: (_u, _min, max) => [0, Math.min(100, Math.max(10, Math.ceil(max * 1.1)))] } },

@@ -9,6 +9,8 @@
  * The chart grows as runs finish (mean and 95 % CI, sweepChart.ts). Cancel keeps the finished
  * runs; Resume computes the rest. Downloads: runs.csv, aggregate.csv and sweep.json (the spec);
  * loading a sweep.json (the CLI's or ours) with its runs.csv shows it and lets it be resumed.
+ * Reference curves (the shipped set, or the user's file) can be laid over the chart
+ * (referenceOverlay.ts); they are never part of the downloads.
  */
 import { validateAnyConfig, type AnyConfig as Config } from '../../core/config';
 import { readCsvTable } from '../../core/sweep';
@@ -20,6 +22,7 @@ import { version } from '../../version';
 import { download } from './exports';
 import { FIELDS } from './fields';
 import { SweepChart } from './sweepChart';
+import { ReferenceOverlay } from './referenceOverlay';
 
 export interface SweepPanelEvents {
   config(): Config;
@@ -41,6 +44,8 @@ export class SweepPanel {
   private readonly chart: SweepChart;
   /** The Flintstones law fitted after a sweep over the surface ratio. */
   private readonly flintstones: FlintstonesChart;
+  /** Reference curves over the chart. */
+  private readonly reference: ReferenceOverlay;
   /** The sweep on screen: its spec (plain JSON) and its runs.csv so far. */
   private spec: unknown = null;
   private runsCsv = '';
@@ -56,6 +61,7 @@ export class SweepPanel {
     fits.id = 'chart-flintstones';
     (root.querySelector<HTMLElement>('#chart-sweep') ?? root).after(fits);
     this.flintstones = new FlintstonesChart(fits);
+    this.reference = new ReferenceOverlay(root.querySelector<HTMLElement>('#chart-sweep') ?? root, this.chart);
     this.field = document.createElement('select');
     this.field.name = 'sweep-field';
     this.field.setAttribute('aria-label', 'field to sweep');
@@ -153,12 +159,13 @@ export class SweepPanel {
     return { base, vary: { [path]: values }, realizations, seed: base.seed, seedMode: 'per-realization' };
   }
 
-  private chartFor(plan: SweepPlan): void {
+  private chartFor(plan: SweepPlan, spec: unknown): void {
     const field = plan.fields[0] ?? '';
     const voronoi = field === 'lloyd.maxIterations';
     const label = voronoi ? 'Voronoi k' : (FIELDS.find((f) => f.path === field)?.label ?? field);
     const methods = ['exact', 'labels'].filter((m) => plan.summary.includes(`${m}.percentScutoids`));
     this.chart.reset({ label, field, methods, x: (cell) => (voronoi ? Number(cell) + 1 : Number(cell)) });
+    this.reference.setSweep(field, (spec as { base?: unknown }).base);
   }
 
   private async runNew(): Promise<void> {
@@ -186,7 +193,7 @@ export class SweepPanel {
       return;
     }
     this.spec = spec;
-    this.chartFor(plan);
+    this.chartFor(plan, spec);
     this.chart.add(readCsvTable(resumeCsv).rows);
     this.setBusy(true);
     delete this.root.dataset.done;
@@ -266,7 +273,7 @@ export class SweepPanel {
       this.spec = spec;
       this.runsCsv = csv;
       this.aggregateCsv = '';
-      this.chartFor(plan);
+      this.chartFor(plan, spec);
       const rows = readCsvTable(csv).rows;
       this.chart.add(rows);
       this.root.dataset.done = String(rows.length);

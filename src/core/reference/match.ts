@@ -41,18 +41,18 @@ export function overlayFor(curves: readonly ReferenceCurve[], field: string, bas
   const onAxis: ReferenceCurve[] = [];
   for (const curve of curves) {
     if (curve.quantity === quantity) onAxis.push(curve);
-    else skipped.push({ curve, reason: `its x is ${curve.quantity}, the sweep varies ${quantity}` });
+    else skipped.push({ curve, reason: `x is ${curve.quantity}, the sweep varies ${quantity}` });
   }
   const fixedMismatch = (curve: ReferenceCurve): string | null => {
     for (const [name, value] of Object.entries(curve.fixed)) {
       const own = quantityValue(base, name);
-      if (own !== null && Math.abs(own - value) > 1e-9 * Math.max(1, Math.abs(value))) return `it is at ${name} = ${value}, the sweep at ${name} = ${own}`;
+      if (own !== null && Math.abs(own - value) > 1e-9 * Math.max(1, Math.abs(value))) return `held at another ${name} than the sweep's ${name} = ${own}`;
     }
     return null;
   };
   const matching = onAxis.filter((c) => Object.keys(c.fixed).length > 0 && fixedMismatch(c) === null);
   if (matching.length === 0) return { drawn: onAxis, skipped };
-  for (const curve of onAxis) if (!matching.includes(curve)) skipped.push({ curve, reason: fixedMismatch(curve) ?? 'it does not say where it is' });
+  for (const curve of onAxis) if (!matching.includes(curve)) skipped.push({ curve, reason: fixedMismatch(curve) ?? 'does not say which value of the other quantities it holds' });
   return { drawn: matching, skipped };
 }
 

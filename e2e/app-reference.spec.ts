@@ -1,0 +1,74 @@
+import { expect, test } from '@playwright/test';
+import { waitForRun } from './appHelpers';
+
+const HEADER = 'curve,label,kind,quantity,source,x,percent,sd,n';
+const USER_SOURCE = 'digitised by hand for this test from no paper at all (test data)';
+const csv = (rows: string[]) => ({ name: '', mimeType: 'text/csv', buffer: Buffer.from([HEADER, ...rows].join('\n') + '\n') });
+
+/** Reference curves over the sweep chart (docs/reference-curves.md). */
+test('reference curves: the shipped set after a ratio sweep, a user CSV with its source, a bad file refused', async ({ page }) => {
+  const small = { surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 }, resolution: 128, cells: 60, seed: 2, lloyd: { maxIterations: 3 }, sheet: { surfaceRatio: 1.5 } };
+  await page.goto(`/?config=${encodeURIComponent(JSON.stringify(small))}`);
+  await waitForRun(page);
+  const overlay = page.locator('#reference-curves');
+  const shipped = overlay.locator('[name="reference-shipped"]');
+  const load = overlay.locator('[name="reference-load"]');
+  const sources = overlay.locator('[data-reference="sources"] li');
+  const notes = overlay.locator('[data-reference="notes"]');
+  const alert = overlay.locator('[role="alert"]');
+  // No sweep yet: the shipped set is not offered.
+  await expect(shipped).toBeDisabled();
+
+  await page.locator('[name="sweep-field"]').selectOption('sheet.surfaceRatio');
+  await page.locator('[name="sweep-from"]').fill('1');
+  await page.locator('[name="sweep-to"]').fill('3');
+  await page.locator('[name="sweep-steps"]').fill('3');
+  await page.locator('[data-sweep="run"]').click();
+  await expect(page.locator('#sweep')).toHaveAttribute('data-done', '3', { timeout: 120_000 });
+
+  // The shipped set: Voronoi 4 (this configuration's lloyd.maxIterations + 1), dashed, with its
+  // own legend entry and its source listed; the configuration differences said in words.
+  await expect(shipped).toBeEnabled();
+  await shipped.check();
+  await expect(overlay).toHaveAttribute('data-drawn', '1');
+  await expect(page.locator('#chart-sweep')).toHaveAttribute('data-reference-curves', '1');
+  await expect(page.locator('#chart-sweep .u-legend')).toContainText('tissue-sheet, Voronoi 4 (model)');
+  await expect(sources).toHaveCount(1);
+  await expect(sources.first()).toContainText('computed by tissue-sheet');
+  await expect(sources.first()).toContainText('not numbers taken from the paper');
+  await expect(sources.first()).toContainText('tissue-sheet, Voronoi 4 (model)');
+  await expect(notes).toContainText("8 curves not drawn (held at another voronoiK than the sweep's voronoiK = 4)");
+  await expect(notes).toContainText('cells 200');
+  await expect(notes).toContainText('compare the trend, not the values');
+  // The chart's own points are still the runs' three ratios.
+  await expect(page.locator('#chart-sweep')).toHaveAttribute('data-points', '3');
+
+  // A user's CSV: its curve is added with its source.
+  await load.setInputFiles({ ...csv([`paper,My digitised curve,data,surfaceRatio,"${USER_SOURCE}",1,0,,`, `paper,My digitised curve,data,surfaceRatio,"${USER_SOURCE}",2,55.5,4.2,20`]), name: 'digitised.csv' });
+  await expect(overlay).toHaveAttribute('data-drawn', '2');
+  await expect(page.locator('#chart-sweep .u-legend')).toContainText('My digitised curve (data)');
+  await expect(sources).toHaveCount(2);
+  await expect(sources.nth(1)).toContainText(USER_SOURCE);
+  await expect(alert).toBeHidden();
+
+  // A bad file: a specific message in role=alert, and what was shown stays.
+  await load.setInputFiles({ ...csv([`bad,Bad,data,surfaceRatio,"${USER_SOURCE}",1,150,,`]), name: 'bad.csv' });
+  await expect(alert).toBeVisible();
+  await expect(alert).toContainText('bad.csv: line 2, column percent: 150 is outside 0..100');
+  await expect(overlay).toHaveAttribute('data-drawn', '2');
+  await expect(sources).toHaveCount(2);
+
+  // A curve over another quantity is not drawn, and the page says why.
+  await load.setInputFiles({ ...csv([`byk,By k,data,voronoiK,"${USER_SOURCE}",1,10,,`]), name: 'by-k.csv' });
+  await expect(notes).toContainText('by-k.csv: 1 curve not drawn (x is voronoiK, the sweep varies surfaceRatio)');
+  await expect(overlay).toHaveAttribute('data-drawn', '2');
+
+  // The downloads hold the runs only.
+  const download = page.waitForEvent('download');
+  await page.locator('[data-sweep="runs-csv"]').click();
+  const text = await (await (await download).createReadStream()).toArray();
+  const runsCsv = Buffer.concat(text).toString();
+  expect(runsCsv.split(/\r?\n/).filter(Boolean)).toHaveLength(4);
+  expect(runsCsv).not.toContain('digitised');
+  expect(runsCsv).not.toContain('Voronoi 4');
+});
