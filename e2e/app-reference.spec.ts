@@ -37,8 +37,8 @@ test('reference curves: the shipped set after a ratio sweep, a user CSV with its
   await expect(sources.first()).toContainText('computed by tissue-sheet');
   await expect(sources.first()).toContainText('not numbers taken from the paper');
   await expect(sources.first()).toContainText('tissue-sheet, Voronoi 4 (model)');
-  await expect(notes).toContainText("8 curves not drawn (held at another voronoiK than the sweep's voronoiK = 4)");
-  await expect(notes).toContainText('cells 200');
+  await expect(notes).toContainText("1 of 26 curves drawn; not drawn: x is voronoiK, the sweep varies surfaceRatio (17); held at another voronoiK than the sweep's voronoiK = 4 (8)");
+  await expect(notes).toContainText('cells 200 there, 60 here');
   await expect(notes).toContainText('compare the trend, not the values');
   // The chart's own points are still the runs' three ratios.
   await expect(page.locator('#chart-sweep')).toHaveAttribute('data-points', '3');
@@ -60,7 +60,7 @@ test('reference curves: the shipped set after a ratio sweep, a user CSV with its
 
   // A curve over another quantity is not drawn, and the page says why.
   await load.setInputFiles({ ...csv([`byk,By k,data,voronoiK,"${USER_SOURCE}",1,10,,`]), name: 'by-k.csv' });
-  await expect(notes).toContainText('by-k.csv: 1 curve not drawn (x is voronoiK, the sweep varies surfaceRatio)');
+  await expect(notes).toContainText('by-k.csv: no curve drawn (x is voronoiK, the sweep varies surfaceRatio (1))');
   await expect(overlay).toHaveAttribute('data-drawn', '2');
 
   // The downloads hold the runs only.

@@ -115,10 +115,14 @@ export class ReferenceOverlay {
       drawn.push(...overlay.drawn.map((curve) => ({ set, curve })));
       const reasons = new Map<string, number>();
       for (const { reason } of overlay.skipped) reasons.set(reason, (reasons.get(reason) ?? 0) + 1);
-      for (const [reason, count] of reasons) notes.push(`${set.name}: ${count} curve${count > 1 ? 's' : ''} not drawn (${reason}).`);
+      const why = [...reasons].map(([reason, count]) => `${reason} (${count})`).join('; ');
+      const total = set.doc.curves.length;
+      if (overlay.drawn.length === 0) notes.push(`${set.name}: no curve drawn (${why}).`);
+      else if (reasons.size > 0) notes.push(`${set.name}: ${overlay.drawn.length} of ${total} curves drawn; not drawn: ${why}.`);
       const differences = configDifferences(set.doc, this.sweep.base);
       if (overlay.drawn.length > 0 && differences.length > 0) {
-        notes.push(`${set.name} was computed with ${differences.map((d) => `${d.field} ${JSON.stringify(d.reference)}`).join(', ')}; this sweep has ${differences.map((d) => `${JSON.stringify(d.sweep ?? null)}`).join(', ')}: compare the trend, not the values.`);
+        const pairs = differences.map((d) => `${d.field} ${shown(d.reference)} there, ${shown(d.sweep)} here`);
+        notes.push(`${set.name} was computed with another configuration (${pairs.join('; ')}): compare the trend, not the values.`);
       }
     }
     // Sources, numbered in order of first use.
@@ -146,4 +150,10 @@ export class ReferenceOverlay {
       }),
     );
   }
+}
+
+/** A config value in a note: numbers to 4 significant digits. */
+function shown(value: unknown): string {
+  if (typeof value === 'number') return String(Number(value.toPrecision(4)));
+  return value === undefined ? 'unset' : JSON.stringify(value);
 }

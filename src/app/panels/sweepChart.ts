@@ -89,6 +89,15 @@ export class SweepChart {
     return out;
   }
 
+  private xRange(min: number, max: number): [number, number] {
+    const runs = [...this.values.keys()];
+    const lo = runs.length > 0 ? Math.min(...runs) : min;
+    const hi = runs.length > 0 ? Math.max(...runs) : max;
+    if (hi > lo) return [lo, hi];
+    const pad = Math.max(0.5, Math.abs(lo) * 0.1);
+    return [lo - pad, hi + pad];
+  }
+
   private draw(): void {
     this.frame = 0;
     const setup = this.setup;
@@ -149,7 +158,8 @@ export class SweepChart {
         title: `% scutoids vs ${setup.label} (mean, 95 % CI)${this.reference.length > 0 ? '; dashed: reference curves' : ''}`,
         width,
         height: 200,
-        scales: { x: { time: false }, y: { range: (_u, _min, max) => [0, Math.min(100, Math.max(10, Math.ceil(max * 1.1)))] } },
+        // The runs' range when there are runs: reference points beyond it stay off screen.
+        scales: { x: { time: false, range: (_u, min, max) => this.xRange(min, max) }, y: { range: (_u, _min, max) => [0, Math.min(100, Math.max(10, Math.ceil(max * 1.1)))] } },
         series,
         bands,
       },
