@@ -1,16 +1,12 @@
 import { expect, test } from '@playwright/test';
+import { runSweep } from './appHelpers';
 
 /** The Flintstones law (Gómez-Gálvez et al. 2022) fitted and drawn after a sweep over the surface ratio. */
 test('a sweep over the surface ratio draws the Flintstones fit with its parameters', async ({ page }) => {
   const small = { surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 }, resolution: 128, cells: 60, seed: 2, lloyd: { maxIterations: 3 }, sheet: { surfaceRatio: 1.5 } };
   await page.goto(`/?config=${encodeURIComponent(JSON.stringify(small))}`);
   await page.waitForFunction(() => document.body.dataset.state === 'done' && Number(document.body.dataset.runs ?? 0) > 0, undefined, { timeout: 120_000 });
-  await page.locator('[name="sweep-field"]').selectOption('sheet.surfaceRatio');
-  await page.locator('[name="sweep-from"]').fill('1');
-  await page.locator('[name="sweep-to"]').fill('6');
-  await page.locator('[name="sweep-steps"]').fill('6');
-  await page.locator('[data-sweep="run"]').click();
-  await expect(page.locator('#sweep')).toHaveAttribute('data-done', '6', { timeout: 120_000 });
+  await runSweep(page, 'sheet.surfaceRatio', 1, 6, 6);
   const chart = page.locator('#chart-flintstones');
   await expect(chart).toBeVisible();
   await expect(chart).toHaveAttribute('data-fits', '1');
@@ -21,11 +17,6 @@ test('a sweep over the surface ratio draws the Flintstones fit with its paramete
   await expect(chart.locator('canvas')).toHaveCount(1);
 
   // A sweep over another field draws none.
-  await page.locator('[name="sweep-field"]').selectOption('cells');
-  await page.locator('[name="sweep-from"]').fill('40');
-  await page.locator('[name="sweep-to"]').fill('60');
-  await page.locator('[name="sweep-steps"]').fill('2');
-  await page.locator('[data-sweep="run"]').click();
-  await expect(page.locator('#sweep')).toHaveAttribute('data-done', '2', { timeout: 120_000 });
+  await runSweep(page, 'cells', 40, 60, 2);
   await expect(chart).toBeHidden();
 });

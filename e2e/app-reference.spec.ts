@@ -1,5 +1,5 @@
 import { expect, test } from '@playwright/test';
-import { waitForRun } from './appHelpers';
+import { runSweep, waitForRun } from './appHelpers';
 
 const HEADER = 'curve,label,kind,quantity,source,x,percent,sd,n';
 const USER_SOURCE = 'digitised by hand for this test from no paper at all (test data)';
@@ -19,12 +19,7 @@ test('reference curves: the shipped set after a ratio sweep, a user CSV with its
   // No sweep yet: the shipped set is not offered.
   await expect(shipped).toBeDisabled();
 
-  await page.locator('[name="sweep-field"]').selectOption('sheet.surfaceRatio');
-  await page.locator('[name="sweep-from"]').fill('1');
-  await page.locator('[name="sweep-to"]').fill('3');
-  await page.locator('[name="sweep-steps"]').fill('3');
-  await page.locator('[data-sweep="run"]').click();
-  await expect(page.locator('#sweep')).toHaveAttribute('data-done', '3', { timeout: 120_000 });
+  await runSweep(page, 'sheet.surfaceRatio', 1, 3, 3);
 
   // The shipped set: Voronoi 4 (this configuration's lloyd.maxIterations + 1), dashed, with its
   // own legend entry and its source listed; the configuration differences said in words.

@@ -13,3 +13,13 @@ export async function waitForRun(page: Page, after = 0): Promise<void> {
     { timeout: 120_000 },
   );
 }
+
+/** Runs a sweep of `field` from..to in `steps` points in the page and waits until it is done. */
+export async function runSweep(page: Page, field: string, from: number, to: number, steps: number): Promise<void> {
+  await page.locator('[name="sweep-field"]').selectOption(field);
+  await page.locator('[name="sweep-from"]').fill(String(from));
+  await page.locator('[name="sweep-to"]').fill(String(to));
+  await page.locator('[name="sweep-steps"]').fill(String(steps));
+  await page.locator('[data-sweep="run"]').click();
+  await page.locator(`#sweep[data-done="${steps}"]`).waitFor({ timeout: 120_000 });
+}
