@@ -2,16 +2,18 @@ import { isClosedConfig } from '../core/config';
 /**
  * The 3D view of the sheet: every surface of the stack as a mesh textured with its painted label
  * image (tube: coaxial cylinders; plane: parallel sheets) or, on closed surfaces (sphere,
- * ellipsoid, mesh), the triangle mesh of each surface's geometry image coloured per vertex by
- * its texel's cell (cubeAtlasMesh.ts); orbit controls, per-surface visibility, and a cut (a
+ * ellipsoid, mesh), the triangle mesh of each surface's geometry image (cubeAtlasMesh.ts) with
+ * each fragment's cell found exactly, as the nearest of its candidate sites (closedMaterial.ts);
+ * orbit controls, per-surface visibility, and a cut (a
  * clipping plane) to see inside. Renders on demand only (no loop), so screenshots are stable and
  * an idle page costs nothing.
  */
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import type { ViewStack, ViewSurface } from './stack';
-import { closedSurfaceMesh } from './cubeAtlasMesh';
-import { closedVertexColors } from './closedColors';
+import { atlasTopology, closedSurfaceMesh } from './cubeAtlasMesh';
+import { nearestCandidate, sitePositions, vertexCandidates } from './closedCandidates';
+import { closedCellsMaterial, disposeClosedCells, setClosedCells, setClosedPaint } from './closedMaterial';
 import { drawExactCells } from './exactCells';
 import { PICTURE_LAYOUT, workerPicture } from './workerPictures';
 import { surfaceGeometry } from './surfaceGeometry';
@@ -44,7 +46,7 @@ export class SheetView3D {
    * shader program lives as long as a material uses it, and compiling it again on every result
    * stalled the main thread (~60 ms per program on a software GPU).
    */
-  private readonly materials: Record<'textured' | 'closed', THREE.MeshBasicMaterial[]> = { textured: [], closed: [] };
+  private readonly materials: { textured: THREE.MeshBasicMaterial[]; closed: THREE.ShaderMaterial[] } = { textured: [], closed: [] };
   private readonly clip = new THREE.Plane(new THREE.Vector3(0, -1, 0), 0);
   private cutFraction = 0;
   private radius = 1;
@@ -91,15 +93,20 @@ export class SheetView3D {
 
   setHighlightScutoids(on: boolean): void {
     this.highlight = on;
-    if (this.stack) this.rebuild();
-    this.requestRender();
+    this.repaint();
   }
 
   /** Draws cell `id` white on every surface (-1: none). */
   setSelected(id: number): void {
     if (id === this.selected) return;
     this.selected = id;
-    if (this.stack) this.rebuild();
+    this.repaint();
+  }
+
+  /** The picked cell or the stripes changed: closed surfaces take new uniforms, sheets a new picture. */
+  private repaint(): void {
+    if (this.stack?.closed) for (const material of this.materials.closed) setClosedPaint(material, this.selected, this.highlight);
+    else if (this.stack) this.rebuild();
     this.requestRender();
   }
 
@@ -118,9 +125,12 @@ export class SheetView3D {
       const surface = stack.surfaces[index];
       if (!surface) continue;
       let cell = -1;
-      const cells = (hit.object as THREE.Mesh).geometry.userData.cells as Int32Array | undefined;
-      if (cells && hit.face) cell = cells[hit.face.a];
-      else if (hit.uv) {
+      const closed = (hit.object as THREE.Mesh).geometry.userData.closed as ClosedPickData | undefined;
+      if (closed && hit.face) {
+        // What the fragment shader draws there: the nearest candidate of the provoking vertex.
+        const p = hit.object.worldToLocal(hit.point.clone());
+        cell = nearestCandidate(closed.candidates, hit.face.c, closed.sites, p.x, p.y, p.z);
+      } else if (hit.uv) {
         const { width, height } = surface.image.grid;
         const x = Math.min(width - 1, Math.max(0, Math.floor(hit.uv.x * width)));
         const y = Math.min(height - 1, Math.max(0, Math.floor(hit.uv.y * height)));
@@ -281,6 +291,7 @@ export class SheetView3D {
     this.resizeObserver.disconnect();
     this.controls.dispose();
     this.clearMeshes();
+    for (const material of this.materials.closed) disposeClosedCells(material);
     for (const material of [...this.materials.textured, ...this.materials.closed]) material.dispose();
     this.renderer.dispose();
   }
@@ -311,7 +322,7 @@ export class SheetView3D {
     const config = stack.result.config;
     for (const surface of stack.surfaces) {
       if (stack.closed || isClosedConfig(config)) {
-        const mesh = new THREE.Mesh(this.closedGeometry(stack, surface), this.material('closed', surface.index));
+        const mesh = new THREE.Mesh(this.closedGeometry(stack, surface), this.closedMaterial(surface.index));
         mesh.name = surface.name;
         mesh.visible = visible[surface.index] ?? true;
         this.meshes.push(mesh);
@@ -369,23 +380,41 @@ export class SheetView3D {
   }
 
   /** The kept material of surface `index` (see `materials`). */
-  private material(kind: 'textured' | 'closed', index: number): THREE.MeshBasicMaterial {
+  private material(kind: 'textured', index: number): THREE.MeshBasicMaterial {
     const pool = this.materials[kind];
-    pool[index] ??= new THREE.MeshBasicMaterial({ vertexColors: kind === 'closed', side: THREE.DoubleSide, clippingPlanes: [this.clip] });
+    pool[index] ??= new THREE.MeshBasicMaterial({ side: THREE.DoubleSide, clippingPlanes: [this.clip] });
     return pool[index];
   }
 
-  /** A closed surface: colours by sides, dark cell boundaries, striped scutoids, a baked light. */
+  /** The kept material of closed surface `index`, painted with the view's pick and stripes. */
+  private closedMaterial(index: number): THREE.ShaderMaterial {
+    const material = (this.materials.closed[index] ??= closedCellsMaterial(this.clip));
+    setClosedPaint(material, this.selected, this.highlight);
+    return material;
+  }
+
+  /**
+   * A closed surface's triangles with each vertex's candidate cells (closedCandidates.ts); its
+   * material gets the surface's sites and cell colours (by sides, scutoids striped).
+   */
   private closedGeometry(stack: ViewStack, surface: ViewSurface): THREE.BufferGeometry {
     const built = closedSurfaceMesh(surface.image);
-    const { positions, cells } = built;
-    const colors = closedVertexColors(built, surface.sides, stack.scutoid, this.selected, this.highlight);
+    const sites = sitePositions(surface.cells);
+    const n = surface.image.grid.width;
+    const candidates = vertexCandidates(built.positions, built.cells, atlasTopology(n).neighbours, sites);
+    setClosedCells(this.closedMaterial(surface.index), {
+      sites,
+      sides: surface.sides,
+      scutoid: stack.scutoid,
+      stripePeriod: 3 * built.edgeLength,
+    });
     const geometry = new THREE.BufferGeometry();
-    geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
-    geometry.setAttribute('color', new THREE.BufferAttribute(colors, 3));
+    geometry.setAttribute('position', new THREE.BufferAttribute(built.positions, 3));
+    geometry.setAttribute('normal', new THREE.BufferAttribute(built.normals, 3));
+    geometry.setAttribute('candidates', new THREE.BufferAttribute(candidates, 4));
     geometry.setIndex(new THREE.BufferAttribute(built.indices, 1));
-    // Picking reads a hit triangle's first vertex's cell.
-    geometry.userData.cells = cells;
+    const pick: ClosedPickData = { candidates, sites };
+    geometry.userData.closed = pick;
     return geometry;
   }
 
@@ -424,6 +453,12 @@ export class SheetView3D {
     const depth = this.radius * (1 - 2 * this.cutFraction);
     this.clip.set(normal, depth);
   }
+}
+
+/** What picking on a closed surface needs: the rule its fragments are drawn by. */
+interface ClosedPickData {
+  candidates: Float32Array;
+  sites: Float32Array;
 }
 
 /** What the camera fit depends on: the surface and the sheet's geometry. */
