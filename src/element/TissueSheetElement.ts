@@ -14,6 +14,7 @@ import { sweepInPage } from '../view/pageSweep';
 import type { TissueSheetSweepOptions, TissueSheetSweepProgressDetail, TissueSheetSweepResult } from './events';
 import type { ComputeSite } from '../run';
 import { SheetView3D } from '../view/sheetView3d';
+import { trackCellHover } from '../view/cellHover';
 import { byConstruction } from '../core/analysis/byConstruction';
 import { checkPageBudget } from '../view/pageBudget';
 import { pendingSources, type ForeignSource } from '../view/sources';
@@ -93,6 +94,9 @@ export class TissueSheetElement extends HTMLElement {
     if (!this.view) {
       try {
         this.view = new SheetView3D(this.shadow.querySelector('canvas')!);
+        trackCellHover(this.view.canvas, this.view, ({ picked, changed }) => {
+          if (changed) this.emit('cell-hover', picked ? { cell: picked.cell, surface: picked.surface } : null);
+        });
       } catch {
         this.view = null; // the error event of the run says why
       }
@@ -140,6 +144,7 @@ export class TissueSheetElement extends HTMLElement {
       const stack = viewStack(output);
       try {
         this.view?.setStack(stack);
+        this.view?.acceleratePicking();
       } catch (error) {
         this.status(`3D view: ${(error as Error).message}`, true);
       }

@@ -49,7 +49,15 @@ export interface TissueSheetSweepOptions {
  */
 export type TissueSheetSweepResult = Pick<PageSweepResult, 'header' | 'runs' | 'aggregate' | 'runsCsv' | 'aggregateCsv' | 'completed' | 'skipped' | 'aborted'>;
 
+/**
+ * `cell-hover`: the cell under the pointer in the 3D view (at most one per animation frame, only
+ * when it changes; `null` when the pointer leaves the sheet or starts dragging the camera).
+ * `surface` is the index in the stack (0 = seeded).
+ */
+export type TissueSheetCellHoverDetail = { cell: number; surface: number } | null;
+
 export interface TissueSheetEventMap {
+  'cell-hover': CustomEvent<TissueSheetCellHoverDetail>;
   progress: CustomEvent<TissueSheetProgressDetail>;
   'sweep-progress': CustomEvent<TissueSheetSweepProgressDetail>;
   result: CustomEvent<TissueSheetResultDetail>;
