@@ -77,6 +77,24 @@ test('a scutoid drawn as a 3D solid: keyboard toggle, sides per surface, pixels 
   expect(changed).toBeGreaterThan(30);
   expect(after.neutral - before.neutral).toBeGreaterThan(200);
 
+  // The solid as PLY: a closed, consistently oriented triangle mesh of this cell.
+  const [file] = await Promise.all([page.waitForEvent('download'), page.locator('#cell-solid-ply').click()]);
+  expect(file.suggestedFilename()).toMatch(new RegExp(`cell${id}-solid\\.ply$`));
+  const lines = readFileSync(await file.path(), 'utf8').trim().split('\n');
+  const vertexCount = Number(lines.find((l) => l.startsWith('element vertex'))!.split(' ')[2]);
+  const faceCount = Number(lines.find((l) => l.startsWith('element face'))!.split(' ')[2]);
+  const body = lines.slice(lines.indexOf('end_header') + 1);
+  expect(body.length).toBe(vertexCount + faceCount);
+  for (const v of body.slice(0, vertexCount)) expect(Number(v.split(' ')[3])).toBe(id);
+  const edges = new Set<string>();
+  for (const f of body.slice(vertexCount)) {
+    const [n, ...t] = f.split(' ').map(Number);
+    expect(n).toBe(3);
+    for (let e = 0; e < 3; e++) edges.add(`${t[e]},${t[(e + 1) % 3]}`);
+  }
+  expect(edges.size).toBe(3 * faceCount);
+  for (const e of edges) expect(edges.has(e.split(',').reverse().join(','))).toBe(true);
+
   // Another pick moves the solid; clearing the pick removes it; unticking hides it.
   const other = analysis.cells.findIndex((c, k) => k !== id && c.valid);
   await page.locator('#cell-id').fill(String(other));

@@ -15,6 +15,7 @@ import { embed } from '../../core/surface';
 import { closedSurfaceMesh } from '../../view/cubeAtlasMesh';
 import { provenanceLines } from './cellRows';
 import type { ViewStack } from '../../view/stack';
+import type { CellSolid } from '../../view/cellSolid';
 
 export function cellsPly(stack: ViewStack): string {
   const { config } = stack.result;
@@ -55,6 +56,28 @@ function closedCellsPly(stack: ViewStack): string {
     for (let f = 0; f < t.length; f += 3) faces.push(`3 ${first + t[f]} ${first + t[f + 1]} ${first + t[f + 2]}`);
   }
   return plyDocument(stack, 'closed surfaces (0 = seeded) as triangle meshes, a vertex per texel of the cube-map geometry image labelled with its cell, µm', vertices, faces);
+}
+
+/**
+ * One cell's solid through the stack (src/view/cellSolid.ts) as a closed triangle mesh, µm in the
+ * sheet's frame; each vertex carries the cell, the surface its ring lies on, the cell's sides
+ * there and its flags, as in `cellsPly`.
+ */
+export function cellSolidPly(stack: ViewStack, solid: CellSolid): string {
+  const id = solid.cell;
+  const ringSize = solid.rays + 1;
+  const vertices: string[] = [];
+  for (let v = 0; v < solid.positions.length / 3; v++) {
+    const surface = Math.floor(v / ringSize);
+    const p = [0, 1, 2].map((c) => solid.positions[3 * v + c] + solid.origin[c]);
+    const sides = stack.surfaces[surface]?.sides[id] ?? 0;
+    vertices.push(`${p.map((x) => x.toFixed(4)).join(' ')} ${id} ${surface} ${sides} ${stack.scutoid[id] ?? 0} ${stack.valid[id] ?? 0}`);
+  }
+  const faces: string[] = [];
+  const t = solid.indices;
+  for (let f = 0; f < t.length; f += 3) faces.push(`3 ${t[f]} ${t[f + 1]} ${t[f + 2]}`);
+  const how = solid.exact ? 'exact cross-sections' : 'traced restricted Voronoi cross-sections';
+  return plyDocument(stack, `cell ${id} as a closed solid through the surfaces (${how}), outward triangles, µm`, vertices, faces);
 }
 
 function plyDocument(stack: ViewStack, comment: string, vertices: string[], faces: string[]): string {

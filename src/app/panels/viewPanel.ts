@@ -13,6 +13,9 @@ import type { ViewStack } from '../../view/stack';
 import type { ViewState } from '../model/project';
 import { trackCellHover } from '../../view/cellHover';
 import { hoverText, renderCellInfo } from '../view/cellInfo';
+import type { CellSolid } from '../../view/cellSolid';
+import { cellSolidPly } from '../model/ply';
+import { download } from './exports';
 import { drawUnrolled } from '../view/unrolled';
 
 /** A pointer that moved more than this between down and up was a drag (orbit), not a click. */
@@ -28,6 +31,8 @@ export class ViewPanel {
   private readonly cellInfo: HTMLElement;
   private readonly cellField: HTMLInputElement;
   private readonly solidBox: HTMLInputElement;
+  private readonly solidPly: HTMLButtonElement;
+  private solid: CellSolid | null = null;
   private readonly hoverTip: HTMLElement;
   private selected = -1;
 
@@ -81,7 +86,18 @@ export class ViewPanel {
       'Draws the picked cell as a solid through every surface of the stack, in front of the surfaces: its cross-section on each surface is its cell there (exact on planes and tubes, traced on closed surfaces)';
     solidLabel.append(this.solidBox, ' Show picked cell as a 3D solid');
     this.solidBox.addEventListener('change', () => this.updateSolid());
-    picker.append(label, solidLabel, this.cellInfo);
+    this.solidPly = document.createElement('button');
+    this.solidPly.type = 'button';
+    this.solidPly.id = 'cell-solid-ply';
+    this.solidPly.textContent = 'Solid as PLY';
+    this.solidPly.title = 'Saves the solid on screen as a closed triangle mesh (ASCII PLY, µm; each vertex with cell, surface, sides, scutoid, valid)';
+    this.solidPly.disabled = true;
+    this.solidPly.addEventListener('click', () => {
+      if (!this.stack || !this.solid) return;
+      const { config } = this.stack.result;
+      download(`tissue-sheet-${config.surface.kind}-seed${config.seed}-cell${this.solid.cell}-solid.ply`, cellSolidPly(this.stack, this.solid), 'application/octet-stream');
+    });
+    picker.append(label, solidLabel, this.solidPly, this.cellInfo);
     root.querySelector('#legend')!.after(picker);
     this.cellField.addEventListener('change', () => this.select(this.cellField.value === '' ? -1 : Number(this.cellField.value)));
     this.cellField.addEventListener('keydown', (event) => {
@@ -119,9 +135,13 @@ export class ViewPanel {
         this.hoverTip.textContent = hoverText(this.stack, picked);
         this.hoverTip.dataset.cell = String(picked.cell);
         this.hoverTip.dataset.surface = String(picked.surface);
-        this.hoverTip.style.left = `${clientX + 14}px`;
-        this.hoverTip.style.top = `${clientY + 14}px`;
         this.hoverTip.hidden = false;
+        // Beside the pointer, turned to its other side near the window's right or bottom edge.
+        const { offsetWidth: w, offsetHeight: h } = this.hoverTip;
+        const left = clientX + 14 + w > window.innerWidth ? clientX - 14 - w : clientX + 14;
+        const top = clientY + 14 + h > window.innerHeight ? clientY - 14 - h : clientY + 14;
+        this.hoverTip.style.left = `${Math.max(0, left)}px`;
+        this.hoverTip.style.top = `${Math.max(0, top)}px`;
       });
     }
   }
@@ -205,6 +225,8 @@ export class ViewPanel {
   private updateSolid(): void {
     if (!this.view) return;
     const solid = this.view.showCellSolid(this.solidBox.checked && this.stack ? this.selected : -1);
+    this.solid = solid;
+    this.solidPly.disabled = !solid;
     document.body.dataset.cellSolid = solid ? `${solid.cell}:${solid.sections.map((s) => s.corners).join(',')}` : '';
   }
 
