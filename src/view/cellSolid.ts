@@ -30,7 +30,9 @@
 import { embed } from '../core/surface';
 import { wrapDelta } from '../core/grid';
 import { surfacePolygons } from './cellPolygons';
-import type { ViewStack, ViewSurface } from './stack';
+import { closedSections } from './cellSolidClosed';
+import { cross, sub, type Section, type Vec3 } from './cellSolidSection';
+import type { ViewStack } from './stack';
 
 export interface CellSolidSection {
   /** Index of the surface in the stack. */
@@ -63,15 +65,6 @@ export interface CellSolid {
 export interface CellSolidOptions {
   /** Uniform ray angles added to the corners' angles (default 64). */
   rays?: number;
-}
-
-type Vec3 = [number, number, number];
-
-/** A cross-section: its polygon in the tangent frame and how a frame point goes to 3D. */
-interface Section {
-  polygon: Float64Array;
-  centre: Vec3;
-  toSpace(x: number, y: number): Vec3;
 }
 
 /** The solid of cell `id` through every surface of `stack`, or null when it has none. */
@@ -147,6 +140,7 @@ export function signedVolume(positions: ArrayLike<number>, indices: ArrayLike<nu
 }
 
 /** Area of a polygon given as interleaved x, y (positive counter-clockwise). */
+/** Area of a polygon given as interleaved x, y (positive counter-clockwise). */
 export function polygonArea(polygon: ArrayLike<number>): number {
   let area = 0;
   const n = polygon.length / 2;
@@ -178,139 +172,6 @@ function planarSections(stack: ViewStack, id: number): Section[] | null {
     sections.push({ polygon, centre: toSpace(0, 0), toSpace });
   }
   return sections;
-}
-
-/** Closed surfaces: the 3D Voronoi cell cut by the tangent plane at the site, put on the surface. */
-function closedSections(stack: ViewStack, id: number): Section[] | null {
-  const sphere = stack.result.config.surface.kind === 'sphere';
-  const sections: Section[] = [];
-  let previous: { normal: Vec3; e1: Vec3 } | null = null;
-  for (const surface of stack.surfaces) {
-    const cell = surface.cells[id];
-    const points = surface.image.positions;
-    if (!cell || !points) return null;
-    const p: Vec3 = [cell.position[0], cell.position[1], cell.position[2]];
-    const candidates = candidateSites(surface, id);
-    let reach = 0;
-    for (const q of candidates) reach = Math.max(reach, Math.hypot(q[0] - p[0], q[1] - p[1], q[2] - p[2]));
-    let normal = fitPlane(nearestPoints(points, p, 12)).normal;
-    if (!previous) {
-      const centroid = meanPoint(points);
-      if (dot(normal, sub(p, centroid)) < 0) normal = scale(normal, -1);
-    } else if (dot(normal, previous.normal) < 0) normal = scale(normal, -1);
-    const reference = previous?.e1 ?? leastAlignedAxis(normal);
-    const e1 = normalize(sub(reference, scale(normal, dot(reference, normal))));
-    const e2 = cross(normal, e1);
-    previous = { normal, e1 };
-
-    // Half-plane per candidate: (q - p)·x <= |q - p|² / 2, x = u e1 + v e2.
-    let polygon = square(reach > 0 ? reach : 1);
-    for (const q of candidates) {
-      const d = sub(q, p);
-      polygon = clipHalfPlane(polygon, dot(d, e1), dot(d, e2), dot(d, d) / 2);
-      if (polygon.length < 6) return null;
-    }
-    let extent = 0;
-    for (let v = 0; v < polygon.length; v += 2) extent = Math.max(extent, Math.hypot(polygon[v], polygon[v + 1]));
-    const local = sphere ? new Float32Array(0) : nearbyTexels(points, p, 1.5 * extent);
-    const radius = Math.hypot(p[0], p[1], p[2]);
-    const toSpace = (x: number, y: number): Vec3 => {
-      const point: Vec3 = [p[0] + x * e1[0] + y * e2[0], p[1] + x * e1[1] + y * e2[1], p[2] + x * e1[2] + y * e2[2]];
-      if (sphere) return scale(point, radius / Math.hypot(point[0], point[1], point[2]));
-      const plane = fitPlane(nearestPoints(local, point, 8));
-      return sub(point, scale(plane.normal, dot(sub(point, plane.centre), plane.normal)));
-    };
-    sections.push({ polygon, centre: toSpace(0, 0), toSpace });
-  }
-  return sections;
-}
-
-/** The sites that can bound cell `id` on a closed surface: all of them, or neighbours to depth 2. */
-function candidateSites(surface: ViewSurface, id: number): Vec3[] {
-  const cells = surface.cells;
-  const ids = new Set<number>();
-  if (cells.length <= 3000) cells.forEach((_, i) => ids.add(i));
-  else {
-    for (const n of cells[id].neighbours) {
-      ids.add(n.id);
-      for (const m of cells[n.id]?.neighbours ?? []) ids.add(m.id);
-    }
-  }
-  ids.delete(id);
-  const p = cells[id].position;
-  const out: Vec3[] = [];
-  for (const i of ids) {
-    const q = cells[i]?.position;
-    if (q && (q[0] !== p[0] || q[1] !== p[1] || q[2] !== p[2])) out.push([q[0], q[1], q[2]]);
-  }
-  if (cells.length <= 3000 && out.length > 64) {
-    // Far sites cannot bound the cell once the nearest ones do: keep the 64 nearest.
-    out.sort((a, b) => dist2(a, p) - dist2(b, p));
-    out.length = 64;
-  }
-  return out;
-}
-
-/** Geometry-image points (xyz) within `radius` of `p`, and at least the 64 nearest. */
-function nearbyTexels(points: Float32Array, p: Vec3, radius: number): Float32Array {
-  const r2 = radius * radius;
-  const out: number[] = [];
-  for (let i = 0; i < points.length; i += 3) {
-    if ((points[i] - p[0]) ** 2 + (points[i + 1] - p[1]) ** 2 + (points[i + 2] - p[2]) ** 2 <= r2) out.push(points[i], points[i + 1], points[i + 2]);
-  }
-  if (out.length >= 3 * 64) return Float32Array.from(out);
-  return Float32Array.from(nearestPoints(points, p, 64).flat());
-}
-
-/** The `k` points (xyz) nearest `x`: one pass, a sorted list of k. */
-function nearestPoints(points: Float32Array, x: Vec3, k: number): Vec3[] {
-  const best: { d: number; q: Vec3 }[] = [];
-  for (let i = 0; i < points.length; i += 3) {
-    const d = (points[i] - x[0]) ** 2 + (points[i + 1] - x[1]) ** 2 + (points[i + 2] - x[2]) ** 2;
-    if (best.length === k && d >= best[k - 1].d) continue;
-    let j = best.length < k ? best.length : k - 1;
-    while (j > 0 && best[j - 1].d > d) {
-      if (j < k) best[j] = best[j - 1];
-      j--;
-    }
-    best[j] = { d, q: [points[i], points[i + 1], points[i + 2]] };
-  }
-  return best.map((b) => b.q);
-}
-
-/** The least-squares plane of `nearest` (its normal is the covariance's smallest axis). */
-function fitPlane(nearest: Vec3[]): { centre: Vec3; normal: Vec3 } {
-  const centre = meanOf(nearest);
-  const m = [0, 0, 0, 0, 0, 0]; // xx xy xz yy yz zz
-  for (const q of nearest) {
-    const d = sub(q, centre);
-    m[0] += d[0] * d[0];
-    m[1] += d[0] * d[1];
-    m[2] += d[0] * d[2];
-    m[3] += d[1] * d[1];
-    m[4] += d[1] * d[2];
-    m[5] += d[2] * d[2];
-  }
-  return { centre, normal: smallestEigenvector(m) };
-}
-
-/** Smallest eigenvector of a symmetric 3x3 matrix: inverse iteration on a shifted matrix. */
-function smallestEigenvector(m: number[]): Vec3 {
-  const trace = m[0] + m[3] + m[5];
-  // B = trace·I - M has the same eigenvectors, the smallest of M the largest of B (power iteration).
-  const b = [trace - m[0], -m[1], -m[2], trace - m[3], -m[4], trace - m[5]];
-  let v: Vec3 = [0.577, 0.578, 0.576];
-  for (let it = 0; it < 64; it++) {
-    const w: Vec3 = [
-      b[0] * v[0] + b[1] * v[1] + b[2] * v[2],
-      b[1] * v[0] + b[3] * v[1] + b[4] * v[2],
-      b[2] * v[0] + b[4] * v[1] + b[5] * v[2],
-    ];
-    const length = Math.hypot(...w);
-    if (length === 0) break;
-    v = scale(w, 1 / length);
-  }
-  return v;
 }
 
 /** Sorted, deduplicated ray angles in [-π, π): uniform ones and every polygon corner's. */
@@ -346,31 +207,6 @@ function rayExit(polygon: Float64Array, dx: number, dy: number): number {
   return Number.isFinite(best) ? best : 0;
 }
 
-function square(half: number): Float64Array {
-  return Float64Array.from([-half, -half, half, -half, half, half, -half, half]);
-}
-
-/** Sutherland–Hodgman: the part of a convex polygon with a x + b y <= c. */
-function clipHalfPlane(polygon: Float64Array, a: number, b: number, c: number): Float64Array {
-  const out: number[] = [];
-  const n = polygon.length / 2;
-  for (let i = 0; i < n; i++) {
-    const j = (i + 1) % n;
-    const px = polygon[2 * i];
-    const py = polygon[2 * i + 1];
-    const qx = polygon[2 * j];
-    const qy = polygon[2 * j + 1];
-    const fp = a * px + b * py - c;
-    const fq = a * qx + b * qy - c;
-    if (fp <= 0) out.push(px, py);
-    if ((fp < 0 && fq > 0) || (fp > 0 && fq < 0)) {
-      const t = fp / (fp - fq);
-      out.push(px + t * (qx - px), py + t * (qy - py));
-    }
-  }
-  return Float64Array.from(out);
-}
-
 function vertexNormals(positions: Float32Array, indices: Uint32Array): Float32Array {
   const normals = new Float32Array(positions.length);
   const at = (v: number): Vec3 => [positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]];
@@ -385,29 +221,3 @@ function vertexNormals(positions: Float32Array, indices: Uint32Array): Float32Ar
   }
   return normals;
 }
-
-function meanPoint(points: Float32Array): Vec3 {
-  const m: Vec3 = [0, 0, 0];
-  const n = points.length / 3;
-  for (let i = 0; i < points.length; i += 3) for (let c = 0; c < 3; c++) m[c] += points[i + c] / n;
-  return m;
-}
-
-function meanOf(points: Vec3[]): Vec3 {
-  const m: Vec3 = [0, 0, 0];
-  for (const q of points) for (let c = 0; c < 3; c++) m[c] += q[c] / points.length;
-  return m;
-}
-
-function leastAlignedAxis(n: Vec3): Vec3 {
-  const a = n.map(Math.abs);
-  if (a[0] <= a[1] && a[0] <= a[2]) return [1, 0, 0];
-  return a[1] <= a[2] ? [0, 1, 0] : [0, 0, 1];
-}
-
-const sub = (a: Vec3, b: Vec3): Vec3 => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-const scale = (a: Vec3, s: number): Vec3 => [a[0] * s, a[1] * s, a[2] * s];
-const dot = (a: Vec3, b: Vec3): number => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-const dist2 = (a: Vec3, b: ArrayLike<number>): number => (a[0] - b[0]) ** 2 + (a[1] - b[1]) ** 2 + (a[2] - b[2]) ** 2;
-const cross = (a: Vec3, b: Vec3): Vec3 => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
-const normalize = (a: Vec3): Vec3 => scale(a, 1 / (Math.hypot(a[0], a[1], a[2]) || 1));

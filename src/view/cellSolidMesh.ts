@@ -6,7 +6,8 @@
  * otherwise hide a cell between two cylinders), yet hiding its own back faces.
  */
 import * as THREE from 'three';
-import type { CellSolid } from './cellSolid';
+import { cellSolid, type CellSolid } from './cellSolid';
+import type { ViewStack } from './stack';
 import { SELECTED_RGB } from './sideColors';
 
 /** Draw order after every surface (the view's meshes use the default 0). */
@@ -60,4 +61,46 @@ export function cellSolidLights(): { headlight: THREE.DirectionalLight; fill: TH
   headlight.position.set(0.4, 0.8, 0.2);
   const fill = new THREE.HemisphereLight(0xffffff, 0x8a8a80, 1.1);
   return { headlight, fill };
+}
+
+/**
+ * The solid shown in a view: at most one, a group of its own in the sheet's frame (`parent`),
+ * kept apart from the surfaces' meshes (a rebuild of the surfaces leaves it). The lights are
+ * added on first use: a headlight on the camera (the camera joins the scene to carry it) and a
+ * soft fill; the surfaces' unlit materials ignore both.
+ */
+export class CellSolidDisplay {
+  private object: THREE.Group | null = null;
+  private lit = false;
+
+  constructor(
+    private readonly scene: THREE.Scene,
+    private readonly camera: THREE.Camera,
+    private readonly parent: THREE.Object3D,
+  ) {}
+
+  /** Shows cell `id` of `stack` as a solid (-1 or no stack: none); the solid, or null. */
+  show(stack: ViewStack | null, id: number): CellSolid | null {
+    if (this.object) {
+      this.parent.remove(this.object);
+      disposeCellSolidObject(this.object);
+      this.object = null;
+    }
+    const solid = stack && id >= 0 ? cellSolid(stack, id) : null;
+    if (!solid) return null;
+    if (!this.lit) {
+      const { headlight, fill } = cellSolidLights();
+      this.camera.add(headlight);
+      this.scene.add(this.camera, fill);
+      this.lit = true;
+    }
+    this.object = cellSolidObject(solid);
+    this.parent.add(this.object);
+    return solid;
+  }
+
+  /** The solid's bounding sphere in world space, or null when none is shown. */
+  bounds(): THREE.Sphere | null {
+    return this.object ? new THREE.Box3().setFromObject(this.object).getBoundingSphere(new THREE.Sphere()) : null;
+  }
 }

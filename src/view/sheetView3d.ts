@@ -11,15 +11,15 @@ import { isClosedConfig } from '../core/config';
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import type { ViewStack, ViewSurface } from './stack';
-import { atlasTopology, closedSurfaceMesh } from './cubeAtlasMesh';
-import { nearestCandidate, sitePositions, vertexCandidates } from './closedCandidates';
-import { closedCellsMaterial, disposeClosedCells, setClosedCells, setClosedPaint } from './closedMaterial';
+import { closedCellAt, closedSurfaceGeometry } from './closedSurfaceObject';
+import { closedCellsMaterial, disposeClosedCells, setClosedPaint } from './closedMaterial';
+import { sheetPose, solidPose, type CameraPose } from './cameraFit';
 import { drawExactCells } from './exactCells';
 import { PICTURE_LAYOUT, workerPicture } from './workerPictures';
 import { surfaceGeometry } from './surfaceGeometry';
-import { acceleratedRaycast, MeshBVH } from 'three-mesh-bvh';
-import { cellSolid, type CellSolid } from './cellSolid';
-import { cellSolidLights, cellSolidObject, disposeCellSolidObject } from './cellSolidMesh';
+import { acceleratePicking } from './pickAcceleration';
+import type { CellSolid } from './cellSolid';
+import { CellSolidDisplay } from './cellSolidMesh';
 
 /** A picked cell: which surface of the stack it was picked on, and its id. */
 export interface PickedCell {
@@ -58,6 +58,8 @@ export class SheetView3D {
   private stack: ViewStack | null = null;
   private frame = 0;
   private readonly resizeObserver: ResizeObserver;
+  /** The picked cell's solid (cellSolid.ts, cellSolidMesh.ts), in the sheet's frame. */
+  private readonly solid: CellSolidDisplay;
 
   /** Throws when the canvas cannot give a WebGL context (the caller says so in the page). */
   constructor(readonly canvas: HTMLCanvasElement, options: SheetViewOptions = {}) {
@@ -68,6 +70,7 @@ export class SheetView3D {
     this.highlight = options.highlightScutoids ?? true;
     this.scene.add(this.group);
     this.group.add(this.inner);
+    this.solid = new CellSolidDisplay(this.scene, this.camera, this.inner);
     this.controls = new OrbitControls(this.camera, canvas);
     this.controls.addEventListener('change', () => this.requestRender());
     // Arrow keys pan when the canvas has the focus (it is focusable: tabindex 0).
@@ -124,13 +127,9 @@ export class SheetView3D {
       const index = this.meshes.indexOf(hit.object as THREE.Mesh);
       const surface = stack.surfaces[index];
       if (!surface) continue;
-      let cell = -1;
-      const closed = (hit.object as THREE.Mesh).geometry.userData.closed as ClosedPickData | undefined;
-      if (closed && hit.face) {
-        // What the fragment shader draws there: the nearest candidate of the provoking vertex.
-        const p = hit.object.worldToLocal(hit.point.clone());
-        cell = nearestCandidate(closed.candidates, hit.face.c, closed.sites, p.x, p.y, p.z);
-      } else if (hit.uv) {
+      // A closed surface: the cell its fragment shader draws there.
+      let cell = closedCellAt(hit) ?? -1;
+      if (!(hit.object as THREE.Mesh).geometry.userData.closed && hit.uv) {
         const { width, height } = surface.image.grid;
         const x = Math.min(width - 1, Math.max(0, Math.floor(hit.uv.x * width)));
         const y = Math.min(height - 1, Math.max(0, Math.floor(hit.uv.y * height)));
@@ -141,59 +140,35 @@ export class SheetView3D {
     return null;
   }
 
-  // The picked cell as a solid (cellSolid.ts, cellSolidMesh.ts): a group of its own in the sheet's
-  // frame, kept apart from the surfaces' meshes (a rebuild leaves it; the caller updates it).
-  private solidObject: THREE.Group | null = null;
-  private solidLights: ReturnType<typeof cellSolidLights> | null = null;
-
   /** Draws cell `id` of the stack on screen as a solid through its surfaces (-1: none); the solid, or null. */
   showCellSolid(id: number): CellSolid | null {
-    if (this.solidObject) {
-      this.inner.remove(this.solidObject);
-      disposeCellSolidObject(this.solidObject);
-      this.solidObject = null;
-    }
-    const solid = this.stack && id >= 0 ? cellSolid(this.stack, id) : null;
-    if (solid) {
-      if (!this.solidLights) {
-        // A headlight on the camera (the camera joins the scene to carry it) and a soft fill; the
-        // surfaces' unlit materials ignore both.
-        this.solidLights = cellSolidLights();
-        this.camera.add(this.solidLights.headlight);
-        this.scene.add(this.camera, this.solidLights.fill);
-      }
-      this.solidObject = cellSolidObject(solid);
-      this.inner.add(this.solidObject);
-    }
+    const solid = this.solid.show(this.stack, id);
     this.requestRender();
     return solid;
   }
 
-  /** Whether a cell's solid is drawn. */
-  get cellSolidShown(): boolean {
-    return this.solidObject !== null;
+  /**
+   * Turns the camera to the picked cell's solid: looking at it from outside the sheet (along the
+   * tube's or the closed surface's outward direction there; a plane keeps its viewing angle), near
+   * enough that the solid fills about a third of the view. False when no solid is drawn.
+   */
+  focusOnSolid(): boolean {
+    const bounds = this.solid.bounds();
+    if (!bounds || !this.stack) return false;
+    const pose = solidPose(this.camera, this.controls.target, this.stack.result.config.surface.kind, bounds);
+    this.applyPose({ ...pose, near: Math.min(this.camera.near, pose.near) });
+    this.requestRender();
+    return true;
   }
 
-  /**
-   * Hover picks cost one raycast per frame: brute force on a closed surface's mesh is ~23 ms at
-   * 500k triangles (bench/hoverPick.ts), three-mesh-bvh ~0.04 ms once its hierarchy is built
-   * (~160 ms at 500k). The hierarchies of the large meshes on screen are built in idle time, one
-   * surface per idle callback; until then picks fall back to brute force.
-   */
+  /** Whether a cell's solid is drawn. */
+  get cellSolidShown(): boolean {
+    return this.solid.bounds() !== null;
+  }
+
+  /** Builds the pick hierarchies of the large meshes on screen in idle time (pickAcceleration.ts). */
   acceleratePicking(minTriangles = 50_000): void {
-    const pending = this.meshes.filter((m) => !m.geometry.boundsTree && (m.geometry.index?.count ?? 0) / 3 >= minTriangles);
-    const idle = (callback: () => void) =>
-      typeof requestIdleCallback === 'function' ? requestIdleCallback(callback, { timeout: 2000 }) : setTimeout(callback, 50);
-    const next = () => {
-      const mesh = pending.shift();
-      if (!mesh) return;
-      if (this.meshes.includes(mesh) && !mesh.geometry.boundsTree) {
-        mesh.geometry.boundsTree = new MeshBVH(mesh.geometry, { indirect: true });
-        mesh.raycast = acceleratedRaycast;
-      }
-      if (pending.length) idle(next);
-    };
-    if (pending.length) idle(next);
+    acceleratePicking(this.meshes, (mesh) => this.meshes.includes(mesh), minTriangles);
   }
 
   /** Visibility of surface `index` of the stack. */
@@ -322,7 +297,8 @@ export class SheetView3D {
     const config = stack.result.config;
     for (const surface of stack.surfaces) {
       if (stack.closed || isClosedConfig(config)) {
-        const mesh = new THREE.Mesh(this.closedGeometry(stack, surface), this.closedMaterial(surface.index));
+        const material = this.closedMaterial(surface.index);
+        const mesh = new THREE.Mesh(closedSurfaceGeometry(stack, surface, material), material);
         mesh.name = surface.name;
         mesh.visible = visible[surface.index] ?? true;
         this.meshes.push(mesh);
@@ -393,51 +369,18 @@ export class SheetView3D {
     return material;
   }
 
-  /**
-   * A closed surface's triangles with each vertex's candidate cells (closedCandidates.ts); its
-   * material gets the surface's sites and cell colours (by sides, scutoids striped).
-   */
-  private closedGeometry(stack: ViewStack, surface: ViewSurface): THREE.BufferGeometry {
-    const built = closedSurfaceMesh(surface.image);
-    const sites = sitePositions(surface.cells);
-    const n = surface.image.grid.width;
-    const candidates = vertexCandidates(built.positions, built.cells, atlasTopology(n).neighbours, sites);
-    setClosedCells(this.closedMaterial(surface.index), {
-      sites,
-      sides: surface.sides,
-      scutoid: stack.scutoid,
-      stripePeriod: 3 * built.edgeLength,
-    });
-    const geometry = new THREE.BufferGeometry();
-    geometry.setAttribute('position', new THREE.BufferAttribute(built.positions, 3));
-    geometry.setAttribute('normal', new THREE.BufferAttribute(built.normals, 3));
-    geometry.setAttribute('candidates', new THREE.BufferAttribute(candidates, 4));
-    geometry.setIndex(new THREE.BufferAttribute(built.indices, 1));
-    const pick: ClosedPickData = { candidates, sites };
-    geometry.userData.closed = pick;
-    return geometry;
+  private fitCamera(): void {
+    const pose = sheetPose(this.camera, this.stack?.result.config.surface.kind ?? 'plane', this.stack?.closed ?? false, this.radius, this.elongation);
+    this.applyPose(pose);
+    this.camera.far = pose.near * 1000;
+    this.camera.updateProjectionMatrix();
   }
 
-  private fitCamera(): void {
-    const halfV = (this.camera.fov * Math.PI) / 360;
-    const halfH = Math.atan(Math.tan(halfV) * this.camera.aspect);
-    const distance = this.radius / Math.sin(Math.min(halfV, halfH));
-    // Look from the side, a little above: a tube lies across the view.
-    const direction = new THREE.Vector3(0, 0.45, 1).normalize();
-    if (this.stack?.result.config.surface.kind === 'plane') direction.set(0.25, 0.5, 1).normalize();
-    // A closed surface is seen whole; so is a sheet (the bounding sphere fills the view).
-    let closeness = this.stack?.closed ? 0.8 : 0.95;
-    if (this.elongation > 3) {
-      // A long tube seen from the side is a sliver: look along it from above one end, so its
-      // near part shows its cells and the rest recedes in perspective, still whole in view.
-      direction.set(0.8, 0.45, 0.55).normalize();
-      closeness = 0.9;
-    }
-    this.camera.position.copy(direction.multiplyScalar(distance * closeness));
-    this.camera.near = distance / 100;
-    this.camera.far = distance * 10;
+  private applyPose(pose: CameraPose): void {
+    this.camera.position.copy(pose.position);
+    this.camera.near = pose.near;
     this.camera.updateProjectionMatrix();
-    this.controls.target.set(0, 0, 0);
+    this.controls.target.copy(pose.target);
     this.controls.update();
   }
 
@@ -453,12 +396,6 @@ export class SheetView3D {
     const depth = this.radius * (1 - 2 * this.cutFraction);
     this.clip.set(normal, depth);
   }
-}
-
-/** What picking on a closed surface needs: the rule its fragments are drawn by. */
-interface ClosedPickData {
-  candidates: Float32Array;
-  sites: Float32Array;
 }
 
 /** What the camera fit depends on: the surface and the sheet's geometry. */
