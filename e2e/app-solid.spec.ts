@@ -76,6 +76,20 @@ test('a scutoid drawn as a 3D solid: keyboard toggle, sides per surface, pixels 
   for (let k = 0; k < before.data.length; k++) if (Math.abs(before.data[k] - after.data[k]) > 16) changed++;
   expect(changed).toBeGreaterThan(30);
   expect(after.neutral - before.neutral).toBeGreaterThan(200);
+  // Ticking the box turns the camera to the solid: it fills a good part of the view (a cell of a
+  // long tube is a few pixels in the whole-sheet view); Reset camera shows the whole sheet again.
+  const { width, height } = await page.evaluate(() => {
+    const view = document.querySelector<HTMLCanvasElement>('#view3d')!;
+    return { width: view.width, height: view.height };
+  });
+  expect(after.neutral).toBeGreaterThan(0.03 * width * height);
+  await page.locator('#reset-camera').click();
+  await page.waitForTimeout(300);
+  const whole = await viewPixels(page);
+  expect(whole.neutral).toBeLessThan(after.neutral / 4);
+  await page.locator('#cell-solid-zoom').click();
+  await page.waitForTimeout(300);
+  expect((await viewPixels(page)).neutral).toBeGreaterThan(0.03 * width * height);
 
   // The solid as PLY: a closed, consistently oriented triangle mesh of this cell.
   const [file] = await Promise.all([page.waitForEvent('download'), page.locator('#cell-solid-ply').click()]);

@@ -9,7 +9,7 @@ import { SIDE_COLORS } from '../src/view/sideColors';
  * site is nearest to its point (src/view/closedCandidates.ts), with one-pixel borders, instead
  * of colours interpolated between texels. Checked on the page's own pixels: away from borders
  * every lit pixel is exactly a legend colour, and it is the colour of the cell a click there
- * picks; blended colours are confined to the thin borders.
+ * picks (and hover names); blended colours are confined to the thin borders.
  */
 
 const SPHERE = { resolution: 24, cells: 60, seed: 3, lloyd: { maxIterations: 2 }, surface: { kind: 'sphere', radius: 50 }, sheet: { thickness: 10 } };
@@ -75,9 +75,19 @@ test('a sphere is drawn per fragment: lit pixels are legend colours, the cell a 
     }
   }
   expect(probes.length).toBeGreaterThan(10);
-  for (const probe of probes) {
-    await page.mouse.click(box.x + probe.x + 0.5, box.y + probe.y + 0.5);
+  const tip = page.locator('#cell-hover');
+  for (const [k, probe] of probes.entries()) {
+    const x = box.x + probe.x + 0.5, y = box.y + probe.y + 0.5;
+    if (k < 4) {
+      // Hover names the same cell as the click (same rule as the drawing).
+      await page.mouse.move(x - 2, y - 2);
+      await page.mouse.move(x, y, { steps: 2 });
+      await expect(tip).toBeVisible();
+    }
+    const hovered = k < 4 ? Number(await tip.getAttribute('data-cell')) : null;
+    await page.mouse.click(x, y);
     const picked = Number(await page.locator('#cell-id').inputValue());
+    if (hovered !== null) expect(hovered).toBe(picked);
     const sides = analysis.cells[picked].sides[shown];
     expect(Math.max(0, Math.min(sides, 10) - 3), `pixel (${probe.x}, ${probe.y}) → cell ${picked}`).toBe(probe.colour);
   }

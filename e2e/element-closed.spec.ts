@@ -68,3 +68,36 @@ test('sphere, ellipsoid and mesh (meshFile, src) attributes; a genus-1 mesh fire
   expect(outcome.stillShown).toBe('my-organoid.ply');
   expect(outcome.caption).toContain('genus 1');
 });
+
+test('cell-hover: the cell under the pointer on a sphere, null once the pointer leaves', async ({ page }) => {
+  await page.goto('/examples/element.html');
+  await waitForExample(page);
+  await page.evaluate(async () => {
+    const element = document.createElement('tissue-sheet');
+    element.id = 'hover-sphere';
+    for (const [name, value] of Object.entries({ manual: '', surface: 'sphere', radius: '50', resolution: '32', cells: '80', iterations: '2', thickness: '15' })) {
+      element.setAttribute(name, value);
+    }
+    element.style.cssText = 'position:fixed;left:0;top:0;width:400px;height:300px;z-index:100;display:block';
+    document.body.append(element);
+    const events: unknown[] = [];
+    (window as unknown as { hoverEvents: unknown[] }).hoverEvents = events;
+    element.addEventListener('cell-hover', (e) => events.push((e as CustomEvent).detail));
+    await element.run();
+  });
+  const canvas = page.locator('#hover-sphere').locator('canvas').first();
+  const box = (await canvas.boundingBox())!;
+  await page.mouse.move(box.x + box.width / 2 - 4, box.y + box.height / 2 - 4);
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2, { steps: 3 });
+  await page.waitForFunction(() => (window as unknown as { hoverEvents: unknown[] }).hoverEvents.length > 0);
+  const first = (await page.evaluate(() => (window as unknown as { hoverEvents: unknown[] }).hoverEvents[0])) as { cell: number; surface: number };
+  expect(first.cell).toBeGreaterThanOrEqual(0);
+  expect(first.cell).toBeLessThan(80);
+  // The outer surface (apical, index 1) faces the camera at the sphere's centre.
+  expect(first.surface).toBe(1);
+  await page.mouse.move(box.x + box.width + 50, box.y + box.height + 50);
+  await page.waitForFunction(() => {
+    const events = (window as unknown as { hoverEvents: unknown[] }).hoverEvents;
+    return events[events.length - 1] === null;
+  });
+});

@@ -32,6 +32,7 @@ export class ViewPanel {
   private readonly cellField: HTMLInputElement;
   private readonly solidBox: HTMLInputElement;
   private readonly solidPly: HTMLButtonElement;
+  private readonly solidZoom: HTMLButtonElement;
   private solid: CellSolid | null = null;
   private readonly hoverTip: HTMLElement;
   private selected = -1;
@@ -85,19 +86,20 @@ export class ViewPanel {
     solidLabel.title =
       'Draws the picked cell as a solid through every surface of the stack, in front of the surfaces: its cross-section on each surface is its cell there (exact on planes and tubes, traced on closed surfaces)';
     solidLabel.append(this.solidBox, ' Show picked cell as a 3D solid');
-    this.solidBox.addEventListener('change', () => this.updateSolid());
-    this.solidPly = document.createElement('button');
-    this.solidPly.type = 'button';
-    this.solidPly.id = 'cell-solid-ply';
-    this.solidPly.textContent = 'Solid as PLY';
-    this.solidPly.title = 'Saves the solid on screen as a closed triangle mesh (ASCII PLY, µm; each vertex with cell, surface, sides, scutoid, valid)';
-    this.solidPly.disabled = true;
-    this.solidPly.addEventListener('click', () => {
+    this.solidBox.addEventListener('change', () => {
+      this.updateSolid();
+      // Ticking the box is asking to see the scutoid: bring it into view.
+      if (this.solidBox.checked) this.view?.focusOnSolid();
+    });
+    this.solidPly = solidButton('cell-solid-ply', 'Solid as PLY', 'Saves the solid on screen as a closed triangle mesh (ASCII PLY, µm; each vertex with cell, surface, sides, scutoid, valid)', () => {
       if (!this.stack || !this.solid) return;
       const { config } = this.stack.result;
       download(`tissue-sheet-${config.surface.kind}-seed${config.seed}-cell${this.solid.cell}-solid.ply`, cellSolidPly(this.stack, this.solid), 'application/octet-stream');
     });
-    picker.append(label, solidLabel, this.solidPly, this.cellInfo);
+    this.solidZoom = solidButton('cell-solid-zoom', 'Zoom to cell', "Turns the camera to the picked cell's solid, seen from outside the sheet (Reset camera shows the whole sheet again)", () =>
+      this.view?.focusOnSolid(),
+    );
+    picker.append(label, solidLabel, this.solidZoom, this.solidPly, this.cellInfo);
     root.querySelector('#legend')!.after(picker);
     this.cellField.addEventListener('change', () => this.select(this.cellField.value === '' ? -1 : Number(this.cellField.value)));
     this.cellField.addEventListener('keydown', (event) => {
@@ -227,6 +229,7 @@ export class ViewPanel {
     const solid = this.view.showCellSolid(this.solidBox.checked && this.stack ? this.selected : -1);
     this.solid = solid;
     this.solidPly.disabled = !solid;
+    this.solidZoom.disabled = !solid;
     document.body.dataset.cellSolid = solid ? `${solid.cell}:${solid.sections.map((s) => s.corners).join(',')}` : '';
   }
 
@@ -234,4 +237,16 @@ export class ViewPanel {
     if (!this.stack) return;
     drawUnrolled(this.unrolled, this.stack, this.highlight.checked, { selected: this.selected, onPick: (_surface, cell) => this.select(cell) });
   }
+}
+
+/** A button acting on the picked cell's solid: disabled until a solid is shown. */
+function solidButton(id: string, text: string, title: string, onClick: () => void): HTMLButtonElement {
+  const button = document.createElement('button');
+  button.type = 'button';
+  button.id = id;
+  button.textContent = text;
+  button.title = title;
+  button.disabled = true;
+  button.addEventListener('click', onClick);
+  return button;
 }
