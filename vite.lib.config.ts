@@ -9,8 +9,10 @@ import { defineConfig } from 'vite';
  *   `cli.js` (what bin/tissue-sheet.mjs runs), sharing chunks in dist/chunks/. Dependencies and
  *   Node built-ins stay imports, so a consumer's bundler dedupes three.js and `gl` is loaded only
  *   by the Node code that asks for a context. Type declarations: `tsc -p tsconfig.lib.json`.
- * - `--mode standalone`: the `<tissue-sheet>` element as one self-contained ES module (three.js,
- *   ajv and d3-delaunay bundled) at dist/lib/tissue-sheet.js, for a plain <script type="module">.
+ * - `--mode standalone`: the `<tissue-sheet>` element as one self-contained ES module (three.js
+ *   and d3-delaunay bundled) at dist/lib/tissue-sheet.js, for a plain <script type="module">.
+ *   ajv is a build-time tool only: the validators are precompiled to plain code
+ *   (scripts/validators.ts), so neither build carries ajv.
  */
 const packageJson = JSON.parse(readFileSync(new URL('./package.json', import.meta.url), 'utf8')) as {
   dependencies?: Record<string, string>;
