@@ -21,24 +21,59 @@ export function fillDistance(camera: THREE.PerspectiveCamera, radius: number): n
   return radius / Math.sin(Math.min(halfV, halfH));
 }
 
+/** What the whole-sheet fit needs of the sheet, in the view's frame (centred at the origin). */
+export interface SheetBounds {
+  /** Half the size of the sheet's bounding box (a tube's axis along x). */
+  halfSize: THREE.Vector3;
+  /** Radius of a sphere about the origin that holds every vertex. */
+  radius: number;
+}
+
 /**
- * The whole sheet, centred at the origin with bounding radius `radius`; `elongation` is a tube's
- * length over its diameter (1 otherwise).
+ * The camera distance along `direction` (unit, from the target at the origin to the camera) at
+ * which every one of `points` lies inside the view: a point at lateral offsets (u, v) and depth
+ * w from the camera is inside when |u| <= w tan(half width) and |v| <= w tan(half height).
  */
-export function sheetPose(camera: THREE.PerspectiveCamera, kind: Kind, closed: boolean, radius: number, elongation: number): CameraPose {
-  const distance = fillDistance(camera, radius);
+export function fitPointsDistance(camera: THREE.PerspectiveCamera, direction: THREE.Vector3, points: readonly THREE.Vector3[]): number {
+  const forward = direction.clone().negate();
+  const right = new THREE.Vector3().crossVectors(forward, camera.up).normalize();
+  const up = new THREE.Vector3().crossVectors(right, forward);
+  const tanV = Math.tan((camera.fov * Math.PI) / 360);
+  const tanH = tanV * camera.aspect;
+  let distance = 0;
+  for (const p of points) {
+    const along = p.dot(direction);
+    distance = Math.max(distance, along + Math.abs(p.dot(right)) / tanH, along + Math.abs(p.dot(up)) / tanV);
+  }
+  return distance;
+}
+
+/** The eight corners of a box centred at the origin. */
+function boxCorners(halfSize: THREE.Vector3): THREE.Vector3[] {
+  const corners: THREE.Vector3[] = [];
+  for (const x of [-1, 1]) for (const y of [-1, 1]) for (const z of [-1, 1]) corners.push(new THREE.Vector3(x * halfSize.x, y * halfSize.y, z * halfSize.z));
+  return corners;
+}
+
+/**
+ * The whole sheet in view, for any window shape: a closed surface whole (its vertex sphere just
+ * fits), a plane or a tube as close as its bounding box still fits (the box holds the sheet and
+ * the view is convex, so the sheet is inside too), with a small margin.
+ */
+export function sheetPose(camera: THREE.PerspectiveCamera, kind: Kind, closed: boolean, bounds: SheetBounds): CameraPose {
+  // A closed surface touches its vertex sphere's rim: leave a little room around it. A box's
+  // corners lie outside a plane or tube, which needs less.
+  const margin = closed ? 1.15 : 1.04;
   // Look from the side, a little above: a tube lies across the view.
   const direction = new THREE.Vector3(0, 0.45, 1).normalize();
   if (kind === 'plane') direction.set(0.25, 0.5, 1).normalize();
-  // A closed surface is seen whole; so is a sheet (the bounding sphere fills the view).
-  let closeness = closed ? 0.8 : 0.95;
-  if (elongation > 3) {
-    // A long tube seen from the side is a sliver: look along it from above one end, so its
-    // near part shows its cells and the rest recedes in perspective, still whole in view.
-    direction.set(0.8, 0.45, 0.55).normalize();
-    closeness = 0.9;
-  }
-  return { position: direction.multiplyScalar(distance * closeness), target: new THREE.Vector3(), near: distance / 100 };
+  const elongation = kind === 'tube' ? bounds.halfSize.x / Math.max(1e-9, bounds.halfSize.y, bounds.halfSize.z) : 1;
+  // A long tube seen from the side is a sliver: look along it from above one end, so its near
+  // part shows its cells and the rest recedes in perspective, still whole in view.
+  if (elongation > 3) direction.set(0.8, 0.45, 0.55).normalize();
+  const sphereFit = fillDistance(camera, bounds.radius);
+  const distance = margin * (closed ? sphereFit : Math.min(sphereFit, fitPointsDistance(camera, direction, boxCorners(bounds.halfSize))));
+  return { position: direction.multiplyScalar(distance), target: new THREE.Vector3(), near: distance / 100 };
 }
 
 /**

@@ -13,7 +13,7 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import type { ViewStack, ViewSurface } from './stack';
 import { closedCellAt, closedSurfaceGeometry } from './closedSurfaceObject';
 import { closedCellsMaterial, disposeClosedCells, setClosedPaint } from './closedMaterial';
-import { sheetPose, solidPose, type CameraPose } from './cameraFit';
+import { sheetPose, solidPose, type CameraPose, type SheetBounds } from './cameraFit';
 import { drawExactCells } from './exactCells';
 import { PICTURE_LAYOUT, workerPicture } from './workerPictures';
 import { surfaceGeometry } from './surfaceGeometry';
@@ -50,8 +50,8 @@ export class SheetView3D {
   private readonly clip = new THREE.Plane(new THREE.Vector3(0, -1, 0), 0);
   private cutFraction = 0;
   private radius = 1;
-  /** Length over diameter of a tube (1 otherwise): long tubes get an oblique view. */
-  private elongation = 1;
+  /** The sheet's extent in the view's frame, for the whole-sheet camera fit (cameraFit.ts). */
+  private bounds: SheetBounds = { halfSize: new THREE.Vector3(1, 1, 1), radius: 1 };
   private highlight: boolean;
   private selected = -1;
   private readonly raycaster = new THREE.Raycaster();
@@ -346,12 +346,20 @@ export class SheetView3D {
       box.union(mesh.geometry.boundingBox!);
     }
     const centre = box.getCenter(new THREE.Vector3());
-    this.inner.position.copy(centre.negate());
+    this.inner.position.copy(centre).negate();
     this.group.rotation.set(0, config.surface.kind === 'tube' ? Math.PI / 2 : 0, 0);
     this.radius = Math.max(1, box.getBoundingSphere(new THREE.Sphere()).radius);
-    const size = box.getSize(new THREE.Vector3());
-    // Along the tube's axis over across it (the axis is z before the view turns it to x).
-    this.elongation = config.surface.kind === 'tube' ? size.z / Math.max(1e-9, Math.max(size.x, size.y)) : 1;
+    const halfSize = box.getSize(new THREE.Vector3()).multiplyScalar(0.5);
+    // The tube's axis (z) is x in the view.
+    if (config.surface.kind === 'tube') halfSize.set(halfSize.z, halfSize.y, halfSize.x);
+    // Every vertex within: the meshes' bounding spheres (three.js needs them for culling anyway).
+    let vertexRadius = 0;
+    for (const mesh of this.meshes) {
+      mesh.geometry.computeBoundingSphere();
+      const sphere = mesh.geometry.boundingSphere!;
+      vertexRadius = Math.max(vertexRadius, sphere.center.distanceTo(centre) + sphere.radius);
+    }
+    this.bounds = { halfSize, radius: Math.max(1e-6, vertexRadius) };
     this.updateClip();
   }
 
@@ -370,7 +378,7 @@ export class SheetView3D {
   }
 
   private fitCamera(): void {
-    const pose = sheetPose(this.camera, this.stack?.result.config.surface.kind ?? 'plane', this.stack?.closed ?? false, this.radius, this.elongation);
+    const pose = sheetPose(this.camera, this.stack?.result.config.surface.kind ?? 'plane', this.stack?.closed ?? false, this.bounds);
     this.applyPose(pose);
     this.camera.far = pose.near * 1000;
     this.camera.updateProjectionMatrix();
