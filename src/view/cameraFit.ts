@@ -30,6 +30,24 @@ export interface SheetBounds {
 }
 
 /**
+ * The bounds of a sheet made of `geometries` whose bounding box is `box`, in the view's frame:
+ * centred at the box's centre, a tube's axis (z) turned to x. The vertex radius comes from the
+ * geometries' bounding spheres (three.js needs them for culling anyway).
+ */
+export function sheetBounds(geometries: readonly THREE.BufferGeometry[], box: THREE.Box3, tube: boolean): SheetBounds {
+  const centre = box.getCenter(new THREE.Vector3());
+  const halfSize = box.getSize(new THREE.Vector3()).multiplyScalar(0.5);
+  if (tube) halfSize.set(halfSize.z, halfSize.y, halfSize.x);
+  let radius = 0;
+  for (const geometry of geometries) {
+    geometry.computeBoundingSphere();
+    const sphere = geometry.boundingSphere!;
+    radius = Math.max(radius, sphere.center.distanceTo(centre) + sphere.radius);
+  }
+  return { halfSize, radius: Math.max(1e-6, radius) };
+}
+
+/**
  * The camera distance along `direction` (unit, from the target at the origin to the camera) at
  * which every one of `points` lies inside the view: a point at lateral offsets (u, v) and depth
  * w from the camera is inside when |u| <= w tan(half width) and |v| <= w tan(half height).

@@ -10,12 +10,11 @@ import { isClosedConfig } from '../core/config';
  */
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import type { ViewStack, ViewSurface } from './stack';
+import type { ViewStack } from './stack';
 import { closedCellAt, closedSurfaceGeometry } from './closedSurfaceObject';
 import { closedCellsMaterial, disposeClosedCells, setClosedPaint } from './closedMaterial';
-import { sheetPose, solidPose, type CameraPose, type SheetBounds } from './cameraFit';
-import { drawExactCells } from './exactCells';
-import { PICTURE_LAYOUT, workerPicture } from './workerPictures';
+import { sheetBounds, sheetPose, solidPose, type CameraPose, type SheetBounds } from './cameraFit';
+import { surfaceTexture } from './surfaceTexture';
 import { surfaceGeometry } from './surfaceGeometry';
 import { acceleratePicking } from './pickAcceleration';
 import type { CellSolid } from './cellSolid';
@@ -127,13 +126,16 @@ export class SheetView3D {
       const index = this.meshes.indexOf(hit.object as THREE.Mesh);
       const surface = stack.surfaces[index];
       if (!surface) continue;
-      // A closed surface: the cell its fragment shader draws there.
-      let cell = closedCellAt(hit) ?? -1;
-      if (!(hit.object as THREE.Mesh).geometry.userData.closed && hit.uv) {
-        const { width, height } = surface.image.grid;
-        const x = Math.min(width - 1, Math.max(0, Math.floor(hit.uv.x * width)));
-        const y = Math.min(height - 1, Math.max(0, Math.floor(hit.uv.y * height)));
-        cell = surface.image.labels[y * width + x];
+      // A closed surface: the cell its fragment shader draws there; else the label under the uv.
+      let cell = closedCellAt(hit);
+      if (cell === null) {
+        cell = -1;
+        if (hit.uv) {
+          const { width, height } = surface.image.grid;
+          const x = Math.min(width - 1, Math.max(0, Math.floor(hit.uv.x * width)));
+          const y = Math.min(height - 1, Math.max(0, Math.floor(hit.uv.y * height)));
+          cell = surface.image.labels[y * width + x];
+        }
       }
       if (cell >= 0) return { surface: index, cell };
     }
@@ -150,7 +152,7 @@ export class SheetView3D {
   /**
    * Turns the camera to the picked cell's solid: looking at it from outside the sheet (along the
    * tube's or the closed surface's outward direction there; a plane keeps its viewing angle), near
-   * enough that the solid fills about a third of the view. False when no solid is drawn.
+   * enough that the solid fills about two thirds of the view. False when no solid is drawn.
    */
   focusOnSolid(): boolean {
     const bounds = this.solid.bounds();
@@ -163,7 +165,7 @@ export class SheetView3D {
 
   /** Whether a cell's solid is drawn. */
   get cellSolidShown(): boolean {
-    return this.solid.bounds() !== null;
+    return this.solid.shown;
   }
 
   /** Builds the pick hierarchies of the large meshes on screen in idle time (pickAcceleration.ts). */
@@ -295,45 +297,18 @@ export class SheetView3D {
     const visible = this.meshes.map((m) => m.visible);
     this.clearMeshes();
     const config = stack.result.config;
+    const closed = stack.closed || isClosedConfig(config);
     for (const surface of stack.surfaces) {
-      if (stack.closed || isClosedConfig(config)) {
+      let mesh: THREE.Mesh;
+      if (closed) {
         const material = this.closedMaterial(surface.index);
-        const mesh = new THREE.Mesh(closedSurfaceGeometry(stack, surface, material), material);
-        mesh.name = surface.name;
-        mesh.visible = visible[surface.index] ?? true;
-        this.meshes.push(mesh);
-        this.inner.add(mesh);
-        continue;
-      }
-      // The exact cells drawn on a canvas: smooth borders, not the label image's texels (drawn
-      // in the pipeline's worker when it could: workerPictures.ts).
-      const paint = { highlightScutoids: this.highlight, selected: this.selected };
-      const picture = workerPicture(surface, 'texture', paint);
-      let texture: THREE.Texture;
-      if (picture) texture = new THREE.Texture(picture);
-      else {
-        const canvas = document.createElement('canvas');
-        drawExactCells(canvas, surface, { ...paint, ...PICTURE_LAYOUT.texture(surface), valid: stack.valid, scutoid: stack.scutoid });
-        texture = new THREE.CanvasTexture(canvas);
-      }
-      texture.flipY = false;
-      if (picture instanceof ImageData) {
-        // A drag's draft (the label image, one texel per pixel): sampled as texels, no mipmaps
-        // or anisotropy, which cost a software GPU most of a frame per streamed result.
-        texture.magFilter = THREE.NearestFilter;
-        texture.minFilter = THREE.LinearFilter;
-        texture.generateMipmaps = false;
+        mesh = new THREE.Mesh(closedSurfaceGeometry(stack, surface, material), material);
       } else {
-        texture.magFilter = THREE.LinearFilter;
-        texture.minFilter = THREE.LinearMipmapLinearFilter;
-        texture.anisotropy = Math.min(8, this.renderer.capabilities.getMaxAnisotropy());
+        const paint = { highlightScutoids: this.highlight, selected: this.selected };
+        const material = this.material('textured', surface.index);
+        material.map = surfaceTexture(stack, surface, paint, this.renderer.capabilities.getMaxAnisotropy());
+        mesh = new THREE.Mesh(surfaceGeometry(config.surface, surface.image.grid, surface.offset), material);
       }
-      texture.colorSpace = THREE.SRGBColorSpace;
-      texture.wrapS = config.surface.kind === 'tube' ? THREE.RepeatWrapping : THREE.ClampToEdgeWrapping;
-      texture.needsUpdate = true;
-      const material = this.material('textured', surface.index);
-      material.map = texture;
-      const mesh = new THREE.Mesh(surfaceGeometry(config.surface, surface.image.grid, surface.offset), material);
       mesh.name = surface.name;
       mesh.visible = visible[surface.index] ?? true;
       this.meshes.push(mesh);
@@ -349,17 +324,7 @@ export class SheetView3D {
     this.inner.position.copy(centre).negate();
     this.group.rotation.set(0, config.surface.kind === 'tube' ? Math.PI / 2 : 0, 0);
     this.radius = Math.max(1, box.getBoundingSphere(new THREE.Sphere()).radius);
-    const halfSize = box.getSize(new THREE.Vector3()).multiplyScalar(0.5);
-    // The tube's axis (z) is x in the view.
-    if (config.surface.kind === 'tube') halfSize.set(halfSize.z, halfSize.y, halfSize.x);
-    // Every vertex within: the meshes' bounding spheres (three.js needs them for culling anyway).
-    let vertexRadius = 0;
-    for (const mesh of this.meshes) {
-      mesh.geometry.computeBoundingSphere();
-      const sphere = mesh.geometry.boundingSphere!;
-      vertexRadius = Math.max(vertexRadius, sphere.center.distanceTo(centre) + sphere.radius);
-    }
-    this.bounds = { halfSize, radius: Math.max(1e-6, vertexRadius) };
+    this.bounds = sheetBounds(this.meshes.map((mesh) => mesh.geometry), box, config.surface.kind === 'tube');
     this.updateClip();
   }
 

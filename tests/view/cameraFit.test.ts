@@ -1,6 +1,6 @@
 import * as THREE from 'three';
 import { describe, expect, it } from 'vitest';
-import { fillDistance, fitPointsDistance, sheetPose, solidPose } from '../../src/view/cameraFit';
+import { fillDistance, fitPointsDistance, sheetBounds, sheetPose, solidPose } from '../../src/view/cameraFit';
 
 /**
  * The camera poses (issue 14: "fit the whole sheet on every geometry change; long tubes get a
@@ -63,6 +63,28 @@ describe('camera poses', () => {
       const halfH = Math.atan(Math.tan(halfV) * aspect);
       expect(Math.asin(2 / d)).toBeCloseTo(Math.min(halfV, halfH), 10);
     }
+  });
+
+  it("sheetBounds: a tube's axis turned to x, every vertex within the radius about the box's centre", () => {
+    // Two coaxial open cylinders along z (three.js builds them along y: turn them), off the origin.
+    const geometries = [10, 20].map((r) => new THREE.CylinderGeometry(r, r, 120, 32, 1, true).rotateX(Math.PI / 2).translate(5, -3, 40));
+    const box = new THREE.Box3();
+    for (const g of geometries) {
+      g.computeBoundingBox();
+      box.union(g.boundingBox!);
+    }
+    const bounds = sheetBounds(geometries, box, true);
+    expect(bounds.halfSize.x).toBeCloseTo(60, 9);
+    expect(bounds.halfSize.y).toBeCloseTo(20, 3);
+    expect(bounds.halfSize.z).toBeCloseTo(20, 3);
+    const centre = box.getCenter(new THREE.Vector3());
+    let farthest = 0;
+    for (const g of geometries) {
+      const p = g.getAttribute('position');
+      for (let k = 0; k < p.count; k++) farthest = Math.max(farthest, new THREE.Vector3().fromBufferAttribute(p, k).distanceTo(centre));
+    }
+    expect(bounds.radius).toBeGreaterThanOrEqual(farthest - 1e-9);
+    expect(bounds.radius).toBeLessThan(1.05 * farthest);
   });
 
   it('fitPointsDistance: every point inside, and one on the edge of the view', () => {
