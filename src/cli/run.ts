@@ -6,6 +6,7 @@
  * written atomically.
  */
 import { dirname } from 'node:path';
+import { describeHeadline } from '../core/analysis/headline';
 import { ConfigError, validateAnyConfig } from '../core/config';
 import { createHeadlessContext } from '../node/headless';
 import { describeEngine, runSheet } from '../run/index';
@@ -44,6 +45,8 @@ export async function runCommand(options: CliOptions, signal: AbortSignal, log: 
       `done: ${result.cells.length} cells, ${result.lloyd.iterations.length} iterations, ` +
         `${describeEngine(result.engine)}, ${result.timings.totalMs.toFixed(0)} ms -> ${options.out}`,
     );
+    // Last, the number a biologist reads: result.headline, with its method and Voronoi k.
+    log(`headline: ${describeHeadline(result.headline)}`);
   } finally {
     context.dispose();
   }

@@ -1,4 +1,4 @@
-import type { AnyConfig } from '../core/config';
+import { engineNameFor, type AnyConfig } from '../core/config';
 import { chooseCentroidPath, type CentroidPath, type SurfaceFamilyName } from '../gpu/centroidPolicy';
 import type { GpuCapabilities } from '../gpu/context';
 
@@ -24,18 +24,21 @@ export interface ExactEngineChoice {
 }
 
 /**
- * The engine policy: the one place a run's engine and centroid path are chosen.
+ * The engine policy: the one place a run's engine and centroid path are chosen. Which engine
+ * is core/config/analysisMethods.ts's engineNameFor (the sweep's columns read the same rule):
  * - Closed surfaces: the cube-map GPU engine (the only one).
  * - Planes and tubes: `engine: "exact"` or `"gpu"` as asked; `"auto"` takes the exact engine on a
  *   software renderer (there the "GPU" is the CPU, and the exact computation costs a fraction of
  *   a jump flood), unless the labels method is asked for, and the GPU engine otherwise.
  */
 export function chooseEngine(config: AnyConfig, family: SurfaceFamilyName, capabilities: GpuCapabilities): EngineChoice {
-  if (family === 'planar grid') {
-    if (config.engine === 'exact') return exact(family, 'requested (engine "exact")');
-    if (config.engine === 'auto' && capabilities.softwareRenderer && config.sheet.adjacency !== 'labels') {
-      return exact(family, `auto: the renderer is software (${capabilities.renderer}), where the exact CPU engine is faster than a jump flood and exact`);
-    }
+  if (engineNameFor(config, capabilities) === 'exact') {
+    return exact(
+      family,
+      config.engine === 'exact'
+        ? 'requested (engine "exact")'
+        : `auto: the renderer is software (${capabilities.renderer}), where the exact CPU engine is faster than a jump flood and exact`,
+    );
   }
   const path = chooseCentroidPath(family, config.centroidPath, capabilities);
   const why =

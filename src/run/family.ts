@@ -102,8 +102,8 @@ export interface SurfaceFamily<C extends AnyConfig, Geometry, Sites, Layer exten
   protocolInvalid(config: C, geometry: Geometry, sites: Sites): Uint8Array | null;
   /** The shortest contact (µm) the exact method counts on each layer, or null for every contact. */
   exactMinContactLengths(config: C, geometry: Geometry, layers: Layer[]): { reported: number; perLayer: number[] } | null;
-  /** The exact adjacency of a layer, or null where this surface has no exact method. */
-  exactAdjacency(config: C, geometry: Geometry, layer: Layer, sites: Sites, projected: Projected): SurfaceAdjacency | null;
+  /** The exact adjacency of a layer (every surface has one: planar Delaunay, restricted Voronoi). */
+  exactAdjacency(config: C, geometry: Geometry, layer: Layer, sites: Sites, projected: Projected): SurfaceAdjacency;
   cellPlacement(config: C, layer: Layer, sites: Sites, projected: Projected, id: number): CellPlacement;
   /** Size of a layer relative to the seeded surface (R / R_seeded on a tube; 1 on a plane). */
   layerRatio(geometry: Geometry, layer: Layer): number;

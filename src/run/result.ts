@@ -1,3 +1,5 @@
+import type { ByConstruction } from '../core/analysis/byConstruction';
+import type { Headline } from '../core/analysis/headline';
 import type { AnalysisRecord } from '../core/analysis/record';
 import type { AnyConfig } from '../core/config';
 import type { Grid } from '../core/grid';
@@ -42,6 +44,7 @@ export interface SurfaceRecord {
 }
 
 export type { AnalysisRecord, CellStatisticsRecord } from '../core/analysis/record';
+export type { Headline } from '../core/analysis/headline';
 
 /** The documented output of `tissue-sheet run` (see README, "Result JSON"). */
 export interface SheetResult {
@@ -73,8 +76,15 @@ export interface SheetResult {
   readonly cells: CellRecord[];
   /** Intermediate layers (seeded side first), then the other surface. */
   readonly surfaces: SurfaceRecord[];
-  /** Statistics per adjacency method (labels always; exact on planes and tubes). */
+  /** Statistics per adjacency method (core/config/analysisMethods.ts: labels and/or exact). */
   readonly analyses: AnalysisRecord[];
+  /**
+   * The number the page shows and `tissue-sheet run` prints: % scutoids of the headline method
+   * (exact wherever it ran), with its counts, Voronoi k, uncertainty and by-construction note.
+   */
+  readonly headline: Headline | null;
+  /** Why % scutoids is 0 whatever the sites (parallel planes, concentric spheres, ...), or null. */
+  readonly byConstruction: ByConstruction | null;
   /** Closed surfaces only (sphere, ellipsoid, mesh): see docs/closed-surfaces.md. */
   readonly closed?: ClosedSurfaceRecord;
 }

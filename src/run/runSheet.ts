@@ -1,3 +1,4 @@
+import { byConstruction, runHeadline } from '../core/analysis';
 import { isClosedConfig, type AnyConfig } from '../core/config';
 import type { GpuContext } from '../gpu/context';
 import { version } from '../version';
@@ -80,6 +81,8 @@ export class SheetRunner {
         cells: stack.seededCells,
         surfaces: stack.surfaces,
         analyses: stack.analyses,
+        headline: runHeadline(config, stack.analyses, seeded.iterations.length),
+        byConstruction: byConstruction(config),
         ...(closed ? { closed } : {}),
       },
       labelImages,

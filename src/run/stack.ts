@@ -1,5 +1,5 @@
 import { analyzeLabStack, analyzeSurfaces, toCsr, withMinBoundaryLength, type SurfaceAdjacency } from '../core/analysis';
-import type { AnyConfig } from '../core/config';
+import { analysisMethods, type AnyConfig } from '../core/config';
 import type { GpuContext } from '../gpu/context';
 import { analysisRecord } from '../core/analysis';
 import type { StackLayer, SurfaceFamily } from './family';
@@ -40,7 +40,10 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
   // surface but the seeded one needs any: those label images are drawn on the CPU, only when a
   // view reads them.
   const exactEngine = seeded.engine.name === 'exact';
-  const exactOnly = exactEngine || config.sheet.adjacency === 'exact';
+  // The methods are the ones core/config/analysisMethods.ts describes (the sweep's columns
+  // read the same description): labels and/or exact on the GPU engine, exact on the exact one.
+  const methods = analysisMethods(config, seeded.engine.name);
+  const exactOnly = !methods.includes('labels');
   const labeller = family.labeller(context, config, geometry, seeded.engine);
   try {
     const projected: P[] = [];
@@ -67,21 +70,17 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
     const invalid = family.protocolInvalid(config, geometry, seeded.sites);
     const analyze = (surfaces: SurfaceAdjacency[]) => (invalid ? analyzeLabStack(surfaces, invalid) : analyzeSurfaces(surfaces));
     const analyses: AnalysisRecord[] = [];
-    const { adjacency } = config.sheet;
-    if (!exactEngine && adjacency !== 'exact') {
+    if (methods.includes('labels')) {
       const minContact = family.minContactLengths(config, geometry, layers);
       const inputs = labelled.map((surface, k) => withMinBoundaryLength(surface, minContact.perLayer[k]));
       analyses.push(analysisRecord('labels', minContact.reported, analyze(inputs), config.sheet.protocol));
     }
     let exactSurfaces: SurfaceAdjacency[] | null = null;
-    if (exactEngine || adjacency !== 'labels') {
-      const exact = layers.map((layer, k) => family.exactAdjacency(config, geometry, layer, seeded.sites, projected[k]));
-      if (exact.every((surface): surface is SurfaceAdjacency => surface !== null)) {
-        exactSurfaces = exact;
-        const minContact = family.exactMinContactLengths(config, geometry, layers);
-        const inputs = minContact ? exact.map((surface, k) => withMinBoundaryLength(surface, minContact.perLayer[k])) : exact;
-        analyses.push(analysisRecord('exact', minContact?.reported ?? 0, analyze(inputs), config.sheet.protocol));
-      }
+    if (methods.includes('exact')) {
+      exactSurfaces = layers.map((layer, k) => family.exactAdjacency(config, geometry, layer, seeded.sites, projected[k]));
+      const minContact = family.exactMinContactLengths(config, geometry, layers);
+      const inputs = minContact ? exactSurfaces.map((surface, k) => withMinBoundaryLength(surface, minContact.perLayer[k])) : exactSurfaces;
+      analyses.push(analysisRecord('exact', minContact?.reported ?? 0, analyze(inputs), config.sheet.protocol));
     }
     const adjacencyMs = performance.now() - start;
 

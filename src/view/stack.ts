@@ -3,6 +3,7 @@
  * each with its label image, its cells and the number of sides of every cell there, plus the
  * per-cell flags (valid, scutoid) of the analysis shown. Pure data; no DOM.
  */
+import { headlineMethod } from '../core/config/analysisMethods';
 import type { AnalysisRecord, CellRecord, LabelImage, SheetOutput, SheetResult } from '../run';
 
 export interface ViewSurface {
@@ -33,13 +34,14 @@ export interface ViewStack {
 }
 
 /**
- * The analysis the page and the element report (the headline %, the flags, the sides): the exact
- * method wherever the result has one (planes, tubes, spheres: no pixels, no contact threshold),
- * else the labels method. `methodCaption` says which.
+ * The analysis the page and the element report (the headline %, the flags, the sides): the one
+ * the result's headline comes from (core/analysis/headline.ts: the exact method wherever it
+ * ran, else the labels method). A result file written before headlines existed: the same rule.
  */
 export function primaryAnalysis(result: SheetResult): AnalysisRecord | null {
   const analyses = result.analyses ?? [];
-  return analyses.find((a) => a.method === 'exact') ?? analyses.find((a) => a.method === 'labels') ?? analyses[0] ?? null;
+  const method = result.headline?.method ?? headlineMethod(analyses.map((a) => a.method));
+  return analyses.find((a) => a.method === method) ?? analyses[0] ?? null;
 }
 
 /** Which adjacency method a number comes from, in words. */
@@ -48,7 +50,7 @@ export function methodCaption(analysis: AnalysisRecord | null): string {
   const protocol = analysis.protocol === 'lab' ? "; the lab's protocol (docs/protocols.md)" : '';
   if (analysis.method === 'exact') return `exact adjacency (Voronoi cells computed exactly, no pixels${protocol})`;
   const threshold = Number.isFinite(analysis.minContactLength) ? `, contacts < ${analysis.minContactLength.toFixed(2)} µm ignored` : '';
-  return `label adjacency (touching pixels${threshold}; no exact method for this surface${protocol})`;
+  return `label adjacency (touching pixels${threshold}; the exact method was not asked for: sheet.adjacency "labels"${protocol})`;
 }
 
 export function analysisByMethod(result: SheetResult, method: 'labels' | 'exact'): AnalysisRecord | null {

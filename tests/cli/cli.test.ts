@@ -278,3 +278,63 @@ describe('tissue-sheet sweep', () => {
     expect(again.stderr).toMatch(new RegExp(`${12 - kept.rows.length} runs computed, ${kept.rows.length} resumed`));
   });
 });
+
+describe('closed surfaces through the CLI (issue 24)', () => {
+  // Small closed sheets: the default adjacency ("both"), so labels and the exact restricted
+  // Voronoi diagram; a few Lloyd iterations keep the GPU engine quick under headless-gl.
+  const ellipsoid = { surface: { kind: 'ellipsoid', a: 44, b: 27, c: 23 }, cells: 40, seed: 3, lloyd: { maxIterations: 2 }, sheet: { thickness: 6 } };
+  const mesh = { surface: { kind: 'mesh', src: 'organoid.ply', scale: 40 }, cells: 40, seed: 3, lloyd: { maxIterations: 2 }, sheet: { thickness: 2 } };
+
+  for (const [name, base, vary] of [
+    ['an ellipsoid', ellipsoid, { 'sheet.thickness': [4, 8] }],
+    ['a mesh', mesh, { 'lloyd.maxIterations': [1, 2] }],
+  ] as const) {
+    it(`sweeps ${name} with the default adjacency: every run written, exact columns filled`, () => {
+      const out = join(dir, `closed-${name.replace(/\W/g, '')}`);
+      const run = cli(['sweep', writeJson(`closed-${name.replace(/\W/g, '')}.json`, { base, vary, realizations: 1, seed: 5 }), '--out', out]);
+      expect(run.status, run.stderr).toBe(0);
+      const table = readCsvTable(readFileSync(join(out, 'runs.csv'), 'utf8'));
+      expect(table.rows).toHaveLength(2);
+      for (const method of ['labels', 'exact']) {
+        expect(table.header).toContain(`${method}.percentScutoids`);
+        for (const row of table.rows) {
+          expect(Number(row[`${method}.percentScutoids`]), `${method} ${row.key}`).toBeGreaterThanOrEqual(0);
+          expect(Number(row[`${method}.validCells`])).toBe(40);
+        }
+      }
+      // the header is exactly what the config's description predicts
+      const predicted = summaryColumns(validateAnyConfig(base));
+      for (const column of predicted) expect(table.header).toContain(column);
+      const aggregate = readCsvTable(readFileSync(join(out, 'aggregate.csv'), 'utf8'));
+      for (const row of aggregate.rows) expect(row['exact.percentScutoids.n']).toBe('1');
+    });
+  }
+
+  it('run writes the headline (exact method on a closed surface) and prints it with the Voronoi k', () => {
+    const out = join(dir, 'ellipsoid-result.json');
+    const run = cli(['run', writeJson('ellipsoid.json', ellipsoid), '--out', out]);
+    expect(run.status, run.stderr).toBe(0);
+    const result = JSON.parse(readFileSync(out, 'utf8'));
+    const exact = result.analyses.find((a: { method: string }) => a.method === 'exact');
+    expect(result.headline.method).toBe('exact');
+    expect(result.headline.percentScutoids).toBe(exact.summary.percentScutoids);
+    expect(result.headline.voronoiK).toBe(3);
+    expect(result.headline.realizations).toBe(1);
+    expect(result.headline.byConstruction).toBeNull();
+    expect(result.byConstruction).toBeNull();
+    const last = run.stderr.trim().split('\n').pop()!;
+    expect(last).toContain(`headline: ${exact.summary.percentScutoids.toFixed(1)} % scutoids (exact method`);
+    expect(last).toContain('Voronoi 3');
+  });
+
+  it('says why a sphere gives 0 % by construction, in the result and on stderr', () => {
+    const out = join(dir, 'sphere-result.json');
+    const run = cli(['run', writeJson('sphere.json', { ...ellipsoid, surface: { kind: 'sphere', radius: 30 } }), '--out', out]);
+    expect(run.status, run.stderr).toBe(0);
+    const result = JSON.parse(readFileSync(out, 'utf8'));
+    expect(result.headline.percentScutoids).toBe(0);
+    expect(result.headline.byConstruction.reason).toBe('concentric-spheres');
+    expect(result.byConstruction.reason).toBe('concentric-spheres');
+    expect(run.stderr.trim().split('\n').pop()).toMatch(/headline: 0\.0 % scutoids .*Concentric spheres/);
+  });
+});

@@ -1,7 +1,8 @@
 import { describe, expect, it } from 'vitest';
-import { validateAnyConfig } from '../../src/core/config';
+import { analysisMethods, validateAnyConfig } from '../../src/core/config';
 import {
   expandSweep,
+  runMethods,
   setPath,
   summaryColumns,
   sweepColumns,
@@ -108,8 +109,21 @@ describe('runs.csv columns', () => {
     // the order does not depend on the order of the grid
     expect(sweepColumns([...configs].reverse()).filter((c) => !c.includes('layer'))).toEqual(columns.filter((c) => !c.includes('layer')));
   });
-  it('give closed surfaces other than a sphere no exact columns', () => {
-    const ellipsoid = validateAnyConfig({ ...base, surface: { kind: 'ellipsoid', a: 10, b: 12, c: 14 }, sheet: { adjacency: 'both' } });
-    expect(summaryColumns(ellipsoid).some((c) => c.startsWith('exact.'))).toBe(false);
+  it('give every closed surface the exact columns (the restricted Voronoi diagram) wherever the method is asked for', () => {
+    const surfaces = [
+      { kind: 'sphere', radius: 12 },
+      { kind: 'ellipsoid', a: 10, b: 12, c: 14 },
+      { kind: 'mesh', src: 'organoid.ply', scale: 20 },
+    ];
+    for (const surface of surfaces) {
+      for (const adjacency of ['labels', 'exact', 'both'] as const) {
+        const config = validateAnyConfig({ ...base, surface, sheet: { adjacency, thickness: 2 } });
+        const columns = summaryColumns(config);
+        expect(columns.some((c) => c.startsWith('exact.')), `${surface.kind} ${adjacency}`).toBe(adjacency !== 'labels');
+        expect(columns.some((c) => c.startsWith('labels.')), `${surface.kind} ${adjacency}`).toBe(adjacency !== 'exact');
+        // the columns are the methods the pipeline computes (core/config/analysisMethods.ts)
+        expect(runMethods(config)).toEqual(analysisMethods(config, 'gpu'));
+      }
+    }
   });
 });

@@ -5,3 +5,5 @@ export * from './protocol';
 export * from './protocolTube';
 export * from './flintstones';
 export * from './record';
+export * from './headline';
+export * from './byConstruction';

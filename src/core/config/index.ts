@@ -16,3 +16,4 @@ export * from './schema';
 export * from './validate';
 export * from './feasibility';
 export * from './methods';
+export * from './analysisMethods';

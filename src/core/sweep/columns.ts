@@ -5,46 +5,39 @@
  *
  * It mirrors the pipeline's sweep summary (src/run/sweepSummary.ts), flattened with "." (see
  * flattenSummary): `iterations`, `finalEnergy`, `centroidPath`, then for each adjacency method
- * the config produces on this renderer ("labels" unless sheet.adjacency is "exact"; "exact"
- * unless it is "labels", and on closed surfaces only on a sphere; only "exact" when the engine
- * policy picks the exact CPU engine): `<method>.percentScutoids`,
+ * the config produces on this renderer (core/config/analysisMethods.ts, the description the
+ * pipeline computes its analyses from: "labels" unless sheet.adjacency is "exact", "exact"
+ * unless it is "labels", on every surface; only "exact" when the engine policy picks the exact
+ * CPU engine): `<method>.percentScutoids`,
  * `.meanTransitions`, `.meanNeighbours3D`, `.validCells`, `.excludedCells`, and per surface of
  * the stack (seeded, "layer k" without its space, other) `<method>.<surface>.meanSides` and
  * `<method>.<surface>.polygons.<3..10+>`. A CLI test checks a real run's summary against this.
  */
 import { SIDE_CLASSES } from '../analysis';
-import { isClosedConfig, layerStepOf, steppedOffsets, type AnyConfig } from '../config';
+import {
+  ADJACENCY_METHODS,
+  isClosedConfig,
+  layerStepOf,
+  methodsOnRenderer,
+  steppedOffsets,
+  type AdjacencyMethod,
+  type AnyConfig,
+  type RendererTraits,
+} from '../config';
 import { stackOffsets } from '../sheetGeometry';
 
 export const TOP_COLUMNS = ['iterations', 'finalEnergy', 'centroidPath'] as const;
 /** Summary columns holding text; every other summary column holds a number ("NaN" included). */
 export const TEXT_COLUMNS: ReadonlySet<string> = new Set(['centroidPath']);
 export const METHOD_METRICS = ['percentScutoids', 'meanTransitions', 'meanNeighbours3D', 'validCells', 'excludedCells'] as const;
-export const METHODS = ['labels', 'exact'] as const;
-
-/** What the engine policy needs to know of the renderer (src/run/enginePolicy.ts). */
-export interface RendererTraits {
-  softwareRenderer: boolean;
-}
+export const METHODS = ADJACENCY_METHODS;
 
 /**
- * Whether the exact CPU engine runs `config` (mirrors the engine policy): planes and tubes with
- * engine "exact", or "auto" on a software renderer when the labels method is not asked for.
+ * Adjacency methods whose statistics a run of `config` reports on a renderer (the GPU engine
+ * unless told otherwise): the same description the pipeline computes its analyses from.
  */
-export function runsExactEngine(config: AnyConfig, renderer: RendererTraits): boolean {
-  if (isClosedConfig(config)) return false;
-  const engine = (config as { engine?: string }).engine;
-  return engine === 'exact' || (engine === 'auto' && renderer.softwareRenderer && config.sheet.adjacency !== 'labels');
-}
-
-/** Adjacency methods whose statistics a run of `config` reports (the exact engine: exact only). */
-export function runMethods(config: AnyConfig, renderer: RendererTraits = { softwareRenderer: false }): (typeof METHODS)[number][] {
-  if (runsExactEngine(config, renderer)) return ['exact'];
-  const { adjacency } = config.sheet;
-  const methods: (typeof METHODS)[number][] = [];
-  if (adjacency !== 'exact') methods.push('labels');
-  if (adjacency !== 'labels' && (!isClosedConfig(config) || config.surface.kind === 'sphere')) methods.push('exact');
-  return methods;
+export function runMethods(config: AnyConfig, renderer: RendererTraits = { softwareRenderer: false }): AdjacencyMethod[] {
+  return methodsOnRenderer(config, renderer);
 }
 
 /**
@@ -83,7 +76,7 @@ function surfaceColumns(method: string, surface: string): string[] {
  * the engine of the first run sharing it, so a sweep allows both outcomes; resume checks that
  * each method's columns are filled all or none (see resume.ts).
  */
-export function possibleMethods(config: AnyConfig): (typeof METHODS)[number][] {
+export function possibleMethods(config: AnyConfig): AdjacencyMethod[] {
   const both = new Set([...runMethods(config, { softwareRenderer: false }), ...runMethods(config, { softwareRenderer: true })]);
   return METHODS.filter((m) => both.has(m));
 }

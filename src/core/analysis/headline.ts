@@ -1,0 +1,80 @@
+/**
+ * A result's headline: the one % scutoids that the page shows in large type, the element
+ * reports and `tissue-sheet run` prints, with the method and protocol that made it, how many
+ * cells it counts, the regularity (Voronoi k) and, where the geometry fixes it, why. Machine
+ * readers take `result.headline` instead of guessing which of `analyses[]` is the headline.
+ *
+ * One realization: `realizations` is 1 and `ci95` null (a single run has no spread); a headline
+ * over realizations carries their mean, n and 95 % confidence interval in the same fields.
+ */
+import { headlineMethod, type AdjacencyMethod } from '../config/analysisMethods';
+import type { AnyConfig } from '../config/types';
+import { byConstruction, noValidCells, type ByConstruction } from './byConstruction';
+import type { AnalysisRecord } from './record';
+
+export interface Headline {
+  /** The analysis it comes from: exact wherever the exact method ran, else labels. */
+  readonly method: AdjacencyMethod;
+  readonly protocol: 'default' | 'lab';
+  /** % of valid cells that are scutoids; null when no cell was valid (nothing to count). */
+  readonly percentScutoids: number | null;
+  readonly scutoids: number;
+  readonly validCells: number;
+  readonly cells: number;
+  /** Mean apico-basal transitions and 3D neighbours of the valid cells (null: none valid). */
+  readonly meanTransitions: number | null;
+  readonly meanNeighbours3D: number | null;
+  /** Regularity: Voronoi k = Lloyd iterations run + 1 (Voronoi 1 = random sites). */
+  readonly voronoiK: number;
+  /** Realizations the number is over (1: this run alone). */
+  readonly realizations: number;
+  /** 95 % confidence interval of the mean over realizations; null for one realization. */
+  readonly ci95: readonly [number, number] | null;
+  /** Set when the geometry fixes % scutoids at 0 whatever the sites, with why. */
+  readonly byConstruction: ByConstruction | null;
+  /** Set when no cell was counted (every cell touches an open end), with what to change. */
+  readonly noValidCells: string | null;
+}
+
+const finiteOrNull = (value: number): number | null => (Number.isFinite(value) ? value : null);
+
+/**
+ * The headline of one run: its headline method's summary (see headlineMethod), or null when the
+ * run reports no analysis.
+ */
+export function runHeadline(config: AnyConfig, analyses: readonly AnalysisRecord[], lloydIterations: number): Headline | null {
+  const method = headlineMethod(analyses.map((a) => a.method));
+  const analysis = analyses.find((a) => a.method === method);
+  if (!method || !analysis) return null;
+  const s = analysis.summary;
+  const counted = s.validCells > 0;
+  return {
+    method,
+    protocol: analysis.protocol,
+    percentScutoids: counted ? finiteOrNull(s.percentScutoids) : null,
+    scutoids: s.scutoids,
+    validCells: s.validCells,
+    cells: s.cells,
+    meanTransitions: counted ? finiteOrNull(s.meanTransitions) : null,
+    meanNeighbours3D: counted ? finiteOrNull(s.meanNeighbours3D) : null,
+    voronoiK: lloydIterations + 1,
+    realizations: 1,
+    ci95: null,
+    byConstruction: byConstruction(config),
+    noValidCells: noValidCells(s.validCells, s.cells),
+  };
+}
+
+/** The headline in one line of words, for logs: "36.5 % scutoids (exact method, 180 of 200 cells counted), Voronoi 51". */
+export function describeHeadline(headline: Headline | null): string {
+  if (!headline) return 'no analysis';
+  const n = headline.realizations > 1 ? `, mean of ${headline.realizations} realizations` : ', one realization';
+  const ci = headline.ci95 ? ` (95 % CI ${headline.ci95[0].toFixed(1)}–${headline.ci95[1].toFixed(1)})` : '';
+  const value = headline.percentScutoids === null ? 'no % scutoids' : `${headline.percentScutoids.toFixed(1)} % scutoids${ci}`;
+  const protocol = headline.protocol === 'lab' ? ", the lab's protocol" : '';
+  const why = headline.noValidCells ?? headline.byConstruction?.message ?? null;
+  return (
+    `${value} (${headline.method} method${protocol}, ${headline.validCells} of ${headline.cells} cells counted${n}), ` +
+    `Voronoi ${headline.voronoiK}${why ? `. ${why}` : ''}`
+  );
+}
