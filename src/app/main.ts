@@ -3,7 +3,7 @@
  * charts, the sweep and the exports. The configuration lives in the URL and in localStorage;
  * errors are shown in words and leave the previous result on screen.
  */
-import { ConfigError, validateAnyConfig, type AnyConfig as Config } from '../core/config';
+import { ConfigError, validateAnyConfig, validateConfigDraft, type AnyConfig, type ConfigDraft as Config } from '../core/config';
 import { GpuCapabilityError, type SheetOutput } from '../run';
 import { computeContext, isAbort, LatestRunner, onComputeSite, runInPage } from '../view/pageRunner';
 import { initialConfig, readLink, saveConfig, urlWithConfig } from './model/settings';
@@ -33,6 +33,11 @@ const cancelButton = $<HTMLButtonElement>('#cancel');
 const EDIT_DEBOUNCE_MS = 400;
 
 let stack: ViewStack | null = null;
+/**
+ * The form's config of the result on screen (a default resolution left null), which the address
+ * and the saved session hold: it reproduces the result and keeps following the form's defaults.
+ */
+let shownDraft: Config | null = null;
 /** The draft of the latest run asked for (JSON). */
 let lastDraft = '';
 /** Whether the latest run asked for was a slider's live run (its pictures are drafts). */
@@ -75,6 +80,7 @@ renderLegend($('#legend'));
 /** The address's configuration, read once: a link is untrusted input, validated and never stored. */
 const link = readLink(location.href);
 const linkConfig = link.kind === 'ok' ? link.config : null;
+const openedLink = linkConfig ? { config: linkConfig, href: location.href } : null;
 const linkAlert = new LinkAlert($('#link-alert'));
 const sourceQuestion = new SourceQuestion($('#source-question'));
 for (const element of document.querySelectorAll('[data-version]')) element.textContent = version;
@@ -90,7 +96,7 @@ const controls = new ConfigControls($('#controls'), initialConfig(link), {
       if (!live && lastRunLive) {
         runner.debounced(EDIT_DEBOUNCE_MS, () => void redrawInFull());
         // The drag's last result, if already on screen, is saved now (else when it arrives).
-        if (!runner.running && stack) saveConfig(stack.result.config, linkConfig);
+        if (!runner.running && shownDraft) saveConfig(shownDraft, openedLink);
       }
       return;
     }
@@ -100,7 +106,7 @@ const controls = new ConfigControls($('#controls'), initialConfig(link), {
   onError: showError,
 });
 const sweep = new SweepPanel($('#sweep'), {
-  config: () => validateAnyConfig(controls.config),
+  config: () => validateConfigDraft(controls.config),
   onError: showError,
 });
 mountLloydMovie($('#cells-title').closest('section')!, { config: () => validateAnyConfig(controls.config), onError: showError });
@@ -125,9 +131,9 @@ async function openInPage(file: OpenedFile, name: string): Promise<void> {
     statusLine.textContent = `Opened ${name}: ${rerunNote(file.result, stack)}`;
     return;
   }
-  await show(file.output);
+  await show(file.output, config);
   if (file.kind === 'project' && stack) viewPanel.restore(stack, file.view);
-  saveConfig(config, linkConfig);
+  saveConfig(config, openedLink);
   statusLine.textContent =
     file.kind === 'project'
       ? `Opened project ${name}: the result and view as saved; nothing was run.`
@@ -159,9 +165,10 @@ function showCharts(shown: ViewStack, live: boolean): void {
   charts.showStack(shown);
 }
 
-async function show(output: SheetOutput, live = false): Promise<void> {
+async function show(output: SheetOutput, draft: Config, live = false): Promise<void> {
   const shown = viewStack(output);
   stack = shown;
+  shownDraft = draft;
   // Which pictures are on screen: a drag's drafts, or full (redrawInFull follows a drag).
   document.body.dataset.pictures = live ? 'draft' : 'full';
   try {
@@ -184,9 +191,11 @@ async function show(output: SheetOutput, live = false): Promise<void> {
 async function run(draft: Config, live = false): Promise<void> {
   lastDraft = JSON.stringify(draft);
   lastRunLive = live;
-  let config: Config;
+  let config: AnyConfig;
+  let input: Config;
   try {
-    config = validateAnyConfig(draft);
+    input = validateConfigDraft(draft);
+    config = validateAnyConfig(input);
   } catch (error) {
     refuse(error, isLinkConfig(draft));
     return;
@@ -223,10 +232,10 @@ async function run(draft: Config, live = false): Promise<void> {
         statusLine.textContent = `Lloyd iteration ${record.iteration} / ${total}, energy ${record.energy.toPrecision(6)} µm⁴`;
       },
     });
-    await show(output, live);
+    await show(output, input, live);
     // Saved once it ran: the URL and the session hold the configuration of the result on screen
     // (during a drag only once it ends: history.replaceState took 5-30 ms per streamed result).
-    if (!live || !dragging) saveConfig(config, linkConfig);
+    if (!live || !dragging) saveConfig(input, openedLink);
     runs += 1;
     document.body.dataset.runs = String(runs);
     statusLine.textContent = `Done in ${((performance.now() - started) / 1000).toFixed(1)} s.${siteNote}`;

@@ -1,13 +1,18 @@
 /**
  * The element's kebab-case attributes and how they map onto the configuration. Attributes
- * override the `config` property, which overrides the defaults (the app's small default tube).
- * Numbers are parsed as given; a bad value reaches validation, which names the field.
+ * override the `config` property, which overrides the schema's defaults: the same defaults as
+ * the CLI, the library, the app and links (an element with no attributes shows the schema's
+ * default sheet, the published tube). Numbers are parsed as given; a bad value reaches
+ * validation, which names the field.
  *
  * Which config fields are attributes is listed here; how each one parses (number, nullable
  * number, string, boolean) and which surface kinds take it are read from the config schema.
  */
-import { CLOSED_SURFACE_KINDS, isClosedConfig, validateAnyConfig, type AnyConfig, type AnySurfaceConfig, type ConfigInput } from '../core/config';
-import { APP_DEFAULTS, densityPreset, surfaceOfKind, thicknessForKind } from '../core/config/presets';
+import { configSchema, isClosedConfig, isClosedKind, validateAnyConfig, type AnyConfig, type ConfigInput, type SurfaceConfig } from '../core/config';
+
+/** The schema's default surface (the published tube). */
+const DEFAULT_SURFACE = configSchema.properties.surface.default as SurfaceConfig;
+import { densityPreset, surfaceOfKind } from '../core/config/presets';
 import { kindsWithField, schemaField } from '../core/config/schemaFields';
 import { setPath } from '../core/sweep';
 
@@ -83,32 +88,27 @@ function parse(kind: Kind, text: string): unknown {
 }
 
 /**
- * The validated configuration of an element: defaults, then `base` (the config property), then
- * the attributes. Switching `surface` to a plane drops the tube's surface ratio; giving a
- * thickness on a tube without a surface ratio uses the thickness. A closed surface (sphere,
- * ellipsoid, mesh) starts from the app's dimensions for it and, without a `resolution`
- * attribute, the default resolution (defaultResolution: from the cells and the minimum contact length). A mesh without `src` uses `meshName` (the
+ * The validated configuration of an element: the schema's defaults, then `base` (the config
+ * property), then the attributes. A `surface` attribute naming another kind than `base` starts
+ * from that kind's required dimensions (a tube: the schema's default tube; a plane: its unrolled
+ * size; a closed kind: the app's dimensions for it), which the dimension attributes override;
+ * across planar and closed kinds a resolution without its attribute goes back to the default.
+ * Switching `surface` to a plane drops the tube's surface ratio; giving a thickness on a tube
+ * without a surface ratio uses the thickness. A mesh without `src` uses `meshName` (the
  * element's meshFile) or the organoid sample.
  */
 export function configFromAttributes(element: Element, base: ConfigInput | null, meshName?: string): AnyConfig {
-  // Top-level fields the config property leaves out (the surface, say) come from the defaults.
-  const input = structuredClone({ ...APP_DEFAULTS, ...base }) as Record<string, unknown>;
+  const input = structuredClone(base ?? {}) as Record<string, unknown>;
+  // The schema's default surface, written out so that dimension attributes (radius, length) apply to it.
+  input.surface ??= structuredClone(DEFAULT_SURFACE);
   const surfaceKind = element.getAttribute('surface');
-  if (surfaceKind !== null && surfaceKind !== (input.surface as { kind?: string } | undefined)?.kind) {
+  const baseKind = (input.surface as { kind?: string }).kind ?? '';
+  if (surfaceKind !== null && surfaceKind !== baseKind) {
     // A different kind starts from that kind's required fields (an empty plane/tube is invalid).
-    if (CLOSED_SURFACE_KINDS.some((closed) => closed === surfaceKind)) {
-      input.surface = surfaceOfKind({ kind: 'tube', radius: 1, length: 1 }, surfaceKind);
-      // Without a resolution attribute, the default every entry point gives this surface.
-      if (!element.hasAttribute('resolution')) input.resolution = null;
-    } else {
-      input.surface = surfaceKind === 'plane' ? { kind: 'plane', width: 512, height: 512 } : { kind: surfaceKind, radius: 256 / (2 * Math.PI), length: 512 };
-    }
-  }
-  if (surfaceKind !== null && surfaceKind !== 'tube') {
-    // Every kind starts from a sheet with a thickness (never the coincident surfaces of thickness 0).
-    const sheet = { ...(input.sheet as Record<string, unknown> | undefined) };
-    if (!element.hasAttribute('thickness') && !sheet.thickness) sheet.thickness = thicknessForKind(input.surface as AnySurfaceConfig);
-    input.sheet = sheet;
+    input.surface = isClosedKind(surfaceKind) ? surfaceOfKind({ kind: 'tube', radius: 1, length: 1 }, surfaceKind) : surfaceOfKind(DEFAULT_SURFACE, surfaceKind);
+    // A resolution means texels along the longer side on a plane or tube, per cube-face edge on
+    // a closed surface: without its attribute, the default of the new layout.
+    if (isClosedKind(surfaceKind) !== isClosedKind(baseKind) && !element.hasAttribute('resolution')) input.resolution = null;
   }
   const surface = input.surface as { kind?: string; src?: string };
   if (surface.kind === 'mesh' && meshName && !element.hasAttribute('src')) surface.src = meshName;

@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { FIELDS } from '../../src/app/panels/fields';
 import { configSchema, validateAnyConfig, type AnyConfig } from '../../src/core/config';
-import { APP_DEFAULTS, densityPreset, surfaceOfKind } from '../../src/core/config/presets';
+import { APP_START, densityPreset, surfaceOfKind } from '../../src/core/config/presets';
 import { schemaField } from '../../src/core/config/schemaFields';
 import { ATTRIBUTES } from '../../src/element/attributes';
 
@@ -52,7 +52,7 @@ describe('the app panel and the element follow the schema', () => {
   const nodesAt = (path: string) => raw.filter(([p]) => p === path);
 
   /** One validated config per surface kind and per density kind. */
-  const base = validateAnyConfig(APP_DEFAULTS);
+  const base = validateAnyConfig(APP_START);
   const configs: AnyConfig[] = [
     ...['plane', 'tube', 'sphere', 'ellipsoid', 'mesh'].map((kind) => validateAnyConfig({ ...base, surface: surfaceOfKind(base.surface, kind), sheet: { ...base.sheet, surfaceRatio: null } })),
     ...['uniform', 'linear', 'gaussian', 'stripes', 'image'].map((kind) => ({ ...base, density: densityPreset(kind, base) }) as AnyConfig),

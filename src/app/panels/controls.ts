@@ -3,7 +3,7 @@
  * fieldsets. It holds a draft config (plain data) and reports every edit; the page validates
  * the draft and decides whether to run. `live` edits come from sliders being dragged.
  */
-import type { AnyConfig as Config } from '../../core/config';
+import type { ConfigDraft as Config } from '../../core/config';
 import { getPath, setPath } from '../../core/sweep';
 import { imageFileToDataUrl } from '../../view/densityImage';
 import { isUploadName, rememberUpload } from '../../view/meshFiles';
@@ -202,6 +202,7 @@ export class ConfigControls {
       input.title = description;
       label.title = description;
       if (liveNote) liveNote.textContent = LIVE_NOTES[spec.path](this.draft);
+      if (spec.placeholder && input instanceof HTMLInputElement) input.placeholder = spec.placeholder(this.draft);
       const value = spec.get ? spec.get(this.draft) : getPath(this.draft, spec.path);
       if (spec.max !== undefined && input instanceof HTMLInputElement) {
         input.max = String(typeof spec.max === 'function' ? spec.max(this.draft) : spec.max);

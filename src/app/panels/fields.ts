@@ -10,8 +10,8 @@
  * surfaces: sphere (radius), ellipsoid (a, b, c), mesh (a sample from public/meshes/ or a
  * user's file; see model/meshFiles.ts).
  */
-import { defaultResolution, isClosedConfig, type AnyConfig } from '../../core/config';
-import { PLANAR_RESOLUTION, densityPreset, surfaceOfKind, thicknessForKind } from '../../core/config/presets';
+import { defaultResolution, isClosedKind, type ConfigDraft } from '../../core/config';
+import { densityPreset, surfaceOfKind, thicknessForKind } from '../../core/config/presets';
 import { kindsWithField, schemaField, schemaUnion } from '../../core/config/schemaFields';
 import { SAMPLE_MESHES, sampleName, sampleUrl } from '../model/meshFiles';
 
@@ -25,7 +25,8 @@ export {
   surfaceOfKind,
 } from '../../core/config/presets';
 
-type Config = AnyConfig;
+/** The form's config: a resolution left null is the default (defaultResolution), recomputed as the fields it depends on change. */
+type Config = ConfigDraft;
 
 export interface Option {
   value: string;
@@ -52,6 +53,8 @@ export interface FieldSpec {
   description?: (c: Config) => string;
   /** Re-run live while dragging (debounced). */
   live?: boolean;
+  /** Text shown in an empty number box (what an empty field means). */
+  placeholder?: (c: Config) => string;
   show?: (c: Config) => boolean;
   get?: (c: Config) => unknown;
   /** Returns the new config (plain data, validated by the caller). */
@@ -71,6 +74,7 @@ interface Presentation {
   max?: number | ((c: Config) => number);
   note?: string;
   live?: boolean;
+  placeholder?: (c: Config) => string;
   /** An extra condition; a field of a union shows only for the kinds whose branch has it anyway. */
   show?: (c: Config) => boolean;
   set?: (c: Config, value: unknown) => Config;
@@ -113,6 +117,7 @@ function field(path: string, p: Presentation): FieldSpec {
   if (values && kind === 'select') spec.options = choices(values, p.labels);
   if (p.note) spec.note = p.note;
   if (p.live) spec.live = true;
+  if (p.placeholder) spec.placeholder = p.placeholder;
   if (p.set) spec.set = p.set;
   const kinds = inUnion ? kindsWithField(path) : null;
   spec.description = kinds ? (c) => schemaField(path, kinds.includes(unionKindOf(c, path)) ? unionKindOf(c, path) : kinds[0]).description : () => schema.description;
@@ -123,13 +128,17 @@ function field(path: string, p: Presentation): FieldSpec {
   return spec;
 }
 
-/** Switching kind: closed kinds get the default cube-map resolution, planar ones a planar one; no surface ratio off a tube; uniform density on closed surfaces. */
+/**
+ * Switching kind: no surface ratio off a tube; uniform density on closed surfaces; a resolution
+ * the user set is kept between kinds of the same layout (planar grid, cube map) and goes back to
+ * the default across them (texels along the longer side and texels per cube-face edge are not
+ * the same quantity).
+ */
 function withSurfaceKind(c: Config, kind: string): Config {
   const surface = surfaceOfKind(c.surface, kind);
-  const wasClosed = isClosedConfig(c);
-  const closed = kind === 'sphere' || kind === 'ellipsoid' || kind === 'mesh';
-  // A closed kind gets the resolution any entry point gives it by default (defaultResolution).
-  const resolution = closed && !wasClosed ? defaultResolution({ surface, cells: c.cells, sheet: c.sheet }) : !closed && wasClosed ? PLANAR_RESOLUTION : c.resolution;
+  const wasClosed = isClosedKind(c.surface.kind);
+  const closed = isClosedKind(kind);
+  const resolution = closed === wasClosed ? c.resolution : null;
   return {
     ...c,
     surface,
@@ -192,7 +201,15 @@ export const FIELDS: FieldSpec[] = [
   field('surface.height', { label: 'Height', group: 'Surface', step: 1 }),
   field('surface.periodicX', { label: 'Periodic in x', group: 'Surface' }),
   field('surface.periodicY', { label: 'Periodic in y', group: 'Surface' }),
-  field('resolution', { label: 'Resolution (texels: longer side; closed: per cube-face edge)', group: 'Surface', step: 1 }),
+  field('resolution', {
+    label: 'Resolution (texels: longer side; closed: per cube-face edge)',
+    group: 'Surface',
+    step: 1,
+    // Empty is the default every entry point gives (from the surface, cells and contact rule),
+    // shown as the placeholder and recomputed as those change, until a number is typed.
+    kind: 'optional-number',
+    placeholder: (c) => `default: ${defaultResolution(c)}`,
+  }),
 
   field('cells', { label: 'Cells', group: 'Cells', step: 1 }),
   field('seed', { label: 'Random seed', group: 'Cells', step: 1 }),

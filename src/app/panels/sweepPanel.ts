@@ -12,7 +12,7 @@
  * Reference curves (the shipped set, or the user's file) can be laid over the chart
  * (referenceOverlay.ts); they are never part of the downloads.
  */
-import { validateAnyConfig, type AnyConfig as Config } from '../../core/config';
+import { validateConfigDraft, type ConfigDraft as Config } from '../../core/config';
 import { readCsvTable } from '../../core/sweep';
 import { isAbort } from '../../view/pageRunner';
 import { FLINTSTONES_RATIO, sweepFlintstones } from '../../core/sweep';
@@ -137,7 +137,9 @@ export class SweepPanel {
   /** The CLI sweep spec of the form: the chosen field from..to in points, realizations. */
   private specFromForm(): unknown {
     this.refreshChoices();
-    const base = structuredClone(validateAnyConfig(this.events.config())) as Config;
+    // The form's config as it stands: a default resolution stays null, so each grid point gets
+    // the default of its own cells and surface (as the CLI gives a spec that leaves it out).
+    const base = structuredClone(validateConfigDraft(this.events.config()));
     const choice = this.field.value;
     const integer = this.field.selectedOptions[0]?.dataset.integer === 'true';
     const from = Number(this.input('from').value);
@@ -197,6 +199,7 @@ export class SweepPanel {
     this.chart.add(readCsvTable(resumeCsv).rows);
     this.setBusy(true);
     delete this.root.dataset.done;
+    this.root.dataset.state = 'running';
     this.root.dataset.finished = '0';
     const total = plan.runs.length;
     try {
@@ -225,8 +228,17 @@ export class SweepPanel {
           : `Sweep done: ${done} runs (${result.completed} computed, ${result.skipped} loaded).${rejected}`,
       );
     } catch (error) {
-      if (isAbort(error)) this.status('Sweep cancelled.');
-      else this.events.onError((error as Error).message);
+      if (isAbort(error)) {
+        this.root.dataset.state = 'cancelled';
+        this.status('Sweep cancelled.');
+      } else {
+        // A failed sweep says so and stops: the panel never stays at "k / N" as if running.
+        const message = (error as Error).message;
+        const kept = this.root.dataset.finished ?? '0';
+        this.root.dataset.state = 'error';
+        this.status(`Sweep failed after ${kept} of ${total} runs: ${message}`);
+        this.events.onError(`Sweep failed: ${message}`);
+      }
     } finally {
       if (this.controller === controller) this.controller = null;
       this.setBusy(false);

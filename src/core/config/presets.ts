@@ -1,25 +1,26 @@
 /**
- * Starting points shared by the app and the element (neither imports the other): the small
- * default sheet they open with, and the parameters a surface or density kind gets when the
- * user switches to it. These are presentation defaults, sized to run in seconds on a software
- * GPU; the schema's own defaults (the published tube) stay what an empty config means.
+ * Starting points shared by the app and the element (neither imports the other): the example
+ * sheet the app opens with the first time, and the dimensions a surface or density kind gets
+ * when the user switches to it (fields the schema requires and has no default for).
+ *
+ * None of these is a default: every field a config, a link, an attribute or a form leaves out
+ * takes the schema's default (schema.ts), the same in the CLI, the library, the app, the element
+ * and links. The example sets only the fields it is an example of.
  */
 import { DEFAULT_TUBE_RADIUS } from './schema';
 import { unrolledDomain } from './feasibility';
-import { isClosedConfig, type AnyConfig, type AnySurfaceConfig, type ConfigInput, type DensitySpec, type SurfaceConfig } from './types';
+import type { AnyConfig, AnySurfaceConfig, ConfigInput, DensitySpec, SurfaceConfig } from './types';
 
-/** The app's and the element's default sheet: a short tube, 150 cells, surface ratio 1.5. */
-export const APP_DEFAULTS: ConfigInput = {
+/**
+ * The example the app opens with when neither a link nor a previous session gives a config: a
+ * short tube (256 µm around, 512 µm long), 150 cells, surface ratio 1.5. Everything else
+ * (Lloyd iterations, resolution, ...) is the schema's default.
+ */
+export const APP_START: ConfigInput = {
   surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 },
-  resolution: 256,
   cells: 150,
-  seed: 1,
-  lloyd: { maxIterations: 5 },
   sheet: { surfaceRatio: 1.5 },
 };
-
-/** Resolution a planar surface gets when the user switches to it from a closed one. */
-export const PLANAR_RESOLUTION = 256;
 export const DEFAULT_SPHERE_RADIUS = 60;
 export const DEFAULT_ELLIPSOID = { a: 90, b: 45, c: 45 } as const;
 /** The sample meshes are about unit size: µm per unit. */
@@ -67,9 +68,9 @@ export function planarOfKind(current: SurfaceConfig, kind: string): SurfaceConfi
 }
 
 /** Density presets: parameters that suit the current domain. */
-export function densityPreset(kind: string, c: AnyConfig): DensitySpec {
+export function densityPreset(kind: string, c: Pick<AnyConfig, 'surface' | 'density'>): DensitySpec {
   // Closed surfaces take uniform density only: validation says so for any other preset.
-  const d = isClosedConfig(c) ? { lengthX: 1, lengthY: 1 } : unrolledDomain(c.surface);
+  const d = c.surface.kind === 'plane' || c.surface.kind === 'tube' ? unrolledDomain(c.surface) : { lengthX: 1, lengthY: 1 };
   switch (kind) {
     case 'linear':
       return { kind: 'linear', axis: 'y', from: 1, to: 4 };

@@ -63,7 +63,12 @@ const closedKindsListed: Exclude<ClosedSurfaceConfig['kind'], (typeof CLOSED_SUR
 void closedKindsListed;
 
 export function isClosedConfig(config: AnyConfig): config is ClosedConfig {
-  return (CLOSED_SURFACE_KINDS as readonly string[]).includes(config.surface.kind);
+  return isClosedKind(config.surface.kind);
+}
+
+/** Whether a surface kind is closed (sphere, ellipsoid, mesh: a cube map) rather than planar (plane, tube). */
+export function isClosedKind(kind: string): boolean {
+  return (CLOSED_SURFACE_KINDS as readonly string[]).includes(kind);
 }
 
 /** What a user may write: any field with a default may be left out. */

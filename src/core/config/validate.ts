@@ -24,6 +24,13 @@ type SchemaNode = Record<string, unknown>;
 /** What the schema validates: an AnyConfig whose resolution may still be null. */
 type Unresolved<T> = T extends unknown ? Omit<T, 'resolution'> & { resolution: number | null } : never;
 /**
+ * A valid configuration with every default filled in except a resolution left null ("the
+ * default": defaultResolution of the surface, the cells and the contact rule). Forms and links
+ * keep this form, so the default follows later changes of the fields it depends on until the
+ * user sets a resolution; validateAnyConfig gives the number a run records.
+ */
+export type ConfigDraft = Unresolved<AnyConfig>;
+/**
  * The schema's validator, compiled ahead of time from configSchema by scripts/validators.ts
  * (npm run validators:write; `npm test` checks it is current): the page's Content-Security-Policy
  * has no 'unsafe-eval', so ajv cannot compile it at run time. It fills defaults in place, stops at
@@ -38,6 +45,14 @@ const validate = generatedValidate as ((data: unknown) => data is Unresolved<Any
  * and what to change.
  */
 export function validateAnyConfig(input: unknown): AnyConfig {
+  const data = validateConfigDraft(input);
+  // The resolution a null asks for depends on the surface and the cells: fill it in, so the
+  // returned config (and every result) records the number that ran.
+  return { ...data, resolution: data.resolution ?? defaultResolution(data) };
+}
+
+/** validateAnyConfig, keeping a null (or missing) resolution null: see ConfigDraft. */
+export function validateConfigDraft(input: unknown): ConfigDraft {
   // Clone first: ajv writes defaults into the object it validates, and NaN/Infinity (which
   // JSON cannot carry but JS objects can) must be caught with their path before ajv sees them.
   const data = cloneJson(input, []);
@@ -46,9 +61,7 @@ export function validateAnyConfig(input: unknown): AnyConfig {
     if (!error) throw new ConfigError('', 'config: invalid');
     throw toConfigError(error);
   }
-  // The resolution a null asks for depends on the surface and the cells: fill it in, so the
-  // returned config (and every result) records the number that ran.
-  return { ...data, resolution: data.resolution ?? defaultResolution(data) };
+  return data;
 }
 
 /**
