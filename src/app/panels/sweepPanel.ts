@@ -171,12 +171,22 @@ export class SweepPanel {
   }
 
   private async runNew(): Promise<void> {
+    let spec: unknown;
     try {
-      const spec = this.specFromForm();
-      await this.execute(spec, '');
+      spec = this.specFromForm();
     } catch (error) {
-      this.events.onError((error as Error).message);
+      this.refuse(error);
+      return;
     }
+    await this.execute(spec, '');
+  }
+
+  /** A sweep refused before its first run (a bad spec or grid point): said, and nothing runs. */
+  private refuse(error: unknown): void {
+    const message = (error as Error).message;
+    this.root.dataset.state = 'error';
+    this.status(`Sweep not run: ${message}`);
+    this.events.onError(message);
   }
 
   private async resume(): Promise<void> {
@@ -191,7 +201,7 @@ export class SweepPanel {
     try {
       plan = planSweep(spec);
     } catch (error) {
-      this.events.onError((error as Error).message);
+      this.refuse(error);
       return;
     }
     this.spec = spec;
