@@ -16,6 +16,9 @@ export const chromiumArgs = [
   '--no-sandbox',
 ];
 
+/** The dev server's port: E2E_PORT lets two checkouts run their tests side by side. */
+const port = Number(process.env.E2E_PORT ?? 5174);
+
 export default defineConfig({
   testDir: 'e2e',
   timeout: 180_000,
@@ -23,7 +26,7 @@ export default defineConfig({
   reporter: [['list']],
   expect: { toHaveScreenshot: { maxDiffPixelRatio: 0.02 } },
   use: {
-    baseURL: 'http://127.0.0.1:5174',
+    baseURL: `http://127.0.0.1:${port}`,
     browserName: 'chromium',
     viewport: { width: 1280, height: 800 },
     launchOptions: {
@@ -32,8 +35,8 @@ export default defineConfig({
     },
   },
   webServer: {
-    command: 'npx vite --port 5174 --strictPort',
-    url: 'http://127.0.0.1:5174/',
+    command: `npx vite --port ${port} --strictPort`,
+    url: `http://127.0.0.1:${port}/`,
     reuseExistingServer: !process.env.CI,
     timeout: 120_000,
   },

@@ -163,6 +163,7 @@ export class TissueSheetElement extends HTMLElement {
       this.status(rule ? rule.message : `${config.cells} cells, Voronoi ${iterations + 1} (${iterations} Lloyd iterations), ${config.surface.kind}, ${method} adjacency`);
       this.emit<TissueSheetResultDetail>('result', {
         result: output.result,
+        headline: output.result.headline,
         percentScutoids: percent,
         method,
         ...(rule ? { byConstruction: rule.message } : {}),

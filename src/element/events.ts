@@ -1,5 +1,5 @@
 /** The element's events and their typed `detail`. */
-import type { SheetResult } from '../run';
+import type { Headline, SheetResult } from '../run';
 import type { PageSweepProgress, PageSweepResult } from '../view/pageSweep';
 
 export interface TissueSheetProgressDetail {
@@ -15,7 +15,9 @@ export interface TissueSheetProgressDetail {
 export interface TissueSheetResultDetail {
   /** The documented result JSON (the same document `tissue-sheet run` writes). */
   result: SheetResult;
-  /** % scutoids of the analysis shown: the exact method where the result has one (planes, tubes, spheres), else labels. */
+  /** `result.headline`: the number shown, with its method, counts, Voronoi k and uncertainty. */
+  headline: Headline | null;
+  /** % scutoids of the headline: the exact method wherever it ran, else labels (NaN when no cell was counted). */
   percentScutoids: number;
   /** Which adjacency method `percentScutoids` comes from. */
   method: 'labels' | 'exact';

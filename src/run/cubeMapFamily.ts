@@ -51,8 +51,8 @@ export interface CubeMapProjected {
  * Sphere, ellipsoid and genus-0 meshes on a cube-map geometry image (docs/closed-surfaces.md):
  * 6 n² texels holding the surface's 3D points and area elements; a jump flood with 3D distances
  * across face edges; Lloyd moves each site to the closest surface point of its cell's centroid.
- * Other surfaces of the stack are the parallel surfaces, sampled on the same cube map. The
- * sphere has an exact method (the convex hull of the sites).
+ * Other surfaces of the stack are the parallel surfaces, sampled on the same cube map. Every
+ * closed surface has an exact method: the restricted Voronoi diagram (closedExact.ts).
  */
 export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedSites, CubeMapLayer, CubeMapProjected> = {
   name: 'cube map',

@@ -14,6 +14,7 @@ export type {
   CellStatisticsRecord,
   ClosedSurfaceRecord,
   GridRecord,
+  Headline,
   LabelImage,
   NeighbourContact,
   SheetOutput,
