@@ -1,4 +1,5 @@
 /** Command-line arguments of `run` and `sweep`: one input, --out, and the opt-in flags. */
+import { MAX_REALIZATIONS } from '../core/analysis/realizations';
 import { InputError } from './errors';
 
 export interface CliOptions {
@@ -14,12 +15,14 @@ export interface CliOptions {
   maxRuns?: number;
   /** Sweeps: "I/N" or "slurm" (parsed by parseShard). */
   shard?: string;
+  /** run: realizations the headline is over (seeds seed, seed + 1, ...; default DEFAULT_REALIZATIONS). */
+  realizations?: number;
 }
 
 export function parseArgs(args: string[], form: string, sweep = false): CliOptions {
   let input: string | undefined;
   let out: string | undefined;
-  const options = { force: false, allowNetwork: false, allowLarge: false, maxRuns: undefined as number | undefined, shard: undefined as string | undefined };
+  const options = { force: false, allowNetwork: false, allowLarge: false, maxRuns: undefined as number | undefined, shard: undefined as string | undefined, realizations: undefined as number | undefined };
   const usage = `usage: tissue-sheet ${form}`;
   for (let i = 0; i < args.length; i++) {
     const arg = args[i];
@@ -38,7 +41,13 @@ export function parseArgs(args: string[], form: string, sweep = false): CliOptio
       const n = Number(v);
       if (!Number.isInteger(n) || n < 1) throw new InputError(`--max-runs: must be a positive integer (got ${JSON.stringify(v)})`);
       options.maxRuns = n;
-    } else if (sweep && name === '--shard') options.shard = value(); else if (arg.startsWith('-') && arg !== '-') throw new InputError(`unknown option ${name}; ${usage}`);
+    } else if (sweep && name === '--shard') options.shard = value();
+    else if (!sweep && name === '--realizations') {
+      const v = value();
+      const n = Number(v);
+      if (!Number.isInteger(n) || n < 1 || n > MAX_REALIZATIONS) throw new InputError(`--realizations: must be a whole number from 1 to ${MAX_REALIZATIONS} (got ${JSON.stringify(v)})`);
+      options.realizations = n;
+    } else if (arg.startsWith('-') && arg !== '-') throw new InputError(`unknown option ${name}; ${usage}`);
     else if (input === undefined) input = arg;
     else throw new InputError(`unexpected argument ${arg}; ${usage}`);
   }

@@ -17,6 +17,9 @@ Options:
   --force           overwrite an existing --out that is not a previous tissue-sheet result
   --allow-network   fetch http(s) mesh and density sources (default: file paths only)
   --allow-large     lift the work and memory limits (GPU texture limits still apply)
+  --realizations N  run: the headline is the mean % scutoids over N realizations (seeds
+                    seed, seed + 1, ...) with its 95 % CI (default 5; 1: this seed alone);
+                    RESULT.json is realization 1's, its headline the mean
   --max-runs N      sweep: accept up to N runs (default 100000)
   --shard I/N       sweep: compute only shard I of N (1 <= I <= N); every run is in exactly
                     one shard; "slurm" takes I and N from SLURM_ARRAY_TASK_ID/_MIN/_COUNT
@@ -34,7 +37,7 @@ Progress goes to stderr. Exit codes:
 type Command = (args: string[], signal: AbortSignal, log: (line: string) => void) => Promise<number | void>;
 
 const commands: Record<string, Command> = {
-  run: (args, signal, log) => runCommand(parseArgs(args, 'run CONFIG.json --out RESULT.json [--force] [--allow-network] [--allow-large]'), signal, log),
+  run: (args, signal, log) => runCommand(parseArgs(args, 'run CONFIG.json --out RESULT.json [--realizations N] [--force] [--allow-network] [--allow-large]'), signal, log),
   sweep: (args, signal, log) =>
     sweepCommand(parseArgs(args, 'sweep SWEEP.json --out DIR [--force] [--allow-network] [--allow-large] [--max-runs N] [--shard I/N|slurm]', true), signal, log),
   merge: async (args, _signal, log) => (await import('./merge')).mergeCommand(args, log),
