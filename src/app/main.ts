@@ -17,7 +17,10 @@ import { Charts } from './panels/charts';
 import { ConfigControls } from './panels/controls';
 import { bindExports } from './panels/exports';
 import { rerunNote, type OpenedFile } from './model/project';
-import { renderResults } from './panels/results';
+import { renderHeadline, renderResults } from './panels/results';
+import { realizationsHeadline } from '../view/realizations';
+import { checkRealizations } from '../core/analysis/realizations';
+import type { Headline } from '../core/analysis/headline';
 import { SweepPanel } from './panels/sweepPanel';
 import { mountLloydMovie } from './panels/lloydMovie';
 import { ViewPanel } from './panels/viewPanel';
@@ -46,6 +49,105 @@ let lastRunLive = false;
 let dragging = false;
 let runs = 0;
 const runner = new LatestRunner();
+
+/**
+ * The headline over realizations: after a result is on screen (realization 1), the other seeds
+ * run in a worker of their own (view/realizations.ts) and the headline becomes their mean with
+ * its 95 % CI. Combined headlines are kept by configuration and n, so a redraw or going back to
+ * a configuration does not compute them again.
+ */
+const realizationsInput = $<HTMLInputElement>('#realizations');
+let realizationsController: AbortController | null = null;
+const combined = new Map<string, Headline>();
+const combinedKey = (stack: ViewStack, n: number) => `${n}|${JSON.stringify(stack.result.config)}`;
+
+/** The number of realizations asked for, or null (and the field marked) when it is not one. */
+function realizationsAsked(): number | null {
+  try {
+    const n = checkRealizations(realizationsInput.value.trim().replace(',', '.'), 'Realizations');
+    realizationsInput.removeAttribute('aria-invalid');
+    return n;
+  } catch (error) {
+    realizationsInput.setAttribute('aria-invalid', 'true');
+    showError((error as Error).message);
+    return null;
+  }
+}
+
+/** `shown` with `headline` as its result's headline (the views and exports read the same stack). */
+function withHeadline(shown: ViewStack, headline: Headline | null): ViewStack {
+  return { ...shown, result: { ...shown.result, headline } };
+}
+
+function stopRealizations(): void {
+  realizationsController?.abort();
+  realizationsController = null;
+}
+
+/** Computes the headline of the result on screen over the realizations asked for. */
+async function startRealizations(output: SheetOutput): Promise<void> {
+  stopRealizations();
+  const shown = stack;
+  if (!shown) return;
+  const n = realizationsAsked();
+  if (n === null) return;
+  const drawn = output.result.headline;
+  const done = (headline: Headline | null) => {
+    if (stack !== shown) return;
+    stack = withHeadline(shown, headline);
+    renderHeadline($('main'), stack, null);
+    document.body.dataset.headline = 'complete';
+  };
+  if (n <= 1 || !drawn) {
+    done(drawn);
+    return;
+  }
+  const known = combined.get(combinedKey(shown, n));
+  if (known) {
+    done(known);
+    return;
+  }
+  const controller = new AbortController();
+  realizationsController = controller;
+  document.body.dataset.headline = 'partial';
+  renderHeadline($('main'), shown, { state: 'running', done: 1, n });
+  cancelButton.disabled = false;
+  try {
+    const headline = await realizationsHeadline({
+      output,
+      n,
+      signal: controller.signal,
+      onProgress: (k, total) => stack === shown && renderHeadline($('main'), shown, { state: 'running', done: k, n: total }),
+    });
+    if (controller.signal.aborted) return;
+    if (headline) {
+      if (combined.size > 32) combined.clear();
+      combined.set(combinedKey(shown, n), headline);
+    }
+    done(headline);
+  } catch (error) {
+    if (stack !== shown) return;
+    const cancelled = isAbort(error) || controller.signal.aborted;
+    renderHeadline($('main'), shown, { state: cancelled ? 'cancelled' : 'failed', n, message: (error as Error)?.message });
+    document.body.dataset.headline = cancelled ? 'cancelled' : 'failed';
+  } finally {
+    if (realizationsController === controller) realizationsController = null;
+    cancelButton.disabled = !runner.running && !realizationsController;
+  }
+}
+
+realizationsInput.addEventListener('change', () => {
+  if (!stack) return;
+  const output = { result: { ...stack.result, headline: stack.result.headline ? drawnHeadline(stack.result.headline) : null }, labelImages: stack.surfaces.map((s) => s.image) } as SheetOutput;
+  void startRealizations(output);
+});
+
+/** Realization 1's own headline, from a headline over realizations (its counts are realization 1's). */
+function drawnHeadline(h: Headline): Headline {
+  if (h.realizations <= 1) return h;
+  const value = h.realizationValues[0] ?? null;
+  return { ...h, percentScutoids: value, realizations: 1, ci95: null, sd: null, realizationSeeds: h.realizationSeeds.slice(0, 1), realizationValues: [value] };
+}
 
 function setState(state: 'running' | 'done' | 'error' | 'cancelled' | 'no-webgl' | 'waiting' | 'refused'): void {
   document.body.dataset.state = state;
@@ -131,7 +233,7 @@ async function openInPage(file: OpenedFile, name: string): Promise<void> {
     statusLine.textContent = `Opened ${name}: ${rerunNote(file.result, stack)}`;
     return;
   }
-  await show(file.output, config);
+  await show(file.output, config, false, true);
   if (file.kind === 'project' && stack) viewPanel.restore(stack, file.view);
   saveConfig(config, openedLink);
   statusLine.textContent =
@@ -165,9 +267,15 @@ function showCharts(shown: ViewStack, live: boolean): void {
   charts.showStack(shown);
 }
 
-async function show(output: SheetOutput, draft: Config, live = false): Promise<void> {
-  const shown = viewStack(output);
+async function show(output: SheetOutput, draft: Config, live = false, opened = false): Promise<void> {
+  let shown = viewStack(output);
+  // A headline over realizations already computed for this configuration and n is shown at once.
+  const n = Number(realizationsInput.value);
+  const known = n > 1 ? combined.get(combinedKey(shown, n)) : undefined;
+  if (known) shown = withHeadline(shown, known);
   stack = shown;
+  const waiting = !known && !opened && n > 1 && (shown.result.headline?.realizations ?? 1) <= 1;
+  document.body.dataset.headline = waiting ? 'partial' : 'complete';
   shownDraft = draft;
   // Which pictures are on screen: a drag's drafts, or full (redrawInFull follows a drag).
   document.body.dataset.pictures = live ? 'draft' : 'full';
@@ -179,6 +287,7 @@ async function show(output: SheetOutput, draft: Config, live = false): Promise<v
   await nextTask();
   if (stack !== shown) return; // a newer result is being drawn
   renderResults($('main'), shown);
+  if (waiting) renderHeadline($('main'), shown, { state: 'waiting', n });
   await nextTask();
   if (stack !== shown) return;
   showCharts(shown, live);
@@ -217,6 +326,7 @@ async function run(draft: Config, live = false): Promise<void> {
   }
   sourceQuestion.close();
   clearError();
+  stopRealizations();
   setState('running');
   cancelButton.disabled = false;
   statusLine.textContent = 'Running…';
@@ -241,6 +351,7 @@ async function run(draft: Config, live = false): Promise<void> {
     statusLine.textContent = `Done in ${((performance.now() - started) / 1000).toFixed(1)} s.${siteNote}`;
     progress.value = progress.max;
     setState('done');
+    if (!live) void startRealizations(output);
   } catch (error) {
     if (isAbort(error)) {
       // A newer run replaced this one, or the user cancelled: the previous result stays.
@@ -272,6 +383,7 @@ async function redrawInFull(): Promise<void> {
     stack = viewStack(output);
     viewPanel.show(stack);
     document.body.dataset.pictures = 'full';
+    void startRealizations(output);
   } catch {
     // The draft pictures stay: they show the same result.
   }
@@ -297,7 +409,10 @@ $('#step').addEventListener('click', () =>
 $('#converge').addEventListener('click', () =>
   runWith((c) => ({ ...c, lloyd: { ...c.lloyd, maxIterations: Math.max(c.lloyd.maxIterations, 500), tolerance: Math.max(c.lloyd.tolerance, 0.05) } })),
 );
-cancelButton.addEventListener('click', () => runner.cancel());
+cancelButton.addEventListener('click', () => {
+  runner.cancel();
+  stopRealizations();
+});
 $('#share').addEventListener('click', async () => {
   try {
     // The configuration of the result on screen, not the form's draft.

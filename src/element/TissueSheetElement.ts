@@ -16,6 +16,9 @@ import type { ComputeSite } from '../run';
 import { SheetView3D } from '../view/sheetView3d';
 import { trackCellHover } from '../view/cellHover';
 import { byConstruction } from '../core/analysis/byConstruction';
+import { checkRealizations, DEFAULT_REALIZATIONS } from '../core/analysis/realizations';
+import { describeRealizations } from '../core/analysis/headline';
+import { realizationsHeadline } from '../view/realizations';
 import { checkPageBudget } from '../view/pageBudget';
 import { pendingSources, type ForeignSource } from '../view/sources';
 import { computeContext } from '../view/pageRunner';
@@ -85,6 +88,15 @@ export class TissueSheetElement extends HTMLElement {
     return this.last;
   }
 
+  /**
+   * Realizations the headline is over (the `realizations` attribute, 1 to 100; default 5): the
+   * result event's headline is their mean with its 95 % CI; the cells shown are realization 1.
+   */
+  get realizations(): number {
+    const text = this.getAttribute('realizations');
+    return text === null ? DEFAULT_REALIZATIONS : checkRealizations(text, 'realizations');
+  }
+
   /** Without the `manual` attribute, the element runs when connected and when configured. */
   get manual(): boolean {
     return this.hasAttribute('manual');
@@ -106,6 +118,17 @@ export class TissueSheetElement extends HTMLElement {
 
   disconnectedCallback(): void {
     this.runner.cancel();
+    this.realizationsRun?.abort();
+  }
+
+
+  /** The realizations of the latest run: a newer run (or disconnecting) stops them. */
+  private realizationsRun: AbortController | null = null;
+
+  private runSignal(): AbortSignal {
+    this.realizationsRun?.abort();
+    this.realizationsRun = new AbortController();
+    return this.realizationsRun.signal;
   }
 
   attributeChangedCallback(name: string, previous: string | null, next: string | null): void {
@@ -115,8 +138,10 @@ export class TissueSheetElement extends HTMLElement {
   /** Runs the sheet now; resolves with the result (also sent as a `result` event). */
   async run(): Promise<SheetResult> {
     let config: AnyConfig;
+    let n: number;
     try {
       config = this.config;
+      n = this.realizations;
     } catch (error) {
       this.fail(error);
       throw error;
@@ -148,7 +173,6 @@ export class TissueSheetElement extends HTMLElement {
       } catch (error) {
         this.status(`3D view: ${(error as Error).message}`, true);
       }
-      this.last = output.result;
       const analysis = primaryAnalysis(output.result);
       const percent = analysis?.summary.percentScutoids ?? Number.NaN;
       const method = analysis?.method ?? 'labels';
@@ -160,15 +184,36 @@ export class TissueSheetElement extends HTMLElement {
       this.shadow.querySelector<HTMLElement>('.method')!.textContent = method;
       const rule = byConstruction(output.result.config);
       const iterations = output.result.lloyd.iterations.length;
-      this.status(rule ? rule.message : `${config.cells} cells, Voronoi ${iterations + 1} (${iterations} Lloyd iterations), ${config.surface.kind}, ${method} adjacency`);
+      // The headline over realizations (realization 1 is on screen): the result event carries it.
+      const headline = await realizationsHeadline({
+        output,
+        n,
+        signal: this.runSignal(),
+        onProgress: (done, total) => done < total && this.status(`Realization ${done + 1} of ${total} (seed ${config.seed + done}) for the mean % scutoids…`),
+      });
+      const result = { ...output.result, headline };
+      this.last = result;
+      if (headline && headline.realizations > 1 && headline.percentScutoids !== null) {
+        label.textContent = `${headline.percentScutoids.toFixed(1)} %`;
+        label.dataset.value = String(headline.percentScutoids);
+      }
+      label.dataset.drawn = String(percent);
+      label.dataset.realizations = String(headline?.realizations ?? 1);
+      const over = headline ? describeRealizations(headline) : 'one realization';
+      label.title = `scutoids, from ${methodCaption(analysis)}; ${over}`;
+      this.status(
+        rule
+          ? rule.message
+          : `${config.cells} cells, Voronoi ${iterations + 1} (${iterations} Lloyd iterations), ${config.surface.kind}, ${method} adjacency; ${over}`,
+      );
       this.emit<TissueSheetResultDetail>('result', {
-        result: output.result,
-        headline: output.result.headline,
+        result,
+        headline,
         percentScutoids: percent,
         method,
         ...(rule ? { byConstruction: rule.message } : {}),
       });
-      return output.result;
+      return result;
     } catch (error) {
       if (!isAbort(error)) this.fail(error);
       throw error;

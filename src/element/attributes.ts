@@ -72,7 +72,7 @@ export const ATTRIBUTES: Record<string, [string, Kind]> = Object.fromEntries(
 );
 
 /** Attributes that are not configuration. */
-export const OTHER_ATTRIBUTES = ['manual'];
+export const OTHER_ATTRIBUTES = ['manual', 'realizations'];
 
 function parse(kind: Kind, text: string): unknown {
   switch (kind) {

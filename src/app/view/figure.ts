@@ -5,7 +5,7 @@
  * surfaces cannot be unrolled: the 3D view rendered at that size with the legend under it and no
  * scale bar (a perspective view has no single scale; the Description says so).
  */
-import { provenanceLines } from '../model/cellRows';
+import { provenanceText } from '../model/cellRows';
 import { withPngDpi, withPngText } from '../model/pngText';
 import { unrolledSvg } from '../model/svg';
 import { SIDE_COLORS, SIDE_LABELS } from '../../view/sideColors';
@@ -38,17 +38,10 @@ export async function figurePng(stack: ViewStack, view: SheetView3D | null, opti
     canvas.toBlob((b) => (b ? resolve(b) : reject(new Error('the figure could not be encoded'))), 'image/png'),
   );
   const png = new Uint8Array(await blob.arrayBuffer());
-  const { result } = stack;
   const what = stack.closed
     ? `3D view of a tissue-sheet result at ${options.dpi} dpi (perspective: no scale bar)`
     : `unrolled surfaces of a tissue-sheet result at ${options.dpi} dpi, exact cells, scale bar in µm`;
-  return withPngText(withPngDpi(png, options.dpi), [
-    ['Software', `${result.software.name} ${result.software.version}`],
-    ['Description', provenanceLines(stack, what).join('\n')],
-    ['tissue-sheet:version', result.software.version],
-    ['tissue-sheet:seed', String(result.seed)],
-    ['tissue-sheet:config', JSON.stringify(result.config)],
-  ]);
+  return withPngText(withPngDpi(png, options.dpi), provenanceText(stack, what));
 }
 
 async function unrolledFigure(stack: ViewStack, options: FigureOptions): Promise<HTMLCanvasElement> {
