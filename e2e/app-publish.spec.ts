@@ -159,6 +159,8 @@ test('figure PNG: chosen DPI in pHYs, pixel width from mm and DPI, provenance in
 test('a saved project restores the exact view; a result JSON from the CLI opens and is drawn from its cells', async ({ page }) => {
   await page.goto(linkTo(TUBE));
   await waitForRun(page);
+  // The headline over its realizations is in before the result is saved.
+  await page.waitForFunction(() => document.body.dataset.headline === 'complete', undefined, { timeout: 120_000 });
   const result = await resultOf(page);
   // Change the view: pick a cell, hide the basal surface, orbit the camera.
   await page.locator('#cell-id').fill('7');

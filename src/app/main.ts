@@ -18,6 +18,8 @@ import { ConfigControls } from './panels/controls';
 import { bindExports } from './panels/exports';
 import { rerunNote, type OpenedFile } from './model/project';
 import { renderHeadline, renderResults } from './panels/results';
+import { explainRefusal } from './model/refusal';
+import { changedFields } from './panels/fields';
 import { realizationsHeadline } from '../view/realizations';
 import { checkRealizations } from '../core/analysis/realizations';
 import type { Headline } from '../core/analysis/headline';
@@ -153,11 +155,53 @@ function setState(state: 'running' | 'done' | 'error' | 'cancelled' | 'no-webgl'
   document.body.dataset.state = state;
 }
 
-function showError(error: unknown): void {
-  const message =
-    error instanceof ConfigError || error instanceof GpuCapabilityError || error instanceof Error ? error.message : String(error);
-  errorBox.textContent = message;
+/**
+ * Shows an error: a refusal in a biologist's words (model/refusal.ts), the engine's own message
+ * on a details line when the main line replaced it.
+ */
+function showError(error: unknown, config: AnyConfig | null = null): void {
+  const { message, details } =
+    error instanceof ConfigError || error instanceof GpuCapabilityError || error instanceof Error
+      ? explainRefusal(error, config)
+      : { message: String(error), details: null };
+  const main = document.createElement('span');
+  main.className = 'error-main';
+  main.textContent = message;
+  errorBox.replaceChildren(main);
+  if (details) {
+    const more = document.createElement('details');
+    more.className = 'error-details';
+    more.append(Object.assign(document.createElement('summary'), { textContent: 'Details (for the engine)' }), ' ', details);
+    errorBox.append(more);
+  }
   errorBox.hidden = false;
+  markStale();
+}
+
+/**
+ * Marks the result on screen stale while the form describes another configuration (an edit not
+ * yet run, running, or refused): `#stale-note` says which fields differ, and the body's
+ * `data-stale` is "true" until a result of the form's configuration is shown.
+ */
+function markStale(): void {
+  const note = $('#stale-note');
+  const form = controls.config;
+  const diffs = shownDraft ? changedFields(shownDraft, form) : [];
+  const stale = stack !== null && shownDraft !== null && diffs.length > 0;
+  document.body.dataset.stale = String(stale);
+  note.hidden = !stale;
+  if (!stale) {
+    note.textContent = '';
+    return;
+  }
+  const state = document.body.dataset.state;
+  const why =
+    state === 'running'
+      ? 'computing the new one…'
+      : state === 'error' || state === 'refused'
+        ? 'the new values were not run (see the message above).'
+        : 'the new values have not been run yet.';
+  note.textContent = `Stale: this result is for ${diffs.map((d) => `${d.label} ${d.shown}`).join(', ')}; the form says ${diffs.map((d) => `${d.label} ${d.form}`).join(', ')}; ${why}`;
 }
 
 /** True when `config` is the link's own configuration (its errors stay until dismissed). */
@@ -166,11 +210,12 @@ function isLinkConfig(config: unknown): boolean {
 }
 
 /** A configuration that cannot run: a link's refusal stays until dismissed, an edit's until the next run. */
-function refuse(error: unknown, fromLink: boolean): void {
+function refuse(error: unknown, fromLink: boolean, config: AnyConfig | null = null): void {
   const message = error instanceof Error ? error.message : String(error);
-  if (fromLink) linkAlert.show(`This link's configuration was not run: ${message}`);
-  else showError(error);
   setState(fromLink ? 'refused' : 'error');
+  if (fromLink) linkAlert.show(`This link's configuration was not run: ${message}`);
+  else showError(error, config);
+  markStale();
 }
 
 function clearError(): void {
@@ -191,6 +236,7 @@ const viewPanel = new ViewPanel($('main'), $('#unrolled'));
 const charts = new Charts($('#chart-polygons'), $('#chart-energy'), $('#chart-sweep'), $('#chart-lewis'), $('#chart-aboav'));
 const controls = new ConfigControls($('#controls'), initialConfig(link), {
   onEdit: (draft, live) => {
+    queueMicrotask(markStale);
     // A slider's "change" after its last "input" asks for the run already under way: skip it,
     // but draw the drag's draft pictures again in full once it has settled.
     dragging = live;
@@ -313,7 +359,7 @@ async function run(draft: Config, live = false): Promise<void> {
     // The work is bounded before anything is allocated (the page cannot raise the budget).
     checkPageBudget(config, computeContext().capabilities.maxTextureSize);
   } catch (error) {
-    refuse(error, isLinkConfig(config));
+    refuse(error, isLinkConfig(config), config);
     return;
   }
   const pending = pendingSources(config, location.href);
@@ -328,6 +374,7 @@ async function run(draft: Config, live = false): Promise<void> {
   clearError();
   stopRealizations();
   setState('running');
+  markStale();
   cancelButton.disabled = false;
   statusLine.textContent = 'Running…';
   progress.max = Math.max(1, config.lloyd.maxIterations);
@@ -351,6 +398,7 @@ async function run(draft: Config, live = false): Promise<void> {
     statusLine.textContent = `Done in ${((performance.now() - started) / 1000).toFixed(1)} s.${siteNote}`;
     progress.value = progress.max;
     setState('done');
+    markStale();
     if (!live) void startRealizations(output);
   } catch (error) {
     if (isAbort(error)) {
@@ -358,12 +406,13 @@ async function run(draft: Config, live = false): Promise<void> {
       if (!runner.running) {
         statusLine.textContent = 'Cancelled; the previous result is still shown.';
         setState('cancelled');
+        markStale();
       }
       return;
     }
-    showError(error);
-    statusLine.textContent = stack ? 'Failed; the previous result is still shown.' : 'Failed.';
     setState(error instanceof GpuCapabilityError ? 'no-webgl' : 'error');
+    showError(error, config);
+    statusLine.textContent = stack ? 'Failed; the previous result is still shown.' : 'Failed.';
   } finally {
     cancelButton.disabled = !runner.running;
   }

@@ -9,6 +9,7 @@ import { imageFileToDataUrl } from '../../view/densityImage';
 import { isUploadName, rememberUpload } from '../../view/meshFiles';
 import { sampleName } from '../model/meshFiles';
 import { schemaField } from '../../core/config/schemaFields';
+import { readDecimal } from '../../core/config/decimal';
 import { FIELDS, type FieldSpec } from './fields';
 
 export interface ControlsEvents {
@@ -41,6 +42,24 @@ interface Bound {
   liveNote?: HTMLElement;
   input: HTMLInputElement | HTMLSelectElement;
   output?: HTMLOutputElement;
+  /** A slider's number box (the labelled control: any valid value can be typed). */
+  box?: HTMLInputElement;
+}
+
+/** Kinds typed as numbers: text boxes read by readDecimal (a decimal comma is a decimal). */
+const NUMBER_KINDS = new Set<FieldSpec['kind']>(['number', 'integer', 'optional-number']);
+
+/** A text box for a number: "22,5" stays 22,5 (an <input type="number"> would read 225). */
+function numberBox(spec: FieldSpec): HTMLInputElement {
+  const box = document.createElement('input');
+  box.type = 'text';
+  box.inputMode = spec.kind === 'integer' ? 'numeric' : 'decimal';
+  box.autocomplete = 'off';
+  box.spellcheck = false;
+  box.setAttribute('role', 'spinbutton');
+  box.className = 'number-box';
+  if (spec.min !== undefined) box.setAttribute('aria-valuemin', String(spec.min));
+  return box;
 }
 
 export class ConfigControls {
@@ -99,6 +118,7 @@ export class ConfigControls {
     label.textContent = spec.unit ? `${spec.label} (${spec.unit})` : spec.label;
     let input: HTMLInputElement | HTMLSelectElement;
     let output: HTMLOutputElement | undefined;
+    let box: HTMLInputElement | undefined;
     if (spec.kind === 'select') {
       const select = document.createElement('select');
       for (const option of spec.options ?? []) {
@@ -106,20 +126,32 @@ export class ConfigControls {
         select.options[select.options.length - 1].disabled = option.disabled ?? false;
       }
       input = select;
+    } else if (NUMBER_KINDS.has(spec.kind)) {
+      input = numberBox(spec);
     } else {
       const element = document.createElement('input');
-      element.type = { number: 'number', integer: 'number', 'optional-number': 'number', range: 'range', checkbox: 'checkbox', file: 'file', 'mesh-file': 'file', select: '' }[spec.kind];
+      element.type = { range: 'range', checkbox: 'checkbox', file: 'file', 'mesh-file': 'file' }[spec.kind as 'range' | 'checkbox' | 'file' | 'mesh-file'];
       if (spec.kind === 'file') element.accept = 'image/png,image/jpeg,image/webp';
       if (spec.kind === 'mesh-file') element.accept = '.ply,.obj,.stl';
       if (spec.min !== undefined) element.min = String(spec.min);
       if (spec.step !== undefined) element.step = String(spec.step);
       input = element;
     }
-    input.id = id;
     input.name = spec.path;
-    if (spec.kind === 'checkbox') row.append(input, label);
-    else row.append(label, input);
-    if (spec.kind === 'range' || spec.kind === 'mesh-file') {
+    if (spec.kind === 'range') {
+      // A slider has a number box beside it: the box is the labelled control (type any valid
+      // value, decimals with a point or a comma), the slider sets it by dragging.
+      box = numberBox(spec);
+      box.id = id;
+      input.id = `${id}-slider`;
+      input.setAttribute('aria-label', 'drag to change');
+      row.append(label, input, box);
+    } else {
+      input.id = id;
+      if (spec.kind === 'checkbox') row.append(input, label);
+      else row.append(label, input);
+    }
+    if (spec.kind === 'mesh-file') {
       output = document.createElement('output');
       output.htmlFor.add(id);
       row.append(output);
@@ -137,18 +169,21 @@ export class ConfigControls {
       row.append(liveNote);
     }
     fieldset.append(row);
-    const bound: Bound = { spec, row, label, input, output, liveNote };
+    const bound: Bound = { spec, row, label, input, output, liveNote, box };
     input.addEventListener('change', () => void this.edit(bound, false));
     if (spec.live) input.addEventListener('input', () => void this.edit(bound, true));
+    box?.addEventListener('change', () => void this.edit(bound, false, box));
     return bound;
   }
 
-  private async edit(bound: Bound, live: boolean): Promise<void> {
-    const { spec, input } = bound;
+  private async edit(bound: Bound, live: boolean, from: HTMLInputElement | HTMLSelectElement = bound.input): Promise<void> {
+    const { spec } = bound;
     let value: unknown;
     try {
-      value = await this.readValue(spec, input);
+      value = from === bound.box ? this.readNumber(spec, bound.box) : await this.readValue(spec, from);
+      from.removeAttribute('aria-invalid');
     } catch (error) {
+      from.setAttribute('aria-invalid', 'true');
       this.events.onError((error as Error).message);
       return;
     }
@@ -183,17 +218,27 @@ export class ConfigControls {
         element.value = ''; // choosing the same file again re-runs it
         return name;
       }
-      case 'optional-number':
-        return input.value.trim() === '' ? null : Number(input.value);
+      case 'range':
+        return Number(input.value);
       default:
-        // An empty or half-typed number goes through as NaN: validation names the field.
-        return input.value.trim() === '' ? Number.NaN : Number(input.value);
+        return this.readNumber(spec, input as HTMLInputElement);
     }
+  }
+
+  /**
+   * A typed number (readDecimal: "22,5" is 22.5); what cannot be read is refused in words
+   * naming the field. Empty: null for an optional number, else NaN (validation names the field).
+   */
+  private readNumber(spec: FieldSpec, input: HTMLInputElement): number | null {
+    if (input.value.trim() === '') return spec.kind === 'optional-number' ? null : Number.NaN;
+    const reading = readDecimal(input.value);
+    if (!reading.ok) throw new Error(`${spec.label}${spec.unit ? ` (${spec.unit})` : ''}: ${reading.message}; nothing was run.`);
+    return reading.value;
   }
 
   /** Shows/hides fields for the draft and writes its values into the controls. */
   private refresh(): void {
-    for (const { spec, row, label, input, output, liveNote } of this.bound) {
+    for (const { spec, row, label, input, output, liveNote, box } of this.bound) {
       const visible = spec.show ? spec.show(this.draft) : true;
       row.hidden = !visible;
       if (!visible) continue;
@@ -201,11 +246,20 @@ export class ConfigControls {
       const description = kindDescription(spec.path, this.draft) ?? spec.description?.(this.draft) ?? '';
       input.title = description;
       label.title = description;
+      if (box) box.title = description;
       if (liveNote) liveNote.textContent = LIVE_NOTES[spec.path](this.draft);
       if (spec.placeholder && input instanceof HTMLInputElement) input.placeholder = spec.placeholder(this.draft);
       const value = spec.get ? spec.get(this.draft) : getPath(this.draft, spec.path);
       if (spec.max !== undefined && input instanceof HTMLInputElement) {
-        input.max = String(typeof spec.max === 'function' ? spec.max(this.draft) : spec.max);
+        const max = String(typeof spec.max === 'function' ? spec.max(this.draft) : spec.max);
+        if (spec.kind === 'range') input.max = max;
+        else input.setAttribute('aria-valuemax', max);
+      }
+      if (box) {
+        if (document.activeElement !== box) box.value = typeof value === 'number' && Number.isFinite(value) ? String(roundForDisplay(value)) : '';
+        box.setAttribute('aria-valuenow', String(value));
+      } else if (NUMBER_KINDS.has(spec.kind) && typeof value === 'number') {
+        input.setAttribute('aria-valuenow', String(value));
       }
       if (spec.kind === 'checkbox') (input as HTMLInputElement).checked = Boolean(value);
       else if (spec.kind === 'file') continue;
@@ -216,7 +270,6 @@ export class ConfigControls {
       else if (document.activeElement !== input || spec.kind === 'select' || spec.kind === 'range') {
         input.value = value === null || value === undefined || (typeof value === 'number' && Number.isNaN(value)) ? '' : String(roundForDisplay(value));
       }
-      if (output) output.value = String(value);
     }
   }
 }

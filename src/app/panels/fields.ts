@@ -283,3 +283,35 @@ export const FIELDS: FieldSpec[] = [
   }),
   field('sheet.minContactLength', { label: 'Ignore contacts shorter than (empty: lab default)', group: 'Sheet', step: 0.5 }),
 ];
+
+/** A field whose value differs between two configurations, in the page's words ("Thickness", "17 µm"). */
+export interface ChangedField {
+  path: string;
+  label: string;
+  shown: string;
+  form: string;
+}
+
+/** The form's fields (as shown for `form`) whose values differ between `shown` and `form`. */
+export function changedFields(shown: Config, form: Config): ChangedField[] {
+  const out: ChangedField[] = [];
+  const text = (spec: FieldSpec, value: unknown) => {
+    if (value === null || value === undefined) return 'default';
+    if (typeof value === 'number') return `${Number(value.toPrecision(6))}${spec.unit ? ` ${spec.unit}` : ''}`;
+    if (typeof value === 'string' && value.startsWith('data:')) return 'an image';
+    return String(value);
+  };
+  const read = (spec: FieldSpec, c: Config): unknown => {
+    if (spec.get) return spec.get(c);
+    let value: unknown = c;
+    for (const key of spec.path.split('.')) value = value && typeof value === 'object' ? (value as Record<string, unknown>)[key] : undefined;
+    return value;
+  };
+  for (const spec of FIELDS) {
+    if (spec.show && !spec.show(form) && !(spec.show(shown))) continue;
+    const a = read(spec, shown);
+    const b = read(spec, form);
+    if (JSON.stringify(a) !== JSON.stringify(b)) out.push({ path: spec.path, label: spec.label, shown: text(spec, a), form: text(spec, b) });
+  }
+  return out;
+}

@@ -1,0 +1,155 @@
+import { readFileSync } from 'node:fs';
+import { expect, test, type Page } from '@playwright/test';
+import { runs, waitForRun } from './appHelpers';
+
+/**
+ * Issue 26, the form: the address, the form and the result always agree (seed 1 -> 2 -> 1,
+ * radius 20 -> 225 -> 20); a result that no longer matches the form is marked stale; a refusal
+ * says what to change in µm and cells, engine words only on a details line; a decimal comma is a
+ * decimal ("22,5" is 22.5 µm, never 225); every slider has a number box. Values are typed as a
+ * person types: click, select all, keys, Enter. Runs stay tiny (60 cells).
+ */
+
+const TUBE = { surface: { kind: 'tube', radius: 20, length: 256 }, resolution: 128, cells: 40, seed: 1, lloyd: { maxIterations: 2 }, sheet: { surfaceRatio: 2 } };
+const linkTo = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
+
+async function typeInto(page: Page, label: string, text: string): Promise<void> {
+  const field = page.getByLabel(label, { exact: true });
+  await field.click();
+  await field.press('ControlOrMeta+a');
+  await field.pressSequentially(text);
+  await field.press('Enter');
+}
+
+const urlConfig = (page: Page) => JSON.parse(new URL(page.url()).searchParams.get('config')!);
+const drawn = async (page: Page) => page.locator('#percent-scutoids').getAttribute('data-drawn');
+
+async function resultJson(page: Page) {
+  const [download] = await Promise.all([page.waitForEvent('download'), page.locator('[data-export="json"]').click()]);
+  return JSON.parse(readFileSync(await download.path(), 'utf8'));
+}
+
+test('seed 1 -> 2 -> 1: the address is the link again, and reloading shows the same result', async ({ page }) => {
+  const link = linkTo(TUBE);
+  await page.goto(link);
+  await waitForRun(page);
+  const first = await drawn(page);
+  let before = await runs(page);
+  await typeInto(page, 'Random seed', '2');
+  await waitForRun(page, before);
+  expect(urlConfig(page).seed).toBe(2);
+  await expect(page.locator('body')).toHaveAttribute('data-stale', 'false');
+  before = await runs(page);
+  await typeInto(page, 'Random seed', '1');
+  await waitForRun(page, before);
+  expect(urlConfig(page).seed).toBe(1);
+  expect(page.url()).toBe(new URL(link, page.url()).toString());
+  expect(await drawn(page)).toBe(first);
+  await page.reload();
+  await waitForRun(page);
+  expect(await drawn(page)).toBe(first);
+  await expect(page.getByLabel('Random seed', { exact: true })).toHaveValue('1');
+});
+
+test('radius 20 -> 225 -> 20: the address, the form and the result agree at every step', async ({ page }) => {
+  const link = linkTo(TUBE);
+  await page.goto(link);
+  await waitForRun(page);
+  const first = await drawn(page);
+  for (const [typed, radius] of [['225', 225], ['20', 20]] as const) {
+    const before = await runs(page);
+    await typeInto(page, 'Radius (µm)', typed);
+    await waitForRun(page, before);
+    expect(urlConfig(page).surface.radius).toBe(radius);
+    expect((await resultJson(page)).config.surface.radius).toBe(radius);
+    await expect(page.getByLabel('Radius (µm)', { exact: true })).toHaveValue(typed);
+  }
+  expect(page.url()).toBe(new URL(link, page.url()).toString());
+  await page.reload();
+  await waitForRun(page);
+  expect(await drawn(page)).toBe(first);
+});
+
+test('a decimal comma is a decimal: "22,5" µm runs a 22.5 µm tube, never 225; "1,234.5" is refused in words', async ({ page }) => {
+  await page.goto(linkTo(TUBE));
+  await waitForRun(page);
+  let before = await runs(page);
+  await typeInto(page, 'Radius (µm)', '22,5');
+  await waitForRun(page, before);
+  expect(urlConfig(page).surface.radius).toBe(22.5);
+  expect((await resultJson(page)).config.surface.radius).toBe(22.5);
+  await expect(page.locator('#error')).toBeHidden();
+
+  before = await runs(page);
+  await typeInto(page, 'Radius (µm)', '1,234.5');
+  await expect(page.locator('#error')).toContainText('Radius (µm): "1,234.5" has both a comma and a point');
+  await expect(page.getByLabel('Radius (µm)', { exact: true })).toHaveAttribute('aria-invalid', 'true');
+  await page.waitForTimeout(800);
+  expect(await runs(page)).toBe(before);
+  expect(urlConfig(page).surface.radius).toBe(22.5);
+
+  // The number box beside a slider reads a comma too: surface ratio "2,5".
+  before = await runs(page);
+  await typeInto(page, 'Surface ratio R_outer / R_inner', '2,5');
+  await waitForRun(page, before);
+  expect(urlConfig(page).sheet.surfaceRatio).toBe(2.5);
+  await expect(page.locator('input[name="sheet.surfaceRatio"]')).toHaveValue('2.5');
+});
+
+test('every slider has a number box beside it that takes any valid value (thickness 12.5 µm beyond a step of 1)', async ({ page }) => {
+  await page.goto(linkTo({ ...TUBE, sheet: { surfaceRatio: null, thickness: 10 } }));
+  await waitForRun(page);
+  const sliders = page.locator('#controls .field-range:not([hidden])');
+  expect(await sliders.count()).toBeGreaterThan(0);
+  for (const row of await sliders.all()) {
+    await expect(row.locator('input[type="range"]')).toHaveCount(1);
+    await expect(row.locator('input.number-box')).toHaveCount(1);
+  }
+  const box = page.getByLabel('Thickness (µm)', { exact: true });
+  await expect(box).toHaveValue('10');
+  const before = await runs(page);
+  await typeInto(page, 'Thickness (µm)', '12,5');
+  await waitForRun(page, before);
+  expect(urlConfig(page).sheet.thickness).toBe(12.5);
+  expect((await resultJson(page)).config.sheet.thickness).toBe(12.5);
+  // Beyond the slider's end: the box takes it, nothing is clamped.
+  const max = Number(await page.locator('input[name="sheet.thickness"]').getAttribute('max'));
+  const after = await runs(page);
+  await typeInto(page, 'Thickness (µm)', String(max + 50));
+  await waitForRun(page, after);
+  expect(urlConfig(page).sheet.thickness).toBe(max + 50);
+  await expect(box).toHaveValue(String(max + 50));
+});
+
+test('a refused inward thickness (19 µm) keeps the 17 µm result marked stale, and says what to change in µm', async ({ page }) => {
+  const inward = { ...TUBE, surface: { kind: 'tube', radius: 20, length: 512 }, resolution: null, sheet: { direction: 'inward', surfaceRatio: null, thickness: 17 } };
+  await page.goto(linkTo(inward));
+  await waitForRun(page);
+  await expect(page.locator('body')).toHaveAttribute('data-stale', 'false');
+  await expect(page.locator('#stale-note')).toBeHidden();
+  const shown = await drawn(page);
+  const before = await runs(page);
+  await typeInto(page, 'Thickness (µm)', '19');
+  const error = page.locator('#error');
+  await expect(error).toBeVisible();
+  const main = error.locator('.error-main');
+  await expect(main).toContainText('Thickness 19 µm inward leaves the inner surface of this tube (radius 20 µm) a radius of only 1 µm');
+  await expect(main).toContainText('Use a thickness of at most');
+  expect(await main.textContent()).not.toMatch(/texel|resolution/i);
+  await expect(error.locator('.error-details')).toContainText('texels');
+  // The 17 µm result stays, marked stale, beside a form reading 19.
+  await expect(page.locator('body')).toHaveAttribute('data-stale', 'true');
+  const note = page.locator('#stale-note');
+  await expect(note).toBeVisible();
+  await expect(note).toContainText('this result is for Thickness 17 µm; the form says Thickness 19 µm; the new values were not run');
+  expect(await drawn(page)).toBe(shown);
+  expect(await runs(page)).toBe(before);
+  expect(urlConfig(page).sheet.thickness).toBe(17);
+  await expect(page).toHaveScreenshot('stale-result.png', { clip: (await page.locator('section.results').boundingBox())!, mask: [page.locator('#run-info'), page.locator('#summary')] });
+  // A thickness that fits runs, and the mark goes.
+  await typeInto(page, 'Thickness (µm)', '16,5');
+  await waitForRun(page, before);
+  await expect(page.locator('body')).toHaveAttribute('data-stale', 'false');
+  await expect(note).toBeHidden();
+  await expect(error).toBeHidden();
+});
