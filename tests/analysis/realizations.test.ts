@@ -27,6 +27,7 @@ const one = (percent: number | null, seed: number): Headline => ({
   realizationValues: [percent],
   byConstruction: null,
   noValidCells: percent === null ? 'No cell was counted.' : null,
+  omittedMethods: [],
 });
 
 describe('headline over realizations', () => {
@@ -89,5 +90,17 @@ describe('headline over realizations', () => {
     expect(progress).toEqual([1, 2, 3, 4]);
     expect(h!.realizationValues).toEqual([40, 44, 48, 52]);
     expect(await headlineOverRealizations(10, 1, one(40, 10), async () => null)).toEqual(one(40, 10));
+  });
+});
+
+describe('omitted methods', () => {
+  it('"both" on the exact engine names the labels method left out and why', async () => {
+    const { omittedMethods, describeOmitted } = await import('../../src/core/analysis/headline');
+    const { validateAnyConfig } = await import('../../src/core/config');
+    const auto = validateAnyConfig({ sheet: { surfaceRatio: 2 } });
+    expect(omittedMethods(auto, ['exact'])).toEqual([{ method: 'labels', reason: expect.stringContaining('engine "auto" took the exact engine') }]);
+    expect(omittedMethods(auto, ['labels', 'exact'])).toEqual([]);
+    const exact = validateAnyConfig({ engine: 'exact', sheet: { surfaceRatio: 2, adjacency: 'labels' } });
+    expect(describeOmitted({ omittedMethods: omittedMethods(exact, ['exact']) })).toMatch(/^labels method left out: engine "exact" ran Lloyd/);
   });
 });

@@ -10,7 +10,7 @@
  */
 import { formatCsv } from '../../core/sweep';
 import { methodCaption, type ViewStack } from '../../view/stack';
-import { describeHeadline } from '../../core/analysis/headline';
+import { describeHeadline, describeOmitted } from '../../core/analysis/headline';
 import { describeEngine } from '../../run/enginePolicy';
 
 export interface CellTable {
@@ -70,7 +70,10 @@ export function provenanceLines(stack: ViewStack, what: string): string[] {
   const { result } = stack;
   return [
     `${what}, written by ${result.software.name} ${result.software.version}`,
-    `scutoid flags, sides and transitions from ${methodCaption(stack.analysis)} (method ${stack.analysis?.method ?? 'none'}); label_neighbours_* columns: every contact in the label images`,
+    `scutoid flags, sides and transitions from ${methodCaption(stack.analysis)} (method ${stack.analysis?.method ?? 'none'}); label_neighbours_* columns: ${
+      result.adjacency?.method === 'exact' ? 'the neighbours of the exact cells (the exact engine makes no label images)' : 'every contact in the label images'
+    }`,
+    ...(describeOmitted(result.headline) ? [`methods: ${describeOmitted(result.headline)}`] : []),
     `seed ${result.seed}; config (rerun it to reproduce this file): ${JSON.stringify(result.config)}`,
     engineLine(stack),
     `headline: ${describeHeadline(result.headline)}; the cells in this file are realization 1 (seed ${result.seed})`,

@@ -21,7 +21,19 @@ export interface ControlsEvents {
  * Engine settings, shown in a closed "Advanced" section: sound defaults, no biology in them.
  * Everything else (the surface, the sheet, the cells, the regularity) comes first.
  */
-const ADVANCED = new Set(['resolution', 'lloyd.tolerance', 'lloyd.overRelaxation', 'lloyd.warmStart', 'jumpFlood.variant', 'centroidPath', 'sheet.minContactLength']);
+const ADVANCED = new Set([
+  'resolution',
+  'engine',
+  'lloyd.tolerance',
+  'lloyd.overRelaxation',
+  'lloyd.warmStart',
+  'jumpFlood.variant',
+  'centroidPath',
+  'sheet.minContactLength',
+  'sheet.minContactPixels',
+  'sheet.layerStep',
+  'sheet.validityMaxRatio',
+]);
 /** Groups in the order a biologist meets them, with their legends. */
 const GROUP_ORDER: [FieldSpec['group'], string][] = [
   ['Surface', 'Surface'],
@@ -173,6 +185,12 @@ export class ConfigControls {
     input.addEventListener('change', () => void this.edit(bound, false));
     if (spec.live) input.addEventListener('input', () => void this.edit(bound, true));
     box?.addEventListener('change', () => void this.edit(bound, false, box));
+    // Typing: each readable value is an edit (the page debounces edits), so a value typed or
+    // filled in runs without Enter; what cannot be read yet ("22,", "-") waits for the change.
+    const typed = box ?? (NUMBER_KINDS.has(spec.kind) ? (input as HTMLInputElement) : undefined);
+    typed?.addEventListener('input', () => {
+      if (typed.value.trim() !== '' && readDecimal(typed.value).ok) void this.edit(bound, false, typed);
+    });
     return bound;
   }
 

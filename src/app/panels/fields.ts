@@ -282,6 +282,43 @@ export const FIELDS: FieldSpec[] = [
     labels: { both: 'labels and exact', labels: 'labels (pixels)', exact: 'exact (Delaunay)' },
   }),
   field('sheet.minContactLength', { label: 'Ignore contacts shorter than (empty: lab default)', group: 'Sheet', step: 0.5 }),
+  // Every schema field is reachable in the form (issue 26): the protocol with the sheet, the
+  // rest under Advanced (controls.ts).
+  field('sheet.protocol', {
+    label: 'Protocol',
+    group: 'Sheet',
+    labels: { default: 'default', lab: "lab (Gómez-Gálvez et al.: tubes with a surface ratio, outward)" },
+  }),
+  field('sheet.offset', {
+    label: 'Other surface made by',
+    group: 'Sheet',
+    labels: { normal: 'parallel surface (normal)', axes: 'semi-axes + thickness (the lab spheroid model)' },
+    show: (c) => c.surface.kind === 'sphere' || c.surface.kind === 'ellipsoid' || c.surface.kind === 'mesh',
+  }),
+  field('sheet.layerStep', { label: 'Layer step (tube: in s; else µm; empty: layers evenly spaced)', group: 'Sheet', step: 0.05 }),
+  field('sheet.validityMaxRatio', { label: 'Lab protocol: valid cells checked up to ratio', group: 'Sheet', step: 0.25 }),
+  field('sheet.minContactPixels', { label: "Labels method: ignore contacts shorter than (texel edges at 512 px around; empty: the µm rule)", group: 'Sheet', step: 1 }),
+  field('engine', { label: 'Engine', group: 'Lloyd', labels: { auto: 'auto', gpu: 'GPU (jump flood; labels and exact)', exact: 'exact (CPU; exact method only)' } }),
+  ...(['u', 'v'] as const).map(
+    (axis, k): FieldSpec => ({
+      // Panel only: one coordinate of density.center ([u, v], µm).
+      path: `density.center.${axis}`,
+      label: `Patch centre ${axis}`,
+      group: 'Density',
+      kind: 'number',
+      unit: 'µm',
+      step: 1,
+      description: () => schemaField('density.center', 'gaussian').description ?? '',
+      show: (c) => c.density.kind === 'gaussian',
+      get: (c) => (c.density.kind === 'gaussian' ? c.density.center[k] : null),
+      set: (c, v) => {
+        if (c.density.kind !== 'gaussian') return c;
+        const center = [...c.density.center] as [number, number];
+        center[k] = Number(v);
+        return { ...c, density: { ...c.density, center } };
+      },
+    }),
+  ),
 ];
 
 /** A field whose value differs between two configurations, in the page's words ("Thickness", "17 µm"). */

@@ -4,6 +4,7 @@
  * table. Every number carries its full value in `data-value` for tests and copy-paste.
  */
 import { describeEngine } from '../../run';
+import { describeOmitted } from '../../core/analysis/headline';
 import { cellTable } from '../model/cellRows';
 import { byConstruction, noValidCells } from '../../core/analysis/byConstruction';
 import { analysisByMethod, methodCaption, type ViewStack } from '../../view/stack';
@@ -23,6 +24,14 @@ export function renderResults(root: HTMLElement, stack: ViewStack): void {
     why.textContent = empty ?? rule?.message ?? '';
     why.dataset.reason = empty ? 'no-valid-cells' : (rule?.reason ?? '');
     why.hidden = !why.textContent;
+  }
+  const omitted = root.querySelector<HTMLElement>('#methods-note');
+  if (omitted) {
+    // "both" on the exact engine gives the exact method only: said, never silent.
+    const line = describeOmitted(result.headline);
+    omitted.textContent = line ? `${line.charAt(0).toUpperCase()}${line.slice(1)}.` : '';
+    omitted.dataset.omitted = (result.headline?.omittedMethods ?? []).map((o) => o.method).join(' ');
+    omitted.hidden = !line;
   }
   const summary = root.querySelector<HTMLElement>('#summary');
   if (summary) summary.replaceChildren(summaryTable(stack));

@@ -14,7 +14,8 @@
  */
 import { validateConfigDraft, type ConfigDraft as Config } from '../../core/config';
 import { readCsvTable } from '../../core/sweep';
-import { isAbort } from '../../view/pageRunner';
+import { computeContext, isAbort } from '../../view/pageRunner';
+import { methodsOnRenderer } from '../../core/config/analysisMethods';
 import { FLINTSTONES_RATIO, sweepFlintstones } from '../../core/sweep';
 import { planSweep, sweepInPage, type SweepPlan } from '../../view/pageSweep';
 import { FlintstonesChart } from './flintstonesChart';
@@ -165,7 +166,11 @@ export class SweepPanel {
     const field = plan.fields[0] ?? '';
     const voronoi = field === 'lloyd.maxIterations';
     const label = voronoi ? 'Voronoi k' : (FIELDS.find((f) => f.path === field)?.label ?? field);
-    const methods = ['exact', 'labels'].filter((m) => plan.summary.includes(`${m}.percentScutoids`));
+    // Only the methods the runs report on this renderer: "both" on the exact engine (auto on a
+    // software renderer) gives the exact method alone, so no empty labels series is listed.
+    const renderer = { softwareRenderer: safeSoftwareRenderer() };
+    const reported = new Set([...plan.configs.values()].flatMap((config) => methodsOnRenderer(config, renderer)));
+    const methods = ['exact', 'labels'].filter((m) => plan.summary.includes(`${m}.percentScutoids`) && reported.has(m as 'exact' | 'labels'));
     this.chart.reset({ label, field, methods, x: (cell) => (voronoi ? Number(cell) + 1 : Number(cell)) });
     this.reference.setSweep(field, (spec as { base?: unknown }).base);
   }
@@ -312,5 +317,14 @@ export class SweepPanel {
       return;
     }
     download(name, text, type);
+  }
+}
+
+/** Whether this page's compute context is a software renderer (false when there is none). */
+function safeSoftwareRenderer(): boolean {
+  try {
+    return computeContext().capabilities.softwareRenderer;
+  } catch {
+    return false;
   }
 }

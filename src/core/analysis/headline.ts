@@ -42,6 +42,36 @@ export interface Headline {
   readonly byConstruction: ByConstruction | null;
   /** Set when no cell was counted (every cell touches an open end), with what to change. */
   readonly noValidCells: string | null;
+  /**
+   * Methods `sheet.adjacency` asked for that the run does not report, with why (the exact engine
+   * makes no label images: "both" on the exact engine gives the exact method only). Empty when
+   * every method asked for is in `analyses`.
+   */
+  readonly omittedMethods: readonly OmittedMethod[];
+}
+
+export interface OmittedMethod {
+  readonly method: AdjacencyMethod;
+  readonly reason: string;
+}
+
+/** The methods `config` asked for that `reported` lacks, and why (see Headline.omittedMethods). */
+export function omittedMethods(config: AnyConfig, reported: readonly AdjacencyMethod[]): OmittedMethod[] {
+  const adjacency = config.sheet.adjacency;
+  const asked: AdjacencyMethod[] = adjacency === 'both' ? ['labels', 'exact'] : [adjacency];
+  const why =
+    config.engine === 'exact'
+      ? 'engine "exact" ran Lloyd on the exact Voronoi diagram on the CPU, which makes no label images'
+      : 'engine "auto" took the exact engine (Lloyd on the exact Voronoi diagram on the CPU) because the renderer here is software, not a GPU, and that engine makes no label images';
+  return asked
+    .filter((method) => !reported.includes(method))
+    .map((method) => ({ method, reason: method === 'labels' ? `${why}; choose Engine "gpu" (Advanced) for the labels method` : 'not computed by this run' }));
+}
+
+/** The omitted methods in one line ("labels method left out: ..."), or null when none was. */
+export function describeOmitted(headline: Pick<Headline, 'omittedMethods'> | null): string | null {
+  const omitted = headline?.omittedMethods ?? [];
+  return omitted.length ? omitted.map((o) => `${o.method} method left out: ${o.reason}`).join('; ') : null;
 }
 
 const finiteOrNull = (value: number): number | null => (Number.isFinite(value) ? value : null);
@@ -73,6 +103,7 @@ export function runHeadline(config: AnyConfig, analyses: readonly AnalysisRecord
     realizationValues: [counted ? finiteOrNull(s.percentScutoids) : null],
     byConstruction: byConstruction(config),
     noValidCells: noValidCells(s.validCells, s.cells),
+    omittedMethods: omittedMethods(config, analyses.map((a) => a.method)),
   };
 }
 
@@ -105,5 +136,6 @@ export function describeHeadline(headline: Headline | null): string {
   const protocol = headline.protocol === 'lab' ? ", the lab's protocol" : '';
   const why = headline.noValidCells ?? headline.byConstruction?.message ?? null;
   const counted = headline.realizations > 1 ? `${headline.validCells} of ${headline.cells} cells counted in realization 1` : `${headline.validCells} of ${headline.cells} cells counted`;
-  return `${value} (${headline.method} method${protocol}, ${counted}; ${describeRealizations(headline)}), Voronoi ${headline.voronoiK}${why ? `. ${why}` : ''}`;
+  const omitted = describeOmitted(headline);
+  return `${value} (${headline.method} method${protocol}, ${counted}; ${describeRealizations(headline)}), Voronoi ${headline.voronoiK}${why ? `. ${why}` : ''}${omitted ? `. ${omitted}` : ''}`;
 }
