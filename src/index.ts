@@ -18,6 +18,19 @@ export * from './run/index';
 export * from './core/config/index';
 export type { GrayImage } from './core/density';
 
+// The headline over realizations (the mean % scutoids with its 95 % CI and n), as the page, the
+// element and `tissue-sheet run --realizations N` compute it.
+export { describeHeadline, describeRealizations, type OmittedMethod } from './core/analysis/headline';
+export {
+  combineHeadlines,
+  DEFAULT_REALIZATIONS,
+  headlineOverRealizations,
+  meanInterval,
+  realizationSeed,
+  realizationSeeds,
+  tQuantile975,
+} from './core/analysis/realizations';
+
 // Parameter sweeps: expansion, tidy CSV rows, aggregation and the resumable loop. (Their
 // generic `Config` record is not re-exported: it would shadow the run configuration's type.)
 export {
