@@ -12,7 +12,7 @@ import { cellsPly } from '../model/ply';
 import { cellsVtk } from '../model/vtk';
 import { unrolledSvg } from '../model/svg';
 import { openFile, projectJson, type OpenedFile, type ViewState } from '../model/project';
-import { figurePng } from '../view/figure';
+import { figurePng, figureSize } from '../view/figure';
 import type { SheetView3D } from '../../view/sheetView3d';
 import type { ViewStack } from '../../view/stack';
 
@@ -116,7 +116,12 @@ export function bindExports(root: HTMLElement, sources: ExportSources): void {
       download(`${baseName(stack)}-view.png`, new Blob([tagged as BlobPart], { type: 'image/png' }));
     },
     vtk: () => withStack((s) => download(`${baseName(s)}-cells.vtk`, cellsVtk(s), 'application/octet-stream')),
-    svg: () => withStack((s) => download(`${baseName(s)}-unrolled.svg`, unrolledSvg(s), 'image/svg+xml')),
+    svg: () =>
+      withStack((s) => {
+        const widthMm = Number(more.width.value);
+        figureSize({ dpi: 300, widthMm }, 1); // the width is checked as for the PNG (20 to 500 mm)
+        download(`${baseName(s)}-unrolled.svg`, unrolledSvg(s, { widthMm }), 'image/svg+xml');
+      }),
     figure: async () => {
       const stack = sources.stack();
       if (!stack) throw new Error('Nothing to save yet: the view is empty until a run has finished.');

@@ -21,6 +21,7 @@ import { planSweep, sweepInPage, type SweepPlan } from '../../view/pageSweep';
 import { FlintstonesChart } from './flintstonesChart';
 import { version } from '../../version';
 import { download } from './exports';
+import { downloadChart } from './chartExports';
 import { FIELDS } from './fields';
 import { SweepChart } from './sweepChart';
 import { ReferenceOverlay } from './referenceOverlay';
@@ -73,6 +74,10 @@ export class SweepPanel {
     this.button('runs-csv').addEventListener('click', () => this.download('runs.csv', this.runsCsv, 'text/csv'));
     this.button('aggregate-csv').addEventListener('click', () => this.download('aggregate.csv', this.aggregateCsv, 'text/csv'));
     this.button('spec').addEventListener('click', () => this.download('sweep.json', this.spec ? `${JSON.stringify({ software: { name: 'tissue-sheet', version }, spec: this.spec }, null, 2)}\n` : '', 'application/json'));
+    for (const kind of ['svg', 'png'] as const) {
+      this.button(`chart-${kind}`).addEventListener('click', () => void this.figure(kind, 'chart'));
+      this.button(`fit-${kind}`).addEventListener('click', () => void this.figure(kind, 'fit'));
+    }
     this.root.querySelector<HTMLInputElement>('[name="sweep-load"]')!.addEventListener('change', (event) => void this.load(event.target as HTMLInputElement));
     this.refreshChoices();
     this.root.querySelector('.sweep-controls')?.addEventListener('focusin', () => this.refreshChoices());
@@ -95,6 +100,10 @@ export class SweepPanel {
       <button type="button" data-sweep="runs-csv" disabled>runs.csv</button>
       <button type="button" data-sweep="aggregate-csv" disabled>aggregate.csv</button>
       <button type="button" data-sweep="spec" disabled>sweep.json</button>
+      <button type="button" data-sweep="chart-svg" disabled title="The sweep chart as SVG, at the width chosen under the exports">chart SVG</button>
+      <button type="button" data-sweep="chart-png" disabled title="The sweep chart as PNG, at the DPI and width chosen under the exports">chart PNG</button>
+      <button type="button" data-sweep="fit-svg" disabled title="The Flintstones fit as SVG">fit SVG</button>
+      <button type="button" data-sweep="fit-png" disabled title="The Flintstones fit as PNG">fit PNG</button>
       <label title="A sweep.json (this page's or the CLI's) and its runs.csv, to see them and resume">load <input name="sweep-load" type="file" multiple accept=".json,.csv,application/json,text/csv" /></label>`;
     controls.insertBefore(extra, status);
   }
@@ -271,7 +280,29 @@ export class SweepPanel {
       total = 0;
     }
     this.button('resume').disabled = busy || !this.spec || done >= total;
-    for (const name of ['runs-csv', 'aggregate-csv', 'spec']) this.button(name).disabled = busy || !this.spec;
+    for (const name of ['runs-csv', 'aggregate-csv', 'spec', 'chart-svg', 'chart-png']) this.button(name).disabled = busy || !this.spec;
+    for (const name of ['fit-svg', 'fit-png']) this.button(name).disabled = busy || !this.flintstones.figure();
+  }
+
+  /** The sweep chart or the Flintstones fit as a figure file, with the sweep's provenance. */
+  private async figure(kind: 'svg' | 'png', which: 'chart' | 'fit'): Promise<void> {
+    try {
+      const rows = readCsvTable(this.runsCsv).rows;
+      const paths = [...new Set(rows.map((row) => row.centroidPath).filter(Boolean))];
+      const engine = paths.length === 0 ? 'unknown' : paths.map((p) => (/exact engine/.test(p) ? 'exact engine' : `GPU, centroid path ${p}`)).join(', ');
+      const spec = this.spec as { base?: { seed?: number }; seed?: number } | null;
+      const figure = which === 'chart' ? this.chart.figure() : this.flintstones.figure();
+      const methods = which === 'chart' ? (figure?.series.filter((s) => s.band).map((s) => s.label.split(' ')[0]).join(', ') ?? '') : 'exact wherever the runs have it (meanNeighbours3D)';
+      await downloadChart(kind, which === 'chart' ? 'tissue-sheet-sweep-chart' : 'tissue-sheet-flintstones-fit', figure, {
+        what: which === 'chart' ? 'tissue-sheet sweep chart (% scutoids, mean and 95 % CI per point)' : 'tissue-sheet Flintstones law fit',
+        engine,
+        method: methods,
+        seed: spec?.seed ?? spec?.base?.seed ?? '',
+        config: this.spec,
+      });
+    } catch (error) {
+      this.events.onError((error as Error).message);
+    }
   }
 
   /** Loads a sweep.json (a spec, or a record with `spec`) and its runs.csv. */

@@ -45,7 +45,11 @@ export async function figurePng(stack: ViewStack, view: SheetView3D | null, opti
 }
 
 async function unrolledFigure(stack: ViewStack, options: FigureOptions): Promise<HTMLCanvasElement> {
-  const svg = unrolledSvg(stack);
+  return rasterizeSvg(unrolledSvg(stack, { widthMm: options.widthMm }), options);
+}
+
+/** An SVG drawn on a white canvas of the size `options` give (width in mm at dpi, the SVG's aspect). */
+export async function rasterizeSvg(svg: string, options: FigureOptions): Promise<HTMLCanvasElement> {
   const box = /viewBox="([^"]+)"/.exec(svg)![1].split(' ').map(Number);
   const { width, height } = figureSize(options, box[2] / box[3]);
   const url = URL.createObjectURL(new Blob([svg], { type: 'image/svg+xml' }));
@@ -64,6 +68,13 @@ async function unrolledFigure(stack: ViewStack, options: FigureOptions): Promise
   } finally {
     URL.revokeObjectURL(url);
   }
+}
+
+/** A chart's SVG as a PNG at the chosen DPI and width: pHYs records the DPI, tEXt the provenance. */
+export async function svgPng(svg: string, options: FigureOptions, text: [string, string][]): Promise<Uint8Array> {
+  const canvas = await rasterizeSvg(svg, options);
+  const blob = await new Promise<Blob>((resolve, reject) => canvas.toBlob((b) => (b ? resolve(b) : reject(new Error('the figure could not be encoded'))), 'image/png'));
+  return withPngText(withPngDpi(new Uint8Array(await blob.arrayBuffer()), options.dpi), text);
 }
 
 function closedFigure(stack: ViewStack, view: SheetView3D | null, options: FigureOptions): HTMLCanvasElement {
