@@ -2,6 +2,10 @@ import { readFileSync, writeFileSync } from 'node:fs';
 import { expect, test, type Page } from '@playwright/test';
 import { waitForRun } from './appHelpers';
 import { readPngDpi, readPngText } from '../src/app/model/pngText';
+import { mkdtempSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { png16, randomSites, rasterizeVoronoi } from '../tests/measure/images';
 
 /**
  * Issue 26, figures a journal takes: the cell figure, the sweep chart and the Flintstones fit as
@@ -129,4 +133,61 @@ test('the sweep chart and the Flintstones fit as SVG and PNG: units, n, CI, numb
   const fitPng = await download(page, '[data-sweep="fit-png"]');
   if (process.env.FIGURE_DIR) writeFileSync(`${process.env.FIGURE_DIR}/fit.png`, fitPng.bytes);
   expect(readPngDpi(new Uint8Array(fitPng.bytes))).toBeCloseTo(600, 1);
+});
+
+test('the measured-vs-model comparison as SVG and PNG: bars per layer, the model line, both % scutoids, provenance', async ({ page }) => {
+  const dir = mkdtempSync(join(tmpdir(), 'figures-measure-'));
+  const sites = randomSites(60, 256, 192, 7);
+  const labels = sites.map((_, i) => 5 + i);
+  writeFileSync(join(dir, 'basal.png'), png16(rasterizeVoronoi(256, 192, sites, labels, true)));
+  writeFileSync(join(dir, 'apical.png'), png16(rasterizeVoronoi(512, 192, sites.map(([x, y]) => [2 * x, y]), labels, true)));
+  await page.goto(linkTo(SMALL));
+  await waitForRun(page);
+  await page.locator('#measure-pixel-size').fill('0.5');
+  await page.locator('#measure-periodic').check();
+  await page.locator('#measure-realizations').fill('2');
+  await page.locator('#measure-files').setInputFiles([join(dir, 'basal.png'), join(dir, 'apical.png')]);
+  await expect(page.locator('#measure')).toHaveAttribute('data-state', 'compared', { timeout: 120_000 });
+  await page.locator('#figure-width').fill('85');
+  const svg = (await download(page, '#measure-figure-svg')).text;
+  expect(svgSize(svg).widthMm).toBe(85);
+  expect(svg).toContain('>% of valid cells</text>');
+  expect(svg).toContain('>sides (cells with n sides)</text>');
+  expect(svg).toMatch(/data-label="measured basal \(basal.png\)"/);
+  expect(svg).toMatch(/data-label="model Voronoi \d+, basal, mean of 2 realizations"/);
+  const notes = [...svg.matchAll(/<text class="note"[^>]*>([^<]*)<\/text>/g)].map((m) => m[1]).join(' ');
+  const measured = Number(await page.locator('#measured-percent').getAttribute('data-value'));
+  expect(notes).toContain(`Measured: ${measured.toFixed(1)} % scutoids`);
+  expect(notes).toMatch(/% scutoids \(mean ± SD over n = 2 realizations\)/);
+  expect(overlaps(await legendBoxes(page, svg))).toEqual([]);
+  const png = await download(page, '#measure-figure-png');
+  expect(readPngDpi(new Uint8Array(png.bytes))).toBeCloseTo(300, 1);
+  const text = readPngText(new Uint8Array(png.bytes));
+  expect(text['tissue-sheet:method']).toContain('pixel-based adjacency');
+  expect(JSON.parse(text['tissue-sheet:config']).model.realizations).toBe(2);
+  if (process.env.FIGURE_DIR) writeFileSync(`${process.env.FIGURE_DIR}/measured.png`, png.bytes);
+});
+
+test('measure: the page says which file it takes as basal and warns when s < 1 (files handed over apical first)', async ({ page }) => {
+  const dir = mkdtempSync(join(tmpdir(), 'figures-sides-'));
+  const sites = randomSites(60, 256, 192, 7);
+  const labels = sites.map((_, i) => 5 + i);
+  writeFileSync(join(dir, 'basal.png'), png16(rasterizeVoronoi(512, 192, sites.map(([x, y]) => [2 * x, y]), labels, true)));
+  writeFileSync(join(dir, 'apical.png'), png16(rasterizeVoronoi(256, 192, sites, labels, true)));
+  await page.goto(linkTo(SMALL));
+  await waitForRun(page);
+  await page.locator('#measure-pixel-size').fill('0.5');
+  await page.locator('#measure-periodic').check();
+  await page.locator('#measure-realizations').fill('0');
+  // A file dialog hands them over alphabetically: apical.png first.
+  await page.locator('#measure-files').setInputFiles([join(dir, 'apical.png'), join(dir, 'basal.png')]);
+  const sides = page.locator('#measure-sides');
+  await expect(sides).toContainText('Taken as basal: apical.png; as apical: basal.png', { timeout: 120_000 });
+  await expect(sides).toHaveAttribute('data-warning', 'names');
+  await expect(sides).toContainText('the file taken as basal is named apical.png');
+  // Reversed: basal.png (the wider, as in a gland) is basal, and s < 1 is said, never silent.
+  await page.locator('#measure-reverse').click();
+  await expect(sides).toContainText('Taken as basal: basal.png; as apical: apical.png', { timeout: 120_000 });
+  await expect(sides).toHaveAttribute('data-warning', 'ratio-below-1');
+  await expect(sides).toContainText('s = 0.500 < 1');
 });

@@ -188,6 +188,7 @@ export class TissueSheetElement extends HTMLElement {
       const headline = await realizationsHeadline({
         output,
         n,
+        inputs: { densityImage: this.image ?? undefined, meshFile: config.surface.kind === 'mesh' ? this.mesh : null },
         signal: this.runSignal(),
         onProgress: (done, total) => done < total && this.status(`Realization ${done + 1} of ${total} (seed ${config.seed + done}) for the mean % scutoids…`),
       });

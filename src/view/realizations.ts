@@ -8,7 +8,7 @@
 import type { Headline } from '../core/analysis/headline';
 import { headlineOverRealizations } from '../core/analysis/realizations';
 import type { SheetOutput } from '../run';
-import { acquirePipelineRunner, releasePipelineRunner, runInputs } from './pageRunner';
+import { acquirePipelineRunner, releasePipelineRunner, runInputs, type RunRequest } from './pageRunner';
 
 export interface RealizationsRequest {
   /** The result on screen: realization 1. */
@@ -16,6 +16,8 @@ export interface RealizationsRequest {
   /** Realizations in all (1: none more is run). */
   readonly n: number;
   readonly signal?: AbortSignal;
+  /** The run's own inputs (a decoded density image, a mesh file), as given to the first run. */
+  readonly inputs?: Pick<RunRequest, 'densityImage' | 'meshFile'>;
   /** After each realization: how many are done, of n. */
   readonly onProgress?: (done: number, n: number) => void;
 }
@@ -30,7 +32,7 @@ export async function realizationsHeadline(request: RealizationsRequest): Promis
   if (n <= 1 || !output.result.headline) return output.result.headline;
   const runner = acquirePipelineRunner();
   try {
-    const inputs = await runInputs(config);
+    const inputs = await runInputs(config, request.inputs ?? {});
     return await headlineOverRealizations(
       config.seed,
       n,
