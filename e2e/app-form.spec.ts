@@ -153,3 +153,30 @@ test('a refused inward thickness (19 µm) keeps the 17 µm result marked stale, 
   await expect(note).toBeHidden();
   await expect(error).toBeHidden();
 });
+
+test('smaller items: ratio <-> thickness converts the wall; the cells around a tube are said; won/lost name cells, not counts', async ({ page }) => {
+  await page.goto(linkTo({ ...TUBE, sheet: { surfaceRatio: 1.5 } }));
+  await waitForRun(page);
+  // 40 cells on a 2π·20 x 256 µm tube.
+  const note = page.locator('[data-path="surface.length"] .live-note');
+  await expect(note).toContainText('40 cells of about');
+  await expect(note).toContainText('cells around the tube (2π·radius = 125.7 µm)');
+  let before = await runs(page);
+  await page.getByLabel('Set the other surface by').selectOption('thickness');
+  await waitForRun(page, before);
+  // s = 1.5 outward on R = 20 µm: a 10 µm wall.
+  expect(urlConfig(page).sheet).toMatchObject({ surfaceRatio: null, thickness: 10 });
+  await expect(page.getByLabel('Thickness (µm)', { exact: true })).toHaveValue('10');
+  before = await runs(page);
+  await typeInto(page, 'Thickness (µm)', '30');
+  await waitForRun(page, before);
+  before = await runs(page);
+  await page.getByLabel('Set the other surface by').selectOption('ratio');
+  await waitForRun(page, before);
+  expect(urlConfig(page).sheet).toMatchObject({ surfaceRatio: 2.5, thickness: 0 });
+
+  await page.locator('#cell-id').fill('3');
+  await page.locator('#cell-id').press('Enter');
+  const info = page.locator('#cell-info');
+  await expect(info).toContainText(/Neighbours won from basal to apical: (none|cell #\d+|cells #\d+(, #\d+)* \(\d+\)); lost: (none|cell #\d+|cells #\d+(, #\d+)* \(\d+\))/);
+});

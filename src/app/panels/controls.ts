@@ -45,6 +45,13 @@ const GROUP_ORDER: [FieldSpec['group'], string][] = [
 /** Text beside a field that follows the configuration. */
 const LIVE_NOTES: Record<string, (c: Config) => string> = {
   'lloyd.maxIterations': (c) => `Voronoi ${c.lloyd.maxIterations + 1}: k = Lloyd iterations + 1 (Voronoi 1 = random sites).`,
+  // The tube's radius and length set how many cells go around it (issue 26).
+  'surface.length': (c) => {
+    if (c.surface.kind !== 'tube') return '';
+    const around = 2 * Math.PI * c.surface.radius;
+    const diameter = Math.sqrt((around * c.surface.length) / Math.max(1, c.cells));
+    return `${c.cells} cells of about ${diameter.toPrecision(3)} µm across: about ${(around / diameter).toFixed(1)} cells around the tube (2π·radius = ${around.toPrecision(4)} µm) and ${(c.surface.length / diameter).toFixed(1)} along it; the radius, the length and the cells set these.`;
+  },
 };
 
 interface Bound {

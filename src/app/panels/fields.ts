@@ -153,6 +153,26 @@ function withSurfaceKind(c: Config, kind: string): Config {
   } as Config;
 }
 
+/**
+ * A tube's wall in the other terms (issue 26): the surface ratio s of the current thickness t, or
+ * the thickness of the current s, around the seeded radius R (outward: R_outer = R·s, so
+ * t = R(s − 1); inward: the other radius is R/s, so t = R(1 − 1/s)).
+ */
+export function convertWall(c: Config, to: 'ratio' | 'thickness'): { surfaceRatio: number | null; thickness: number } {
+  if (c.surface.kind !== 'tube') return { surfaceRatio: to === 'ratio' ? 2 : null, thickness: to === 'ratio' ? 0 : thicknessForKind(c.surface) };
+  const r = c.surface.radius;
+  const inward = c.sheet.direction === 'inward';
+  if (to === 'thickness') {
+    const s = c.sheet.surfaceRatio;
+    if (s === null) return { surfaceRatio: null, thickness: c.sheet.thickness };
+    return { surfaceRatio: null, thickness: Number((inward ? r * (1 - 1 / s) : r * (s - 1)).toPrecision(6)) };
+  }
+  if (c.sheet.surfaceRatio !== null) return { surfaceRatio: c.sheet.surfaceRatio, thickness: 0 };
+  const t = c.sheet.thickness;
+  const s = inward ? (t < r ? r / (r - t) : 2) : (r + t) / r;
+  return { surfaceRatio: Number(Math.max(1, s).toPrecision(6)), thickness: 0 };
+}
+
 /** Largest thickness offered by the slider. */
 function maxThickness(c: Config): number {
   const s = c.surface;
@@ -254,7 +274,8 @@ export const FIELDS: FieldSpec[] = [
     description: () => 'A tube\'s other surface is set either by the surface ratio s = R_outer / R_inner (the published tube model) or by a thickness in µm.',
     show: isTube,
     get: (c) => (c.sheet.surfaceRatio === null ? 'thickness' : 'ratio'),
-    set: (c, v) => ({ ...c, sheet: { ...c.sheet, surfaceRatio: v === 'ratio' ? 2 : null, thickness: v === 'ratio' ? 0 : thicknessForKind(c.surface) } }),
+    // The current wall is converted, not replaced: s = (R + t) / R outward, R / (R - t) inward.
+    set: (c, v) => ({ ...c, sheet: { ...c.sheet, ...convertWall(c, v === 'ratio' ? 'ratio' : 'thickness') } }),
   },
   field('sheet.surfaceRatio', {
     label: 'Surface ratio R_outer / R_inner',
