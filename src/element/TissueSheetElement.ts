@@ -11,7 +11,7 @@ import type { MeshFile, SheetResult } from '../run';
 import { isAbort, LatestRunner } from '../view/pageRunner';
 import { computeSite as pipelineSite } from '../view/pageRunner';
 import { sweepInPage } from '../view/pageSweep';
-import type { TissueSheetSweepOptions, TissueSheetSweepProgressDetail, TissueSheetSweepResult } from './events';
+import type { TissueSheetSweepOptions, TissueSheetSweepProgressDetail, TissueSheetSweepResult, TissueSheetWaitingDetail, TissueSheetWarningDetail } from './events';
 import type { ComputeSite } from '../run';
 import { SheetView3D } from '../view/sheetView3d';
 import { trackCellHover } from '../view/cellHover';
@@ -103,6 +103,7 @@ export class TissueSheetElement extends HTMLElement {
   }
 
   connectedCallback(): void {
+    this.checkAttributes();
     if (!this.view) {
       try {
         this.view = new SheetView3D(this.shadow.querySelector('canvas')!);
@@ -121,6 +122,34 @@ export class TissueSheetElement extends HTMLElement {
     this.realizationsRun?.abort();
   }
 
+
+  /** Warnings in words (unknown attributes, a fallback to the page), shown under every status. */
+  private warnings: string[] = [];
+  private fellBack = false;
+
+  /** Attributes the element does not know are said, never ignored silently. */
+  private checkAttributes(): void {
+    const known = new Set([...Object.keys(ATTRIBUTES), ...OTHER_ATTRIBUTES]);
+    const global = /^(id|class|style|title|slot|hidden|lang|dir|tabindex|part|role|is|draggable|translate|inert|autofocus|contenteditable|spellcheck|nonce|exportparts|popover|accesskey|enterkeyhint|inputmode|(data|aria)-.+|on[a-z]+)$/;
+    this.warnings = this.warnings.filter((w) => !w.startsWith('unknown attribute'));
+    for (const name of this.getAttributeNames()) {
+      if (known.has(name) || global.test(name)) continue;
+      const suggestion = closest(name, [...known]);
+      const message = `unknown attribute "${name}" ignored${suggestion ? ` (did you mean "${suggestion}"?)` : ''}`;
+      this.warnings.push(message);
+      this.emit<TissueSheetWarningDetail>('warning', { message, attribute: name, ...(suggestion ? { suggestion } : {}) });
+    }
+  }
+
+  /** Once: runs fell back from the worker to the page; said in the status and as a warning event. */
+  private noteFallback(): void {
+    const site = pipelineSite();
+    if (this.fellBack || site.where !== 'page') return;
+    this.fellBack = true;
+    const message = `computed on the page, not in a worker (${site.reason}): the page may pause during runs`;
+    this.warnings.push(message);
+    this.emit<TissueSheetWarningDetail>('warning', { message });
+  }
 
   /** The realizations of the latest run: a newer run (or disconnecting) stops them. */
   private realizationsRun: AbortController | null = null;
@@ -155,6 +184,8 @@ export class TissueSheetElement extends HTMLElement {
     }
     const pending = pendingSources(config, location.href);
     if (pending.length > 0) return this.waitForApproval(pending);
+    // A question about an earlier configuration's source does not stay beside an unrelated run.
+    this.shadow.querySelector<HTMLElement>('.ask')!.hidden = true;
     this.status(`Running ${config.cells} cells…`);
     try {
       const output = await this.runner.start({
@@ -166,6 +197,7 @@ export class TissueSheetElement extends HTMLElement {
           this.emit<TissueSheetProgressDetail>('progress', { iteration: record.iteration, maxIterations, energy: record.energy, maxDisplacement: record.maxDisplacement });
         },
       });
+      this.noteFallback();
       const stack = viewStack(output);
       try {
         this.view?.setStack(stack);
@@ -268,6 +300,7 @@ export class TissueSheetElement extends HTMLElement {
    */
   private waitForApproval(pending: ForeignSource[]): Promise<SheetResult> {
     this.status('Waiting for permission to load a source from another site.');
+    this.emit<TissueSheetWaitingDetail>('waiting', { sources: pending.map((p) => ({ path: p.path, host: p.host })) });
     return new Promise<SheetResult>((resolve, reject) => {
       askToLoad(this.shadow, pending, () => this.run().then(resolve, reject));
     });
@@ -284,7 +317,7 @@ export class TissueSheetElement extends HTMLElement {
 
   private status(text: string, error = false): void {
     const line = this.shadow.querySelector<HTMLElement>('.status')!;
-    line.textContent = text;
+    line.textContent = this.warnings.length ? `${text} — ${this.warnings.join('; ')}.` : text;
     line.classList.toggle('error', error);
   }
 
@@ -299,4 +332,32 @@ export class TissueSheetElement extends HTMLElement {
   private emit<T>(type: keyof TissueSheetEventMap, detail: T): void {
     this.dispatchEvent(new CustomEvent(type, { detail, bubbles: true, composed: true }));
   }
+}
+
+/** The known name nearest to `name` (edit distance at most 2), or null. */
+function closest(name: string, known: readonly string[]): string | null {
+  let best: string | null = null;
+  let bestDistance = 3;
+  for (const candidate of known) {
+    const d = editDistance(name, candidate);
+    if (d < bestDistance) {
+      bestDistance = d;
+      best = candidate;
+    }
+  }
+  return best;
+}
+
+function editDistance(a: string, b: string): number {
+  const row = Array.from({ length: b.length + 1 }, (_, j) => j);
+  for (let i = 1; i <= a.length; i++) {
+    let previous = row[0];
+    row[0] = i;
+    for (let j = 1; j <= b.length; j++) {
+      const current = row[j];
+      row[j] = Math.min(row[j] + 1, row[j - 1] + 1, previous + (a[i - 1] === b[j - 1] ? 0 : 1));
+      previous = current;
+    }
+  }
+  return row[b.length];
 }

@@ -66,7 +66,25 @@ export type TissueSheetSweepResult = Pick<PageSweepResult, 'header' | 'runs' | '
  */
 export type TissueSheetCellHoverDetail = { cell: number; surface: number } | null;
 
+/** `waiting`: a run waits for the user's click to load a source from another origin. */
+export interface TissueSheetWaitingDetail {
+  sources: { path: string; host: string }[];
+}
+
+/**
+ * `warning`: something the element did not take or could not do as asked, in words: an attribute
+ * it does not know (ignored; `attribute`, and `suggestion` when one is close), or runs falling
+ * back from the worker to the page (`computeSite: { where: 'page', reason }`).
+ */
+export interface TissueSheetWarningDetail {
+  message: string;
+  attribute?: string;
+  suggestion?: string;
+}
+
 export interface TissueSheetEventMap {
+  waiting: CustomEvent<TissueSheetWaitingDetail>;
+  warning: CustomEvent<TissueSheetWarningDetail>;
   'cell-hover': CustomEvent<TissueSheetCellHoverDetail>;
   progress: CustomEvent<TissueSheetProgressDetail>;
   'sweep-progress': CustomEvent<TissueSheetSweepProgressDetail>;
