@@ -2,6 +2,7 @@ import { readFileSync, writeFileSync } from 'node:fs';
 import { expect, test, type Page } from '@playwright/test';
 import { waitForRun } from './appHelpers';
 import { readPngDpi, readPngText } from '../src/app/model/pngText';
+import { parseCsv } from '../src/core/sweep/csv';
 import { mkdtempSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
@@ -166,6 +167,17 @@ test('the measured-vs-model comparison as SVG and PNG: bars per layer, the model
   expect(text['tissue-sheet:method']).toContain('pixel-based adjacency');
   expect(JSON.parse(text['tissue-sheet:config']).model.realizations).toBe(2);
   if (process.env.FIGURE_DIR) writeFileSync(`${process.env.FIGURE_DIR}/measured.png`, png.bytes);
+
+  // The measured tissue's per-cell CSV parses back to the page's numbers.
+  const csv = (await download(page, '#measure-cells-csv')).text;
+  expect(csv).toMatch(/^# tissue-sheet measured tissue, per-cell table/);
+  expect(csv).toContain('# layers (the first is basal): basal: basal.png; apical: apical.png');
+  const [header, ...records] = parseCsv(csv.split(/\r?\n/).filter((l) => !l.startsWith('#')).join('\r\n')).records;
+  for (const column of ['label', 'valid', 'scutoid', 'sides_basal', 'sides_apical', 'won', 'lost', 'transitions', 'area_um2_basal', 'neighbour_labels_apical']) expect(header).toContain(column);
+  const rows = records.filter((r) => r.length === header.length).map((r) => Object.fromEntries(r.map((v, k) => [header[k], v])));
+  const valid = rows.filter((r) => r.valid === '1');
+  const scutoids = valid.filter((r) => r.scutoid === '1');
+  expect(Number(((100 * scutoids.length) / valid.length).toFixed(6))).toBeCloseTo(measured, 6);
 });
 
 test('measure: the page says which file it takes as basal and warns when s < 1 (files handed over apical first)', async ({ page }) => {

@@ -66,7 +66,7 @@ test('a misspelled attribute is said with a suggestion; "22,5" is 22.5; an empty
 
   const error = await page.evaluate(async () => {
     const element = document.getElementById('typo')!;
-    const failed = new Promise<{ message: string }>((resolve) => element.addEventListener('error', (e) => resolve((e as CustomEvent).detail), { once: true }));
+    const failed = new Promise<{ message: string }>((resolve) => element.addEventListener('error', (e) => resolve((e as unknown as CustomEvent).detail), { once: true }));
     element.setAttribute('cells', '');
     return (await failed).message;
   });

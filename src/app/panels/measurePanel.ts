@@ -9,6 +9,8 @@
  */
 import type { MeasuredResult, ModelComparison } from '../../core/measure';
 import { downloadChart } from './chartExports';
+import { download } from './exports';
+import { measuredCellCsv } from '../model/measuredCsv';
 import { MeasureClient, MeasureFileError } from '../../view/measureClient';
 import type { LayerPicture } from '../../view/measurePicture';
 import type { MeasureRequestOptions } from '../../view/measureProtocol';
@@ -36,6 +38,7 @@ const TEMPLATE = `
     <button type="button" id="measure-again" disabled>Measure again</button>
     <button type="button" id="measure-reverse" disabled title="The first file is the basal layer">Reverse layer order</button>
     <button type="button" id="measure-json" disabled title="The measured result with its comparison, as tissue-sheet measure writes it">Result JSON</button>
+    <button type="button" id="measure-cells-csv" disabled title="One row per cell: valid, scutoid, sides, areas and neighbours per layer, won, lost, transitions">Per-cell CSV</button>
     <button type="button" id="measure-figure-svg" disabled title="The measured-vs-model polygon distributions as SVG, at the width chosen under the exports">Comparison SVG</button>
     <button type="button" id="measure-figure-png" disabled title="The measured-vs-model polygon distributions as PNG, at the DPI and width chosen under the exports">Comparison PNG</button>
   </div>
@@ -86,6 +89,7 @@ export class MeasurePanel {
     this.$('#measure-reverse').addEventListener('click', () => void this.measure([...this.files].reverse()));
     this.$('#measure-json').addEventListener('click', () => this.download());
     for (const kind of ['svg', 'png'] as const) this.$(`#measure-figure-${kind}`).addEventListener('click', () => void this.figure(kind));
+    this.$('#measure-cells-csv').addEventListener('click', () => this.result && download('measured-cells.csv', measuredCellCsv(this.result), 'text/csv'));
     this.$('#measure-alert [data-dismiss]').addEventListener('click', () => (this.$('#measure-alert').hidden = true));
     this.bindDrop();
   }
@@ -184,7 +188,7 @@ export class MeasurePanel {
     this.result = result;
     this.comparison = null;
     this.$<HTMLButtonElement>('#measure-json').disabled = false;
-    for (const kind of ['svg', 'png']) this.$<HTMLButtonElement>(`#measure-figure-${kind}`).disabled = false;
+    for (const id of ['#measure-figure-svg', '#measure-figure-png', '#measure-cells-csv']) this.$<HTMLButtonElement>(id).disabled = false;
     this.$('#measure-results').hidden = false;
     renderHeadline(this.root, result, null, null);
     this.$('#measure-info').textContent = describe(result);
