@@ -180,3 +180,23 @@ test('smaller items: ratio <-> thickness converts the wall; the cells around a t
   const info = page.locator('#cell-info');
   await expect(info).toContainText(/Neighbours won from basal to apical: (none|cell #\d+|cells #\d+(, #\d+)* \(\d+\)); lost: (none|cell #\d+|cells #\d+(, #\d+)* \(\d+\))/);
 });
+
+test('closed surfaces: a mesh thickness slider follows the mesh geometry; a typed thickness is never clamped; cells far too small are said', async ({ page }) => {
+  const MESH = { surface: { kind: 'mesh', src: '/meshes/egg-chamber.ply', scale: 1 }, resolution: 32, cells: 40, seed: 1, lloyd: { maxIterations: 1 }, sheet: { thickness: 0.1 } };
+  await page.goto(linkTo({ ...MESH, surface: { ...MESH.surface, scale: 50 }, sheet: { thickness: 5 } }));
+  await waitForRun(page);
+  // The slider's end from the mesh's size (equivalent radius of its area), not its scale (50).
+  const area = Number(/area ([\d.]+) µm²/.exec((await page.locator('#run-info').textContent()) ?? '')![1]);
+  const slider = page.locator('input[name="sheet.thickness"]');
+  await expect(slider).toHaveAttribute('max', String(Math.ceil(Math.sqrt(area / (4 * Math.PI)))));
+  const before = await runs(page);
+  await typeInto(page, 'Thickness (µm)', '15');
+  await waitForRun(page, before);
+  expect(urlConfig(page).sheet.thickness).toBe(15);
+  await expect(page.getByLabel('Thickness (µm)', { exact: true })).toHaveValue('15');
+
+  // 100,000 cells on a 25 µm sphere: 0.28 µm across, said at once.
+  await page.goto(linkTo({ surface: { kind: 'sphere', radius: 25 }, cells: 100000, lloyd: { maxIterations: 1 }, sheet: { thickness: 2 } }));
+  await expect(page.locator('#status')).toContainText('100000 cells on 7850 µm² are about 0.28 µm across', { timeout: 30_000 });
+  await page.locator('#cancel').click();
+});

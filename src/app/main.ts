@@ -18,8 +18,8 @@ import { ConfigControls } from './panels/controls';
 import { bindExports } from './panels/exports';
 import { rerunNote, type OpenedFile } from './model/project';
 import { renderHeadline, renderResults } from './panels/results';
-import { explainRefusal } from './model/refusal';
-import { changedFields } from './panels/fields';
+import { cellSizeNote, explainRefusal } from './model/refusal';
+import { changedFields, setMeshExtent } from './panels/fields';
 import { realizationsHeadline } from '../view/realizations';
 import { checkRealizations } from '../core/analysis/realizations';
 import type { Headline } from '../core/analysis/headline';
@@ -333,6 +333,11 @@ async function show(output: SheetOutput, draft: Config, live = false, opened = f
   await nextTask();
   if (stack !== shown) return; // a newer result is being drawn
   renderResults($('main'), shown);
+  const surface = shown.result.config.surface;
+  if (surface.kind === 'mesh' && shown.result.closed) {
+    setMeshExtent(surface.src, surface.scale, shown.result.closed.area);
+    controls.refreshControls();
+  }
   if (waiting) renderHeadline($('main'), shown, { state: 'waiting', n });
   await nextTask();
   if (stack !== shown) return;
@@ -376,7 +381,8 @@ async function run(draft: Config, live = false): Promise<void> {
   setState('running');
   markStale();
   cancelButton.disabled = false;
-  statusLine.textContent = 'Running…';
+  const sizeNote = cellSizeNote(config);
+  statusLine.textContent = sizeNote ? `Running… ${sizeNote}` : 'Running…';
   progress.max = Math.max(1, config.lloyd.maxIterations);
   progress.value = 0;
   const started = performance.now();
@@ -386,7 +392,7 @@ async function run(draft: Config, live = false): Promise<void> {
       onIteration(record, total) {
         progress.max = Math.max(1, total);
         progress.value = record.iteration;
-        statusLine.textContent = `Lloyd iteration ${record.iteration} / ${total}, energy ${record.energy.toPrecision(6)} µm⁴`;
+        statusLine.textContent = `Lloyd iteration ${record.iteration} / ${total}, energy ${record.energy.toPrecision(6)} µm⁴${sizeNote ? `. ${sizeNote}` : ''}`;
       },
     });
     await show(output, input, live);
@@ -395,7 +401,8 @@ async function run(draft: Config, live = false): Promise<void> {
     if (!live || !dragging) saveConfig(input, openedLink);
     runs += 1;
     document.body.dataset.runs = String(runs);
-    statusLine.textContent = `Done in ${((performance.now() - started) / 1000).toFixed(1)} s.${siteNote}`;
+    const note = cellSizeNote(config, output.result.closed?.area ?? undefined);
+    statusLine.textContent = `Done in ${((performance.now() - started) / 1000).toFixed(1)} s.${siteNote}${note ? ` ${note}` : ''}`;
     progress.value = progress.max;
     setState('done');
     markStale();

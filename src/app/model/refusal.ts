@@ -110,3 +110,35 @@ export function explainRefusal(error: unknown, config: AnyConfig | null): Refusa
   const words = FIELD_WORDS[field] ?? field;
   return { message: `${words ? `${words}: ` : ''}this value cannot be computed (see the details). Change it, or the resolution under Advanced.`, details: text };
 }
+
+/** The seeded surface's area in µm² where the configuration alone gives it (null for meshes). */
+export function surfaceArea(config: AnyConfig): number | null {
+  const s = config.surface;
+  switch (s.kind) {
+    case 'tube':
+      return 2 * Math.PI * s.radius * s.length;
+    case 'plane':
+      return s.width * s.height;
+    case 'sphere':
+      return 4 * Math.PI * s.radius ** 2;
+    case 'ellipsoid': {
+      // Knud Thomsen's approximation (within 1.1 %).
+      const p = 1.6075;
+      return 4 * Math.PI * (((s.a * s.b) ** p + (s.a * s.c) ** p + (s.b * s.c) ** p) / 3) ** (1 / p);
+    }
+    default:
+      return null;
+  }
+}
+
+/**
+ * A word when the cells would be smaller than any real cell (under 1 µm across): e.g. 100,000
+ * cells on a 25 µm sphere are 0.28 µm across. `area` is the surface's (µm²) when known from a
+ * result (meshes); null when the size is plausible.
+ */
+export function cellSizeNote(config: AnyConfig, area: number | null = surfaceArea(config)): string | null {
+  if (area === null || !(area > 0)) return null;
+  const diameter = Math.sqrt(area / config.cells);
+  if (diameter >= 1) return null;
+  return `Note: ${config.cells} cells on ${Number(area.toPrecision(3))} µm² are about ${diameter.toPrecision(2)} µm across, far smaller than an epithelial cell (a few µm or more): use fewer cells or a larger surface.`;
+}

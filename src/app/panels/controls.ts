@@ -121,6 +121,11 @@ export class ConfigControls {
     return structuredClone(this.draft);
   }
 
+  /** Writes the draft into the controls again (e.g. a slider's range that follows a result). */
+  refreshControls(): void {
+    this.refresh();
+  }
+
   /** Replaces the draft (e.g. from a URL) and updates every control. */
   setConfig(config: Config): void {
     this.draft = structuredClone(config);

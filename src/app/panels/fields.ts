@@ -173,7 +173,18 @@ export function convertWall(c: Config, to: 'ratio' | 'thickness'): { surfaceRati
   return { surfaceRatio: Number(Math.max(1, s).toPrecision(6)), thickness: 0 };
 }
 
-/** Largest thickness offered by the slider. */
+/**
+ * The size of the mesh last computed (its surface's equivalent radius sqrt(area / 4π), µm), by
+ * source and scale: a mesh's thickness slider follows its geometry, not its scale.
+ */
+let meshExtent: { src: string; scale: number; radius: number } | null = null;
+
+/** Records the size of a computed mesh (from the result's surface area). */
+export function setMeshExtent(src: string, scale: number, area: number): void {
+  meshExtent = { src, scale, radius: Math.sqrt(area / (4 * Math.PI)) };
+}
+
+/** Largest thickness offered by the slider (the number box beside it takes any valid value). */
 function maxThickness(c: Config): number {
   const s = c.surface;
   const inward = c.sheet.direction === 'inward';
@@ -184,7 +195,12 @@ function maxThickness(c: Config): number {
     const hi = Math.max(s.a, s.b, s.c);
     return Math.max(1, Math.floor(inward ? ((lo * lo) / hi) * 0.95 : 2 * hi));
   }
-  if (s.kind === 'mesh') return Math.max(1, Math.round(s.scale * (inward ? 0.5 : 1)));
+  if (s.kind === 'mesh') {
+    // From the mesh's geometry once it has been computed (µm), else from its scale.
+    const known = meshExtent && meshExtent.src === s.src ? meshExtent.radius * (s.scale / meshExtent.scale) : null;
+    if (known !== null) return Math.max(1, Math.ceil(known * (inward ? 0.5 : 1)));
+    return Math.max(1, Math.round(s.scale * (inward ? 0.5 : 1)));
+  }
   return 400;
 }
 
