@@ -200,3 +200,12 @@ test('closed surfaces: a mesh thickness slider follows the mesh geometry; a type
   await expect(page.locator('#status')).toContainText('100000 cells on 7850 µm² are about 0.28 µm across', { timeout: 30_000 });
   await page.locator('#cancel').click();
 });
+
+test('a value filled in without Enter runs once typing pauses', async ({ page }) => {
+  await page.goto(linkTo(TUBE));
+  await waitForRun(page);
+  const before = await runs(page);
+  await page.getByLabel('Radius (µm)', { exact: true }).fill('24,5');
+  await waitForRun(page, before);
+  expect(urlConfig(page).surface.radius).toBe(24.5);
+});

@@ -147,3 +147,25 @@ test("the element's result event carries the headline over its realizations attr
   expect(detail.headline.realizationValues[0]).toBe(detail.percentScutoids);
   expect(detail.headline.ci95).toHaveLength(2);
 });
+
+test('the address carries n: a link with realizations=3 shows the mean of 3; raising n writes it; reloading keeps it', async ({ page }) => {
+  await page.goto(`${linkTo(SMALL)}&realizations=3`);
+  await waitForRun(page);
+  await expect(page.locator('#realizations')).toHaveValue('3');
+  await waitForHeadline(page);
+  await expect(page.locator('#percent-scutoids')).toHaveAttribute('data-realizations', '3');
+  await typeInto(page, '#realizations', '6');
+  await page.locator('#realizations').blur();
+  await expect(page.locator('#percent-scutoids')).toHaveAttribute('data-realizations', '6', { timeout: 120_000 });
+  expect(new URL(page.url()).searchParams.get('realizations')).toBe('6');
+  const mean = await page.locator('#percent-scutoids').getAttribute('data-value');
+  await page.reload();
+  await waitForRun(page);
+  await waitForHeadline(page);
+  await expect(page.locator('#realizations')).toHaveValue('6');
+  await expect(page.locator('#percent-scutoids')).toHaveAttribute('data-value', mean!);
+  // The default n is left out of the address.
+  await typeInto(page, '#realizations', '5');
+  await page.locator('#realizations').blur();
+  await expect.poll(() => new URL(page.url()).searchParams.get('realizations')).toBeNull();
+});

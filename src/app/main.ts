@@ -21,7 +21,7 @@ import { renderHeadline, renderResults } from './panels/results';
 import { cellSizeNote, explainRefusal } from './model/refusal';
 import { changedFields, setMeshExtent } from './panels/fields';
 import { realizationsHeadline } from '../view/realizations';
-import { checkRealizations } from '../core/analysis/realizations';
+import { checkRealizations, DEFAULT_REALIZATIONS } from '../core/analysis/realizations';
 import type { Headline } from '../core/analysis/headline';
 import { SweepPanel } from './panels/sweepPanel';
 import { mountLloydMovie } from './panels/lloydMovie';
@@ -138,7 +138,33 @@ async function startRealizations(output: SheetOutput): Promise<void> {
   }
 }
 
+/**
+ * The number of realizations is part of the result on screen: the address carries it
+ * (`&realizations=N`) when it is not the default, and a link with it sets the control.
+ */
+const REALIZATIONS_PARAM = 'realizations';
+{
+  const fromLink = new URL(location.href).searchParams.get(REALIZATIONS_PARAM);
+  if (fromLink !== null) {
+    try {
+      realizationsInput.value = String(checkRealizations(fromLink, 'realizations (in the link)'));
+    } catch (error) {
+      // After the page's modules are set up (the form exists then).
+      queueMicrotask(() => showError((error as Error).message));
+    }
+  }
+}
+
+function syncRealizationsParam(): void {
+  const url = new URL(location.href);
+  const n = realizationsInput.value.trim();
+  if (n === String(DEFAULT_REALIZATIONS) || realizationsInput.getAttribute('aria-invalid') === 'true') url.searchParams.delete(REALIZATIONS_PARAM);
+  else url.searchParams.set(REALIZATIONS_PARAM, n);
+  if (url.toString() !== location.href) history.replaceState(null, '', url.toString());
+}
+
 realizationsInput.addEventListener('change', () => {
+  syncRealizationsParam();
   if (!stack) return;
   const output = { result: { ...stack.result, headline: stack.result.headline ? drawnHeadline(stack.result.headline) : null }, labelImages: stack.surfaces.map((s) => s.image) } as SheetOutput;
   void startRealizations(output);
@@ -398,7 +424,10 @@ async function run(draft: Config, live = false): Promise<void> {
     await show(output, input, live);
     // Saved once it ran: the URL and the session hold the configuration of the result on screen
     // (during a drag only once it ends: history.replaceState took 5-30 ms per streamed result).
-    if (!live || !dragging) saveConfig(input, openedLink);
+    if (!live || !dragging) {
+      saveConfig(input, openedLink);
+      syncRealizationsParam();
+    }
     runs += 1;
     document.body.dataset.runs = String(runs);
     const note = cellSizeNote(config, output.result.closed?.area ?? undefined);

@@ -65,6 +65,9 @@ interface Bound {
   box?: HTMLInputElement;
 }
 
+/** Quiet time after the last key before a typed number is taken without Enter, ms. */
+const TYPING_PAUSE_MS = 700;
+
 /** Kinds typed as numbers: text boxes read by readDecimal (a decimal comma is a decimal). */
 const NUMBER_KINDS = new Set<FieldSpec['kind']>(['number', 'integer', 'optional-number']);
 
@@ -196,13 +199,21 @@ export class ConfigControls {
     const bound: Bound = { spec, row, label, input, output, liveNote, box };
     input.addEventListener('change', () => void this.edit(bound, false));
     if (spec.live) input.addEventListener('input', () => void this.edit(bound, true));
-    box?.addEventListener('change', () => void this.edit(bound, false, box));
-    // Typing: each readable value is an edit (the page debounces edits), so a value typed or
-    // filled in runs without Enter; what cannot be read yet ("22,", "-") waits for the change.
+    // Typing: a value typed or filled in runs without Enter once typing pauses (TYPING_PAUSE_MS)
+    // and reads as a number; Enter or leaving the box (change) takes it at once, and cancels the
+    // pause, so an unreadable final value ("1,234.5") is refused without its prefix ("1,234")
+    // having run.
     const typed = box ?? (NUMBER_KINDS.has(spec.kind) ? (input as HTMLInputElement) : undefined);
-    typed?.addEventListener('input', () => {
-      if (typed.value.trim() !== '' && readDecimal(typed.value).ok) void this.edit(bound, false, typed);
-    });
+    let pause: ReturnType<typeof setTimeout> | undefined;
+    if (typed) {
+      typed.addEventListener('input', () => {
+        clearTimeout(pause);
+        if (typed.value.trim() !== '' && readDecimal(typed.value).ok) pause = setTimeout(() => void this.edit(bound, false, typed), TYPING_PAUSE_MS);
+      });
+      // Before the input's own "change" listener above (boxes: the only one).
+      typed.addEventListener('change', () => clearTimeout(pause));
+    }
+    box?.addEventListener('change', () => void this.edit(bound, false, box));
     return bound;
   }
 
