@@ -158,7 +158,7 @@ test('smaller items: ratio <-> thickness converts the wall; the cells around a t
   await page.goto(linkTo({ ...TUBE, sheet: { surfaceRatio: 1.5 } }));
   await waitForRun(page);
   // 40 cells on a 2π·20 x 256 µm tube.
-  const note = page.locator('[data-path="surface.length"] .live-note');
+  const note = page.locator('[data-path="surface.length"] .field-note');
   await expect(note).toContainText('40 cells of about');
   await expect(note).toContainText('cells around the tube (2π·radius = 125.7 µm)');
   let before = await runs(page);
@@ -208,4 +208,41 @@ test('a value filled in without Enter runs once typing pauses', async ({ page })
   await page.getByLabel('Radius (µm)', { exact: true }).fill('24,5');
   await waitForRun(page, before);
   expect(urlConfig(page).surface.radius).toBe(24.5);
+});
+
+test("the sweep's vary list says when a mode switch changes its field; a loaded sweep shows its spec in the form", async ({ page }) => {
+  await page.goto(linkTo(TUBE));
+  await waitForRun(page);
+  const field = page.locator('[name="sweep-field"]');
+  await page.locator('[name="sweep-from"]').click();
+  await expect(field).toHaveValue('sheet.surfaceRatio');
+  const before = await runs(page);
+  await page.getByLabel('Set the other surface by').selectOption('thickness');
+  await waitForRun(page, before);
+  await page.locator('[name="sweep-from"]').click();
+  await expect(field).toHaveValue('sheet.thickness');
+  await expect(page.locator('[data-sweep="status"]')).toHaveText('vary: Surface ratio R_outer / R_inner is not a field of this configuration now; the sweep varies Thickness instead.');
+
+  // A sweep, its files, then a fresh page loads them: the form shows the loaded spec.
+  await page.locator('[name="sweep-from"]').fill('2');
+  await page.locator('[name="sweep-to"]').fill('6');
+  await page.locator('[name="sweep-steps"]').fill('3');
+  await page.locator('[data-sweep="run"]').click();
+  await page.locator('#sweep[data-done="3"]').waitFor({ timeout: 120_000 });
+  const save = async (name: string) => {
+    const [file] = await Promise.all([page.waitForEvent('download'), page.locator(`[data-sweep="${name}"]`).click()]);
+    const path = `${await file.path()}-${file.suggestedFilename()}`;
+    await file.saveAs(path);
+    return path;
+  };
+  const files = [await save('spec'), await save('runs-csv')];
+  await page.goto(linkTo(TUBE));
+  await waitForRun(page);
+  await page.locator('[name="sweep-load"]').setInputFiles(files);
+  await expect(page.locator('[data-sweep="status"]')).toContainText('Loaded a sweep of 3 runs');
+  await expect(field).toHaveValue('sheet.thickness');
+  await expect(page.locator('[name="sweep-from"]')).toHaveValue('2');
+  await expect(page.locator('[name="sweep-to"]')).toHaveValue('6');
+  await expect(page.locator('[name="sweep-steps"]')).toHaveValue('3');
+  await expect(page.locator('[name="sweep-realizations"]')).toHaveValue('1');
 });

@@ -365,6 +365,7 @@ async function show(output: SheetOutput, draft: Config, live = false, opened = f
     controls.refreshControls();
   }
   if (waiting) renderHeadline($('main'), shown, { state: 'waiting', n });
+  if (!live) sweep.configChanged();
   await nextTask();
   if (stack !== shown) return;
   showCharts(shown, live);

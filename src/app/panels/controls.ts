@@ -192,7 +192,8 @@ export class ConfigControls {
     let liveNote: HTMLElement | undefined;
     if (LIVE_NOTES[spec.path]) {
       liveNote = document.createElement('small');
-      liveNote.className = 'note live-note';
+      // Voronoi k keeps the class .live-note; other notes that follow the configuration are .field-note.
+      liveNote.className = spec.path === 'lloyd.maxIterations' ? 'note live-note' : 'note field-note';
       row.append(liveNote);
     }
     fieldset.append(row);

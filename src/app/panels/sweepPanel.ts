@@ -83,6 +83,11 @@ export class SweepPanel {
     this.root.querySelector('.sweep-controls')?.addEventListener('focusin', () => this.refreshChoices());
   }
 
+  /** The configuration changed (a result is shown): the fields that can be varied follow it. */
+  configChanged(): void {
+    this.refreshChoices();
+  }
+
   /** The tidy runs.csv of the sweep on screen (the CLI's columns). */
   get csv(): string {
     return this.runsCsv;
@@ -129,7 +134,39 @@ export class SweepPanel {
         return option;
       }),
     );
-    this.field.value = choices.some((c) => c.value === previous) ? previous : choices[1]?.value ?? VORONOI_K;
+    const announce = this.field.dataset.shown === 'true';
+    this.field.dataset.shown = 'true';
+    if (choices.some((c) => c.value === previous)) {
+      this.field.value = previous;
+      return;
+    }
+    // The field varied is not one of this configuration any more (e.g. the tube's wall is now
+    // set by thickness): its counterpart is taken, and the change is said, never silent.
+    const counterpart = previous === 'sheet.surfaceRatio' ? 'sheet.thickness' : previous === 'sheet.thickness' ? 'sheet.surfaceRatio' : null;
+    const next = counterpart && choices.some((c) => c.value === counterpart) ? counterpart : (choices[1]?.value ?? VORONOI_K);
+    this.field.value = next;
+    if (announce) {
+      const name = (value: string) => FIELDS.find((f) => f.path === value)?.label ?? (value === VORONOI_K ? 'Voronoi k' : value);
+      this.status(`vary: ${name(previous)} is not a field of this configuration now; the sweep varies ${name(next)} instead.`);
+      this.root.dataset.varyChanged = `${previous}->${next}`;
+    }
+  }
+
+  /** A loaded sweep's spec in the sweep's form: the field varied, from, to, points, realizations. */
+  private showSpecInForm(spec: unknown): void {
+    const s = spec as { vary?: Record<string, unknown[]>; realizations?: number };
+    const [path, values] = Object.entries(s.vary ?? {})[0] ?? [];
+    if (!path || !Array.isArray(values) || values.length === 0) return;
+    const voronoi = path === 'lloyd.maxIterations';
+    const numbers = values.map(Number).map((v) => (voronoi ? v + 1 : v));
+    const value = voronoi ? VORONOI_K : path;
+    if (![...this.field.options].some((o) => o.value === value)) this.field.append(new Option(FIELDS.find((f) => f.path === path)?.label ?? path, value));
+    this.field.value = value;
+    this.field.dataset.shown = 'true';
+    this.input('from').value = String(Math.min(...numbers));
+    this.input('to').value = String(Math.max(...numbers));
+    this.input('steps').value = String(numbers.length);
+    this.input('realizations').value = String(s.realizations ?? 1);
   }
 
   private button(name: string): HTMLButtonElement {
@@ -331,6 +368,7 @@ export class SweepPanel {
       this.spec = spec;
       this.runsCsv = csv;
       this.aggregateCsv = '';
+      this.showSpecInForm(spec);
       this.chartFor(plan, spec);
       const rows = readCsvTable(csv).rows;
       this.chart.add(rows);
