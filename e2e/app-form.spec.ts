@@ -246,3 +246,20 @@ test("the sweep's vary list says when a mode switch changes its field; a loaded 
   await expect(page.locator('[name="sweep-steps"]')).toHaveValue('3');
   await expect(page.locator('[name="sweep-realizations"]')).toHaveValue('1');
 });
+
+test('a mesh missing on the server is said to be missing, not "not a PLY"', async ({ page }) => {
+  await page.goto(linkTo({ surface: { kind: 'mesh', src: '/meshes/no-such-mesh.ply', scale: 50 }, resolution: 32, cells: 40, lloyd: { maxIterations: 1 }, sheet: { thickness: 5 } }));
+  const alert = page.locator('#link-alert, #error');
+  await expect(alert.first()).toContainText('cannot fetch "/meshes/no-such-mesh.ply" (not found', { timeout: 60_000 });
+  expect(await alert.first().textContent()).not.toMatch(/not a PLY/i);
+});
+
+test("an uploaded mesh does not keep the sample's scale: its coordinates are taken as µm", async ({ page }) => {
+  await page.goto(linkTo({ surface: { kind: 'mesh', src: '/meshes/egg-chamber.ply', scale: 50 }, resolution: 32, cells: 40, lloyd: { maxIterations: 1 }, sheet: { thickness: 0.2 } }));
+  await waitForRun(page);
+  const before = await runs(page);
+  await page.locator('input[name="surface.src"]').setInputFiles('public/meshes/organoid.ply');
+  await waitForRun(page, before);
+  expect(urlConfig(page).surface).toMatchObject({ src: 'organoid.ply', scale: 1 });
+  await expect(page.locator('input[name="surface.scale"]')).toHaveValue('1');
+});

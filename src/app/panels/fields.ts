@@ -229,7 +229,14 @@ export const FIELDS: FieldSpec[] = [
     get: (c) => (c.surface.kind === 'mesh' ? (sampleName(c.surface.src) ?? '') : ''),
     set: (c, v) => (c.surface.kind === 'mesh' && v ? { ...c, surface: { ...c.surface, src: sampleUrl(String(v)) } } : c),
   },
-  field('surface.src', { label: 'Mesh file (.ply, .obj, .stl)', group: 'Surface', kind: 'mesh-file', note: UPLOAD_NOTE }),
+  field('surface.src', {
+    label: 'Mesh file (.ply, .obj, .stl)',
+    group: 'Surface',
+    kind: 'mesh-file',
+    note: `${UPLOAD_NOTE} A file replacing a sample starts at Scale 1: its coordinates are taken as µm (change Scale for other units).`,
+    // A user's file is not the sample: the sample's scale (50 µm per unit) is not carried over.
+    set: (c, v) => (c.surface.kind === 'mesh' ? { ...c, surface: { ...c.surface, src: String(v), scale: sampleName(c.surface.src) ? 1 : c.surface.scale } } : c),
+  }),
   field('surface.scale', { label: 'Scale', group: 'Surface', step: 1 }),
   field('surface.geodesic', { label: 'Compare with the geodesic (heat-method) Voronoi', group: 'Surface' }),
   field('surface.length', { label: 'Length', group: 'Surface', step: 1 }),
