@@ -68,7 +68,10 @@ test('a misspelled attribute is said with a suggestion; "22,5" is 22.5; an empty
     const element = document.getElementById('typo')!;
     const failed = new Promise<{ message: string }>((resolve) => element.addEventListener('error', (e) => resolve((e as unknown as CustomEvent).detail), { once: true }));
     element.setAttribute('cells', '');
-    return (await failed).message;
+    const message = (await failed).message;
+    // Reading config does not throw while an attribute is invalid; configError says why.
+    const el = element as unknown as { config: { surface: { radius: number } }; configError: string | null };
+    return { message, radius: el.config.surface.radius, configError: el.configError };
   });
-  expect(error).toBe('cells: the attribute is empty; give a number or remove it');
+  expect(error).toEqual({ message: 'cells: the attribute is empty; give a number or remove it', radius: 22.5, configError: 'cells: the attribute is empty; give a number or remove it' });
 });

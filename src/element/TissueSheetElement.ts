@@ -6,7 +6,7 @@
  */
 import type { AnyConfig, ConfigInput } from '../core/config';
 import type { GrayImage } from '../core/density';
-import { ConfigError } from '../core/config';
+import { ConfigError, validateAnyConfig } from '../core/config';
 import type { MeshFile, SheetResult } from '../run';
 import { isAbort, LatestRunner } from '../view/pageRunner';
 import { computeSite as pipelineSite } from '../view/pageRunner';
@@ -49,7 +49,34 @@ export class TissueSheetElement extends HTMLElement {
   }
 
   /** The effective, validated configuration (throws ConfigError when the attributes are invalid). */
+  /**
+   * The effective configuration. While an attribute is invalid it does not throw (issue 26): it
+   * gives the last valid configuration (of the last run, else the defaults with the `config`
+   * property), and `configError` says what is wrong; `run()` and the `error` event report it.
+   */
   get config(): AnyConfig {
+    try {
+      const config = this.readConfig();
+      this.lastValid = config;
+      return config;
+    } catch {
+      return this.lastValid ?? this.last?.config ?? validateAnyConfig(this.base ?? {});
+    }
+  }
+
+  /** What makes the attributes invalid, in words, or null when they are valid. */
+  get configError(): string | null {
+    try {
+      this.readConfig();
+      return null;
+    } catch (error) {
+      return (error as Error).message;
+    }
+  }
+
+  private lastValid: AnyConfig | null = null;
+
+  private readConfig(): AnyConfig {
     return configFromAttributes(this, this.base, this.mesh?.name);
   }
 
@@ -169,7 +196,8 @@ export class TissueSheetElement extends HTMLElement {
     let config: AnyConfig;
     let n: number;
     try {
-      config = this.config;
+      config = this.readConfig();
+      this.lastValid = config;
       n = this.realizations;
     } catch (error) {
       this.fail(error);
