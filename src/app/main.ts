@@ -261,8 +261,14 @@ bindHelp($('#help-open'), $<HTMLDialogElement>('#help'));
 const viewPanel = new ViewPanel($('main'), $('#unrolled'));
 const charts = new Charts($('#chart-polygons'), $('#chart-energy'), $('#chart-sweep'), $('#chart-lewis'), $('#chart-aboav'));
 const controls = new ConfigControls($('#controls'), initialConfig(link), {
-  onEdit: (draft, live) => {
+  onEdit: (draft, live, forced) => {
     queueMicrotask(markStale);
+    // A mesh file uploaded under the name the configuration already holds (a link asking for
+    // the file again): the draft is the same, but the file is new, so it runs.
+    if (forced) {
+      void run(draft);
+      return;
+    }
     // A slider's "change" after its last "input" asks for the run already under way: skip it,
     // but draw the drag's draft pictures again in full once it has settled.
     dragging = live;

@@ -13,7 +13,8 @@ import { readDecimal } from '../../core/config/decimal';
 import { FIELDS, type FieldSpec } from './fields';
 
 export interface ControlsEvents {
-  onEdit(draft: Config, live: boolean): void;
+  /** `forced`: run even when the draft did not change (a file uploaded under the name already asked for). */
+  onEdit(draft: Config, live: boolean, forced?: boolean): void;
   onError(message: string): void;
 }
 
@@ -237,7 +238,7 @@ export class ConfigControls {
       this.draft = next;
     }
     this.refresh();
-    this.events.onEdit(this.config, live);
+    this.events.onEdit(this.config, live, spec.kind === 'mesh-file');
   }
 
   private async readValue(spec: FieldSpec, input: HTMLInputElement | HTMLSelectElement): Promise<unknown> {
