@@ -65,7 +65,7 @@ export function omittedMethods(config: AnyConfig, reported: readonly AdjacencyMe
       : 'engine "auto" took the exact engine (Lloyd on the exact Voronoi diagram on the CPU) because the renderer here is software, not a GPU, and that engine makes no label images';
   return asked
     .filter((method) => !reported.includes(method))
-    .map((method) => ({ method, reason: method === 'labels' ? `${why}; choose Engine "gpu" (Advanced) for the labels method` : 'not computed by this run' }));
+    .map((method) => ({ method, reason: method === 'labels' ? `${why}; set engine "gpu" (in the page: Engine, under Advanced) for the labels method` : 'not computed by this run' }));
 }
 
 /** The omitted methods in one line ("labels method left out: ..."), or null when none was. */
@@ -137,5 +137,6 @@ export function describeHeadline(headline: Headline | null): string {
   const why = headline.noValidCells ?? headline.byConstruction?.message ?? null;
   const counted = headline.realizations > 1 ? `${headline.validCells} of ${headline.cells} cells counted in realization 1` : `${headline.validCells} of ${headline.cells} cells counted`;
   const omitted = describeOmitted(headline);
-  return `${value} (${headline.method} method${protocol}, ${counted}; ${describeRealizations(headline)}), Voronoi ${headline.voronoiK}${why ? `. ${why}` : ''}${omitted ? `. ${omitted}` : ''}`;
+  const sentences = [why, omitted && `${omitted.charAt(0).toUpperCase()}${omitted.slice(1)}`].filter((x): x is string => Boolean(x)).map((x) => x.replace(/\.$/, ''));
+  return `${value} (${headline.method} method${protocol}, ${counted}; ${describeRealizations(headline)}), Voronoi ${headline.voronoiK}${sentences.map((x) => `. ${x}`).join('')}`;
 }
