@@ -1,5 +1,6 @@
 import { surfaceFromLabels } from '../core/analysis';
-import { checkClosedFeasible, checkClosedSheet, layerStepOf, makeCubeGrid, steppedOffsets, type ClosedConfig } from '../core/config';
+import { checkClosedFeasible, checkClosedSheet, makeCubeGrid, type ClosedConfig } from '../core/config';
+import { sheetOffsets } from '../core/sheetGeometry';
 import { KdTree3 } from '../core/closed/kdTree';
 import { ellipsoidProjector, PROJECTION_STRIDE } from '../core/closed/projector';
 import { sampleSurface } from '../core/cubemap/sample';
@@ -85,8 +86,7 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
 
   stack(config, geometry) {
     const { sheet } = config;
-    const other = (sheet.direction === 'outward' ? 1 : -1) * sheet.thickness;
-    const offsets = closedStackOffsets(sheet, other);
+    const offsets = sheetOffsets(config);
     const count = offsets.length;
     return offsets.map((offset, k) => {
       const role = k === 0 ? 'seeded' : k === count - 1 ? 'other' : 'layer';
@@ -183,14 +183,6 @@ function closestPointsOn(axes: readonly [number, number, number], sites: ClosedS
     storeProjection(moved, i, buffer, 0, n);
   }
   return { positions: moved.positions, texels: moved.texels };
-}
-
-/** Signed offsets of a closed stack: sheet.layers evenly spaced, or every sheet.layerStep µm. */
-function closedStackOffsets(sheet: ClosedConfig['sheet'], other: number): number[] {
-  const step = layerStepOf(sheet);
-  if (step !== null) return steppedOffsets(Math.abs(other), step).map((d) => (other < 0 ? -d : d));
-  const count = sheet.layers + 2;
-  return Array.from({ length: count }, (_, k) => (other * k) / (count - 1));
 }
 
 /** The n x 6n atlas as a grid record: square texels of the mean texel area. */

@@ -16,7 +16,7 @@
  *   anything is allocated and compared with the caller's budget.
  */
 import type { Grid } from '../grid';
-import { surfaceStack } from '../sheetGeometry';
+import { sheetOffsets, surfaceStack } from '../sheetGeometry';
 import { makeCubeGrid, makeGrid, unrolledDomain } from './feasibility';
 import { isClosedConfig, type AnyConfig, type Config } from './types';
 import { ConfigError } from './validate';
@@ -62,7 +62,8 @@ export interface RunEstimate {
 export function stackGrids(config: AnyConfig): { width: number; height: number }[] {
   if (isClosedConfig(config)) {
     const { n } = makeCubeGrid(config);
-    return Array.from({ length: config.sheet.layers + 2 }, () => ({ width: n, height: 6 * n }));
+    // One cube map per surface the pipeline builds (layers, or every sheet.layerStep µm).
+    return sheetOffsets(config).map(() => ({ width: n, height: 6 * n }));
   }
   const seeded: Grid = makeGrid(config);
   return surfaceStack(config, seeded).map((s) => ({ width: s.grid.width, height: s.grid.height }));
