@@ -12,7 +12,6 @@ import {
   placeClosedSites,
   texelNeighbours,
   type ClosedSites,
-  type CubeSurfaceSample,
 } from '../core/closed/geometry';
 import type { Grid } from '../core/grid';
 import type { EngineChoice } from './enginePolicy';
@@ -22,31 +21,12 @@ import { CubeCcvtEngine } from '../gpu/cubeEngine';
 import { ClosedLloydRun } from '../gpu/cubeLloyd';
 import { closedExactAdjacency } from './closedExact';
 import { closedSection } from './closedRecord';
-import { checkOffsets, prepareClosedSurface, type ClosedSurface } from './closedSurface';
-import type { Labeller, StackLayer, SurfaceFamily } from './family';
+import { checkOffsets, prepareClosedSurface } from './closedSurface';
+import type { CubeMapGeometry, CubeMapLayer, CubeMapProjected } from './cubeMapTypes';
+import type { Labeller, SurfaceFamily } from './family';
 import { relaxation } from './relax';
 
-/** A closed surface on its cube map, with the texel neighbour table every surface of its stack shares. */
-export interface CubeMapGeometry extends ClosedSurface {
-  /** Four edge-neighbour texels per texel, across face edges. */
-  readonly neighbours: Int32Array;
-}
-
-/** A surface of a closed sheet's stack, sampled on the seeded surface's cube map. */
-export interface CubeMapLayer extends StackLayer {
-  readonly sample: CubeSurfaceSample;
-  /**
-   * `sheet.offset = "axes"`: this layer is the ellipsoid with these semi-axes (a + t, b + t,
-   * c + t) and sites move to their closest points on it; absent: the parallel surface.
-   */
-  readonly axes?: readonly [number, number, number];
-}
-
-/** Sites moved onto a layer: their 3D positions, and the texels they were seeded in. */
-export interface CubeMapProjected {
-  readonly positions: Float64Array;
-  readonly texels: Int32Array;
-}
+export type { CubeMapGeometry, CubeMapLayer, CubeMapProjected } from './cubeMapTypes';
 
 /**
  * Sphere, ellipsoid and genus-0 meshes on a cube-map geometry image (docs/closed-surfaces.md):

@@ -316,7 +316,8 @@ export function cubeLabelAdjacency(
 export function cubeBruteForceLabels(position: ArrayLike<number>, sites: ArrayLike<number>, count: number): Int32Array {
   const texels = position.length / 3;
   const out = new Int32Array(texels);
-  let lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  let lo = [Infinity, Infinity, Infinity];
+  const hi = [-Infinity, -Infinity, -Infinity];
   for (let i = 0; i < count; i++) for (let c = 0; c < 3; c++) {
     lo[c] = Math.min(lo[c], sites[3 * i + c]);
     hi[c] = Math.max(hi[c], sites[3 * i + c]);

@@ -1,7 +1,7 @@
 /** The grid a configuration implies, and the checks that need it (or several fields at once). */
 import type { Grid } from '../grid';
 import { checkMethods } from './methods';
-import { ConfigError } from './validate';
+import { ConfigError } from './configError';
 import type { AnyConfig, ClosedConfig, ClosedSurfaceConfig, Config, SurfaceConfig } from './types';
 
 // ---------------------------------------------------------------------------------------------

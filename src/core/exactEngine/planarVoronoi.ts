@@ -142,7 +142,6 @@ export class PlanarVoronoi {
     raw.clear();
     const { triangles, halfedges, inedges } = d;
     const cc = this.circumcenters;
-    const points = this.points;
     const e0 = inedges[i];
     if (e0 < 0) return false;
     const onHull = halfedges[e0] === -1;
