@@ -8,3 +8,4 @@
  */
 export { createHeadlessContext, headlessRendererName } from './headless';
 export { decodeGrayPng, loadGrayImage } from './image';
+export { loadMeshFile } from './meshFile';
