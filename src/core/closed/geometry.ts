@@ -3,12 +3,12 @@
  * (apical) surfaces, label adjacency across face edges, a brute-force nearest-site reference,
  * and the curvature bound for offsets of a mesh.
  */
-import type { LabelAdjacency } from '../labels';
+import { ContactRows, type LabelAdjacency } from '../labels';
 import { texelFromIndex, texelIndex, wrapTexel, type Vec3 } from '../cubemap/cubemap';
 import type { CubeGeometryImage } from '../cubemap/sample';
 import type { TriangleMesh } from '../mesh/types';
 import { vertexNormals } from '../mesh/types';
-import { createRandom } from '../random';
+import { createRandom, searchCdf } from '../random';
 import { directionTexel, PROJECTION_STRIDE, type ClosedProjector } from './projector';
 
 /** Sites on a closed surface: xyz, unit normal, atlas texel per site. */
@@ -76,24 +76,18 @@ export function placeClosedSites(
     if (failures > 20000) {
       throw new Error(`minSpacing: could place only ${placed} of ${count} sites at least ${minSpacing} µm apart; lower minSpacing or cells`);
     }
-    const r = random.next() * total;
-    let lo = 0, hi = texels - 1;
-    while (lo < hi) {
-      const mid = (lo + hi) >> 1;
-      if (cdf[mid] > r) hi = mid;
-      else lo = mid + 1;
-    }
+    const texel = searchCdf(cdf, texels, random.next() * total);
     // Jitter within the texel: up to half the spacing towards the neighbours along i and j
     // (wrapped across face edges), then onto the surface.
-    const { face, i, j } = texelFromIndex(lo, n);
+    const { face, i, j } = texelFromIndex(texel, n);
     const ju = random.next() - 0.5, jv = random.next() - 0.5;
     const ni = wrapTexel(face, i + (ju >= 0 ? 1 : -1), j, n);
     const nj = wrapTexel(face, i, j + (jv >= 0 ? 1 : -1), n);
     const ki = texelIndex(ni.face, ni.i, ni.j, n), kj = texelIndex(nj.face, nj.i, nj.j, n);
     const fu = Math.abs(ju), fv = Math.abs(jv);
-    const x = position[3 * lo] + fu * (position[3 * ki] - position[3 * lo]) + fv * (position[3 * kj] - position[3 * lo]);
-    const y = position[3 * lo + 1] + fu * (position[3 * ki + 1] - position[3 * lo + 1]) + fv * (position[3 * kj + 1] - position[3 * lo + 1]);
-    const z = position[3 * lo + 2] + fu * (position[3 * ki + 2] - position[3 * lo + 2]) + fv * (position[3 * kj + 2] - position[3 * lo + 2]);
+    const x = position[3 * texel] + fu * (position[3 * ki] - position[3 * texel]) + fv * (position[3 * kj] - position[3 * texel]);
+    const y = position[3 * texel + 1] + fu * (position[3 * ki + 1] - position[3 * texel + 1]) + fv * (position[3 * kj + 1] - position[3 * texel + 1]);
+    const z = position[3 * texel + 2] + fu * (position[3 * ki + 2] - position[3 * texel + 2]) + fv * (position[3 * kj + 2] - position[3 * texel + 2]);
     projector.project(x, y, z, buffer, 0);
     const px = buffer[0], py = buffer[1], pz = buffer[2];
     if (minSpacing > 0) {
@@ -291,22 +285,14 @@ export function cubeLabelAdjacency(
   }
   for (let c = 0; c < count; c++) degree[c + 1] += degree[c];
   const offsets = degree;
-  const neighboursOut = new Int32Array(offsets[count]);
-  const lengths = new Float64Array(offsets[count]);
-  const staircaseLengths = new Float64Array(offsets[count]);
-  const cursor = offsets.slice(0, count);
+  const rows = new ContactRows(offsets, count);
   const sorted = [...pairs.entries()].sort((x, y) => x[0] - y[0]);
   for (const [key, staircase] of sorted) {
     const a = Math.floor(key / count), b = key % count;
-    const length = unbiased.get(key)!;
-    neighboursOut[cursor[a]] = b;
-    staircaseLengths[cursor[a]] = staircase;
-    lengths[cursor[a]++] = length;
-    neighboursOut[cursor[b]] = a;
-    staircaseLengths[cursor[b]] = staircase;
-    lengths[cursor[b]++] = length;
+    rows.add(a, b, unbiased.get(key)!, staircase);
   }
-  return { count, offsets, neighbours: neighboursOut, lengths, staircaseLengths, texels, area, touchesBorder: new Uint8Array(count) };
+  const { lengths, staircaseLengths } = rows;
+  return { count, offsets, neighbours: rows.neighbours, lengths, staircaseLengths, texels, area, touchesBorder: new Uint8Array(count) };
 }
 
 /**
