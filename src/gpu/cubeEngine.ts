@@ -238,10 +238,6 @@ export class CubeCcvtEngine {
     readTargetRGBA(this.renderer, this.labelTargets[this.current], this.sumsStaging, 0, 0, 1, 1);
   }
 
-  get labelTexture(): THREE.Texture {
-    return this.labelTargets[this.current].texture;
-  }
-
   dispose(): void {
     for (const pass of [this.clearPass, this.splatPass, this.floodPass, this.scatterPass]) pass?.dispose();
     for (const target of [...this.labelTargets, ...this.sumsTargets]) target.dispose();

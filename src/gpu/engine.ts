@@ -6,7 +6,6 @@ import centroidScatterFrag from '../shaders/centroidScatter.frag';
 import centroidScatterVert from '../shaders/centroidScatter.vert';
 import idSplatFrag from '../shaders/idSplat.frag';
 import refreshLabelsFrag from '../shaders/refreshLabels.frag';
-import resolveIdsFrag from '../shaders/resolveIds.frag';
 import fullscreenVert from '../shaders/fullscreen.vert';
 import jumpFloodFrag from '../shaders/jumpFlood.frag';
 import labelSplatFrag from '../shaders/labelSplat.frag';
@@ -52,9 +51,7 @@ export class CcvtEngine {
   private readonly weightTexture: THREE.DataTexture;
   private readonly labelTargets: [THREE.WebGLRenderTarget, THREE.WebGLRenderTarget];
   private current = 0;
-  private idsStale = true;
   private readonly idMapTarget: THREE.WebGLRenderTarget;
-  private readonly idTarget: THREE.WebGLRenderTarget;
   private readonly sumsTarget: THREE.WebGLRenderTarget;
   private readonly gather: GatherCentroids | null;
   private readonly packedLabels: PackedLabels;
@@ -63,7 +60,6 @@ export class CcvtEngine {
   private readonly refreshPass: ShaderPass;
   private readonly splatPass: ShaderPass;
   private readonly idSplatPass: ShaderPass;
-  private readonly resolvePass: ShaderPass;
   private readonly floodPass: ShaderPass;
   private readonly centroidPass: ShaderPass | null;
   private readonly coldSteps: number[];
@@ -102,13 +98,13 @@ export class CcvtEngine {
       THREE.RedFormat,
     );
     // Labels: the nearest site's position (RG32F) per texel, flooded; the id map: each site's
-    // id at the texel it is splatted to; ids: each texel's site id, resolved after a flood.
+    // id at the texel it is splatted to. A texel's site id is its position's entry in the id map
+    // (read by the centroid passes and the packed readback; never resolved into a texture).
     this.labelTargets = [
       createFloatTarget(grid.width, grid.height, THREE.RGFormat),
       createFloatTarget(grid.width, grid.height, THREE.RGFormat),
     ];
     this.idMapTarget = createFloatTarget(grid.width, grid.height, THREE.RedFormat);
-    this.idTarget = createFloatTarget(grid.width, grid.height, THREE.RedFormat);
     this.sumsTarget = createFloatTarget(this.siteTextureWidth, this.siteTextureHeight, THREE.RGBAFormat);
     this.sums = new Float32Array(this.siteTextureWidth * this.siteTextureHeight * 4);
     this.coldSteps = coldSchedule(grid.width, grid.height, options.variant);
@@ -127,7 +123,6 @@ export class CcvtEngine {
     this.refreshPass = new ShaderPass('triangles', fullscreenVert, refreshLabelsFrag, { ...metric, labels, idMap }, false, defines);
     this.splatPass = new ShaderPass('points', labelSplatVert, labelSplatFrag, { ...metric }, false, defines);
     this.idSplatPass = new ShaderPass('points', labelSplatVert, idSplatFrag, { ...metric }, false, defines);
-    this.resolvePass = new ShaderPass('triangles', fullscreenVert, resolveIdsFrag, { ...metric, labels, idMap }, false, defines);
     this.floodPass = new ShaderPass(
       'triangles',
       fullscreenVert,
@@ -199,7 +194,6 @@ export class CcvtEngine {
     // Splatting on top of old labels makes sure every site owns at least its own texel.
     this.splatPass.draw(this.renderer, this.labelTargets[this.current], this.siteCount);
     this.current = floodPingPong(this.renderer, this.floodPass, this.labelTargets, this.current, steps);
-    this.idsStale = true;
     this.lastPassCount = steps.length;
   }
 
@@ -207,20 +201,6 @@ export class CcvtEngine {
   private clearToEmpty(target: THREE.WebGLRenderTarget): void {
     this.renderer.setRenderTarget(target);
     this.context.gl.clearBufferfv(this.context.gl.COLOR, 0, EMPTY_LABEL);
-  }
-
-  /**
-   * Site id per texel for the current labels, resolved through the id map on first use after
-   * a flood (by the centroid pass, a readback or a view): a flood itself ends at positions,
-   * like the plainest jump flood.
-   */
-  private resolvedIds(): THREE.Texture {
-    if (this.idsStale) {
-      this.resolvePass.uniforms.labels.value = this.labelTargets[this.current].texture;
-      this.resolvePass.draw(this.renderer, this.idTarget);
-      this.idsStale = false;
-    }
-    return this.idTarget.texture;
   }
 
   /** Warm schedules depend only on their first step: built once each, so the loop allocates nothing. */
@@ -283,15 +263,10 @@ export class CcvtEngine {
     return this.gather;
   }
 
-  /** Site id per texel after the last flood (R32F; for views that draw the diagram). */
-  get labelTexture(): THREE.Texture {
-    return this.resolvedIds();
-  }
-
   dispose(): void {
-    const passes = [this.refreshPass, this.splatPass, this.idSplatPass, this.floodPass, this.resolvePass, this.centroidPass];
+    const passes = [this.refreshPass, this.splatPass, this.idSplatPass, this.floodPass, this.centroidPass];
     for (const pass of passes) pass?.dispose();
-    for (const target of [...this.labelTargets, this.idMapTarget, this.idTarget, this.sumsTarget]) target.dispose();
+    for (const target of [...this.labelTargets, this.idMapTarget, this.sumsTarget]) target.dispose();
     this.gather?.dispose();
     this.packedLabels.dispose();
     this.siteTexture.dispose();

@@ -5,7 +5,7 @@ import siteTexel from './siteTexel.glsl';
  * Shared GLSL preamble of every pass that reads flood labels: precision, the grid metric, the
  * site texel lookup, the \`labels\` (each texel's nearest site position) and \`idMap\` (each
  * site's id at its splat texel) samplers, and labelIdAt: the site id of a texel's flood label
- * (-1 for none). Used by the id resolve, id packing, warm-start refresh and centroid passes.
+ * (-1 for none). Used by the id packing, warm-start refresh and centroid passes.
  */
 export default /* glsl */ `
 precision highp float;
