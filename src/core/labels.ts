@@ -8,6 +8,7 @@
  * All positions are in texel units and all lengths/areas in µm (µm²), per grid.ts. The CPU
  * references the tests check the GPU passes against live in tests/oracles/labels.ts.
  */
+import { BORDER_X_END, BORDER_X_START, BORDER_Y_END, BORDER_Y_START } from './border';
 import { type Grid, wrapDelta } from './grid';
 
 // ---------------------------------------------------------------------------------------------
@@ -85,11 +86,8 @@ function addRun(grid: Grid, sums: Float64Array, id: number, j: number, siteY: nu
 // Adjacency
 // ---------------------------------------------------------------------------------------------
 
-/** Bits of LabelAdjacency.borderSides: which open domain edges a cell owns texels on. */
-export const BORDER_X_START = 1; // first column, x axis not periodic
-export const BORDER_X_END = 2; // last column
-export const BORDER_Y_START = 4; // first row, y axis not periodic (a tube's y = 0 end)
-export const BORDER_Y_END = 8; // last row (a tube's far end)
+// Bits of LabelAdjacency.borderSides: which open domain edges a cell owns texels on (core/border.ts).
+export { BORDER_X_END, BORDER_X_START, BORDER_Y_END, BORDER_Y_START } from './border';
 
 /** Cell adjacency from a label image, in compressed sparse rows. */
 export interface LabelAdjacency {

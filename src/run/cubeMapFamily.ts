@@ -1,4 +1,4 @@
-import { surfaceFromLabels } from '../core/analysis';
+import { labMinBoundaryLength, surfaceFromLabels } from '../core/analysis';
 import { checkClosedFeasible, checkClosedSheet, makeCubeGrid, type ClosedConfig } from '../core/config';
 import { sheetOffsets } from '../core/sheetGeometry';
 import { KdTree3 } from '../core/closed/kdTree';
@@ -117,7 +117,7 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
 
   minContactLengths(config, geometry, layers) {
     const { totalArea } = geometry.image;
-    const length = config.sheet.minContactLength ?? (6 / 102.4) * Math.sqrt(totalArea / config.cells);
+    const length = config.sheet.minContactLength ?? labMinBoundaryLength(totalArea, config.cells);
     // Every surface has the same cube map (n² texels per face), so the threshold, like the
     // lab's pixels, scales with each surface's linear size (sqrt of its area ratio).
     return { reported: length, perLayer: layers.map((layer) => length * Math.sqrt(layer.sample.totalArea / totalArea)) };
