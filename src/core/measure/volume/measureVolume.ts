@@ -1,0 +1,330 @@
+/**
+ * Measures a 3D label volume of a curved epithelium (docs/measure.md, "Measuring a volume"):
+ * decode, classify the background into outside / lumen, find each cell's faces on both
+ * surfaces and the contact curves between cells there (lengths in µm along the curve), then
+ * run the same analysis as the layers mode and a simulated stack on [basal, apical].
+ */
+import { analysisRecord, analyzeSurfaces, csrFromLists, labMinBoundaryLength, type SurfaceAdjacency } from '../../analysis';
+import { MeasureInputError } from '../errors';
+import type { LabelFileInput } from '../layerPlan';
+import type { MeasuredAnalysis } from '../measuredResult';
+import { parseImageJDescription } from '../pixelSize';
+import { scanContactEdges, type ContactEdges } from './contactEdges';
+import { curveLength } from './curveLength';
+import { scanFaces, surfaceArea, VOLUME_FACE_NAMES, type FaceScan, type FaceTally } from './faceScan';
+import { quartetFilter } from './quartets';
+import { decodeVolumeTiff, inspectVolumeTiff, MAX_VOLUME_VOXELS } from './tiffVolume';
+import { chooseVoxelSize, parseOme, type VoxelSize } from './voxelSize';
+import { classifyVoxels, LUMEN, OUTSIDE, type VoxelClasses } from './voxelClasses';
+import type { LateralContactRecord, VolumeCellRecord, VolumeContactRecord, VolumeExclusion, VolumeMeasuredResult, VolumeSurfaceRecord } from './volumeResult';
+
+export interface MeasureVolumeOptions {
+  /** µm along width, height and between pages; overrides the file's metadata. */
+  readonly voxelSize?: { x: number; y: number; z: number };
+  /** Which background the apical surface faces (default the lumen). */
+  readonly apical?: 'lumen' | 'outside';
+  /** Voxels with this label are lumen, not a cell. */
+  readonly lumenLabel?: number;
+  /** Shortest contact curve (µm) that makes two cells neighbours; default per surface. */
+  readonly minContact?: number;
+  readonly quartetFilter?: boolean;
+  /** Largest volume accepted (voxels); default MAX_VOLUME_VOXELS. */
+  readonly maxVoxels?: number;
+  readonly version: string;
+  readonly onProgress?: (line: string) => void;
+}
+
+const now = () => performance.now();
+const LAYER_NAMES = ['basal', 'apical'] as const;
+
+export function measureVolume(file: LabelFileInput, options: MeasureVolumeOptions): VolumeMeasuredResult {
+  const start = now();
+  const name = file.name;
+  let bytes: Uint8Array | null = file.read();
+  const fileBytes = bytes.length;
+  const header = inspectVolumeTiff(bytes, name, options.maxVoxels ?? MAX_VOLUME_VOXELS);
+  checkHyperstack(header.chain.description, name);
+  const { voxelSize, warnings } = chooseVoxelSize(header.chain, name, options.voxelSize);
+  const volume = decodeVolumeTiff(bytes, name, header);
+  bytes = null; // the decoded volume is all we need from here
+  const { width: W, height: H, depth: D } = volume;
+  options.onProgress?.(`read ${name}: ${W} x ${H} x ${D} voxels, ${volume.bitsPerSample}-bit, voxel ${voxelSize.x} x ${voxelSize.y} x ${voxelSize.z} µm (${voxelSize.source})`);
+  const readMs = now() - start;
+
+  const t1 = now();
+  const classes = classifyVoxels(volume, name, options.lumenLabel);
+  const lumenComponents = classes.components.filter((c) => c.kind === 'lumen');
+  if (lumenComponents.length === 0 && classes.labelledLumenVoxels === 0) {
+    throw new MeasureInputError(
+      name,
+      'no lumen: all background is one component connected to the outside; a volume needs a lumen (a cyst, organoid or tube), or give --lumen-label N',
+    );
+  }
+  const classifyMs = now() - t1;
+
+  const t2 = now();
+  const cells = classes.labels.length;
+  const faces = scanFaces(classes.ids, classes.classes, W, H, D, cells);
+  const edges = scanContactEdges(classes.ids, classes.classes, W, H, D);
+  const apicalFacesOutside = options.apical === 'outside';
+  // Layer 0 basal, layer 1 apical: which background class each faces.
+  const layerClass = apicalFacesOutside ? [LUMEN, OUTSIDE] : [OUTSIDE, LUMEN];
+  const curves = layerClass.map((s) => contactCurves(edges, s, W, H, voxelSize));
+  const contactsMs = now() - t2;
+  options.onProgress?.(`contacts: ${cells} cells, ${edges.count} contact edges, ${curves[0].size} basal and ${curves[1].size} apical contact curves`);
+
+  const t3 = now();
+  const result = assemble(name, fileBytes, header.chain.pages.length, volume.bitsPerSample, W, H, D, voxelSize, classes, faces, curves, layerClass, options, warnings);
+  const analysisMs = now() - t3;
+  return { ...result, timings: { readMs, classifyMs, contactsMs, analysisMs, totalMs: now() - start } };
+}
+
+/** ImageJ hyperstacks and OME files with several channels or time points are not one label volume. */
+function checkHyperstack(description: string | null, file: string): void {
+  const imagej = parseImageJDescription(description ?? undefined);
+  if (imagej && imagej.channels > 1) throw new MeasureInputError(file, `an ImageJ hyperstack with ${imagej.channels} channels; save the label channel alone`);
+  if (imagej && imagej.frames > 1) throw new MeasureInputError(file, `an ImageJ hyperstack with ${imagej.frames} time points; save one time point`);
+  const ome = parseOme(description);
+  if (ome && ome.channels > 1) throw new MeasureInputError(file, `an OME-TIFF with ${ome.channels} channels; save the label channel alone`);
+  if (ome && ome.times > 1) throw new MeasureInputError(file, `an OME-TIFF with ${ome.times} time points; save one time point`);
+}
+
+/** Contact curves on one surface: per pair key a * 2^26 + b of dense ids (1-based), their lengths. */
+type Curves = Map<number, { a: number; b: number; length: number; staircase: number; edges: number; pieces: number }>;
+
+function contactCurves(edges: ContactEdges, surface: number, W: number, H: number, size: VoxelSize): Curves {
+  const groups = new Map<number, number[]>();
+  for (let e = 0; e < edges.count; e++) {
+    if (edges.surface[e] !== surface) continue;
+    const key = edges.a[e] * 2 ** 26 + edges.b[e];
+    let list = groups.get(key);
+    if (!list) groups.set(key, (list = []));
+    list.push(e);
+  }
+  const VX = W + 1;
+  const VXY = (W + 1) * (H + 1);
+  const position = (v: number, out: Float64Array, o: number) => {
+    out[o] = (v % VX) * size.x;
+    out[o + 1] = (Math.floor(v / VX) % (H + 1)) * size.y;
+    out[o + 2] = Math.floor(v / VXY) * size.z;
+  };
+  const curves: Curves = new Map();
+  for (const [key, list] of groups) {
+    const c = curveLength(edges.v0, edges.v1, list, position);
+    curves.set(key, { a: edges.a[list[0]], b: edges.b[list[0]], ...c });
+  }
+  return curves;
+}
+
+function assemble(
+  file: string,
+  fileBytes: number,
+  pages: number,
+  bitsPerSample: 8 | 16 | 32,
+  W: number,
+  H: number,
+  D: number,
+  voxelSize: VoxelSize,
+  classes: VoxelClasses,
+  faces: FaceScan,
+  curves: Curves[],
+  layerClass: number[],
+  options: MeasureVolumeOptions,
+  warnings: string[],
+): Omit<VolumeMeasuredResult, 'timings'> {
+  const n = classes.labels.length;
+  const { x: sx, y: sy, z: sz } = voxelSize;
+  const faceArea: [number, number, number] = [sy * sz, sx * sz, sx * sy];
+  const tallies: FaceTally[] = layerClass.map((s) => (s === OUTSIDE ? faces.outside : faces.lumen));
+
+  // Areas (µm²) per layer per cell (dense 0-based), and which cells reach each layer.
+  const areas = tallies.map((t) => Float64Array.from({ length: n }, (_, i) => surfaceArea(t.counts, t.signed, 3 * (i + 1), faceArea)));
+  const reaches = tallies.map((t) => Uint8Array.from({ length: n }, (_, i) => (t.counts[3 * i + 3] + t.counts[3 * i + 4] + t.counts[3 * i + 5] > 0 ? 1 : 0)));
+
+  const minContacts = [0, 1].map((k) => {
+    if (options.minContact !== undefined) return options.minContact;
+    let area = 0;
+    let count = 0;
+    for (let i = 0; i < n; i++) if (reaches[k][i]) (area += areas[k][i]), count++;
+    return count > 0 ? labMinBoundaryLength(area, count) : 0;
+  });
+
+  const invalid = new Uint8Array(n);
+  for (let i = 0; i < n; i++) if (!reaches[0][i] || !reaches[1][i] || faces.volumeFaces[i + 1] !== 0) invalid[i] = 1;
+
+  // Neighbour sets per layer (dense 0-based ids) after min-contact, then the optional quartet filter.
+  const lengthOf = curves.map((c) => (a: number, b: number) => c.get(Math.min(a, b) * 2 ** 26 + Math.max(a, b))?.length ?? 0);
+  let sets = curves.map((c, k) => {
+    const s: Set<number>[] = Array.from({ length: n }, () => new Set<number>());
+    for (const curve of c.values()) {
+      if (curve.length < minContacts[k]) continue;
+      s[curve.a - 1].add(curve.b - 1);
+      s[curve.b - 1].add(curve.a - 1);
+    }
+    return s;
+  }) as [Set<number>[], Set<number>[]];
+  let quartetRecord: VolumeMeasuredResult['quartetFilter'] = null;
+  if (options.quartetFilter) {
+    const filtered = quartetFilter(sets);
+    sets = filtered.sets;
+    const label = (i: number) => classes.labels[i];
+    quartetRecord = {
+      quartets: filtered.quartets.map((q) => q.map(label)),
+      removed: filtered.removed.map(([a, b, layer]) => ({ labels: [label(a), label(b)] as [number, number], layer })),
+    };
+  }
+
+  const surfaces: SurfaceAdjacency[] = [0, 1].map((k) => {
+    const lists = sets[k].map((s) => [...s].sort((x, y) => x - y));
+    const lengths = lists.map((list, i) => list.map((j) => lengthOf[k](i + 1, j + 1)));
+    return { count: n, adjacency: csrFromLists(lists, lengths), areas: areas[k], touchesBorder: invalid, label: LAYER_NAMES[k] };
+  });
+  const analysis = analyzeSurfaces(surfaces);
+  const record = analysisRecord('labels', minContacts[0], analysis);
+  const measuredAnalysis: MeasuredAnalysis = {
+    ...record,
+    method: 'labels',
+    cells: record.cells.map((cell) => ({ ...cell, label: classes.labels[cell.id] })),
+  };
+
+  const contactLists = curves.map((c) => {
+    const out: VolumeContactRecord[][] = Array.from({ length: n }, () => []);
+    for (const curve of c.values()) {
+      const common = { length: curve.length, staircase: curve.staircase, edges: curve.edges, pieces: curve.pieces };
+      out[curve.a - 1].push({ label: classes.labels[curve.b - 1], ...common });
+      out[curve.b - 1].push({ label: classes.labels[curve.a - 1], ...common });
+    }
+    for (const list of out) list.sort((x, y) => x.label - y.label);
+    return out;
+  });
+  const lateral = lateralContacts(faces, n, faceArea, classes.labels);
+  const lateralMin = Math.max(...minContacts) ** 2;
+
+  const voxelVolume = sx * sy * sz;
+  let missing = 0;
+  let touching = 0;
+  const cells: VolumeCellRecord[] = classes.labels.map((label, id) => {
+    const exclusion = exclusionOf(id, reaches, faces.volumeFaces[id + 1]);
+    if (exclusion?.missingFrom.length) missing++;
+    if (exclusion?.touchesFaces.length) touching++;
+    const centroids = tallies.map((t, k) => (reaches[k][id] ? centroid(t, id + 1, faceArea, voxelSize) : null));
+    const [cb, ca] = centroids;
+    return {
+      id,
+      label,
+      valid: analysis.cells.valid[id] === 1,
+      scutoid: analysis.cells.scutoid[id] === 1,
+      volume: classes.cellVoxels[id + 1] * voxelVolume,
+      height: cb && ca ? Math.hypot(cb[0] - ca[0], cb[1] - ca[1], cb[2] - ca[2]) : null,
+      areas: [areas[0][id], areas[1][id]],
+      sides: analysis.cells.sides.map((s) => s[id]),
+      neighbours: sets.map((s) => [...s[id]].map((j) => classes.labels[j]).sort((x, y) => x - y)),
+      contacts: contactLists.map((lists) => lists[id]),
+      won: analysis.cells.won[id],
+      lost: analysis.cells.lost[id],
+      transitions: analysis.cells.transitions[id],
+      neighbours3D: analysis.cells.neighbours3D[id],
+      lateralNeighbours: lateral[id].filter((c) => c.area >= lateralMin).map((c) => c.label),
+      lateralContacts: lateral[id],
+      exclusion,
+    };
+  });
+  if (analysis.summary.validCells === 0) warnings.push('no valid cell: every cell touches a face of the volume or does not reach both the lumen and the outside');
+
+  const layers: VolumeSurfaceRecord[] = [0, 1].map((k) => {
+    let area = 0;
+    let count = 0;
+    for (let i = 0; i < n; i++) if (reaches[k][i]) (area += areas[k][i]), count++;
+    return {
+      name: LAYER_NAMES[k],
+      faces: layerClass[k] === OUTSIDE ? 'outside' : 'lumen',
+      cells: count,
+      area,
+      minContact: minContacts[k],
+      contactPairs: curves[k].size,
+    };
+  });
+  const background = backgroundRecord(classes);
+  return {
+    software: { name: 'tissue-sheet', version: options.version },
+    kind: 'measured',
+    inputs: {
+      files: [{ name: file, bytes: fileBytes, format: 'tiff', pages }],
+      volume: { width: W, height: H, depth: D, bitsPerSample, labels: n, voxels: W * H * D },
+      voxelSize: { x: sx, y: sy, z: sz, source: voxelSize.source, detail: voxelSize.detail },
+      layers,
+      background,
+      options: {
+        apical: options.apical ?? 'lumen',
+        lumenLabel: options.lumenLabel ?? null,
+        minContact: options.minContact ?? null,
+        minContactSource: options.minContact === undefined ? 'default' : 'option',
+        quartetFilter: options.quartetFilter ?? false,
+      },
+    },
+    analyses: [measuredAnalysis],
+    cells,
+    exclusions: { touchesFaces: touching, missing, total: analysis.summary.excludedCells },
+    quartetFilter: quartetRecord,
+    comparison: null,
+    warnings,
+  };
+}
+
+function backgroundRecord(classes: VoxelClasses): VolumeMeasuredResult['inputs']['background'] {
+  let outsideVoxels = 0;
+  let lumenVoxels = classes.labelledLumenVoxels;
+  let lumenComponents = 0;
+  let pockets = 0;
+  let pocketVoxels = 0;
+  for (const c of classes.components) {
+    if (c.kind === 'outside') outsideVoxels += c.voxels;
+    else if (c.kind === 'lumen') (lumenVoxels += c.voxels), lumenComponents++;
+    else (pocketVoxels += c.voxels), pockets++;
+  }
+  return { outsideVoxels, lumenComponents, lumenVoxels, labelledLumenVoxels: classes.labelledLumenVoxels, pockets, pocketVoxels };
+}
+
+/** Area-weighted centroid (µm) of a cell's faces of one tally. */
+function centroid(t: FaceTally, id: number, faceArea: readonly number[], size: VoxelSize): [number, number, number] {
+  let weight = 0;
+  const c = [0, 0, 0];
+  for (let axis = 0; axis < 3; axis++) {
+    weight += t.counts[3 * id + axis] * faceArea[axis];
+    for (let k = 0; k < 3; k++) c[k] += t.centres[9 * id + 3 * axis + k] * faceArea[axis];
+  }
+  return [(c[0] / weight) * size.x, (c[1] / weight) * size.y, (c[2] / weight) * size.z];
+}
+
+function lateralContacts(faces: FaceScan, n: number, faceArea: [number, number, number], labels: number[]): LateralContactRecord[][] {
+  const out: LateralContactRecord[][] = Array.from({ length: n }, () => []);
+  const { keys, faces: f } = faces.lateral;
+  const stride = n + 1;
+  const counts = new Float64Array(3);
+  const signed = new Float64Array(3);
+  keys.forEach((key, p) => {
+    const a = Math.floor(key / stride) - 1;
+    const b = (key % stride) - 1;
+    for (let axis = 0; axis < 3; axis++) {
+      counts[axis] = f[6 * p + axis];
+      signed[axis] = f[6 * p + 3 + axis];
+    }
+    const area = surfaceArea(counts, signed, 0, faceArea);
+    const total = counts[0] + counts[1] + counts[2];
+    out[a].push({ label: labels[b], area, faces: total });
+    out[b].push({ label: labels[a], area, faces: total });
+  });
+  for (const list of out) list.sort((x, y) => x.label - y.label);
+  return out;
+}
+
+function exclusionOf(id: number, reaches: Uint8Array[], faceBits: number): VolumeExclusion | null {
+  const missingFrom = [0, 1].filter((k) => !reaches[k][id]);
+  const touchesFaces = VOLUME_FACE_NAMES.filter(([bit]) => faceBits & bit).map(([, name]) => name);
+  if (missingFrom.length === 0 && touchesFaces.length === 0) return null;
+  const reasons = [
+    ...(touchesFaces.length ? [`touches the volume's ${touchesFaces.join(', ')}`] : []),
+    ...missingFrom.map((k) => `does not reach the ${LAYER_NAMES[k]} surface`),
+  ];
+  return { missingFrom, touchesFaces, reason: reasons.join('; ') };
+}
