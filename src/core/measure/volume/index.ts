@@ -1,6 +1,7 @@
 /** Measuring a 3D label volume of a curved epithelium (docs/measure.md, "Measuring a volume"). */
 export * from './tiffPages';
 export * from './tiffVolume';
+export * from './lzw';
 export * from './voxelSize';
 export * from './voxelClasses';
 export * from './faceScan';
