@@ -225,6 +225,24 @@ describe('measure --volume: a closed ellipsoidal shell (cyst)', () => {
     expect(r.cells.map((c) => c.neighbours)).toEqual(shellResult.cells.map((c) => c.neighbours));
   });
 
+  it('ignores small enclosed pockets of background between cells (not a lumen)', () => {
+    const data = labelData(shell, shellLabels, 16) as Uint16Array;
+    // Three 2 x 2 x 1 holes inside cells, in the middle of the shell's wall.
+    let holes = 0;
+    for (let i = 0; i < data.length && holes < 3; i += 9973) {
+      const neighbours = [i, i + 1, i + shell.width, i + shell.width + 1];
+      const around = [i - 1, i + 2, i - shell.width, i + 2 * shell.width, i - shell.width * shell.height, i + shell.width * shell.height];
+      if ([...neighbours, ...around].every((k) => shell.site[k] >= 0)) {
+        for (const k of neighbours) data[k] = 0;
+        holes++;
+      }
+    }
+    expect(holes).toBe(3);
+    const r = measureVolume(input(writeTiff(volumePages(shell, data, 16) as never)), { voxelSize: shell.voxel, version: 'test' });
+    expect(r.inputs.background).toMatchObject({ lumenComponents: 1, pockets: 3, pocketVoxels: 12 });
+    expect(r.cells.map((c) => c.neighbours)).toEqual(shellResult.cells.map((c) => c.neighbours));
+  });
+
   it('has the layers mode result shape: analyses[0] an AnalysisRecord over basal, apical', () => {
     const a = shellResult.analyses[0];
     expect(a.method).toBe('labels');

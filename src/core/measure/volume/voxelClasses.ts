@@ -21,7 +21,6 @@ export const OUTSIDE = 1;
 export const LUMEN = 2;
 export const POCKET = 3;
 const UNVISITED = 4;
-const PENDING = 5;
 
 export interface BackgroundComponent {
   readonly voxels: number;
@@ -115,56 +114,112 @@ function distinctLabels(data: VolumeArray, lumenLabel: number | undefined): { la
   return { labels, denseOf: (v) => dense.get(v)! };
 }
 
-/** Flood-fills the background (6-connected), then marks each component outside, lumen or pocket. */
+/**
+ * Connected components of the background (6-connected) over runs: each row's maximal runs of
+ * background voxels are joined (union-find) with the runs they overlap in the row above and in
+ * the same row of the slice before. A shell's rows hold a few runs each, so this touches each
+ * voxel once and keeps only per-run tables; each component's runs are then filled with its class.
+ */
 function classifyBackground(volume: LabelVolume, classes: Uint8Array, pocketLimit: number): BackgroundComponent[] {
   const { width: W, height: H, depth: D } = volume;
-  const plane = W * H;
-  const seeds: number[] = [];
+  const rows = H * D;
+  const rowStart = new Int32Array(rows + 1);
+  let starts = new Int32Array(1 << 16);
+  let ends = new Int32Array(1 << 16);
+  let runs = 0;
+  for (let r = 0; r < rows; r++) {
+    rowStart[r] = runs;
+    const base = r * W;
+    let x = 0;
+    while (x < W) {
+      if (classes[base + x] !== UNVISITED) {
+        x++;
+        continue;
+      }
+      const x0 = x;
+      while (x < W && classes[base + x] === UNVISITED) x++;
+      if (runs === starts.length) {
+        const s2 = new Int32Array(runs * 2);
+        s2.set(starts);
+        starts = s2;
+        const e2 = new Int32Array(runs * 2);
+        e2.set(ends);
+        ends = e2;
+      }
+      starts[runs] = x0;
+      ends[runs] = x; // exclusive
+      runs++;
+    }
+  }
+  rowStart[rows] = runs;
+  const parent = new Int32Array(runs);
+  for (let k = 0; k < runs; k++) parent[k] = k;
+  const find = (k: number): number => {
+    while (parent[k] !== k) {
+      parent[k] = parent[parent[k]];
+      k = parent[k];
+    }
+    return k;
+  };
+  /** Joins the overlapping runs of rows r and q (both sorted by x). */
+  const joinRows = (r: number, q: number) => {
+    let i = rowStart[r];
+    let j = rowStart[q];
+    const iEnd = rowStart[r + 1];
+    const jEnd = rowStart[q + 1];
+    while (i < iEnd && j < jEnd) {
+      if (ends[i] <= starts[j]) i++;
+      else if (ends[j] <= starts[i]) j++;
+      else {
+        const a = find(i);
+        const b = find(j);
+        if (a !== b) parent[a < b ? b : a] = a < b ? a : b;
+        if (ends[i] < ends[j]) i++;
+        else j++;
+      }
+    }
+  };
+  for (let r = 0; r < rows; r++) {
+    const y = r % H;
+    if (y > 0) joinRows(r, r - 1);
+    if (r >= H) joinRows(r, r - H);
+  }
+  // Per component (root run): voxels and voxels on the volume's faces.
+  const rootIndex = new Int32Array(runs).fill(-1);
   const sizes: number[] = [];
   const faces: number[] = [];
-  let stack = new Int32Array(1 << 16);
-  /** Visits the component of `seed` (voxels of class `from`), relabelling them `to`. */
-  const flood = (seed: number, from: number, to: number): { voxels: number; faceVoxels: number } => {
-    let top = 0;
-    let voxels = 0;
-    let faceVoxels = 0;
-    classes[seed] = to;
-    stack[top++] = seed;
-    while (top > 0) {
-      const i = stack[--top];
-      voxels++;
-      const x = i % W;
-      const y = Math.floor(i / W) % H;
-      const z = Math.floor(i / plane);
-      if (x === 0 || x === W - 1 || y === 0 || y === H - 1 || z === 0 || z === D - 1) faceVoxels++;
-      if (top + 6 > stack.length) {
-        const bigger = new Int32Array(stack.length * 2);
-        bigger.set(stack);
-        stack = bigger;
+  const componentOf = new Int32Array(runs);
+  for (let r = 0; r < rows; r++) {
+    const y = r % H;
+    const z = Math.floor(r / H);
+    const wholeRowOnFace = y === 0 || y === H - 1 || z === 0 || z === D - 1;
+    for (let k = rowStart[r]; k < rowStart[r + 1]; k++) {
+      const root = find(k);
+      if (rootIndex[root] < 0) {
+        rootIndex[root] = sizes.length;
+        sizes.push(0);
+        faces.push(0);
       }
-      if (x > 0 && classes[i - 1] === from) (classes[i - 1] = to), (stack[top++] = i - 1);
-      if (x < W - 1 && classes[i + 1] === from) (classes[i + 1] = to), (stack[top++] = i + 1);
-      if (y > 0 && classes[i - W] === from) (classes[i - W] = to), (stack[top++] = i - W);
-      if (y < H - 1 && classes[i + W] === from) (classes[i + W] = to), (stack[top++] = i + W);
-      if (z > 0 && classes[i - plane] === from) (classes[i - plane] = to), (stack[top++] = i - plane);
-      if (z < D - 1 && classes[i + plane] === from) (classes[i + plane] = to), (stack[top++] = i + plane);
+      const c = rootIndex[root];
+      componentOf[k] = c;
+      const length = ends[k] - starts[k];
+      sizes[c] += length;
+      if (wholeRowOnFace) faces[c] += length;
+      else {
+        if (starts[k] === 0) faces[c]++;
+        if (ends[k] === W && !(starts[k] === 0 && W === 1)) faces[c]++;
+      }
     }
-    return { voxels, faceVoxels };
-  };
-  for (let i = 0; i < classes.length; i++) {
-    if (classes[i] !== UNVISITED) continue;
-    const { voxels, faceVoxels } = flood(i, UNVISITED, PENDING);
-    seeds.push(i);
-    sizes.push(voxels);
-    faces.push(faceVoxels);
   }
   let outside = -1;
-  for (let c = 0; c < seeds.length; c++) {
+  for (let c = 0; c < sizes.length; c++) {
     if (faces[c] > 0 && (outside < 0 || faces[c] > faces[outside] || (faces[c] === faces[outside] && sizes[c] > sizes[outside]))) outside = c;
   }
-  return seeds.map((seed, c) => {
-    const kind = c === outside ? 'outside' : faces[c] > 0 || sizes[c] >= pocketLimit ? 'lumen' : 'pocket';
-    flood(seed, PENDING, kind === 'outside' ? OUTSIDE : kind === 'lumen' ? LUMEN : POCKET);
-    return { voxels: sizes[c], faceVoxels: faces[c], kind };
-  });
+  const kinds = sizes.map((size, c): BackgroundComponent['kind'] => (c === outside ? 'outside' : faces[c] > 0 || size >= pocketLimit ? 'lumen' : 'pocket'));
+  const code = kinds.map((kind) => (kind === 'outside' ? OUTSIDE : kind === 'lumen' ? LUMEN : POCKET));
+  for (let r = 0; r < rows; r++) {
+    const base = r * W;
+    for (let k = rowStart[r]; k < rowStart[r + 1]; k++) classes.fill(code[componentOf[k]], base + starts[k], base + ends[k]);
+  }
+  return sizes.map((voxels, c) => ({ voxels, faceVoxels: faces[c], kind: kinds[c] }));
 }
