@@ -26,6 +26,8 @@ export interface SyntheticVolume {
   sites: number;
   /** Exact contact lengths (µm) per surface at two depths bracketing the voxel surface: pair key i * sites + j (i < j). */
   exact: { inner: Map<number, number>[]; outer: Map<number, number>[] };
+  /** Exact cell areas (µm²) on the inner and outer surfaces (closed shells only). */
+  exactAreas?: { inner: Float64Array; outer: Float64Array };
 }
 
 export interface TubeSpec {
@@ -203,6 +205,7 @@ export function shellVolume(spec: ShellSpec): SyntheticVolume {
       }
     }
   }
+  const areasAt: Float64Array[] = [];
   const lengthsAt = (t: number) => {
     const scaled = new Float64Array(3 * n);
     for (let k = 0; k < n; k++) {
@@ -211,6 +214,7 @@ export function shellVolume(spec: ShellSpec): SyntheticVolume {
       scaled[3 * k + 2] = (sites[3 * k + 2] * (c + t)) / c;
     }
     const rvd = restrictedVoronoi({ kind: 'ellipsoid', a: a + t, b: b + t, c: c + t }, scaled, n);
+    if (t === 0 || t === h) areasAt[t === 0 ? 0 : 1] = rvd.areas;
     const out = new Map<number, number>();
     const adj = rvd.adjacency;
     for (let i = 0; i < n; i++) {
@@ -227,6 +231,7 @@ export function shellVolume(spec: ShellSpec): SyntheticVolume {
     site,
     sites: n,
     exact: { inner: [lengthsAt(0), lengthsAt(diagonal)], outer: [lengthsAt(h - diagonal), lengthsAt(h)] },
+    exactAreas: { inner: areasAt[0], outer: areasAt[1] },
   };
 }
 

@@ -1,12 +1,16 @@
 /**
  * One pass over the voxel faces of a classified volume: per cell, its faces on the outside and
- * on the lumen (counts and signed sums per axis, face-centre sums), which faces of the volume
- * it touches; per pair of cells, the faces they share (the lateral interface).
+ * on the lumen (counts per axis, face-centre sums, true area), which faces of
+ * the volume it touches; per pair of cells, the faces they share (the lateral interface).
  *
- * Face areas and the true (not staircase) area of a patch: a plane with unit normal n, cut into
- * voxel faces, has faces normal to axis i of total area A |n_i|, so sum_i count_i a_i |n_i| = A
- * exactly, where a_i is the area of one face normal to axis i. The signed sums give n (the
- * patch's vector area is A n). surfaceArea() applies this with each patch's mean normal.
+ * Face areas and the true (not staircase) area of a surface: a plane with unit normal n, cut
+ * into voxel faces, has faces normal to axis i of total area A |n_i|, so summing a_i |n_i| over
+ * its faces gives A exactly, where a_i is the area of one face normal to axis i.
+ * - Cells on the outside and lumen: n is the surface's local normal at each face, from the
+ *   background voxels in a ball of NORMAL_RADIUS voxels around the face centre (the centroid of
+ *   a half-ball lies along its normal); found in voxel-index space, where the ball is round,
+ *   then carried to µm (a plane's normal in index space, divided by the voxel size per axis).
+ * - Lateral interfaces: surfaceArea() with the interface's mean normal (its vector area).
  */
 import { CELL, LUMEN, OUTSIDE } from './voxelClasses';
 import type { VolumeArray } from './tiffVolume';
@@ -26,15 +30,18 @@ export const VOLUME_FACE_NAMES: ReadonlyArray<[number, string]> = [
   [FACE_Z1, 'last page'],
 ];
 
-/** Faces of one kind per cell (index = dense id): counts, signed sums and centre sums per axis. */
+/** Faces of one kind per cell (index = dense id): counts and centre sums per axis, and the true area. */
 export interface FaceTally {
   /** 3 per cell: faces normal to x, y, z. */
   readonly counts: Float64Array;
-  /** 3 per cell: faces counted +1 when the other side is towards +axis, -1 otherwise. */
-  readonly signed: Float64Array;
-  /** 3 per cell: sum of face-centre coordinates in voxel units, per face normal axis (x, y, z sums). */
+  /** 9 per cell: sums of face-centre coordinates (x, y, z) in voxel units, per face normal axis. */
   readonly centres: Float64Array;
+  /** 1 per cell: area in µm², each face weighted by the local normal (see the module comment). */
+  readonly area: Float64Array;
 }
+
+/** Radius (voxels) of the ball whose background voxels give a face's local normal. */
+export const NORMAL_RADIUS = 3;
 
 export interface LateralTally {
   /** Pair key a * (cells + 1) + b, a < b (dense ids). */
@@ -52,10 +59,26 @@ export interface FaceScan {
 }
 
 function tally(cells: number): FaceTally {
-  return { counts: new Float64Array(3 * (cells + 1)), signed: new Float64Array(3 * (cells + 1)), centres: new Float64Array(9 * (cells + 1)) };
+  return { counts: new Float64Array(3 * (cells + 1)), centres: new Float64Array(9 * (cells + 1)), area: new Float64Array(cells + 1) };
 }
 
-export function scanFaces(ids: VolumeArray, classes: Uint8Array, width: number, height: number, depth: number, cells: number): FaceScan {
+/** Offsets of the voxels in the ball of NORMAL_RADIUS around a voxel centre. */
+function ballOffsets(): { dx: Int32Array; dy: Int32Array; dz: Int32Array } {
+  const r = NORMAL_RADIUS;
+  const list: number[][] = [];
+  for (let dz = -r; dz <= r; dz++) for (let dy = -r; dy <= r; dy++) for (let dx = -r; dx <= r; dx++) if (dx * dx + dy * dy + dz * dz <= r * r) list.push([dx, dy, dz]);
+  return { dx: Int32Array.from(list, (e) => e[0]), dy: Int32Array.from(list, (e) => e[1]), dz: Int32Array.from(list, (e) => e[2]) };
+}
+
+export function scanFaces(
+  ids: VolumeArray,
+  classes: Uint8Array,
+  width: number,
+  height: number,
+  depth: number,
+  cells: number,
+  voxelSize: { x: number; y: number; z: number },
+): FaceScan {
   const W = width;
   const plane = width * height;
   const volumeFaces = new Uint8Array(cells + 1);
@@ -68,10 +91,69 @@ export function scanFaces(ids: VolumeArray, classes: Uint8Array, width: number, 
   let lastPair = -1;
   const stride = cells + 1;
 
+  const faceArea = [voxelSize.y * voxelSize.z, voxelSize.x * voxelSize.z, voxelSize.x * voxelSize.y];
+  const b = ballOffsets();
+  const R = NORMAL_RADIUS;
+  const linear = Int32Array.from(b.dx, (dx, k) => b.dz[k] * plane + b.dy[k] * W + dx);
+  // A voxel with several faces on a surface computes its normal once.
+  let cachedVoxel = -1;
+  let cachedKind = -1;
+  const unit = new Float64Array(3);
+  /** |n_axis| of the surface's local unit normal (µm) at cell voxel (x, y, z), facing background `kind`. */
+  const normalComponent = (x: number, y: number, z: number, axis: number, kind: number): number => {
+    const at = z * plane + y * W + x;
+    if (at !== cachedVoxel || kind !== cachedKind) {
+      cachedVoxel = at;
+      cachedKind = kind;
+      let sx = 0;
+      let sy = 0;
+      let sz = 0;
+      if (x >= R && y >= R && z >= R && x < W - R && y < height - R && z < depth - R) {
+        // Inside: no bounds to check.
+        for (let k = 0; k < linear.length; k++) {
+          if (classes[at + linear[k]] === kind) {
+            sx += b.dx[k];
+            sy += b.dy[k];
+            sz += b.dz[k];
+          }
+        }
+      } else {
+        for (let k = 0; k < linear.length; k++) {
+          const qx = x + b.dx[k];
+          const qy = y + b.dy[k];
+          const qz = z + b.dz[k];
+          if (qx < 0 || qy < 0 || qz < 0 || qx >= W || qy >= height || qz >= depth) continue;
+          if (classes[at + linear[k]] !== kind) continue;
+          sx += b.dx[k];
+          sy += b.dy[k];
+          sz += b.dz[k];
+        }
+      }
+      // Index-space normal to µm: divide by the voxel size per axis.
+      const nx = sx / voxelSize.x;
+      const ny = sy / voxelSize.y;
+      const nz = sz / voxelSize.z;
+      const norm = Math.hypot(nx, ny, nz);
+      if (norm > 0) {
+        unit[0] = Math.abs(nx) / norm;
+        unit[1] = Math.abs(ny) / norm;
+        unit[2] = Math.abs(nz) / norm;
+      } else {
+        // No net direction (background all around, a one-voxel cell): each face counts whole.
+        unit.fill(1);
+      }
+    }
+    return unit[axis];
+  };
   const addSurface = (cell: number, kind: number, axis: number, sign: number, cx: number, cy: number, cz: number) => {
     const t = kind === OUTSIDE ? outside : lumen;
+    // The cell's voxel: the face centre moved half a voxel away from the background.
+    const h = 0.5 * sign;
+    const vx = Math.floor(cx - (axis === 0 ? h : 0));
+    const vy = Math.floor(cy - (axis === 1 ? h : 0));
+    const vz = Math.floor(cz - (axis === 2 ? h : 0));
+    t.area[cell] += faceArea[axis] * normalComponent(vx, vy, vz, axis, kind);
     t.counts[3 * cell + axis]++;
-    t.signed[3 * cell + axis] += sign;
     const o = 9 * cell + 3 * axis;
     t.centres[o] += cx;
     t.centres[o + 1] += cy;

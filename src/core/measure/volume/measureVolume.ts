@@ -64,7 +64,7 @@ export function measureVolume(file: LabelFileInput, options: MeasureVolumeOption
 
   const t2 = now();
   const cells = classes.labels.length;
-  const faces = scanFaces(classes.ids, classes.classes, W, H, D, cells);
+  const faces = scanFaces(classes.ids, classes.classes, W, H, D, cells, voxelSize);
   const edges = scanContactEdges(classes.ids, classes.classes, W, H, D);
   const apicalFacesOutside = options.apical === 'outside';
   // Layer 0 basal, layer 1 apical: which background class each faces.
@@ -138,7 +138,7 @@ function assemble(
   const tallies: FaceTally[] = layerClass.map((s) => (s === OUTSIDE ? faces.outside : faces.lumen));
 
   // Areas (µm²) per layer per cell (dense 0-based), and which cells reach each layer.
-  const areas = tallies.map((t) => Float64Array.from({ length: n }, (_, i) => surfaceArea(t.counts, t.signed, 3 * (i + 1), faceArea)));
+  const areas = tallies.map((t) => t.area.slice(1));
   const reaches = tallies.map((t) => Uint8Array.from({ length: n }, (_, i) => (t.counts[3 * i + 3] + t.counts[3 * i + 4] + t.counts[3 * i + 5] > 0 ? 1 : 0)));
 
   const minContacts = [0, 1].map((k) => {
