@@ -9,13 +9,13 @@
  */
 import { closeSync, lstatSync, openSync, readSync, renameSync, rmSync, writeFileSync } from 'node:fs';
 import { basename, dirname, join, resolve } from 'node:path';
-import { compareMeasured, MeasureInputError, measureTissue, measureVolume, parseVoxelSizeOption, type MeasuredResult, type VolumeMeasuredResult } from '../core/measure';
+import { compareMeasured, compareVolume, MeasureInputError, measureTissue, measureVolume, parseVoxelSizeOption, type MeasuredResult, type VolumeMeasuredResult } from '../core/measure';
 import { labelFileFromPath } from '../node/labelImages';
 import { version } from '../version';
 
 const FORM =
   'measure LAYER_FILE... --out RESULT.json [--pixel-size µm] [--periodic-x] [--min-contact µm] [--compare] [--force], ' +
-  'or measure --volume VOLUME.tif --out RESULT.json [--voxel-size X,Y,Z] [--apical lumen|outside] [--lumen-label N] [--min-contact µm] [--quartet-filter] [--force]';
+  'or measure --volume VOLUME.tif --out RESULT.json [--voxel-size X,Y,Z] [--apical lumen|outside] [--lumen-label N] [--min-contact µm] [--quartet-filter] [--compare [--realizations N] [--seed N]] [--force]';
 
 /** Results with more cells than this are written without indentation. */
 export const PRETTY_CELLS = 5000;
@@ -101,7 +101,6 @@ export function parseMeasureArgs(args: string[]): MeasureArgs {
     if (!parsed.volume) throw optionError('--volume', 'needs a file: one 3D label TIFF');
     if (parsed.files.length > 0) throw optionError(parsed.files[0], 'with --volume, give no layer files');
     if (layersOnly.length > 0) throw optionError(layersOnly[0], 'is for layer images, not --volume (a volume uses --voxel-size X,Y,Z)');
-    if (parsed.compare) throw optionError('--compare', 'is not available with --volume yet');
   } else {
     if (volumeOnly.length > 0) throw optionError(volumeOnly[0], 'is for --volume VOLUME.tif only');
     if (parsed.files.length === 0) throw optionError('LAYER_FILE', 'missing: give one 3D TIFF or two or more 2D label images (or --volume VOLUME.tif)');
@@ -184,7 +183,7 @@ export async function measureCommand(args: string[], log: (line: string) => void
 }
 
 function volumeCommand(a: MeasureArgs, volume: string, log: (line: string) => void): number {
-  const result: VolumeMeasuredResult = measureVolume(labelFileFromPath(volume), {
+  let result: VolumeMeasuredResult = measureVolume(labelFileFromPath(volume), {
     voxelSize: a.voxelSize,
     apical: a.apical,
     lumenLabel: a.lumenLabel,
@@ -194,6 +193,22 @@ function volumeCommand(a: MeasureArgs, volume: string, log: (line: string) => vo
     onProgress: log,
   });
   for (const w of result.warnings) log(`warning: ${w}`);
+  if (a.compare) {
+    const { comparison, note } = compareVolume(result, { realizations: a.realizations, seed: a.seed, onProgress: log });
+    if (!comparison) {
+      log(`warning: ${note}`);
+      result = { ...result, warnings: [...result.warnings, note] };
+    } else {
+      const m = comparison.model.percentScutoids;
+      const g = comparison.geometry;
+      log(
+        `model: tube of radius ${g.innerRadius.toFixed(1)} to ${g.outerRadius.toFixed(1)} µm, ${g.length.toFixed(1)} µm long; Voronoi ${comparison.bestK} matches best ` +
+          `(L1 ${comparison.candidates[comparison.bestK - 1].distance.toFixed(3)}); it gives ${m.mean.toFixed(1)} % scutoids ` +
+          `(95 % CI ${m.ci95[0].toFixed(1)} to ${m.ci95[1].toFixed(1)}; measured ${comparison.measured.percentScutoids.toFixed(1)} %)`,
+      );
+      result = { ...result, comparison };
+    }
+  }
   writeAtomic(a.out, JSON.stringify(result, null, result.cells.length > PRETTY_CELLS ? undefined : 2) + '\n');
   const s = result.analyses[0].summary;
   const [basal, apical] = result.inputs.layers;

@@ -8,7 +8,7 @@
  * is about one voxel diagonal: how far a contact curve's end can move when it is voxelized.
  */
 import { beforeAll, describe, expect, it } from 'vitest';
-import { measureVolume, type VolumeMeasuredResult } from '../../src/core/measure';
+import { compareVolume, fitCircle, interval, measureVolume, smallestEigenvector, type VolumeMeasuredResult } from '../../src/core/measure';
 import { writeTiff } from './tiffWriter';
 import { labelData, permutedLabels, shellVolume, tubeVolume, volumePages, type SyntheticVolume } from './volumes';
 
@@ -334,5 +334,61 @@ describe('measure --volume: an open tube cut by the volume (gland)', () => {
     const a = agreement(r, tube, labels, 1.1);
     expect(a.wrong).toEqual([]);
     expect(a.staircaseWrong).toBeGreaterThan(3);
+  });
+});
+
+describe('measure --volume --compare: the model of the same tissue', () => {
+  it('models an open tube by its fitted tube: axis, radii, length from the segmentation, Voronoi k, mean ± 95 % CI', () => {
+    const labels = Array.from({ length: tube.sites }, (_, k) => k + 1);
+    const r = measureVolume(input(tiffOf(tube, labels, 16)), { voxelSize: tube.voxel, version: 'test' });
+    expect(r.inputs.background.lumenReachesFaces).toBe(true);
+    const lines: string[] = [];
+    const { comparison, note } = compareVolume(r, { realizations: 4, seed: 1, onProgress: (l) => lines.push(l) });
+    expect(note).toBe('');
+    const c = comparison!;
+    const g = c.geometry;
+    expect(Math.abs(g.axis[2])).toBeGreaterThan(0.999); // the tube runs along z
+    expect(g.innerRadius).toBeCloseTo(TUBE.inner, 0);
+    expect(g.outerRadius).toBeCloseTo(TUBE.outer, 0);
+    expect(Math.abs(g.length / (TUBE.depth * TUBE.voxel.z) - 1)).toBeLessThan(0.05);
+    expect(g.seededLayer).toBe('apical');
+    expect(g.seededCells).toBe(tube.sites);
+    expect(g.thickness.mean).toBeGreaterThan(0.8 * (TUBE.outer - TUBE.inner));
+    expect(c.surfaceRatio).toBeCloseTo(g.outerRadius / g.innerRadius, 12);
+    expect(c.candidates).toHaveLength(10);
+    expect(c.bestK).toBe(c.candidates.reduce((a, b) => (b.distance < a.distance ? b : a)).k);
+    expect(c.percentScutoids).toHaveLength(4);
+    for (const key of ['percentScutoids', 'transitions', 'neighbours3D'] as const) {
+      const { mean, ci95 } = c.model[key];
+      expect(ci95[0]).toBeLessThanOrEqual(mean);
+      expect(ci95[1]).toBeGreaterThanOrEqual(mean);
+    }
+    expect(c.model.percentScutoids.mean).toBeCloseTo(c.meanPercentScutoids, 12);
+    expect(c.measured.percentScutoids).toBe(r.analyses[0].summary.percentScutoids);
+    // The same construction (random sites, radial projection, ratio 1.8): the model agrees with the measurement.
+    expect(Math.abs(c.model.percentScutoids.mean - c.measured.percentScutoids)).toBeLessThan(25);
+    expect(lines.some((l) => l.startsWith('model Voronoi 10'))).toBe(true);
+  });
+
+  it('says a closed shell has no model yet instead of modelling another shape', () => {
+    expect(shellResult.inputs.background.lumenReachesFaces).toBe(false);
+    const { comparison, note } = compareVolume(shellResult, { realizations: 2, seed: 1 });
+    expect(comparison).toBeNull();
+    expect(note).toMatch(/no model for a closed shell yet/);
+  });
+
+  it('fits circles, axes and confidence intervals exactly on exact data', () => {
+    const points = Array.from({ length: 12 }, (_, k): [number, number] => [3 + 5 * Math.cos(k), -2 + 5 * Math.sin(k)]);
+    const c = fitCircle(points);
+    expect([c.cx, c.cy, c.r].map((x) => +x.toFixed(9))).toEqual([3, -2, 5]);
+    const e = smallestEigenvector([
+      [2, 0, 0],
+      [0, 3, 0],
+      [0, 0, 0.5],
+    ]);
+    expect(Math.abs(e[2])).toBeCloseTo(1, 12);
+    const i = interval([1, 2, 3, 4]);
+    expect(i.mean).toBe(2.5);
+    expect(i.ci95[1] - i.mean).toBeCloseTo((3.182 * Math.sqrt(5 / 3)) / 2, 9);
   });
 });

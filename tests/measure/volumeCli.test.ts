@@ -9,7 +9,7 @@ import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it, vi } from 'vitest';
 import { measureCommand } from '../../src/cli/measure';
 import { writeTiff, type TiffPage } from './tiffWriter';
-import { labelData, shellVolume, volumePages, type SyntheticVolume } from './volumes';
+import { labelData, shellVolume, tubeVolume, volumePages, type SyntheticVolume } from './volumes';
 
 let dir: string;
 let shell: SyntheticVolume;
@@ -84,6 +84,8 @@ beforeAll(() => {
   const solid = new Uint16Array(shell.site.length);
   shell.site.forEach((s, i) => (solid[i] = s === -2 ? 0 : s === -1 ? 1 : s + 10));
   put('no-lumen.tif', writeTiff(pages({}, 16, solid)));
+  const tube = tubeVolume({ width: 60, height: 60, depth: 40, voxel: { x: 0.5, y: 0.5, z: 1 }, inner: 7, outer: 13, sites: 24, seed: 8 });
+  put('tube.tif', writeTiff(volumePages(tube, labelData(tube, Array.from({ length: tube.sites }, (_, k) => k + 1), 16), 16) as TiffPage[]));
   mkdirSync(f('folder'));
 }, 60_000);
 afterAll(() => rmSync(dir, { recursive: true, force: true }));
@@ -169,6 +171,26 @@ describe('tissue-sheet measure --volume', () => {
     expect(r.inputs.layers.map((l: { faces: string }) => l.faces)).toEqual(['lumen', 'outside']);
     expect(r.quartetFilter).not.toBeNull();
     expect(r.cells.map((c: { label: number }) => c.label)).not.toContain(999);
+  });
+
+  it('--compare on an open tube: the model of the fitted tube beside the measurement', async () => {
+    const { code, errors, log } = await run(['--volume', f('tube.tif'), '--out', f('tube.json'), '--voxel-size', '0.5,0.5,1', '--compare', '--realizations', '3', '--seed', '5']);
+    expect(errors).toEqual([]);
+    expect(code).toBe(0);
+    const r = read('tube.json');
+    expect(r.comparison).toMatchObject({ method: 'exact', realizations: 3, seed: 5, geometry: { kind: 'tube', seededLayer: 'apical' } });
+    expect(r.comparison.geometry.innerRadius).toBeCloseTo(7, 0);
+    expect(r.comparison.model.percentScutoids.ci95).toHaveLength(2);
+    expect(log.some((l) => /^model: tube of radius [\d.]+ to [\d.]+ µm, [\d.]+ µm long; Voronoi \d+ matches best/.test(l))).toBe(true);
+  });
+
+  it('--compare on a closed shell: exit 0, no model, a warning that says why', async () => {
+    const { code, log } = await run(['--volume', f('plain.tif'), '--out', f('compare.json'), '--voxel-size', '0.5,0.5,0.75', '--compare', '--realizations', '2']);
+    expect(code).toBe(0);
+    const r = read('compare.json');
+    expect(r.comparison).toBeNull();
+    expect(r.warnings.at(-1)).toMatch(/no model for a closed shell yet/);
+    expect(log.some((l) => l.startsWith('warning: no model for a closed shell'))).toBe(true);
   });
 
   const bad: [string, string[], RegExp][] = [

@@ -10,3 +10,4 @@ export * from './curveLength';
 export * from './quartets';
 export * from './volumeResult';
 export * from './measureVolume';
+export * from './compareVolume';

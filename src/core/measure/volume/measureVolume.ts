@@ -216,6 +216,7 @@ function assemble(
       scutoid: analysis.cells.scutoid[id] === 1,
       volume: classes.cellVoxels[id + 1] * voxelVolume,
       height: cb && ca ? Math.hypot(cb[0] - ca[0], cb[1] - ca[1], cb[2] - ca[2]) : null,
+      centroids,
       areas: [areas[0][id], areas[1][id]],
       sides: analysis.cells.sides.map((s) => s[id]),
       neighbours: sets.map((s) => [...s[id]].map((j) => classes.labels[j]).sort((x, y) => x - y)),
@@ -244,7 +245,7 @@ function assemble(
       contactPairs: curves[k].size,
     };
   });
-  const background = backgroundRecord(classes);
+  const background = backgroundRecord(classes, W, H, D);
   return {
     software: { name: 'tissue-sheet', version: options.version },
     kind: 'measured',
@@ -271,7 +272,19 @@ function assemble(
   };
 }
 
-function backgroundRecord(classes: VoxelClasses): VolumeMeasuredResult['inputs']['background'] {
+/** Whether any lumen voxel (a background component or --lumen-label) lies on a face of the volume. */
+function lumenOnFaces(classes: Uint8Array, W: number, H: number, D: number): boolean {
+  const at = (x: number, y: number, z: number) => classes[(z * H + y) * W + x] === LUMEN;
+  for (let y = 0; y < H; y++) for (let x = 0; x < W; x++) if (at(x, y, 0) || at(x, y, D - 1)) return true;
+  for (let z = 0; z < D; z++) {
+    for (let x = 0; x < W; x++) if (at(x, 0, z) || at(x, H - 1, z)) return true;
+    for (let y = 0; y < H; y++) if (at(0, y, z) || at(W - 1, y, z)) return true;
+  }
+  return false;
+}
+
+function backgroundRecord(classes: VoxelClasses, W: number, H: number, D: number): VolumeMeasuredResult['inputs']['background'] {
+  const lumenReachesFaces = lumenOnFaces(classes.classes, W, H, D);
   let outsideVoxels = 0;
   let lumenVoxels = classes.labelledLumenVoxels;
   let lumenComponents = 0;
@@ -282,7 +295,7 @@ function backgroundRecord(classes: VoxelClasses): VolumeMeasuredResult['inputs']
     else if (c.kind === 'lumen') (lumenVoxels += c.voxels), lumenComponents++;
     else (pocketVoxels += c.voxels), pockets++;
   }
-  return { outsideVoxels, lumenComponents, lumenVoxels, labelledLumenVoxels: classes.labelledLumenVoxels, pockets, pocketVoxels };
+  return { outsideVoxels, lumenComponents, lumenVoxels, labelledLumenVoxels: classes.labelledLumenVoxels, pockets, pocketVoxels, lumenReachesFaces };
 }
 
 /** Area-weighted centroid (µm) of a cell's faces of one tally. */

@@ -4,6 +4,7 @@
  * adds (voxel size, cell volumes and heights, lateral neighbours).
  */
 import type { MeasuredAnalysis } from '../measuredResult';
+import type { VolumeComparison } from './compareVolume';
 
 export interface VolumeSurfaceRecord {
   readonly name: 'basal' | 'apical';
@@ -41,6 +42,8 @@ export interface VolumeInputs {
     /** Enclosed background components smaller than half the mean cell: ignored. */
     readonly pockets: number;
     readonly pocketVoxels: number;
+    /** A lumen reaches a face of the volume: an open piece (a tube cut by the volume), not a closed shell. */
+    readonly lumenReachesFaces: boolean;
   };
   readonly options: {
     readonly apical: 'lumen' | 'outside';
@@ -88,6 +91,8 @@ export interface VolumeCellRecord {
   readonly volume: number;
   /** Distance between the cell's basal and apical surface centroids, µm (null without both). */
   readonly height: number | null;
+  /** Area-weighted centroid (µm, x y z from the volume's corner) of its faces on each layer, null where it has none. */
+  readonly centroids: ([number, number, number] | null)[];
   /** µm² on each layer (basal, apical). */
   readonly areas: number[];
   readonly sides: number[];
@@ -117,7 +122,8 @@ export interface VolumeMeasuredResult {
     readonly quartets: number[][];
     readonly removed: { readonly labels: [number, number]; readonly layer: number }[];
   } | null;
-  readonly comparison: unknown | null;
+  /** With --compare: the model of the same tissue (open pieces: the fitted tube), else null. */
+  readonly comparison: VolumeComparison | null;
   readonly warnings: string[];
   readonly timings: { readonly readMs: number; readonly classifyMs: number; readonly contactsMs: number; readonly analysisMs: number; readonly totalMs: number };
 }
