@@ -112,7 +112,8 @@ describe('tissue-sheet measure --volume', () => {
     expect(log.at(-1)).toMatch(/^done: 24 cells, 24 valid, [\d.]+ % scutoids, min contact [\d.]+ µm basal, [\d.]+ µm apical/);
     const r = read('plain.json');
     expect(r.software.name).toBe('tissue-sheet');
-    expect(r.inputs.voxelSize).toEqual({ x: 0.5, y: 0.5, z: 0.75, source: 'option', detail: '--voxel-size' });
+    expect(r.inputs.voxelSize).toEqual({ x: 0.5, y: 0.5, z: 0.75, source: 'option' });
+    expect(r.inputs.voxelSizeDetail).toBe('--voxel-size');
     expect(r.inputs.layers.map((l: { name: string }) => l.name)).toEqual(['basal', 'apical']);
     expect(r.cells[0]).toMatchObject({ label: 10, valid: true, exclusion: null });
     expect(r.cells[0].neighbours).toHaveLength(2);

@@ -252,7 +252,8 @@ function assemble(
     inputs: {
       files: [{ name: file, bytes: fileBytes, format: 'tiff', pages }],
       volume: { width: W, height: H, depth: D, bitsPerSample, labels: n, voxels: W * H * D },
-      voxelSize: { x: sx, y: sy, z: sz, source: voxelSize.source, detail: voxelSize.detail },
+      voxelSize: { x: sx, y: sy, z: sz, source: voxelSize.source },
+      voxelSizeDetail: voxelSize.detail,
       layers,
       background,
       options: {

@@ -31,7 +31,10 @@ export interface VolumeInputs {
     readonly labels: number;
     readonly voxels: number;
   };
-  readonly voxelSize: { readonly x: number; readonly y: number; readonly z: number; readonly source: 'option' | 'imagej' | 'ome'; readonly detail: string };
+  /** µm along width, height and between pages, and where it came from. */
+  readonly voxelSize: { readonly x: number; readonly y: number; readonly z: number; readonly source: 'option' | 'imagej' | 'ome' };
+  /** How the voxel size was read, e.g. "ImageJ unit=micron, XResolution 5 ...". */
+  readonly voxelSizeDetail: string;
   /** basal, then apical. */
   readonly layers: VolumeSurfaceRecord[];
   readonly background: {
