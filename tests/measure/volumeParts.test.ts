@@ -1,6 +1,7 @@
 /** The volume measurement's parts on inputs whose answers are known by hand. */
+import { deflateSync } from 'node:zlib';
 import { describe, expect, it } from 'vitest';
-import { curveLength, lzwDecodeInto, parseVoxelSizeOption, quartetFilter } from '../../src/core/measure';
+import { curveLength, decodeVolumeTiff, inspectVolumeTiff, lzwDecodeInto, parseVoxelSizeOption, quartetFilter } from '../../src/core/measure';
 import { createRandom } from '../../src/core/random';
 import { lzwEncode } from './tiffWriter';
 
@@ -121,5 +122,102 @@ describe('--voxel-size', () => {
   it('takes three numbers > 0', () => {
     expect(parseVoxelSizeOption('0.2, 0.2,0.5')).toEqual({ x: 0.2, y: 0.2, z: 0.5 });
     for (const bad of ['0.2,0.2', '1,1,0', '1,,1', 'a,b,c', '1,1,1,1', '-1,1,1']) expect(parseVoxelSizeOption(bad)).toBeNull();
+  });
+});
+
+/**
+ * A tiled TIFF of 16-bit pages (tiles 16 x 16, the edge tiles padded), uncompressed or Deflate,
+ * optionally with horizontal differencing (predictor 2): what tiffWriter.ts does not write.
+ */
+function tiledTiff(width: number, height: number, pages: Uint16Array[], options: { deflate: boolean; predictor: boolean; littleEndian: boolean }): Uint8Array {
+  const T = 16;
+  const across = Math.ceil(width / T);
+  const down = Math.ceil(height / T);
+  const le = options.littleEndian;
+  const chunks: Uint8Array[] = [];
+  let size = 8;
+  const append = (b: Uint8Array) => {
+    const at = size;
+    chunks.push(b);
+    size += b.length;
+    return at;
+  };
+  const header = new Uint8Array(8);
+  header[0] = header[1] = le ? 0x49 : 0x4d;
+  new DataView(header.buffer).setUint16(2, 42, le);
+  chunks.push(header);
+  let nextPointer: [Uint8Array, number] = [header, 4];
+  for (const page of pages) {
+    const offsets: number[] = [];
+    const counts: number[] = [];
+    for (let ty = 0; ty < down; ty++) {
+      for (let tx = 0; tx < across; tx++) {
+        const tile = new Uint16Array(T * T);
+        for (let y = 0; y < T; y++) for (let x = 0; x < T; x++) if (ty * T + y < height && tx * T + x < width) tile[y * T + x] = page[(ty * T + y) * width + tx * T + x];
+        if (options.predictor) for (let y = 0; y < T; y++) for (let x = T - 1; x > 0; x--) tile[y * T + x] = (tile[y * T + x] - tile[y * T + x - 1]) & 0xffff;
+        const raw = new Uint8Array(2 * T * T);
+        const view = new DataView(raw.buffer);
+        tile.forEach((v, k) => view.setUint16(2 * k, v, le));
+        const stored = options.deflate ? new Uint8Array(deflateSync(raw)) : raw;
+        offsets.push(append(stored));
+        counts.push(stored.length);
+      }
+    }
+    const offsetArray = append(new Uint8Array(4 * offsets.length));
+    const countArray = append(new Uint8Array(4 * counts.length));
+    const oa = chunks[chunks.length - 2];
+    const ca = chunks[chunks.length - 1];
+    offsets.forEach((o, k) => new DataView(oa.buffer).setUint32(4 * k, o, le));
+    counts.forEach((c, k) => new DataView(ca.buffer).setUint32(4 * k, c, le));
+    const entries: [number, number, number, number][] = [
+      [256, 4, 1, width],
+      [257, 4, 1, height],
+      [258, 3, 1, 16],
+      [259, 3, 1, options.deflate ? 8 : 1],
+      [262, 3, 1, 1],
+      [277, 3, 1, 1],
+      [317, 3, 1, options.predictor ? 2 : 1],
+      [322, 3, 1, T],
+      [323, 3, 1, T],
+      [324, 4, offsets.length, offsets.length === 1 ? offsets[0] : offsetArray],
+      [325, 4, counts.length, counts.length === 1 ? counts[0] : countArray],
+    ];
+    const ifd = new Uint8Array(2 + 12 * entries.length + 4);
+    const v = new DataView(ifd.buffer);
+    v.setUint16(0, entries.length, le);
+    entries.forEach(([tag, type, count, value], e) => {
+      v.setUint16(2 + 12 * e, tag, le);
+      v.setUint16(4 + 12 * e, type, le);
+      v.setUint32(6 + 12 * e, count, le);
+      if (type === 3 && count === 1) v.setUint16(10 + 12 * e, value, le);
+      else v.setUint32(10 + 12 * e, value, le);
+    });
+    const at = append(ifd);
+    new DataView(nextPointer[0].buffer).setUint32(nextPointer[1], at, le);
+    nextPointer = [ifd, ifd.length - 4];
+  }
+  const out = new Uint8Array(size);
+  let o = 0;
+  for (const c of chunks) out.set(c, (o += c.length) - c.length);
+  return out;
+}
+
+describe('volume TIFF decoding', () => {
+  it('reads tiled pages (padded edge tiles), Deflate, horizontal differencing, either byte order', () => {
+    const width = 37;
+    const height = 21;
+    const random = createRandom(9);
+    const pages = Array.from({ length: 3 }, () => Uint16Array.from({ length: width * height }, () => random.nextInt(65536)));
+    for (const deflate of [false, true]) {
+      for (const predictor of [false, true]) {
+        for (const littleEndian of [true, false]) {
+          const bytes = tiledTiff(width, height, pages, { deflate, predictor, littleEndian });
+          const header = inspectVolumeTiff(bytes, 't.tif');
+          expect([header.width, header.height, header.depth, header.bitsPerSample]).toEqual([width, height, 3, 16]);
+          const volume = decodeVolumeTiff(bytes, 't.tif', header);
+          pages.forEach((page, z) => expect(Array.from(volume.data.subarray(z * width * height, (z + 1) * width * height))).toEqual(Array.from(page)));
+        }
+      }
+    }
   });
 });
