@@ -252,6 +252,28 @@ describe('measure --volume: a closed ellipsoidal shell (cyst)', () => {
     expect(r.cells.map((c) => c.neighbours)).toEqual(shellResult.cells.map((c) => c.neighbours));
   });
 
+  it('refuses, or warns about, background lines between the cells', () => {
+    expect(shellResult.warnings).toEqual([]);
+    const data = labelData(shell, shellLabels, 16) as Uint16Array;
+    const lined = data.slice();
+    const { width: W, height: H } = shell;
+    for (let i = 0; i < data.length; i++) {
+      for (const j of [i + 1, i + W, i + W * H]) if (j < data.length && data[i] && data[j] && data[i] !== data[j]) lined[i] = 0;
+    }
+    // Lines all round: the lumen joins the outside through them.
+    expect(() => measureVolume(input(writeTiff(volumePages(shell, lined, 16) as never)), { voxelSize: shell.voxel, version: 'test' })).toThrow(/no lumen: .*lines of 0 between cells/);
+    // Lines that stop short of the lumen: measured, with a warning.
+    const plane = W * H;
+    for (let i = 0; i < data.length; i++) {
+      const [x, y, z] = [i % W, Math.floor(i / W) % H, Math.floor(i / plane)];
+      const p = [(x + 0.5) * shell.voxel.x - (W * shell.voxel.x) / 2, (y + 0.5) * shell.voxel.y - (H * shell.voxel.y) / 2, (z + 0.5) * shell.voxel.z - (shell.depth * shell.voxel.z) / 2];
+      // Keep the labels within 1.5 µm of the inner ellipsoid (the lumen side stays sealed).
+      if (Math.hypot(p[0] / (SHELL.a + 1.5), p[1] / (SHELL.b + 1.5), p[2] / (SHELL.c + 1.5)) < 1) lined[i] = data[i];
+    }
+    const r = measureVolume(input(writeTiff(volumePages(shell, lined, 16) as never)), { voxelSize: shell.voxel, version: 'test' });
+    expect(r.warnings.join('\n')).toMatch(/cells barely touch each other .*lines of 0 between cells/);
+  });
+
   it('has the layers mode result shape: analyses[0] an AnalysisRecord over basal, apical', () => {
     const a = shellResult.analyses[0];
     expect(a.method).toBe('labels');

@@ -57,7 +57,7 @@ export function measureVolume(file: LabelFileInput, options: MeasureVolumeOption
   if (lumenComponents.length === 0 && classes.labelledLumenVoxels === 0) {
     throw new MeasureInputError(
       name,
-      'no lumen: all background is one component connected to the outside; a volume needs a lumen (a cyst, organoid or tube), or give --lumen-label N',
+      'no lumen: all background is one component connected to the outside; a volume needs a lumen (a cyst, organoid or tube), or give --lumen-label N; lines of 0 between cells join the lumen to the outside: remove them (e.g. by dilating the labels) first',
     );
   }
   const classifyMs = now() - t1;
@@ -231,6 +231,16 @@ function assemble(
     };
   });
   if (analysis.summary.validCells === 0) warnings.push('no valid cell: every cell touches a face of the volume or does not reach both the lumen and the outside');
+  // Cells of an epithelium share more membrane with each other than with the lumen and the
+  // outside; when they barely touch, background lines separate them (and join the outside).
+  let lateralArea = 0;
+  for (const list of lateral) for (const c of list) lateralArea += c.area / 2;
+  const surfaceArea = areas[0].reduce((a, b) => a + b, 0) + areas[1].reduce((a, b) => a + b, 0);
+  if (n > 1 && lateralArea < 0.1 * surfaceArea) {
+    warnings.push(
+      `cells barely touch each other (${lateralArea.toFixed(0)} µm² of shared interfaces for ${surfaceArea.toFixed(0)} µm² on the surfaces): a segmentation with lines of 0 between cells needs them removed (e.g. by dilating the labels) first`,
+    );
+  }
 
   const layers: VolumeSurfaceRecord[] = [0, 1].map((k) => {
     let area = 0;
