@@ -183,6 +183,7 @@ export async function measureCommand(args: string[], log: (line: string) => void
 }
 
 function volumeCommand(a: MeasureArgs, volume: string, log: (line: string) => void): number {
+  let meshes: Parameters<typeof compareVolume>[2];
   let result: VolumeMeasuredResult = measureVolume(labelFileFromPath(volume), {
     voxelSize: a.voxelSize,
     apical: a.apical,
@@ -191,18 +192,24 @@ function volumeCommand(a: MeasureArgs, volume: string, log: (line: string) => vo
     quartetFilter: a.quartetFilter,
     version,
     onProgress: log,
+    // A closed shell's model runs on its own surfaces: keep them as meshes.
+    onSurfaceMeshes: a.compare ? (m) => (meshes = m) : undefined,
   });
   for (const w of result.warnings) log(`warning: ${w}`);
   if (a.compare) {
-    const { comparison, note } = compareVolume(result, { realizations: a.realizations, seed: a.seed, onProgress: log });
+    const { comparison, note } = compareVolume(result, { realizations: a.realizations, seed: a.seed, onProgress: log }, meshes);
     if (!comparison) {
       log(`warning: ${note}`);
       result = { ...result, warnings: [...result.warnings, note] };
     } else {
       const m = comparison.model.percentScutoids;
       const g = comparison.geometry;
+      const shape =
+        g.kind === 'tube'
+          ? `tube of radius ${g.innerRadius.toFixed(1)} to ${g.outerRadius.toFixed(1)} µm, ${g.length.toFixed(1)} µm long`
+          : `the shell's own surfaces (${g.seeded.triangles} and ${g.other.triangles} triangles)`;
       log(
-        `model: tube of radius ${g.innerRadius.toFixed(1)} to ${g.outerRadius.toFixed(1)} µm, ${g.length.toFixed(1)} µm long; Voronoi ${comparison.bestK} matches best ` +
+        `model: ${shape}; Voronoi ${comparison.bestK} matches best ` +
           `(L1 ${comparison.candidates[comparison.bestK - 1].distance.toFixed(3)}); it gives ${m.mean.toFixed(1)} % scutoids ` +
           `(95 % CI ${m.ci95[0].toFixed(1)} to ${m.ci95[1].toFixed(1)}; measured ${comparison.measured.percentScutoids.toFixed(1)} %)`,
       );

@@ -369,6 +369,7 @@ describe('measure --volume --compare: the model of the same tissue', () => {
     expect(note).toBe('');
     const c = comparison!;
     const g = c.geometry;
+    if (g.kind !== 'tube') throw new Error('expected the fitted tube');
     expect(Math.abs(g.axis[2])).toBeGreaterThan(0.999); // the tube runs along z
     expect(g.innerRadius).toBeCloseTo(TUBE.inner, 0);
     expect(g.outerRadius).toBeCloseTo(TUBE.outer, 0);
@@ -392,11 +393,37 @@ describe('measure --volume --compare: the model of the same tissue', () => {
     expect(lines.some((l) => l.startsWith('model Voronoi 10'))).toBe(true);
   });
 
-  it('says a closed shell has no model yet instead of modelling another shape', () => {
+  it('models a closed shell on its own surface meshes: Voronoi k on the lumen side, sites carried along the normal', () => {
     expect(shellResult.inputs.background.lumenReachesFaces).toBe(false);
-    const { comparison, note } = compareVolume(shellResult, { realizations: 2, seed: 1 });
-    expect(comparison).toBeNull();
-    expect(note).toMatch(/no model for a closed shell yet/);
+    expect(compareVolume(shellResult, { realizations: 2, seed: 1 }).note).toMatch(/closed shell is modelled on its own surface meshes/);
+    let meshes: Parameters<typeof compareVolume>[2];
+    const r = measureVolume(input(tiffOf(shell, shellLabels, 16)), { voxelSize: shell.voxel, version: 'test', onSurfaceMeshes: (m) => (meshes = m) });
+    expect(r.cells).toEqual(shellResult.cells); // the meshes change nothing measured
+    const { comparison, note } = compareVolume(r, { realizations: 4, seed: 1 }, meshes);
+    expect(note).toBe('');
+    const c = comparison!;
+    const g = c.geometry;
+    if (g.kind !== 'mesh') throw new Error('expected the shell meshes');
+    // The meshes are the tissue's surfaces: their areas are the exact ellipsoids' within 2 %.
+    const sum = (a: Float64Array) => a.reduce((x, y) => x + y, 0);
+    expect(Math.abs(g.seeded.area / sum(shell.exactAreas!.inner) - 1)).toBeLessThan(0.02);
+    expect(Math.abs(g.other.area / sum(shell.exactAreas!.outer) - 1)).toBeLessThan(0.02);
+    expect(g.seededLayer).toBe('apical');
+    expect(g.seededCells).toBe(shell.sites);
+    expect(g.projection).toEqual({ alongNormal: 4 * shell.sites, parallel: 0 });
+    expect(g.thickness.mean).toBeCloseTo(SHELL.h, 0);
+    expect(c.surfaceRatio).toBeCloseTo(g.other.area / g.seeded.area, 12);
+    expect(c.candidates).toHaveLength(10);
+    expect(c.bestK).toBe(c.candidates.reduce((a, b) => (b.distance < a.distance ? b : a)).k);
+    expect(c.percentScutoids).toHaveLength(4);
+    for (const key of ['percentScutoids', 'transitions', 'neighbours3D'] as const) {
+      const { mean, ci95 } = c.model[key];
+      expect(ci95[0]).toBeLessThanOrEqual(mean);
+      expect(ci95[1]).toBeGreaterThanOrEqual(mean);
+    }
+    // The model of the same shell and thickness gives scutoids in the measured range.
+    expect(Math.abs(c.model.percentScutoids.mean - c.measured.percentScutoids)).toBeLessThan(25);
+    expect(c.model.neighbours3D.mean).toBeGreaterThan(5.5);
   });
 
   it('fits circles, axes and confidence intervals exactly on exact data', () => {

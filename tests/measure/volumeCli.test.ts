@@ -185,13 +185,14 @@ describe('tissue-sheet measure --volume', () => {
     expect(log.some((l) => /^model: tube of radius [\d.]+ to [\d.]+ µm, [\d.]+ µm long; Voronoi \d+ matches best/.test(l))).toBe(true);
   });
 
-  it('--compare on a closed shell: exit 0, no model, a warning that says why', async () => {
-    const { code, log } = await run(['--volume', f('plain.tif'), '--out', f('compare.json'), '--voxel-size', '0.5,0.5,0.75', '--compare', '--realizations', '2']);
+  it('--compare on a closed shell: the model on its own surface meshes', async () => {
+    const { code, errors, log } = await run(['--volume', f('plain.tif'), '--out', f('compare.json'), '--voxel-size', '0.5,0.5,0.75', '--compare', '--realizations', '2']);
+    expect(errors).toEqual([]);
     expect(code).toBe(0);
     const r = read('compare.json');
-    expect(r.comparison).toBeNull();
-    expect(r.warnings.at(-1)).toMatch(/no model for a closed shell yet/);
-    expect(log.some((l) => l.startsWith('warning: no model for a closed shell'))).toBe(true);
+    expect(r.comparison).toMatchObject({ method: 'exact', realizations: 2, seed: 1, geometry: { kind: 'mesh', seededLayer: 'apical' } });
+    expect(r.comparison.geometry.projection.alongNormal + r.comparison.geometry.projection.parallel).toBe(2 * 24);
+    expect(log.some((l) => /^model: the shell's own surfaces \(\d+ and \d+ triangles\); Voronoi \d+ matches best/.test(l))).toBe(true);
   });
 
   const bad: [string, string[], RegExp][] = [

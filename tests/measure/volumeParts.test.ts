@@ -1,7 +1,7 @@
 /** The volume measurement's parts on inputs whose answers are known by hand. */
 import { deflateSync } from 'node:zlib';
 import { describe, expect, it } from 'vitest';
-import { curveLength, decodeVolumeTiff, inspectVolumeTiff, lzwDecodeInto, parseVoxelSizeOption, quartetFilter } from '../../src/core/measure';
+import { curveLength, decodeVolumeTiff, inspectVolumeTiff, lzwDecodeInto, maskSurfaceMesh, meshArea, parseVoxelSizeOption, quartetFilter, signedVolume } from '../../src/core/measure';
 import { createRandom } from '../../src/core/random';
 import { lzwEncode } from './tiffWriter';
 
@@ -219,5 +219,39 @@ describe('volume TIFF decoding', () => {
         }
       }
     }
+  });
+});
+
+describe('surface meshes of a classified volume', () => {
+  it('gives a voxelized sphere a closed, outward mesh of its area and volume', () => {
+    const voxel = { x: 0.5, y: 0.5, z: 1 };
+    const [W, H, D] = [60, 60, 30];
+    const R = 11;
+    const classes = new Uint8Array(W * H * D);
+    for (let z = 0; z < D; z++) {
+      for (let y = 0; y < H; y++) {
+        for (let x = 0; x < W; x++) {
+          const r = Math.hypot((x + 0.5) * voxel.x - 15, (y + 0.5) * voxel.y - 15, (z + 0.5) * voxel.z - 15);
+          classes[(z * H + y) * W + x] = r < R ? 2 : 1;
+        }
+      }
+    }
+    const mesh = maskSurfaceMesh(classes, W, H, D, voxel, (c) => c === 2, 1.5);
+    expect(mesh.blocks).toEqual([3, 3, 2]);
+    // Closed: every edge in exactly two triangles, once each way.
+    const edges = new Map<string, number>();
+    for (let t = 0; t < mesh.indices.length; t += 3) {
+      for (let e = 0; e < 3; e++) {
+        const key = `${mesh.indices[t + e]},${mesh.indices[t + ((e + 1) % 3)]}`;
+        edges.set(key, (edges.get(key) ?? 0) + 1);
+      }
+    }
+    for (const [key, n] of edges) {
+      expect(n).toBe(1);
+      const [a, b] = key.split(',');
+      expect(edges.get(`${b},${a}`)).toBe(1);
+    }
+    expect(Math.abs(meshArea(mesh.positions, mesh.indices) / (4 * Math.PI * R * R) - 1)).toBeLessThan(0.03);
+    expect(Math.abs(signedVolume(mesh.positions, mesh.indices) / ((4 / 3) * Math.PI * R ** 3) - 1)).toBeLessThan(0.03);
   });
 });

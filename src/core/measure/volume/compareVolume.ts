@@ -17,10 +17,20 @@
  * lumen side; that k is then projected radially to the outer surface (ratio R_outer / R_inner),
  * exact neighbours, cells on the open ends excluded (compareWithModel, the layers mode's code).
  *
- * Closed shells (cysts, organoids) are not modelled yet: that needs the tissue's own surface as
- * a mesh and Lloyd steps on it; the result says so instead of modelling another shape.
+ * Closed shells (cysts, organoids; the lumen reaches no face): the model runs on the tissue's
+ * own surfaces as triangle meshes (surfaceMesh.ts, from measureVolume's onSurfaceMeshes). The
+ * seeded surface is the lumen side, with as many sites as cells reach it (random, the lab's
+ * minimum spacing); Voronoi k = 1..10 by k - 1 sampled Lloyd steps on the mesh (meshModel.ts),
+ * each diagram the exact restricted Voronoi diagram of the mesh; the best k's sites are carried
+ * along the lumen surface's normal until they meet the outer surface (or, where the ray meets
+ * nothing within three mean thicknesses, placed at the mean thickness along it: the parallel
+ * surface), and the outer diagram is the restricted Voronoi diagram there. The result says how
+ * many sites went each way.
  */
-import { compareWithModel, type ModelComparison } from '../compare';
+import { analyzeSurfaces, type ScutoidSummary } from '../../analysis';
+import { compareWithModel, l1Distance, LAB_MIN_SPACING_PIXELS, type ModelCandidate, type ModelComparison } from '../compare';
+import { carryAlongNormals, lloydStepOnMesh, meshSurface, prepareMesh, randomSitesOnMesh } from './meshModel';
+import type { SurfaceMesh } from './surfaceMesh';
 import type { VolumeMeasuredResult } from './volumeResult';
 
 export interface TubeGeometry {
@@ -40,6 +50,20 @@ export interface TubeGeometry {
   readonly thickness: { readonly mean: number; readonly sd: number; readonly cells: number };
 }
 
+export interface ShellGeometry {
+  readonly kind: 'mesh';
+  /** Which measured layer is the seeded (lumen-side) surface. */
+  readonly seededLayer: 'basal' | 'apical';
+  readonly seededCells: number;
+  /** Block size the meshes were extracted at (µm, about a fifth of a cell diameter). */
+  readonly spacing: number;
+  readonly seeded: { readonly vertices: number; readonly triangles: number; readonly area: number };
+  readonly other: { readonly vertices: number; readonly triangles: number; readonly area: number };
+  /** Sites (over all realizations) that met the other surface along their normal, and those put on the parallel surface. */
+  readonly projection: { readonly alongNormal: number; readonly parallel: number };
+  readonly thickness: { readonly mean: number; readonly sd: number; readonly cells: number };
+}
+
 export interface Interval {
   readonly mean: number;
   /** 95 % confidence interval of the mean over realizations (Student t), NaN with one realization. */
@@ -47,7 +71,8 @@ export interface Interval {
 }
 
 export interface VolumeComparison extends ModelComparison {
-  readonly geometry: TubeGeometry;
+  /** The fitted tube of an open piece, or the meshes of a closed shell. */
+  readonly geometry: TubeGeometry | ShellGeometry;
   /** The model's % scutoids, mean transitions and mean 3D neighbours over realizations, with 95 % CIs. */
   readonly model: { readonly percentScutoids: Interval; readonly transitions: Interval; readonly neighbours3D: Interval };
   /** The measured values beside them (valid cells). */
@@ -201,9 +226,7 @@ export function fitTube(result: VolumeMeasuredResult): { geometry: TubeGeometry 
   const outerLayer = result.inputs.layers[outer];
   const innerRadius = archRadius(circle.r, layer.area / layer.cells);
   const outerRadiusTrue = archRadius(outerRadius, outerLayer.area / outerLayer.cells);
-  const heights = result.cells.filter((c) => c.valid && c.height !== null).map((c) => c.height!);
-  const mean = heights.reduce((a, b) => a + b, 0) / Math.max(1, heights.length);
-  const sd = heights.length > 1 ? Math.sqrt(heights.reduce((a, b) => a + (b - mean) ** 2, 0) / (heights.length - 1)) : NaN;
+  const { mean, sd, cells: heightCells } = thicknessOf(result);
   // A point on the axis: the circle's centre in the (u, v) plane, at the mean height along the axis.
   const along = result.cells.filter((c) => c.centroids[inner]).reduce((a, c) => a + dot(c.centroids[inner]!, axis), 0) / innerPoints.length;
   const centre: [number, number, number] = [0, 1, 2].map((k) => circle.cx * u[k] + circle.cy * v[k] + along * axis[k]) as [number, number, number];
@@ -221,19 +244,121 @@ export function fitTube(result: VolumeMeasuredResult): { geometry: TubeGeometry 
       seededLayer: layer.name,
       seededCells: layer.cells,
       innerResidual: residual,
-      thickness: { mean, sd, cells: heights.length },
+      thickness: { mean, sd, cells: heightCells },
     },
     note: '',
   };
 }
 
-/** The model of the same tissue, or null with a note saying why there is none. */
-export function compareVolume(result: VolumeMeasuredResult, options: CompareVolumeOptions): { comparison: VolumeComparison | null; note: string } {
+/** The valid cells' heights: mean, SD. */
+function thicknessOf(result: VolumeMeasuredResult): { mean: number; sd: number; cells: number } {
+  const heights = result.cells.filter((c) => c.valid && c.height !== null).map((c) => c.height!);
+  const mean = heights.reduce((a, b) => a + b, 0) / Math.max(1, heights.length);
+  const sd = heights.length > 1 ? Math.sqrt(heights.reduce((a, b) => a + (b - mean) ** 2, 0) / (heights.length - 1)) : NaN;
+  return { mean: heights.length ? mean : NaN, sd, cells: heights.length };
+}
+
+/** The model of a closed shell on its own surface meshes (see the module comment). */
+export function compareShell(
+  result: VolumeMeasuredResult,
+  meshes: { lumen: SurfaceMesh; outer: SurfaceMesh; spacing: number },
+  options: CompareVolumeOptions,
+): { comparison: VolumeComparison | null; note: string } {
+  const inner = result.inputs.layers.findIndex((l) => l.faces === 'lumen');
+  const layer = result.inputs.layers[inner];
+  const cells = layer.cells;
+  if (cells < 4) return { comparison: null, note: `no model: ${cells} cells reach the lumen; a model needs at least 4` };
+  if (meshes.lumen.indices.length === 0 || meshes.outer.indices.length === 0) return { comparison: null, note: 'no model: a surface mesh came out empty' };
+  const seeded = prepareMesh(meshes.lumen);
+  const other = prepareMesh(meshes.outer);
+  const thickness = thicknessOf(result);
+  const reach = Number.isFinite(thickness.mean) ? thickness.mean : 5 * meshes.spacing;
+  const maxK = options.maxK ?? 10;
+  const { realizations, seed } = options;
+  const minSpacing = (LAB_MIN_SPACING_PIXELS * Math.sqrt(seeded.area / cells)) / Math.sqrt((512 * 4096) / 200);
+  const summary = result.analyses[0].summary;
+  const distribution = summary.perSurface[inner].polygonDistribution.map((f) => (Number.isNaN(f) ? 0 : f));
+
+  let sites = Array.from({ length: realizations }, (_, r) => randomSitesOnMesh(seeded, cells, minSpacing, seed + r));
+  const atK: Float64Array[][] = [];
+  const candidates: ModelCandidate[] = [];
+  for (let k = 1; k <= maxK; k++) {
+    if (k > 1) sites = sites.map((s) => lloydStepOnMesh(seeded, s));
+    atK.push(sites);
+    const mean = new Array<number>(distribution.length).fill(0);
+    for (const s of sites) {
+      const d = analyzeSurfaces([meshSurface(seeded, s, 'seeded')]).summary.perSurface[0].polygonDistribution;
+      d.forEach((f, c) => (mean[c] += (Number.isNaN(f) ? 0 : f) / realizations));
+    }
+    candidates.push({ k, polygonDistribution: mean, distance: l1Distance(distribution, mean) });
+    options.onProgress?.(`model Voronoi ${k}: L1 distance ${candidates[k - 1].distance.toFixed(4)}`);
+  }
+  const best = candidates.reduce((a, b) => (b.distance < a.distance ? b : a));
+  const percents: number[] = [];
+  const transitions: number[] = [];
+  const neighbours3D: number[] = [];
+  let alongNormal = 0;
+  let parallel = 0;
+  let first: ScutoidSummary | null = null;
+  for (const s of atK[best.k - 1]) {
+    const carried = carryAlongNormals(seeded, s, other, 1, 3 * reach, reach);
+    alongNormal += carried.alongNormal;
+    parallel += carried.parallel;
+    const analysis = analyzeSurfaces([meshSurface(seeded, s, 'lumen side'), meshSurface(other, carried.sites, 'outer side')]).summary;
+    first ??= analysis;
+    percents.push(analysis.percentScutoids);
+    transitions.push(analysis.meanTransitions);
+    neighbours3D.push(analysis.meanNeighbours3D);
+  }
+  const p = interval(percents);
+  const sd = percents.length > 1 ? Math.sqrt(percents.reduce((a, b) => a + (b - p.mean) ** 2, 0) / (percents.length - 1)) : NaN;
+  const meshInfo = (m: SurfaceMesh, prepared: { area: number }) => ({ vertices: m.positions.length / 3, triangles: m.indices.length / 3, area: prepared.area });
+  return {
+    comparison: {
+      method: 'exact',
+      distance: 'L1 over polygon classes 3..9, 10+',
+      cells,
+      realizations,
+      seed,
+      minSpacing,
+      candidates,
+      bestK: best.k,
+      surfaceRatio: other.area / seeded.area,
+      percentScutoids: percents,
+      meanPercentScutoids: p.mean,
+      sdPercentScutoids: sd,
+      meanTransitions: transitions,
+      meanNeighbours3D: neighbours3D,
+      summary: first!,
+      geometry: {
+        kind: 'mesh',
+        seededLayer: layer.name,
+        seededCells: cells,
+        spacing: meshes.spacing,
+        seeded: meshInfo(meshes.lumen, seeded),
+        other: meshInfo(meshes.outer, other),
+        projection: { alongNormal, parallel },
+        thickness,
+      },
+      model: { percentScutoids: p, transitions: interval(transitions), neighbours3D: interval(neighbours3D) },
+      measured: { percentScutoids: summary.percentScutoids, transitions: summary.meanTransitions, neighbours3D: summary.meanNeighbours3D },
+    },
+    note: '',
+  };
+}
+
+/**
+ * The model of the same tissue, or null with a note saying why there is none. Closed shells
+ * need `meshes` (measureVolume's onSurfaceMeshes).
+ */
+export function compareVolume(
+  result: VolumeMeasuredResult,
+  options: CompareVolumeOptions,
+  meshes?: { lumen: SurfaceMesh; outer: SurfaceMesh; spacing: number },
+): { comparison: VolumeComparison | null; note: string } {
   if (!result.inputs.background.lumenReachesFaces) {
-    return {
-      comparison: null,
-      note: 'no model for a closed shell yet (its lumen reaches no face of the volume): the model of a cyst or organoid needs its own surface as a mesh; only open pieces (a tube cut by the volume) are modelled, as the fitted tube',
-    };
+    if (!meshes) return { comparison: null, note: 'no model: a closed shell is modelled on its own surface meshes; measure it with onSurfaceMeshes' };
+    return compareShell(result, meshes, options);
   }
   const { geometry, note } = fitTube(result);
   if (!geometry) return { comparison: null, note: `no model: ${note}` };

@@ -11,3 +11,5 @@ export * from './quartets';
 export * from './volumeResult';
 export * from './measureVolume';
 export * from './compareVolume';
+export * from './surfaceMesh';
+export * from './meshModel';

@@ -16,6 +16,7 @@ import { quartetFilter } from './quartets';
 import { decodeVolumeTiff, inspectVolumeTiff, MAX_VOLUME_VOXELS } from './tiffVolume';
 import { chooseVoxelSize, parseOme, type VoxelSize } from './voxelSize';
 import { classifyVoxels, LUMEN, OUTSIDE, type VoxelClasses } from './voxelClasses';
+import { maskSurfaceMesh, type SurfaceMesh } from './surfaceMesh';
 import type { LateralContactRecord, VolumeCellRecord, VolumeContactRecord, VolumeExclusion, VolumeMeasuredResult, VolumeSurfaceRecord } from './volumeResult';
 
 export interface MeasureVolumeOptions {
@@ -32,6 +33,12 @@ export interface MeasureVolumeOptions {
   readonly maxVoxels?: number;
   readonly version: string;
   readonly onProgress?: (line: string) => void;
+  /**
+   * Called with both surfaces as triangle meshes (surfaceMesh.ts; vertices about a fifth of the
+   * lumen side's mean cell diameter apart), built while the classified voxels are at hand: what
+   * the model of a closed shell runs on (compareVolume).
+   */
+  readonly onSurfaceMeshes?: (meshes: { lumen: SurfaceMesh; outer: SurfaceMesh; spacing: number }) => void;
 }
 
 const now = () => performance.now();
@@ -76,6 +83,12 @@ export function measureVolume(file: LabelFileInput, options: MeasureVolumeOption
   const t3 = now();
   const result = assemble(name, fileBytes, header.chain.pages.length, volume.bitsPerSample, W, H, D, voxelSize, classes, faces, curves, layerClass, options, warnings);
   const analysisMs = now() - t3;
+  if (options.onSurfaceMeshes) {
+    const lumenLayer = result.inputs.layers.find((l) => l.faces === 'lumen')!;
+    const spacing = Math.sqrt(lumenLayer.area / Math.max(1, lumenLayer.cells)) / 5;
+    const mesh = (inMask: (c: number) => boolean) => maskSurfaceMesh(classes.classes, W, H, D, voxelSize, inMask, spacing);
+    options.onSurfaceMeshes({ lumen: mesh((c) => c === LUMEN), outer: mesh((c) => c !== OUTSIDE), spacing });
+  }
   return { ...result, timings: { readMs, classifyMs, contactsMs, analysisMs, totalMs: now() - start } };
 }
 
