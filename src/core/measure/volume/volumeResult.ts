@@ -125,7 +125,7 @@ export interface VolumeMeasuredResult {
     readonly quartets: number[][];
     readonly removed: { readonly labels: [number, number]; readonly layer: number }[];
   } | null;
-  /** With --compare: the model of the same tissue (open pieces: the fitted tube), else null. */
+  /** With --compare: the model of the same tissue (closed shells: on their own meshes; open pieces: the fitted tube), else null. */
   readonly comparison: VolumeComparison | null;
   readonly warnings: string[];
   readonly timings: { readonly readMs: number; readonly classifyMs: number; readonly contactsMs: number; readonly analysisMs: number; readonly totalMs: number };
