@@ -9,7 +9,7 @@ import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it, vi } from 'vitest';
 import { measureCommand } from '../../src/cli/measure';
 import { writeTiff, type TiffPage } from './tiffWriter';
-import { labelData, shellVolume, tubeVolume, volumePages, type SyntheticVolume } from './volumes';
+import { labelData, shellVolume, tubeVolume, volumePages, writeBigTiff, type SyntheticVolume } from './volumes';
 
 let dir: string;
 let shell: SyntheticVolume;
@@ -76,6 +76,9 @@ beforeAll(() => {
   put('mixed.tif', writeTiff([...pages().slice(0, 2), { ...pages()[2], width: shell.width - 1, data: new Uint16Array((shell.width - 1) * shell.height) }]));
   put('huge.tif', headerOnlyTiff([{ width: 32768, height: 32768 }, { width: 32768, height: 32768 }]));
   put('big.tif', new Uint8Array([0x49, 0x49, 43, 0, 8, 0, 0, 0, 16, 0, 0, 0, 0, 0, 0, 0]));
+  const plane = shell.width * shell.height;
+  const slices = Array.from({ length: shell.depth }, (_, z) => data.subarray(z * plane, (z + 1) * plane));
+  put('bigtiff-ome.tif', writeBigTiff(shell.width, shell.height, slices, OME(shell.depth)));
   const truncated = writeTiff(pages());
   put('truncated.tif', truncated.subarray(0, Math.floor(truncated.length * 0.6)));
   put('channels.tif', writeTiff(pages({ description: 'ImageJ=1.54f\nimages=4\nchannels=2\nslices=2\nunit=micron\nhyperstack=true\n', xResolution: 2 })));
@@ -138,6 +141,15 @@ describe('tissue-sheet measure --volume', () => {
       expect(r.inputs.voxelSize.z).toBeCloseTo(0.75, 9);
       expect(r.cells.map((c: { neighbours: number[][] }) => c.neighbours)).toEqual(reference.cells.map((c: { neighbours: number[][] }) => c.neighbours));
     }
+  });
+
+  it('reads a BigTIFF OME-TIFF (64-bit offsets)', async () => {
+    const { code, errors } = await run(['--volume', f('bigtiff-ome.tif'), '--out', f('bigtiff.json')]);
+    expect(errors).toEqual([]);
+    expect(code).toBe(0);
+    const r = read('bigtiff.json');
+    expect(r.inputs.voxelSize.source).toBe('ome');
+    expect(r.cells).toEqual(read('plain.json').cells);
   });
 
   it('lets --voxel-size override the metadata, with a warning', async () => {
@@ -203,7 +215,7 @@ describe('tissue-sheet measure --volume', () => {
     ['RGB pages', ['rgb.tif'], /rgb\.tif: page 1 of \d+: 3 samples per pixel/],
     ['pages of different sizes', ['mixed.tif'], /mixed\.tif: page 3 of 3: \d+ x \d+ pixels, page 1 has \d+ x \d+; every slice must have the same size/],
     ['a header declaring more than 2^30 voxels', ['huge.tif'], /huge\.tif: the header declares 32768 x 32768 pixels per page and at least 2 pages, over the limit of 1073741824 voxels/],
-    ['a BigTIFF', ['big.tif'], /big\.tif: BigTIFF is not supported/],
+    ['a BigTIFF cut short', ['big.tif'], /big\.tif: corrupt TIFF \(page 1 starts outside the file\)/],
     ['a truncated file', ['truncated.tif'], /truncated\.tif: .*corrupt TIFF/],
     ['an ImageJ hyperstack with two channels', ['channels.tif'], /channels\.tif: an ImageJ hyperstack with 2 channels; save the label channel alone/],
     ['an OME-TIFF with two channels', ['ome-channels.tif'], /ome-channels\.tif: an OME-TIFF with 2 channels/],

@@ -268,3 +268,49 @@ export function permutedLabels(count: number, from: number, step: number, seed: 
   }
   return labels;
 }
+
+/** A BigTIFF (64-bit offsets, as OME-TIFF writers often produce) of 16-bit pages, one strip each, uncompressed. */
+export function writeBigTiff(width: number, height: number, pages: ArrayLike<number>[], description?: string): Uint8Array {
+  const le = true;
+  const text = description === undefined ? null : new TextEncoder().encode(description + '\0');
+  const entryCount = text ? 9 : 8;
+  const ifdSize = 8 + 20 * entryCount + 8;
+  const pageBytes = 2 * width * height;
+  const textAt = 16;
+  const dataAt = textAt + (text ? text.length + (text.length % 2) : 0);
+  const ifdAt = (k: number) => dataAt + pages.length * pageBytes + k * ifdSize;
+  const out = new Uint8Array(ifdAt(pages.length));
+  const v = new DataView(out.buffer);
+  out.set([0x49, 0x49]);
+  v.setUint16(2, 43, le);
+  v.setUint16(4, 8, le);
+  v.setBigUint64(8, BigInt(ifdAt(0)), le);
+  if (text) out.set(text, textAt);
+  pages.forEach((page, k) => {
+    for (let i = 0; i < width * height; i++) v.setUint16(dataAt + k * pageBytes + 2 * i, page[i], le);
+    const at = ifdAt(k);
+    const entries: [number, number, number | bigint][] = [
+      [256, 4, width],
+      [257, 4, height],
+      [258, 3, 16],
+      [259, 3, 1],
+      [262, 3, 1],
+      ...(text && k === 0 ? [[270, 2, BigInt(textAt)] as [number, number, bigint]] : []),
+      [273, 16, BigInt(dataAt + k * pageBytes)],
+      [277, 3, 1],
+      [279, 16, BigInt(pageBytes)],
+    ];
+    v.setBigUint64(at, BigInt(entries.length), le);
+    entries.forEach(([tag, type, value], e) => {
+      const o = at + 8 + 20 * e;
+      v.setUint16(o, tag, le);
+      v.setUint16(o + 2, type, le);
+      v.setBigUint64(o + 4, BigInt(tag === 270 ? text!.length : 1), le);
+      if (type === 3) v.setUint16(o + 12, Number(value), le);
+      else if (type === 4) v.setUint32(o + 12, Number(value), le);
+      else v.setBigUint64(o + 12, BigInt(value), le);
+    });
+    v.setBigUint64(at + 8 + 20 * entries.length, BigInt(k + 1 < pages.length ? ifdAt(k + 1) : 0), le);
+  });
+  return out;
+}

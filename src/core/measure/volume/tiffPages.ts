@@ -4,7 +4,8 @@
  * page's calibration tags (ImageDescription, X/YResolution).
  *
  * Our own reader rather than the `tiff` package's: that one decodes 8/16-bit integers and
- * floats but not 32-bit unsigned labels, and it re-walks the chain for every page it decodes.
+ * floats but not 32-bit unsigned labels nor BigTIFF (which OME-TIFF writers often produce), and
+ * it re-walks the chain for every page it decodes. Classic TIFF and BigTIFF are both read.
  * The walk is bounded before it allocates: it stops as soon as the pages read so far hold more
  * voxels than the caller's limit, never follows an offset twice, and reads only inside the file.
  */
@@ -42,8 +43,8 @@ export interface TiffChain {
   readonly resolutionUnit: number;
 }
 
-/** Size in bytes of one value of each TIFF field type (1 BYTE ... 12 DOUBLE, 16 LONG8). */
-const TYPE_SIZE: Record<number, number> = { 1: 1, 2: 1, 3: 2, 4: 4, 5: 8, 6: 1, 7: 1, 8: 2, 9: 4, 10: 8, 11: 4, 12: 8, 13: 4 };
+/** Size in bytes of one value of each TIFF field type (1 BYTE ... 12 DOUBLE, 13 IFD; BigTIFF's 16 LONG8, 17 SLONG8, 18 IFD8). */
+const TYPE_SIZE: Record<number, number> = { 1: 1, 2: 1, 3: 2, 4: 4, 5: 8, 6: 1, 7: 1, 8: 2, 9: 4, 10: 8, 11: 4, 12: 8, 13: 4, 16: 8, 17: 8, 18: 8 };
 
 /** Most IFD entries a page may have (real files have 10-30). */
 const MAX_ENTRIES = 4096;
@@ -68,8 +69,14 @@ export function readTiffChain(bytes: Uint8Array, file: string, maxVoxels: number
   const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
   const le = bytes[0] === 0x49;
   const magic = view.getUint16(2, le);
-  if (magic === 43) throw fail('BigTIFF is not supported; save it as a standard TIFF (under 4 GiB)');
-  if (magic !== 42) throw fail(`not a TIFF file (magic number ${magic})`);
+  if (magic !== 42 && magic !== 43) throw fail(`not a TIFF file (magic number ${magic})`);
+  const big = magic === 43;
+  if (big && (bytes.length < 16 || view.getUint16(4, le) !== 8)) throw fail('corrupt BigTIFF header (offsets must be 8 bytes)');
+  /** An unsigned 64-bit offset or count; beyond 2^53 it is out of any file we read anyway. */
+  const u64 = (at: number) => Number(view.getBigUint64(at, le));
+  const entrySize = big ? 20 : 12;
+  const countSize = big ? 8 : 2;
+  const inline = big ? 8 : 4;
 
   const inFile = (offset: number, length: number) => offset >= 0 && length >= 0 && offset + length <= bytes.length;
   const values = (type: number, count: number, at: number): number[] => {
@@ -80,6 +87,7 @@ export function readTiffChain(bytes: Uint8Array, file: string, maxVoxels: number
       const o = at + k * size;
       if (type === 3) out.push(view.getUint16(o, le));
       else if (type === 4 || type === 13) out.push(view.getUint32(o, le));
+      else if (type === 16 || type === 18) out.push(u64(o));
       else if (type === 5) {
         const d = view.getUint32(o + 4, le);
         out.push(d === 0 ? NaN : view.getUint32(o, le) / d);
@@ -95,22 +103,23 @@ export function readTiffChain(bytes: Uint8Array, file: string, maxVoxels: number
   let xResolution: number | null = null;
   let yResolution: number | null = null;
   let resolutionUnit = 2;
-  let offset = view.getUint32(4, le);
+  let offset = big ? u64(8) : view.getUint32(4, le);
   while (offset !== 0) {
     if (seen.has(offset)) throw fail('corrupt TIFF (its chain of pages loops)');
     if (pages.length >= MAX_PAGES) throw fail(`more than ${MAX_PAGES} pages; a label volume has one page per z-slice`);
     seen.add(offset);
-    if (!inFile(offset, 2)) throw fail(`corrupt TIFF (page ${pages.length + 1} starts outside the file)`);
-    const entries = view.getUint16(offset, le);
-    if (entries > MAX_ENTRIES || !inFile(offset + 2, entries * 12 + 4)) throw fail(`corrupt TIFF (page ${pages.length + 1} has a truncated tag directory)`);
+    if (!inFile(offset, countSize)) throw fail(`corrupt TIFF (page ${pages.length + 1} starts outside the file)`);
+    const entries = big ? u64(offset) : view.getUint16(offset, le);
+    if (entries > MAX_ENTRIES || !inFile(offset + countSize, entries * entrySize + inline)) throw fail(`corrupt TIFF (page ${pages.length + 1} has a truncated tag directory)`);
     const tags = new Map<number, number[]>();
     for (let e = 0; e < entries; e++) {
-      const at = offset + 2 + 12 * e;
+      const at = offset + countSize + entrySize * e;
       const tag = view.getUint16(at, le);
       const type = view.getUint16(at + 2, le);
-      const count = view.getUint32(at + 4, le);
+      const count = big ? u64(at + 4) : view.getUint32(at + 4, le);
       const size = (TYPE_SIZE[type] ?? 0) * count;
-      const valueAt = size <= 4 ? at + 8 : view.getUint32(at + 8, le);
+      const valueField = at + (big ? 12 : 8);
+      const valueAt = size <= inline ? valueField : big ? u64(valueField) : view.getUint32(valueField, le);
       if (!TYPE_SIZE[type] || !inFile(valueAt, size)) continue; // unknown type or out of the file: ignored
       if (tag === 270 && pages.length === 0 && type === 2) {
         description = new TextDecoder('utf-8', { fatal: false }).decode(bytes.subarray(valueAt, valueAt + size)).replace(/\0+$/, '');
@@ -133,7 +142,8 @@ export function readTiffChain(bytes: Uint8Array, file: string, maxVoxels: number
       resolutionUnit = first(296, 2);
     }
     pages.push(page);
-    offset = view.getUint32(offset + 2 + 12 * entries, le);
+    const next = offset + countSize + entrySize * entries;
+    offset = big ? u64(next) : view.getUint32(next, le);
   }
   if (pages.length === 0) throw fail('TIFF without any image');
   return { littleEndian: le, pages, description, xResolution, yResolution, resolutionUnit };
