@@ -13,3 +13,4 @@ export * from './measureVolume';
 export * from './compareVolume';
 export * from './surfaceMesh';
 export * from './meshModel';
+export * from './tubeFit';

@@ -9,15 +9,16 @@ import { MeasureInputError } from '../errors';
 import type { LabelFileInput } from '../layerPlan';
 import type { MeasuredAnalysis } from '../measuredResult';
 import { parseImageJDescription } from '../pixelSize';
-import { scanContactEdges, type ContactEdges } from './contactEdges';
-import { curveLength } from './curveLength';
-import { scanFaces, surfaceArea, VOLUME_FACE_NAMES, type FaceScan, type FaceTally } from './faceScan';
+import { contactCurves, type Curves } from './contactCurves';
+import { scanContactEdges } from './contactEdges';
+import { scanFaces, type FaceScan, type FaceTally } from './faceScan';
 import { quartetFilter } from './quartets';
 import { decodeVolumeTiff, inspectVolumeTiff, MAX_VOLUME_VOXELS } from './tiffVolume';
 import { chooseVoxelSize, parseOme, type VoxelSize } from './voxelSize';
 import { classifyVoxels, LUMEN, OUTSIDE, type VoxelClasses } from './voxelClasses';
 import { maskSurfaceMesh, type SurfaceMesh } from './surfaceMesh';
-import type { LateralContactRecord, VolumeCellRecord, VolumeContactRecord, VolumeExclusion, VolumeMeasuredResult, VolumeSurfaceRecord } from './volumeResult';
+import { backgroundRecord, centroid, exclusionOf, LAYER_NAMES, lateralContacts } from './volumeRecords';
+import type { VolumeCellRecord, VolumeContactRecord, VolumeMeasuredResult, VolumeSurfaceRecord } from './volumeResult';
 
 export interface MeasureVolumeOptions {
   /** µm along width, height and between pages; overrides the file's metadata. */
@@ -42,7 +43,6 @@ export interface MeasureVolumeOptions {
 }
 
 const now = () => performance.now();
-const LAYER_NAMES = ['basal', 'apical'] as const;
 
 export function measureVolume(file: LabelFileInput, options: MeasureVolumeOptions): VolumeMeasuredResult {
   const start = now();
@@ -100,33 +100,6 @@ function checkHyperstack(description: string | null, file: string): void {
   const ome = parseOme(description);
   if (ome && ome.channels > 1) throw new MeasureInputError(file, `an OME-TIFF with ${ome.channels} channels; save the label channel alone`);
   if (ome && ome.times > 1) throw new MeasureInputError(file, `an OME-TIFF with ${ome.times} time points; save one time point`);
-}
-
-/** Contact curves on one surface: per pair key a * 2^26 + b of dense ids (1-based), their lengths. */
-type Curves = Map<number, { a: number; b: number; length: number; staircase: number; edges: number; pieces: number }>;
-
-function contactCurves(edges: ContactEdges, surface: number, W: number, H: number, size: VoxelSize): Curves {
-  const groups = new Map<number, number[]>();
-  for (let e = 0; e < edges.count; e++) {
-    if (edges.surface[e] !== surface) continue;
-    const key = edges.a[e] * 2 ** 26 + edges.b[e];
-    let list = groups.get(key);
-    if (!list) groups.set(key, (list = []));
-    list.push(e);
-  }
-  const VX = W + 1;
-  const VXY = (W + 1) * (H + 1);
-  const position = (v: number, out: Float64Array, o: number) => {
-    out[o] = (v % VX) * size.x;
-    out[o + 1] = (Math.floor(v / VX) % (H + 1)) * size.y;
-    out[o + 2] = Math.floor(v / VXY) * size.z;
-  };
-  const curves: Curves = new Map();
-  for (const [key, list] of groups) {
-    const c = curveLength(edges.v0, edges.v1, list, position);
-    curves.set(key, { a: edges.a[list[0]], b: edges.b[list[0]], ...c });
-  }
-  return curves;
 }
 
 function assemble(
@@ -294,74 +267,4 @@ function assemble(
     comparison: null,
     warnings,
   };
-}
-
-/** Whether any lumen voxel (a background component or --lumen-label) lies on a face of the volume. */
-function lumenOnFaces(classes: Uint8Array, W: number, H: number, D: number): boolean {
-  const at = (x: number, y: number, z: number) => classes[(z * H + y) * W + x] === LUMEN;
-  for (let y = 0; y < H; y++) for (let x = 0; x < W; x++) if (at(x, y, 0) || at(x, y, D - 1)) return true;
-  for (let z = 0; z < D; z++) {
-    for (let x = 0; x < W; x++) if (at(x, 0, z) || at(x, H - 1, z)) return true;
-    for (let y = 0; y < H; y++) if (at(0, y, z) || at(W - 1, y, z)) return true;
-  }
-  return false;
-}
-
-function backgroundRecord(classes: VoxelClasses, W: number, H: number, D: number): VolumeMeasuredResult['inputs']['background'] {
-  const lumenReachesFaces = lumenOnFaces(classes.classes, W, H, D);
-  let outsideVoxels = 0;
-  let lumenVoxels = classes.labelledLumenVoxels;
-  let lumenComponents = 0;
-  let pockets = 0;
-  let pocketVoxels = 0;
-  for (const c of classes.components) {
-    if (c.kind === 'outside') outsideVoxels += c.voxels;
-    else if (c.kind === 'lumen') (lumenVoxels += c.voxels), lumenComponents++;
-    else (pocketVoxels += c.voxels), pockets++;
-  }
-  return { outsideVoxels, lumenComponents, lumenVoxels, labelledLumenVoxels: classes.labelledLumenVoxels, pockets, pocketVoxels, lumenReachesFaces };
-}
-
-/** Area-weighted centroid (µm) of a cell's faces of one tally. */
-function centroid(t: FaceTally, id: number, faceArea: readonly number[], size: VoxelSize): [number, number, number] {
-  let weight = 0;
-  const c = [0, 0, 0];
-  for (let axis = 0; axis < 3; axis++) {
-    weight += t.counts[3 * id + axis] * faceArea[axis];
-    for (let k = 0; k < 3; k++) c[k] += t.centres[9 * id + 3 * axis + k] * faceArea[axis];
-  }
-  return [(c[0] / weight) * size.x, (c[1] / weight) * size.y, (c[2] / weight) * size.z];
-}
-
-function lateralContacts(faces: FaceScan, n: number, faceArea: [number, number, number], labels: number[]): LateralContactRecord[][] {
-  const out: LateralContactRecord[][] = Array.from({ length: n }, () => []);
-  const { keys, faces: f } = faces.lateral;
-  const stride = n + 1;
-  const counts = new Float64Array(3);
-  const signed = new Float64Array(3);
-  keys.forEach((key, p) => {
-    const a = Math.floor(key / stride) - 1;
-    const b = (key % stride) - 1;
-    for (let axis = 0; axis < 3; axis++) {
-      counts[axis] = f[6 * p + axis];
-      signed[axis] = f[6 * p + 3 + axis];
-    }
-    const area = surfaceArea(counts, signed, 0, faceArea);
-    const total = counts[0] + counts[1] + counts[2];
-    out[a].push({ label: labels[b], area, faces: total });
-    out[b].push({ label: labels[a], area, faces: total });
-  });
-  for (const list of out) list.sort((x, y) => x.label - y.label);
-  return out;
-}
-
-function exclusionOf(id: number, reaches: Uint8Array[], faceBits: number): VolumeExclusion | null {
-  const missingFrom = [0, 1].filter((k) => !reaches[k][id]);
-  const touchesFaces = VOLUME_FACE_NAMES.filter(([bit]) => faceBits & bit).map(([, name]) => name);
-  if (missingFrom.length === 0 && touchesFaces.length === 0) return null;
-  const reasons = [
-    ...(touchesFaces.length ? [`touches the volume's ${touchesFaces.join(', ')}`] : []),
-    ...missingFrom.map((k) => `does not reach the ${LAYER_NAMES[k]} surface`),
-  ];
-  return { missingFrom, touchesFaces, reason: reasons.join('; ') };
 }
