@@ -1,7 +1,7 @@
 /** The volume measurement's parts on inputs whose answers are known by hand. */
 import { deflateSync } from 'node:zlib';
 import { describe, expect, it } from 'vitest';
-import { curveLength, decodeVolumeTiff, inspectVolumeTiff, lzwDecodeInto, maskSurfaceMesh, meshArea, parseVoxelSizeOption, quartetFilter, signedVolume } from '../../src/core/measure';
+import { carryAlongNormals, curveLength, decodeVolumeTiff, inspectVolumeTiff, lzwDecodeInto, maskSurfaceMesh, meshArea, parseVoxelSizeOption, prepareMesh, quartetFilter, randomSitesOnMesh, signedVolume } from '../../src/core/measure';
 import { createRandom } from '../../src/core/random';
 import { lzwEncode } from './tiffWriter';
 
@@ -253,5 +253,31 @@ describe('surface meshes of a classified volume', () => {
     }
     expect(Math.abs(meshArea(mesh.positions, mesh.indices) / (4 * Math.PI * R * R) - 1)).toBeLessThan(0.03);
     expect(Math.abs(signedVolume(mesh.positions, mesh.indices) / ((4 / 3) * Math.PI * R ** 3) - 1)).toBeLessThan(0.03);
+  });
+});
+
+describe('sites carried along the normal to the other surface', () => {
+  it('meet the other mesh where the ray reaches it, else land at the local thickness (the parallel surface)', () => {
+    const [W, H, D] = [48, 48, 48];
+    const classes = new Uint8Array(W * H * D);
+    for (let z = 0; z < D; z++) {
+      for (let y = 0; y < H; y++) {
+        for (let x = 0; x < W; x++) {
+          const r = Math.hypot(x + 0.5 - 24, y + 0.5 - 24, z + 0.5 - 24);
+          classes[(z * H + y) * W + x] = r < 10 ? 2 : r < 18 ? 0 : 1;
+        }
+      }
+    }
+    const voxel = { x: 1, y: 1, z: 1 };
+    const inner = prepareMesh(maskSurfaceMesh(classes, W, H, D, voxel, (c) => c === 2, 1.5));
+    const outer = prepareMesh(maskSurfaceMesh(classes, W, H, D, voxel, (c) => c !== 1, 1.5));
+    const sites = randomSitesOnMesh(inner, 30, 2, 4);
+    const radius = (p: Float64Array, i: number) => Math.hypot(p[3 * i] - 24, p[3 * i + 1] - 24, p[3 * i + 2] - 24);
+    const hit = carryAlongNormals(inner, sites, outer, 1, 20, () => 5);
+    expect([hit.alongNormal, hit.parallel]).toEqual([30, 0]);
+    for (let i = 0; i < 30; i++) expect(Math.abs(radius(hit.sites, i) - 18)).toBeLessThan(0.6);
+    const missed = carryAlongNormals(inner, sites, outer, 1, 3, () => 5);
+    expect([missed.alongNormal, missed.parallel]).toEqual([0, 30]);
+    for (let i = 0; i < 30; i++) expect(Math.abs(radius(missed.sites, i) - 15)).toBeLessThan(0.6);
   });
 });

@@ -15,11 +15,13 @@
  * minimum spacing); Voronoi k = 1..10 by k - 1 sampled Lloyd steps on the mesh (meshModel.ts),
  * each diagram the exact restricted Voronoi diagram of the mesh; the best k's sites are carried
  * along the lumen surface's normal until they meet the outer surface (or, where the ray meets
- * nothing within three mean thicknesses, placed at the mean thickness along it: the parallel
- * surface), and the outer diagram is the restricted Voronoi diagram there. The result says how
+ * nothing within three mean thicknesses, placed along it at the height of the measured cell
+ * nearest: the parallel surface at the local thickness), and the outer diagram is the
+ * restricted Voronoi diagram there. The result says how
  * many sites went each way.
  */
 import { analyzeSurfaces, type ScutoidSummary } from '../../analysis';
+import { KdTree3 } from '../../closed/kdTree';
 import { compareWithModel, l1Distance, LAB_MIN_SPACING_PIXELS, type ModelCandidate, type ModelComparison } from '../compare';
 import { carryAlongNormals, lloydStepOnMesh, meshSurface, prepareMesh, randomSitesOnMesh } from './meshModel';
 import type { SurfaceMesh } from './surfaceMesh';
@@ -75,6 +77,17 @@ export function interval(values: number[]): Interval {
   return { mean, ci95: [mean - half, mean + half] };
 }
 
+/** The height of the measured cell whose lumen-side centroid is nearest a point (else `fallback`). */
+function localThickness(result: VolumeMeasuredResult, inner: number, fallback: number): (x: number, y: number, z: number) => number {
+  const cells = result.cells.filter((c) => c.height !== null && c.centroids[inner]);
+  if (cells.length === 0) return () => fallback;
+  const points = Float64Array.from(cells.flatMap((c) => c.centroids[inner]!));
+  const tree = new KdTree3(points, cells.length);
+  const ids = new Int32Array(1);
+  const d2 = new Float64Array(1);
+  return (x, y, z) => (tree.knn(x, y, z, 1, ids, d2) > 0 ? cells[ids[0]].height! : fallback);
+}
+
 /** The model of a closed shell on its own surface meshes (see the module comment). */
 export function compareShell(
   result: VolumeMeasuredResult,
@@ -90,6 +103,7 @@ export function compareShell(
   const other = prepareMesh(meshes.outer);
   const thickness = thicknessOf(result);
   const reach = Number.isFinite(thickness.mean) ? thickness.mean : 5 * meshes.spacing;
+  const thicknessAt = localThickness(result, inner, reach);
   const maxK = options.maxK ?? 10;
   const { realizations, seed } = options;
   const minSpacing = (LAB_MIN_SPACING_PIXELS * Math.sqrt(seeded.area / cells)) / Math.sqrt((512 * 4096) / 200);
@@ -118,7 +132,7 @@ export function compareShell(
   let parallel = 0;
   let first: ScutoidSummary | null = null;
   for (const s of atK[best.k - 1]) {
-    const carried = carryAlongNormals(seeded, s, other, 1, 3 * reach, reach);
+    const carried = carryAlongNormals(seeded, s, other, 1, 3 * reach, thicknessAt);
     alongNormal += carried.alongNormal;
     parallel += carried.parallel;
     const analysis = analyzeSurfaces([meshSurface(seeded, s, 'lumen side'), meshSurface(other, carried.sites, 'outer side')]).summary;

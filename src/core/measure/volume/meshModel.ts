@@ -162,7 +162,7 @@ export function meshSurface(mesh: PreparedMesh, sites: Float64Array, label: stri
 /**
  * Each site carried along its triangle's normal (towards `direction` = +1 along it, -1 against)
  * to the first point of `other` within `maxDistance` µm; where the ray meets nothing, the point
- * at `fallbackDistance` along the normal (the parallel surface at the measured thickness).
+ * at `thicknessAt(x, y, z)` along the normal (the parallel surface at the local measured thickness).
  */
 export function carryAlongNormals(
   from: PreparedMesh,
@@ -170,7 +170,7 @@ export function carryAlongNormals(
   other: PreparedMesh,
   direction: 1 | -1,
   maxDistance: number,
-  fallbackDistance: number,
+  thicknessAt: (x: number, y: number, z: number) => number,
 ): { sites: Float64Array; alongNormal: number; parallel: number } {
   const count = sites.length / 3;
   const out = new Float64Array(sites.length);
@@ -188,7 +188,8 @@ export function carryAlongNormals(
       out.set([hit.point.x, hit.point.y, hit.point.z], 3 * s);
       alongNormal++;
     } else {
-      for (let k = 0; k < 3; k++) out[3 * s + k] = on[k] + direction * n[k] * fallbackDistance;
+      const h = thicknessAt(on[0], on[1], on[2]);
+      for (let k = 0; k < 3; k++) out[3 * s + k] = on[k] + direction * n[k] * h;
       parallel++;
     }
   }
