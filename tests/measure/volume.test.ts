@@ -350,6 +350,35 @@ describe('measure --volume: an open tube cut by the volume (gland)', () => {
     expect(r.cells.filter((c) => c.valid).some((c) => c.neighbours[0].some((l) => onFace.has(l)))).toBe(true);
   });
 
+  it('does the same for a tube along x with voxels of three different sizes', () => {
+    const spec = { width: 50, height: 60, depth: 40, voxel: { x: 1, y: 0.4, z: 0.6 }, inner: 6, outer: 11, sites: 30, seed: 6, axis: 'x' as const };
+    const along = tubeVolume(spec);
+    const labels = permutedLabels(along.sites, 1000, 37, 5);
+    const r = measureVolume(input(tiffOf(along, labels, 16)), { voxelSize: along.voxel, minContact: 2, version: 'test' });
+    const onFace = new Set<number>();
+    for (let z = 0; z < along.depth; z++) {
+      for (let y = 0; y < along.height; y++) {
+        for (const x of [0, along.width - 1]) {
+          const s = along.site[(z * along.height + y) * along.width + x];
+          if (s >= 0) onFace.add(labels[s]);
+        }
+      }
+    }
+    for (const cell of r.cells) {
+      expect(cell.valid).toBe(!onFace.has(cell.label));
+      if (!cell.valid) expect(cell.exclusion!.touchesFaces.every((f) => f === 'first column' || f === 'last column')).toBe(true);
+    }
+    const a = agreement(r, along, labels, 1.1);
+    expect(a.wrong).toEqual([]);
+    expect(a.checked).toBeGreaterThan(150);
+    const { comparison } = compareVolume(r, { realizations: 2, seed: 3, maxK: 3 });
+    const g = comparison!.geometry;
+    if (g.kind !== 'tube') throw new Error('expected the fitted tube');
+    expect(Math.abs(g.axis[0])).toBeGreaterThan(0.995);
+    expect(g.innerRadius).toBeCloseTo(spec.inner, 0);
+    expect(g.outerRadius).toBeCloseTo(spec.outer, 0);
+  });
+
   it('applies a 3 µm min-contact (6 voxels across) to the true lengths', () => {
     const labels = Array.from({ length: tube.sites }, (_, k) => k + 1);
     const r = measureVolume(input(tiffOf(tube, labels, 16)), { voxelSize: tube.voxel, minContact: 3, version: 'test' });

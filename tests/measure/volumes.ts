@@ -39,6 +39,8 @@ export interface TubeSpec {
   outer: number;
   sites: number;
   seed: number;
+  /** The tube's axis (default z, through the pages). */
+  axis?: 'x' | 'y' | 'z';
 }
 
 /** Random sites with a minimum distance (dart throwing), in a w x h box periodic in x. */
@@ -64,21 +66,30 @@ const pairKey = (i: number, j: number, n: number) => (i < j ? i * n + j : j * n 
 
 export function tubeVolume(spec: TubeSpec): SyntheticVolume {
   const { width: W, height: H, depth: D, voxel, inner, outer, sites: n } = spec;
-  const length = D * voxel.z;
-  const cx = (W * voxel.x) / 2;
-  const cy = (H * voxel.y) / 2;
-  // Sites in (arc length at the inner radius, z), spaced by 0.6 x the mean cell diameter.
+  const axis = spec.axis ?? 'z';
+  // Voxel coordinates (µm) -> (across 1, across 2, along) for the tube's axis.
+  const size = [W * voxel.x, H * voxel.y, D * voxel.z];
+  const along = axis === 'x' ? 0 : axis === 'y' ? 1 : 2;
+  const [a1, a2] = [0, 1, 2].filter((k) => k !== along);
+  const length = size[along];
+  const c1 = size[a1] / 2;
+  const c2 = size[a2] / 2;
+  // Sites in (arc length at the inner radius, along), spaced by 0.6 x the mean cell diameter.
   const circumference = 2 * Math.PI * inner;
   const xy = dartThrow(n, circumference, length, 0.6 * Math.sqrt((circumference * length) / n), spec.seed, true);
   const theta = Float64Array.from({ length: n }, (_, i) => xy[2 * i] / inner);
   const zs = Float64Array.from({ length: n }, (_, i) => xy[2 * i + 1]);
   const site = new Int32Array(W * H * D);
+  const p = [0, 0, 0];
   for (let z = 0; z < D; z++) {
-    const pz = (z + 0.5) * voxel.z;
+    p[2] = (z + 0.5) * voxel.z;
     for (let y = 0; y < H; y++) {
-      const py = (y + 0.5) * voxel.y - cy;
+      p[1] = (y + 0.5) * voxel.y;
       for (let x = 0; x < W; x++) {
-        const px = (x + 0.5) * voxel.x - cx;
+        p[0] = (x + 0.5) * voxel.x;
+        const px = p[a1] - c1;
+        const py = p[a2] - c2;
+        const pz = p[along];
         const r = Math.hypot(px, py);
         const i = (z * H + y) * W + x;
         if (r < inner) site[i] = -1;
@@ -100,7 +111,7 @@ export function tubeVolume(spec: TubeSpec): SyntheticVolume {
       }
     }
   }
-  const diagonal = Math.hypot(voxel.x, voxel.y);
+  const diagonal = Math.hypot([voxel.x, voxel.y, voxel.z][a1], [voxel.x, voxel.y, voxel.z][a2]);
   const lengthsAt = (r: number) => {
     const grid = { width: 1000, height: 1000, texelX: (2 * Math.PI * r) / 1000, texelY: length / 1000, periodicX: true, periodicY: false };
     const sitesTexel = new Float64Array(2 * n);
