@@ -16,7 +16,7 @@ let shell: SyntheticVolume;
 const f = (name: string) => join(dir, name);
 
 /** A TIFF whose pages declare these sizes, with one 4-byte strip each (never decodable as such). */
-function headerOnlyTiff(pages: { width: number; height: number }[]): Uint8Array {
+function headerOnlyTiff(pages: { width: number; height: number; tile?: number }[]): Uint8Array {
   const ifdSize = 2 + 12 * 8 + 4;
   const bytes = new Uint8Array(16 + pages.length * ifdSize);
   const v = new DataView(bytes.buffer);
@@ -25,16 +25,27 @@ function headerOnlyTiff(pages: { width: number; height: number }[]): Uint8Array 
   v.setUint32(4, 16, true);
   pages.forEach((page, k) => {
     const at = 16 + k * ifdSize;
-    const entries: [number, number, number][] = [
-      [256, 4, page.width],
-      [257, 4, page.height],
-      [258, 3, 16],
-      [259, 3, 1],
-      [262, 3, 1],
-      [273, 4, 8],
-      [278, 4, page.height],
-      [279, 4, 4],
-    ];
+    const entries: [number, number, number][] = page.tile
+      ? [
+          [256, 4, page.width],
+          [257, 4, page.height],
+          [258, 3, 16],
+          [259, 3, 1],
+          [262, 3, 1],
+          [322, 4, page.tile],
+          [323, 4, page.tile],
+          [324, 4, 8],
+        ]
+      : [
+          [256, 4, page.width],
+          [257, 4, page.height],
+          [258, 3, 16],
+          [259, 3, 1],
+          [262, 3, 1],
+          [273, 4, 8],
+          [278, 4, page.height],
+          [279, 4, 4],
+        ];
     v.setUint16(at, entries.length, true);
     entries.forEach(([tag, type, value], e) => {
       const o = at + 2 + 12 * e;
@@ -75,6 +86,7 @@ beforeAll(() => {
   put('rgb.tif', writeTiff(pages().map((p) => ({ ...p, bitsPerSample: 8 as const, samplesPerPixel: 3, data: new Uint8Array(p.width * p.height * 3) }))));
   put('mixed.tif', writeTiff([...pages().slice(0, 2), { ...pages()[2], width: shell.width - 1, data: new Uint16Array((shell.width - 1) * shell.height) }]));
   put('huge.tif', headerOnlyTiff([{ width: 32768, height: 32768 }, { width: 32768, height: 32768 }]));
+  put('huge-tiles.tif', headerOnlyTiff([{ width: 64, height: 64, tile: 60000 }, { width: 64, height: 64, tile: 60000 }]));
   put('big.tif', new Uint8Array([0x49, 0x49, 43, 0, 8, 0, 0, 0, 16, 0, 0, 0, 0, 0, 0, 0]));
   const plane = shell.width * shell.height;
   const slices = Array.from({ length: shell.depth }, (_, z) => data.subarray(z * plane, (z + 1) * plane));
@@ -215,6 +227,7 @@ describe('tissue-sheet measure --volume', () => {
     ['RGB pages', ['rgb.tif'], /rgb\.tif: page 1 of \d+: 3 samples per pixel/],
     ['pages of different sizes', ['mixed.tif'], /mixed\.tif: page 3 of 3: \d+ x \d+ pixels, page 1 has \d+ x \d+; every slice must have the same size/],
     ['a header declaring more than 2^30 voxels', ['huge.tif'], /huge\.tif: the header declares 32768 x 32768 pixels per page and at least 2 pages, over the limit of 1073741824 voxels/],
+    ['tiles declared far larger than the page', ['huge-tiles.tif'], /huge-tiles\.tif: page 1 of 2: tiles of 60000 x 60000 pixels, larger than the page/],
     ['a BigTIFF cut short', ['big.tif'], /big\.tif: corrupt TIFF \(page 1 starts outside the file\)/],
     ['a truncated file', ['truncated.tif'], /truncated\.tif: .*corrupt TIFF/],
     ['an ImageJ hyperstack with two channels', ['channels.tif'], /channels\.tif: an ImageJ hyperstack with 2 channels; save the label channel alone/],

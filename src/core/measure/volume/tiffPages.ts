@@ -52,6 +52,9 @@ const MAX_ENTRIES = 4096;
 /** Most pages (z-slices) a volume may have. */
 export const MAX_PAGES = 65536;
 
+/** Most values a tag we decode may hold (strip or tile offsets of one page). */
+const MAX_TAG_VALUES = 2 ** 22;
+
 export function isClassicOrBigTiff(bytes: Uint8Array): boolean {
   if (bytes.length < 8) return false;
   const le = bytes[0] === 0x49 && bytes[1] === 0x49;
@@ -127,6 +130,7 @@ export function readTiffChain(bytes: Uint8Array, file: string, maxVoxels: number
       }
       // Only the tags we use are decoded (others may be long arrays we do not need).
       if (!USED_TAGS.has(tag)) continue;
+      if (count > MAX_TAG_VALUES) throw fail(`page ${pages.length + 1}: tag ${tag} holds ${count} values, over the limit of ${MAX_TAG_VALUES}`);
       tags.set(tag, values(type, count, valueAt));
     }
     const first = (tag: number, fallback: number) => tags.get(tag)?.[0] ?? fallback;

@@ -35,6 +35,9 @@ export interface VolumeHeader {
 
 const COMPRESSIONS = new Set([1, 5, 8, 32946]);
 
+/** Tiles up to this many pixels are accepted whatever the page size (their buffer is allocated from the header). */
+const MAX_TILE_SAMPLES = 2 ** 20;
+
 /** Checks every page of a TIFF as a slice of a label volume; throws MeasureInputError. */
 export function inspectVolumeTiff(bytes: Uint8Array, file: string, maxVoxels = MAX_VOLUME_VOXELS): VolumeHeader {
   const chain = readTiffChain(bytes, file, maxVoxels);
@@ -62,6 +65,11 @@ function checkPage(page: TiffPageInfo, first: TiffPageInfo, k: number, pages: nu
     throw fail(`${page.width} x ${page.height} pixels, page 1 has ${first.width} x ${first.height}; every slice must have the same size`);
   }
   if (bits !== first.bitsPerSample) throw fail(`${bits}-bit, page 1 is ${first.bitsPerSample}-bit; every slice must have the same type`);
+  // A strip is never larger than its page (bounded with the volume); a tile may be, so bound it.
+  const tileLimit = Math.max(MAX_TILE_SAMPLES, (page.width + 16) * (page.height + 16));
+  if (page.tiled && (page.tileWidth > 65536 || page.tileHeight > 65536 || page.tileWidth * page.tileHeight > tileLimit)) {
+    throw fail(`tiles of ${page.tileWidth} x ${page.tileHeight} pixels, larger than the page; save it with smaller tiles or strips`);
+  }
   const blocks = page.tiled
     ? page.tileWidth > 0 && page.tileHeight > 0
       ? Math.ceil(page.width / page.tileWidth) * Math.ceil(page.height / page.tileHeight)
