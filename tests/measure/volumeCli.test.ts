@@ -75,6 +75,7 @@ beforeAll(() => {
   put('plain.tif', writeTiff(pages()));
   put('imagej.tif', writeTiff(pages({ description: IMAGEJ(shell.depth), xResolution: 2, yResolution: 2, resolutionUnit: 1 })));
   put('imagej-nm.tif', writeTiff(pages({ description: IMAGEJ(shell.depth, 'nm', '750'), xResolution: 0.002, yResolution: 0.002, resolutionUnit: 1 })));
+  put('imagej-no-spacing.tif', writeTiff(pages({ description: IMAGEJ(shell.depth, 'um', ''), xResolution: 2, yResolution: 4, resolutionUnit: 1 })));
   put('ome.tif', writeTiff(pages({ description: OME(shell.depth) }), false));
   put('lzw.tif', writeTiff(pages().map((p) => ({ ...p, compression: 5 as const }))));
   put('deflate32.tif', writeTiff(volumePages(shell, labelData(shell, labels, 32), 32).map((p) => ({ ...p, compression: 8 as const })) as TiffPage[], false));
@@ -162,6 +163,14 @@ describe('tissue-sheet measure --volume', () => {
     const r = read('bigtiff.json');
     expect(r.inputs.voxelSize.source).toBe('ome');
     expect(r.cells).toEqual(read('plain.json').cells);
+  });
+
+  it('takes ImageJ without spacing= as 1 unit between slices, and X and Y resolutions apart', async () => {
+    const { code } = await run(['--volume', f('imagej-no-spacing.tif'), '--out', f('no-spacing.json')]);
+    expect(code).toBe(0);
+    const r = read('no-spacing.json');
+    expect(r.inputs.voxelSize).toEqual({ x: 0.5, y: 0.25, z: 1, source: 'imagej' });
+    expect(r.inputs.voxelSizeDetail).toMatch(/no spacing \(1 unit\)/);
   });
 
   it('lets --voxel-size override the metadata, with a warning', async () => {
