@@ -11,6 +11,9 @@ Usage:
   tissue-sheet sweep SWEEP.json --out DIR          a grid of runs; resumes when rerun (docs/sweep.md)
   tissue-sheet sweep SWEEP.json --out DIR --shard I/N   the I-th of N shares of the grid (or --shard slurm)
   tissue-sheet merge DIR... --out DIR              join shard directories into one sweep directory
+  tissue-sheet measure LAYER_FILE... --out RESULT.json   measure segmented layers, basal first (docs/measure.md)
+  tissue-sheet measure --volume VOLUME.tif --out RESULT.json [--voxel-size X,Y,Z] [--apical lumen|outside]
+                       [--lumen-label N] [--min-contact µm] [--quartet-filter] [--compare]   measure a 3D label volume
   tissue-sheet --version | --help
 
 Options:
