@@ -205,6 +205,8 @@ describe('tissue-sheet measure --volume', () => {
     expect(r.inputs.layers.map((l: { faces: string }) => l.faces)).toEqual(['lumen', 'outside']);
     expect(r.quartetFilter).not.toBeNull();
     expect(r.cells.map((c: { label: number }) => c.label)).not.toContain(999);
+    expect((await run(['--volume', f('lumen.tif'), '--out', f('lumen2.json'), '--voxel-size', '0.5,0.5,0.75', '--lumen-label', '999', '--quartets'])).code).toBe(0);
+    expect(read('lumen2.json').inputs.options.quartetFilter).toBe(true);
   });
 
   it('--compare on an open tube: the model of the fitted tube beside the measurement', async () => {
