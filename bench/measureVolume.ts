@@ -9,7 +9,8 @@
  * sites with a minimum spacing on the unit sphere; a voxel at relative depth d in the shell
  * takes the label of the nearest site direction after the sites are sheared by
  * diag(1 + 0.3 d, 1, 1 - 0.2 d) (so neighbours change with depth: scutoids). Written once as an
- * uncompressed and a Deflate TIFF, then each run is a fresh process under /usr/bin/time -v.
+ * uncompressed and a Deflate TIFF, then each run is a fresh process under /usr/bin/time -v; the
+ * last row adds the model of the same shell (--compare).
  */
 import { spawnSync } from 'node:child_process';
 import { existsSync, mkdirSync, statSync, writeFileSync } from 'node:fs';
@@ -124,3 +125,4 @@ console.log('| --- | --- | --- | --- | --- |');
 timed('baseline: decode the uncompressed TIFF only', raw, ['bench/decodeVolume.ts', raw]);
 timed('--volume, uncompressed TIFF', raw, ['tests/measure/runMeasure.ts', 'measure', '--volume', raw, '--out', out, '--voxel-size', size, '--force']);
 timed('--volume, Deflate TIFF', deflate, ['tests/measure/runMeasure.ts', 'measure', '--volume', deflate, '--out', out, '--voxel-size', size, '--force']);
+timed('--volume --compare (10 realizations), Deflate TIFF', deflate, ['tests/measure/runMeasure.ts', 'measure', '--volume', deflate, '--out', out, '--voxel-size', size, '--compare', '--force']);

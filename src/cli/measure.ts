@@ -83,7 +83,7 @@ export function parseMeasureArgs(args: string[]): MeasureArgs {
     } else if (name === '--lumen-label') {
       parsed.lumenLabel = integer(name, value(), 1, 2 ** 32 - 1);
       volumeOnly.push(name);
-    } else if (name === '--quartet-filter') {
+    } else if (name === '--quartet-filter' || name === '--quartets') {
       parsed.quartetFilter = true;
       volumeOnly.push(name);
     } else if (name === '--pixel-size') (parsed.pixelSize = positiveNumber(name, value())), layersOnly.push(name);

@@ -95,6 +95,7 @@ beforeAll(() => {
   const truncated = writeTiff(pages());
   put('truncated.tif', truncated.subarray(0, Math.floor(truncated.length * 0.6)));
   put('channels.tif', writeTiff(pages({ description: 'ImageJ=1.54f\nimages=4\nchannels=2\nslices=2\nunit=micron\nhyperstack=true\n', xResolution: 2 })));
+  put('ome-two-images.tif', writeTiff(pages({ description: OME(Math.floor(shell.depth / 2)) + OME(shell.depth - Math.floor(shell.depth / 2)) })));
   put('ome-channels.tif', writeTiff(pages({ description: OME(shell.depth).replace('SizeC="1"', 'SizeC="2"') })));
   // A solid block of cells: the background is all one component (the outside), no lumen.
   const solid = new Uint16Array(shell.site.length);
@@ -205,6 +206,8 @@ describe('tissue-sheet measure --volume', () => {
     expect(r.inputs.layers.map((l: { faces: string }) => l.faces)).toEqual(['lumen', 'outside']);
     expect(r.quartetFilter).not.toBeNull();
     expect(r.cells.map((c: { label: number }) => c.label)).not.toContain(999);
+    expect((await run(['--volume', f('lumen.tif'), '--out', f('lumen2.json'), '--voxel-size', '0.5,0.5,0.75', '--lumen-label', '999', '--quartets'])).code).toBe(0);
+    expect(read('lumen2.json').inputs.options.quartetFilter).toBe(true);
   });
 
   it('--compare on an open tube: the model of the fitted tube beside the measurement', async () => {
@@ -241,6 +244,7 @@ describe('tissue-sheet measure --volume', () => {
     ['a truncated file', ['truncated.tif'], /truncated\.tif: .*corrupt TIFF/],
     ['an ImageJ hyperstack with two channels', ['channels.tif'], /channels\.tif: an ImageJ hyperstack with 2 channels; save the label channel alone/],
     ['an OME-TIFF with two channels', ['ome-channels.tif'], /ome-channels\.tif: an OME-TIFF with 2 channels/],
+    ['an OME-TIFF of two images', ['ome-two-images.tif'], /ome-two-images\.tif: its OME-XML says SizeZ=\d+ but it has \d+ pages \(2 images\); save one image/],
     ['a volume without a lumen', ['no-lumen.tif'], /no-lumen\.tif: no lumen: .*--lumen-label/],
     ['a lumen label no voxel carries', ['plain.tif', '--lumen-label', '4321'], /plain\.tif: no voxel carries --lumen-label 4321/],
     ['a missing file', ['nowhere.tif'], /nowhere\.tif: no such file$/],

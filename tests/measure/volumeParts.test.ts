@@ -281,3 +281,30 @@ describe('sites carried along the normal to the other surface', () => {
     for (let i = 0; i < 30; i++) expect(Math.abs(radius(missed.sites, i) - 15)).toBeLessThan(0.6);
   });
 });
+
+describe('contact curve length of a closed loop', () => {
+  it('gives a digital circle (a cell enclosed by one other) its circumference, not less', () => {
+    for (const R of [4, 10, 25]) {
+      // The boundary of the pixels inside the circle, as a loop of pixel edges in the z = 0 plane.
+      const inside = (x: number, y: number) => Math.hypot(x + 0.5, y + 0.5) < R;
+      const v0: number[] = [];
+      const v1: number[] = [];
+      const id = (x: number, y: number) => (y + 100) * 1000 + (x + 100);
+      for (let y = -R - 2; y <= R + 2; y++) {
+        for (let x = -R - 2; x <= R + 2; x++) {
+          if (inside(x, y) !== inside(x + 1, y)) v0.push(id(x + 1, y)), v1.push(id(x + 1, y + 1));
+          if (inside(x, y) !== inside(x, y + 1)) v0.push(id(x, y + 1)), v1.push(id(x + 1, y + 1));
+        }
+      }
+      const position = (v: number, out: Float64Array, o: number) => {
+        out[o] = (v % 1000) - 100;
+        out[o + 1] = Math.floor(v / 1000) - 100;
+        out[o + 2] = 0;
+      };
+      const c = curveLength(v0, v1, v0.map((_, k) => k), position);
+      expect(c.pieces).toBe(1);
+      expect(Math.abs(c.length / (2 * Math.PI * R) - 1)).toBeLessThan(R < 5 ? 0.12 : 0.03);
+      expect(c.staircase / (2 * Math.PI * R)).toBeGreaterThan(1.15);
+    }
+  });
+});

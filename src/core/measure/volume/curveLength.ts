@@ -4,11 +4,13 @@
  * The edges form a graph over voxel corners. Every vertex with exactly two edges is smoothed
  * (Jacobi steps x <- x/2 + (x_prev + x_next)/4), the others (curve ends at triple junctions,
  * branch points) stay fixed; the curve's length is the sum of its smoothed edge lengths. A
- * staircase's zig-zag has a period of a few edges, which these steps damp by a factor of 2 to
- * 4 each (its period-2 part at once), so the smoothed path follows the curve the staircase
- * digitizes, and its length is the curve's own, not the staircase's (up to √3 times longer in
- * 3D). The steps are few enough (SMOOTHING_STEPS; spread about 4 edges) that a curve's bends on
- * the scale of a cell stay. Coordinates are in µm, so anisotropic voxels weigh their edges.
+ * staircase's zig-zag has a period of a few edges; a period of p edges is damped by
+ * (1 + cos(2 pi / p)) / 2 per step (period 2 at once, 4 by half, 6 by a quarter), so after
+ * SMOOTHING_STEPS the path follows the curve the staircase digitizes, and its length is the
+ * curve's own, not the staircase's (up to √3 times longer in 3D). The steps spread about 4
+ * edges, so a curve's bends on the scale of a cell stay. A closed loop (a cell enclosed by one
+ * other on the surface) has no fixed end and would shrink: its round shape's known decay is
+ * undone. Coordinates are in µm, so anisotropic voxels weigh their edges.
  */
 
 export const SMOOTHING_STEPS = 30;
@@ -63,6 +65,7 @@ export function curveLength(
     degree[q]++;
   }
   const staircase = sumLengths(xyz, ends, m);
+  const original = new Float64Array(xyz);
   let next = new Float64Array(xyz);
   for (let step = 0; step < SMOOTHING_STEPS; step++) {
     for (let v = 0; v < n; v++) {
@@ -78,7 +81,32 @@ export function curveLength(
     xyz = next;
     next = t;
   }
-  return { length: sumLengths(xyz, ends, m), staircase, edges: m, pieces: countPieces(n, ends, m) };
+  // Pieces, and the closed loops among them (every vertex with two edges: nothing held fixed).
+  const root = pieceRoots(n, ends, m);
+  let pieces = 0;
+  const vertices = new Map<number, number>();
+  const open = new Set<number>();
+  for (let v = 0; v < n; v++) {
+    if (root[v] === v) pieces++;
+    vertices.set(root[v], (vertices.get(root[v]) ?? 0) + 1);
+    if (degree[v] !== 2) open.add(root[v]);
+  }
+  // A loop of k vertices shrinks under the steps: its round (fundamental) shape by
+  // (1 - (1 - cos(2 pi / k)) / 2) per step, which is undone; its zig-zag decays far faster.
+  // Loops under 8 vertices (a voxel's size) are noise: their staircase is kept.
+  let length = 0;
+  for (let e = 0; e < m; e++) {
+    const r = root[ends[2 * e]];
+    const k = vertices.get(r)!;
+    const loop = !open.has(r);
+    const p = 3 * ends[2 * e];
+    const q = 3 * ends[2 * e + 1];
+    const smoothed = Math.hypot(xyz[p] - xyz[q], xyz[p + 1] - xyz[q + 1], xyz[p + 2] - xyz[q + 2]);
+    if (!loop) length += smoothed;
+    else if (k < 8) length += Math.hypot(original[p] - original[q], original[p + 1] - original[q + 1], original[p + 2] - original[q + 2]);
+    else length += smoothed / Math.pow(1 - (1 - Math.cos((2 * Math.PI) / k)) / 2, SMOOTHING_STEPS);
+  }
+  return { length, staircase, edges: m, pieces };
 }
 
 function sumLengths(xyz: Float64Array, ends: Int32Array, m: number): number {
@@ -91,7 +119,8 @@ function sumLengths(xyz: Float64Array, ends: Int32Array, m: number): number {
   return total;
 }
 
-function countPieces(n: number, ends: Int32Array, m: number): number {
+/** The root vertex of each vertex's connected piece. */
+function pieceRoots(n: number, ends: Int32Array, m: number): Int32Array {
   const parent = new Int32Array(n);
   for (let i = 0; i < n; i++) parent[i] = i;
   const find = (i: number): number => {
@@ -101,14 +130,11 @@ function countPieces(n: number, ends: Int32Array, m: number): number {
     }
     return i;
   };
-  let pieces = n;
   for (let k = 0; k < m; k++) {
     const a = find(ends[2 * k]);
     const b = find(ends[2 * k + 1]);
-    if (a !== b) {
-      parent[a] = b;
-      pieces--;
-    }
+    if (a !== b) parent[a] = b;
   }
-  return pieces;
+  for (let i = 0; i < n; i++) parent[i] = find(i);
+  return parent;
 }

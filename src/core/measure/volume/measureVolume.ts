@@ -50,7 +50,7 @@ export function measureVolume(file: LabelFileInput, options: MeasureVolumeOption
   let bytes: Uint8Array | null = file.read();
   const fileBytes = bytes.length;
   const header = inspectVolumeTiff(bytes, name, options.maxVoxels ?? MAX_VOLUME_VOXELS);
-  checkHyperstack(header.chain.description, name);
+  checkHyperstack(header.chain.description, name, header.depth);
   const { voxelSize, warnings } = chooseVoxelSize(header.chain, name, options.voxelSize);
   const volume = decodeVolumeTiff(bytes, name, header);
   bytes = null; // the decoded volume is all we need from here
@@ -93,13 +93,16 @@ export function measureVolume(file: LabelFileInput, options: MeasureVolumeOption
 }
 
 /** ImageJ hyperstacks and OME files with several channels or time points are not one label volume. */
-function checkHyperstack(description: string | null, file: string): void {
+function checkHyperstack(description: string | null, file: string, pages: number): void {
   const imagej = parseImageJDescription(description ?? undefined);
   if (imagej && imagej.channels > 1) throw new MeasureInputError(file, `an ImageJ hyperstack with ${imagej.channels} channels; save the label channel alone`);
   if (imagej && imagej.frames > 1) throw new MeasureInputError(file, `an ImageJ hyperstack with ${imagej.frames} time points; save one time point`);
   const ome = parseOme(description);
   if (ome && ome.channels > 1) throw new MeasureInputError(file, `an OME-TIFF with ${ome.channels} channels; save the label channel alone`);
   if (ome && ome.times > 1) throw new MeasureInputError(file, `an OME-TIFF with ${ome.times} time points; save one time point`);
+  if (ome && ome.slices !== null && ome.slices !== pages) {
+    throw new MeasureInputError(file, `its OME-XML says SizeZ=${ome.slices} but it has ${pages} pages${ome.images > 1 ? ` (${ome.images} images)` : ''}; save one image of one channel`);
+  }
 }
 
 function assemble(

@@ -71,13 +71,18 @@ export interface OmeDescription {
   readonly voxelSize: VoxelSize | null;
   readonly channels: number;
   readonly times: number;
+  /** SizeZ of the first image, or null when absent. */
+  readonly slices: number | null;
+  /** Image elements in the XML (a file may hold several series). */
+  readonly images: number;
 }
 
 /** What an OME-XML ImageDescription says about the volume, or null when it is not OME-XML. */
 export function parseOme(description: string | null): OmeDescription | null {
   if (!description || !/<(?:\w+:)?OME\b/.test(description)) return null;
   const pixels = firstElementAttributes(description, 'Pixels');
-  if (!pixels) return { voxelSize: null, channels: 1, times: 1 };
+  const images = (description.match(/<(?:\w+:)?Image\b/g) ?? []).length;
+  if (!pixels) return { voxelSize: null, channels: 1, times: 1, slices: null, images };
   const count = (name: string) => {
     const v = Number(pixels.get(name));
     return Number.isInteger(v) && v > 0 ? v : 1;
@@ -100,7 +105,8 @@ export function parseOme(description: string | null): OmeDescription | null {
           detail: `OME-XML PhysicalSizeX/Y/Z ${pixels.get('PhysicalSizeX')}, ${pixels.get('PhysicalSizeY')}, ${pixels.get('PhysicalSizeZ')} ${pixels.get('PhysicalSizeXUnit') ?? 'µm'}`,
         }
       : null;
-  return { voxelSize, channels: count('SizeC'), times: count('SizeT') };
+  const sizeZ = Number(pixels.get('SizeZ'));
+  return { voxelSize, channels: count('SizeC'), times: count('SizeT'), slices: Number.isInteger(sizeZ) && sizeZ > 0 ? sizeZ : null, images };
 }
 
 /** The voxel size to use, with warnings when the option disagrees with the file. */
