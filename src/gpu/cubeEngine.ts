@@ -1,6 +1,6 @@
 import * as THREE from 'three';
 import { texelEdgeTable } from '../core/cubemap/cubemap';
-import { coldSchedule, warmSchedule, type JumpFloodVariant } from '../core/jumpSchedule';
+import { FloodSchedules, type JumpFloodVariant } from '../core/jumpSchedule';
 import centroidScatterFrag from '../shaders/centroidScatter.frag';
 import clearLabelsFrag from '../shaders/clearLabels.frag';
 import cubeCentroidScatterVert from '../shaders/cubeCentroidScatter.vert';
@@ -62,7 +62,7 @@ export class CubeCcvtEngine {
   private readonly splatPass: ShaderPass;
   private readonly floodPass: ShaderPass;
   private readonly scatterPass: ShaderPass | null = null;
-  private readonly coldSteps: number[];
+  private readonly schedules: FloodSchedules;
 
   constructor(
     private readonly context: GpuContext,
@@ -97,7 +97,7 @@ export class CubeCcvtEngine {
     const rows = Math.max(1, Math.min(this.height, Math.floor((1 << 20) / this.width)));
     this.labelStaging = new Float32Array(this.width * rows * 4);
     this.labelBuffer = new Int32Array(this.width * this.height);
-    this.coldSteps = coldSchedule(n, n, options.variant);
+    this.schedules = new FloodSchedules(n, n, options.variant);
 
     const metric = {
       faceSize: { value: n },
@@ -169,7 +169,7 @@ export class CubeCcvtEngine {
    * the previous labels, given how far (in texels, an upper bound) any site moved since.
    */
   floodLabels(warmFromTexels?: number): void {
-    const steps = warmFromTexels === undefined ? this.coldSteps : warmSchedule(this.n, this.n, warmFromTexels);
+    const steps = this.schedules.steps(warmFromTexels);
     if (warmFromTexels === undefined) this.clearPass.draw(this.renderer, this.labelTargets[this.current]);
     this.splatPass.draw(this.renderer, this.labelTargets[this.current], this.siteCount);
     this.current = floodPingPong(this.renderer, this.floodPass, this.labelTargets, this.current, steps);

@@ -1,7 +1,7 @@
 import * as THREE from 'three';
 import type { Grid } from '../core/grid';
 import { accumulateCentroidRows } from '../core/labels';
-import { coldSchedule, warmFirstStep, warmSchedule, type JumpFloodVariant } from '../core/jumpSchedule';
+import { FloodSchedules, type JumpFloodVariant } from '../core/jumpSchedule';
 import centroidScatterFrag from '../shaders/centroidScatter.frag';
 import centroidScatterVert from '../shaders/centroidScatter.vert';
 import idSplatFrag from '../shaders/idSplat.frag';
@@ -62,8 +62,7 @@ export class CcvtEngine {
   private readonly idSplatPass: ShaderPass;
   private readonly floodPass: ShaderPass;
   private readonly centroidPass: ShaderPass | null;
-  private readonly coldSteps: number[];
-  private readonly warmSchedules = new Map<number, readonly number[]>();
+  private readonly schedules: FloodSchedules;
   private readonly syncPixel = new Float32Array(4);
   /** Largest distance (texels) any site moved since the last computeSums(). */
   private movedSinceSums = Infinity;
@@ -107,7 +106,7 @@ export class CcvtEngine {
     this.idMapTarget = createFloatTarget(grid.width, grid.height, THREE.RedFormat);
     this.sumsTarget = createFloatTarget(this.siteTextureWidth, this.siteTextureHeight, THREE.RGBAFormat);
     this.sums = new Float32Array(this.siteTextureWidth * this.siteTextureHeight * 4);
-    this.coldSteps = coldSchedule(grid.width, grid.height, options.variant);
+    this.schedules = new FloodSchedules(grid.width, grid.height, options.variant);
 
     // Uniform objects are shared between programs: one update reaches all of them.
     const metric = {
@@ -180,7 +179,7 @@ export class CcvtEngine {
    * labels, given the largest distance (texels) any site moved since they were computed.
    */
   floodLabels(warmFromDisplacement?: number): void {
-    const steps = warmFromDisplacement === undefined ? this.coldSteps : this.warmSteps(warmFromDisplacement);
+    const steps = this.schedules.steps(warmFromDisplacement);
     if (warmFromDisplacement === undefined) {
       this.clearToEmpty(this.labelTargets[this.current]);
     } else {
@@ -201,17 +200,6 @@ export class CcvtEngine {
   private clearToEmpty(target: THREE.WebGLRenderTarget): void {
     this.renderer.setRenderTarget(target);
     this.context.gl.clearBufferfv(this.context.gl.COLOR, 0, EMPTY_LABEL);
-  }
-
-  /** Warm schedules depend only on their first step: built once each, so the loop allocates nothing. */
-  private warmSteps(maxDisplacement: number): readonly number[] {
-    const first = warmFirstStep(this.grid.width, this.grid.height, maxDisplacement);
-    let steps = this.warmSchedules.get(first);
-    if (!steps) {
-      steps = warmSchedule(this.grid.width, this.grid.height, maxDisplacement);
-      this.warmSchedules.set(first, steps);
-    }
-    return steps;
   }
 
   /** Sums (w*dx, w*dy, w, w*d²) per site over the current labels; result in `this.sums`. */
