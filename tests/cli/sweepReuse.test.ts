@@ -1,0 +1,70 @@
+import { afterAll, describe, expect, it } from 'vitest';
+import { validateAnyConfig, type AnyConfig } from '../../src/core/config';
+import { createHeadlessContext } from '../../src/node/headless';
+import { SheetRunner, sweepSummary } from '../../src/run/index';
+import type { SheetResult } from '../../src/run/result';
+
+// What a sweep reuses between grid points must give exactly what each grid point gives alone:
+// one Lloyd run serves every Voronoi k on its way (k = sites after k - 1 iterations), one seeded
+// surface every sheet.* value, the layers and lab validity every ratio.
+const context = createHeadlessContext();
+afterAll(() => context.dispose());
+
+const base = {
+  surface: { kind: 'tube', radius: 40, length: 300 },
+  resolution: 128,
+  cells: 24,
+  engine: 'exact',
+  seed: 7,
+  lloyd: { tolerance: 0 },
+  sheet: { protocol: 'lab', validityMaxRatio: 4, adjacency: 'exact' },
+};
+const config = (maxIterations: number, surfaceRatio: number, extra: Record<string, unknown> = {}): AnyConfig =>
+  validateAnyConfig({ ...base, ...extra, lloyd: { ...base.lloyd, ...(extra.lloyd as object), maxIterations }, sheet: { ...base.sheet, surfaceRatio } });
+
+/** The result without wall-clock timings (the only fields that may differ between two computations). */
+function comparable(result: SheetResult): unknown {
+  const { timings: _timings, ...rest } = result;
+  return JSON.parse(JSON.stringify({ ...rest, lloyd: { ...rest.lloyd, iterations: rest.lloyd.iterations.map(({ jumpFloodMs: _j, centroidMs: _c, ...r }) => r) } }));
+}
+
+async function alone(c: AnyConfig): Promise<SheetResult> {
+  return (await new SheetRunner(context).run(c, { views: false })).result;
+}
+
+describe('SheetRunner reuse equals computing each grid point alone (exact engine)', () => {
+  it('a reused Voronoi k equals a fresh run with that maxIterations, bit for bit', async () => {
+    const shared = new SheetRunner(context);
+    const setups = new Set<number>();
+    // Voronoi 1..5 at two ratios each, in the order a sweep's worker takes them.
+    for (const k of [1, 2, 3, 4, 5]) {
+      for (const s of [1.5, 3]) {
+        const reused = (await shared.run(config(k - 1, s), { views: false })).result;
+        const fresh = await alone(config(k - 1, s));
+        expect(reused.lloyd.iterations.length).toBe(k - 1);
+        setups.add(reused.timings.setupMs);
+        expect(comparable(reused), `Voronoi ${k}, s = ${s}`).toEqual(comparable(fresh));
+        expect(JSON.stringify(sweepSummary(reused))).toBe(JSON.stringify(sweepSummary(fresh)));
+      }
+    }
+    // One Lloyd run served every k (its set-up time is reported by each).
+    expect(setups.size).toBe(1);
+  });
+
+  it('skipping Voronoi k, going back, another seed or another tolerance: still the fresh result', async () => {
+    const shared = new SheetRunner(context);
+    const order: [number, number, Record<string, unknown>][] = [
+      [4, 2, {}],
+      [9, 2, {}],
+      [2, 2, {}], // fewer iterations than the kept run: a new run
+      [9, 4, { seed: 8 }],
+      [6, 1, { lloyd: { tolerance: 0.5 } }], // converges before 6 iterations: stops where a fresh run stops
+      [8, 1, { lloyd: { tolerance: 0.5 } }],
+    ];
+    for (const [max, s, extra] of order) {
+      const c = config(max, s, extra);
+      const reused = (await shared.run(c, { views: false })).result;
+      expect(comparable(reused), `maxIterations ${max}`).toEqual(comparable(await alone(c)));
+    }
+  });
+});
