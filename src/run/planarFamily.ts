@@ -1,4 +1,4 @@
-import { LAB_PROTOCOL, labelContactThresholdTexels, labInvalidCells, labMinBoundaryLength, surfaceFromExact, surfaceFromLabels, type LabProtocolSettings } from '../core/analysis';
+import { invalidOnAnySurface, LAB_PROTOCOL, labelContactThresholdTexels, labMinBoundaryLength, surfaceFromLabels, type LabProtocolSettings, type SurfaceAdjacency } from '../core/analysis';
 import { checkFeasible, checkSheet, layerStepOf, makeGrid, minContactPixelsOf, type Config } from '../core/config';
 import { densityField, type GrayImage } from '../core/density';
 import { exactVoronoi } from '../core/exact';
@@ -97,21 +97,28 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
     return { reported: length, perLayer: layers.map(() => length) };
   },
 
-  // Once per seeded surface and settings: a sweep over ratios asks again for every ratio.
+  // Once per seeded surface and settings: a sweep over ratios asks again for every ratio. The
+  // layers s = 1 : step : validityMaxRatio are laid out as a stack to that ratio lays them out
+  // (surfaceStack, projectSites), so they are the very surfaces the stacks of the sweep's ratios
+  // are made of: one exact diagram per layer serves the validity and every ratio (exactLayer).
   protocolInvalid(config, geometry, sites) {
     if (config.sheet.protocol !== 'lab') return null;
     const settings = labSettings(config.sheet);
-    return memo(sites, `lab ${settings.layerStep} ${settings.validityMaxRatio}`, () =>
-      labInvalidCells(geometry.grid, sites, settings, (grid, layerSites, label) => exactSurface(grid, layerSites, label)),
-    );
+    return memo(sites, `lab ${settings.layerStep} ${settings.validityMaxRatio}`, () => {
+      const sheet = { ...config.sheet, surfaceRatio: settings.validityMaxRatio, direction: 'outward' as const, layerStep: settings.layerStep };
+      const layers = surfaceStack({ ...config, sheet }, geometry.grid);
+      return invalidOnAnySurface(
+        layers.map((layer) => exactLayer(layer.grid, sites, layer.role === 'seeded' ? sites : projectSites(geometry.grid, layer.grid, sites))),
+        config.cells,
+      );
+    });
   },
 
   // The exact Delaunay needs no threshold: every contact of positive length counts.
   exactMinContactLengths: () => null,
 
   // Kept per seeded surface: runs that differ in the sheet share most of their layers.
-  exactAdjacency: (_config, _geometry, layer, sites, projected) =>
-    memo(sites, `exact ${layer.name} ${layer.grid.width} ${layer.grid.texelX}`, () => surfaceFromExact(exactVoronoi(layer.grid, projected), layer.name)),
+  exactAdjacency: (_config, _geometry, layer, sites, projected) => ({ ...exactLayer(layer.grid, sites, projected), label: layer.name }),
 
   cellPlacement(config, layer, _sites, projected, id) {
     const x = projected[2 * id];
@@ -152,6 +159,17 @@ function memo<T>(sites: PlanarSites, key: string, compute: () => T): T {
   if (!values) memos.set(sites, (values = new Map()));
   if (!values.has(key)) values.set(key, compute());
   return values.get(key) as T;
+}
+
+/**
+ * The exact adjacency of the seeded sites projected onto a layer's grid (`projected`: as
+ * `project` moves them there), once per seeded surface and grid: the same grid is the same
+ * surface in every stack and in the lab validity. exactSurface gives the numbers of
+ * surfaceFromExact(exactVoronoi(...)) (tested cell by cell) without the per-cell records.
+ */
+function exactLayer(grid: Grid, sites: PlanarSites, projected: ArrayLike<number>): SurfaceAdjacency {
+  const { width, height, texelX, texelY, periodicX, periodicY } = grid;
+  return memo(sites, `exact ${width} ${height} ${texelX} ${texelY} ${periodicX} ${periodicY}`, () => exactSurface(grid, projected));
 }
 
 /** The exact engine's seeded surface has no label image (the stack draws its cells for views). */
