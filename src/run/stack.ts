@@ -1,8 +1,9 @@
-import { analyzeLabStack, analyzeSurfaces, toCsr, withMinBoundaryLength, type SurfaceAdjacency } from '../core/analysis';
+import { analyzeSurfaces, toCsr, withMinBoundaryLength, type SurfaceAdjacency } from '../core/analysis';
 import { analysisMethods, type AnyConfig } from '../core/config';
 import type { GpuContext } from '../gpu/context';
 import { analysisRecord } from '../core/analysis';
 import type { StackLayer, SurfaceFamily } from './family';
+import { analyzeLabStackReusing } from './labStackReuse';
 import { throwIfAborted, yieldToEventLoop, type SeededSurface } from './relax';
 import type { AnalysisRecord, CellRecord, ClosedSurfaceRecord, LabelImage, SurfaceRecord } from './result';
 
@@ -68,7 +69,9 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
 
     // The protocol: which cells are valid, how intercalations are counted (docs/protocols.md).
     const invalid = family.protocolInvalid(config, geometry, seeded.sites);
-    const analyze = (surfaces: SurfaceAdjacency[]) => (invalid ? analyzeLabStack(surfaces, invalid) : analyzeSurfaces(surfaces));
+    // The lab's analysis carries the sums of layers shared with the previous run's stack (the
+    // same seeded surface at a smaller ratio): the same numbers, see labStackReuse.ts.
+    const analyze = (surfaces: SurfaceAdjacency[]) => (invalid ? analyzeLabStackReusing(surfaces, invalid) : analyzeSurfaces(surfaces));
     const analyses: AnalysisRecord[] = [];
     if (methods.includes('labels')) {
       const minContact = family.minContactLengths(config, geometry, layers);

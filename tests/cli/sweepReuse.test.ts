@@ -1,7 +1,12 @@
 import { afterAll, describe, expect, it } from 'vitest';
 import { validateAnyConfig, type AnyConfig } from '../../src/core/config';
 import { createHeadlessContext } from '../../src/node/headless';
+import { analyzeLabStack, invalidOnAnySurface, type SurfaceAdjacency } from '../../src/core/analysis';
+import { exactSurface } from '../../src/core/exactEngine';
+import type { Grid } from '../../src/core/grid';
+import { placeSites } from '../../src/core/sites';
 import { SheetRunner, sweepSummary } from '../../src/run/index';
+import { analyzeLabStackReusing } from '../../src/run/labStackReuse';
 import type { SheetResult } from '../../src/run/result';
 
 // What a sweep reuses between grid points must give exactly what each grid point gives alone:
@@ -66,5 +71,40 @@ describe('SheetRunner reuse equals computing each grid point alone (exact engine
       const reused = (await shared.run(c, { views: false })).result;
       expect(comparable(reused), `maxIterations ${max}`).toEqual(comparable(await alone(c)));
     }
+  });
+});
+
+describe('analyzeLabStackReusing', () => {
+  it('equals analyzeLabStack for every stack, in any order, whatever it carried before', () => {
+    const grid: Grid = { width: 32, height: 256, texelX: 2, texelY: 2, periodicX: true, periodicY: false };
+    const sites = placeSites(grid, 40, 3, 2);
+    const layerAt = (s: number, label: string): SurfaceAdjacency => {
+      const projected = new Float64Array(sites.length);
+      for (let k = 0; k < sites.length; k += 2) {
+        projected[k] = sites[k] * s;
+        projected[k + 1] = sites[k + 1];
+      }
+      return exactSurface({ ...grid, width: grid.width * s }, projected, label);
+    };
+    const ratios = Array.from({ length: 13 }, (_, k) => 1 + 0.25 * k);
+    // Shared layers (one object per ratio, as planarFamily keeps them), and each stack's own outer surface.
+    const layers = ratios.map((s, k) => layerAt(s, k === 0 ? 'apical' : `layer ${k}`));
+    const invalid = invalidOnAnySurface(layers, 40);
+    const stackTo = (k: number, ownOuter: boolean): SurfaceAdjacency[] => [
+      ...layers.slice(0, Math.max(1, k)),
+      ownOuter ? layerAt(ratios[k], 'basal') : { ...layers[k], label: 'basal' },
+    ];
+    const order = [0, 1, 2, 4, 8, 12, 12, 3, 5, 12, 0, 7, 6, 9];
+    order.forEach((k, n) => {
+      const stack = stackTo(k, n % 2 === 0);
+      const reused = analyzeLabStackReusing(stack, invalid);
+      const fresh = analyzeLabStack(stack.map((s) => ({ ...s })), invalid);
+      expect(reused, `stack to s = ${ratios[k]} (call ${n})`).toEqual(fresh);
+      expect(JSON.stringify(reused.summary)).toBe(JSON.stringify(fresh.summary));
+    });
+    // A valid set that differs (a cell excluded beyond the validity layers) is not a stale summary.
+    const more = invalid.slice();
+    more[more.indexOf(0)] = 1;
+    expect(analyzeLabStackReusing(stackTo(6, false), more)).toEqual(analyzeLabStack(stackTo(6, false), more));
   });
 });
