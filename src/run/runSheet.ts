@@ -92,7 +92,10 @@ export class SheetRunner {
         },
         adjacency: { method: seeded.engine.name === 'exact' ? 'exact' : 'labels' },
         timings: { setupMs: seeded.setupMs, lloydMs: seeded.lloydMs, adjacencyMs: stack.adjacencyMs, totalMs: performance.now() - start },
-        cells: stack.seededCells,
+        // Read from the stack on first use (see analyzeStack), in its place in the result's order.
+        get cells() {
+          return stack.seededCells;
+        },
         surfaces: stack.surfaces,
         analyses: stack.analyses,
         headline: runHeadline(config, stack.analyses, seeded.iterations.length),

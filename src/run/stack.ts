@@ -90,22 +90,44 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
     const section = family.resultSection(config, geometry, seeded, labeller);
     // Cells and their contacts: exact where only the exact method ran, else from the label images.
     const cellSurfaces = exactOnly && exactSurfaces ? exactSurfaces : labelled;
-    const cellsOf = (k: number) => cellRecords(cellSurfaces[k], (id) => family.cellPlacement(config, layers[k], seeded.sites, projected[k], id));
-    const surfaces: SurfaceRecord[] = layers.slice(1).map((layer, index) => ({
-      name: layer.name,
-      role: layer.role === 'layer' ? 'layer' : 'other',
-      offset: layer.offset,
-      ratio: family.layerRatio(geometry, layer),
-      grid: { ...labelImages[index + 1].grid },
-      cells: cellsOf(index + 1),
-    }));
-    return { seededCells: cellsOf(0), surfaces, analyses, labelImages, ...section, adjacencyMs };
+    // Built on first read (a sweep reads only the analyses): hundreds of objects per surface.
+    const cellsOf = (k: number) => once(() => cellRecords(cellSurfaces[k], (id) => family.cellPlacement(config, layers[k], seeded.sites, projected[k], id)));
+    const surfaces: SurfaceRecord[] = layers.slice(1).map((layer, index) => {
+      const cells = cellsOf(index + 1);
+      return {
+        name: layer.name,
+        role: layer.role === 'layer' ? 'layer' : 'other',
+        offset: layer.offset,
+        ratio: family.layerRatio(geometry, layer),
+        grid: { ...labelImages[index + 1].grid },
+        get cells() {
+          return cells();
+        },
+      };
+    });
+    const seededCells = cellsOf(0);
+    return {
+      get seededCells() {
+        return seededCells();
+      },
+      surfaces,
+      analyses,
+      labelImages,
+      ...section,
+      adjacencyMs,
+    };
   } finally {
     labeller.dispose();
   }
 }
 
 const EMPTY_LABELS = new Int32Array(0);
+
+/** `compute()` on the first call, the same value after. */
+function once<T>(compute: () => T): () => T {
+  let value: { v: T } | null = null;
+  return () => (value ??= { v: compute() }).v;
+}
 
 /** A label image whose labels are computed on first read (and kept). */
 function lazyLabels(image: LabelImage, compute: () => Int32Array): LabelImage {
