@@ -14,33 +14,40 @@
  * first surface in a WeakMap, so it lives as long as the seeded surface's layers do.
  */
 import { analyzeLabStack, analyzeSurfaces, invalidOnAnySurface, neighbourSet, toCsr, type ScutoidAnalysis, type SurfaceAdjacency, type SurfaceSummary } from '../core/analysis';
-import type { AdjacencyInput } from '../core/analysis/adjacency';
+import { adjacencyCount, type AdjacencyInput, type CsrAdjacency } from '../core/analysis/adjacency';
+
+/** Neighbour sets of one surface as CSR: each cell's ids ascending, once, without the cell. */
+interface Sets {
+  readonly offsets: Int32Array;
+  readonly ids: Int32Array;
+}
 
 interface Carried {
   readonly count: number;
   /** Adjacency objects of the layers folded in, first surface first. */
   readonly layers: AdjacencyInput[];
   /** Neighbour sets of the first and of the last folded layer. */
-  readonly first: Int32Array[];
-  last: Int32Array[];
+  readonly first: Sets;
+  last: Sets;
   /** Per cell: sum over consecutive folded layers of |N_k Δ N_k+1|. */
   readonly transitions: Int32Array;
-  /** Per cell: the union of the folded layers' neighbour sets. */
-  readonly union: Int32Array[];
+  /** Per cell: the union of the folded layers' neighbour sets (ids, no repeats). */
+  readonly union: number[][];
   /** Per cell: the lab's accumulated lost and won neighbours (ids, no repeats). */
   readonly lost: number[][];
   readonly won: number[][];
   /** Side counts per folded layer. */
   readonly sides: Int32Array[];
-  /** Per-surface summaries by adjacency object, for one valid set. */
-  readonly summaries: Map<AdjacencyInput, { label: string | undefined; areas: unknown; excluded: Uint8Array; summary: SurfaceSummary }>;
+  /** Per-surface summaries by adjacency object and label, for one valid set. */
+  readonly summaries: Map<AdjacencyInput, Map<string | undefined, { areas: unknown; excluded: Uint8Array; summary: SurfaceSummary }>>;
 }
 
 const carried = new WeakMap<AdjacencyInput, Carried>();
+const canonical = new WeakMap<AdjacencyInput, Sets>();
 
 /** analyzeLabStack(stack, invalid), carrying the shared layers' sums between calls. */
 export function analyzeLabStackReusing(stack: SurfaceAdjacency[], invalid: Uint8Array): ScutoidAnalysis {
-  if (stack.length < 2 || stack.some((s) => s.count !== stack[0].count)) return analyzeLabStack(stack, invalid);
+  if (stack.length < 2 || stack.some((s) => s.count !== stack[0].count || adjacencyCount(s.adjacency) !== s.count)) return analyzeLabStack(stack, invalid);
   const count = stack[0].count;
   // The prefix every stack of the sweep shares: all surfaces but the last (its outer surface).
   const prefix = stack.length - 1;
@@ -54,56 +61,84 @@ export function analyzeLabStackReusing(stack: SurfaceAdjacency[], invalid: Uint8
   return finish(state, stack, invalid);
 }
 
-function setsOf(surface: SurfaceAdjacency, count: number): Int32Array[] {
+/** The surface's neighbour sets (neighbourSet of every cell), once per adjacency object. */
+function setsOf(surface: SurfaceAdjacency): Sets {
+  const kept = canonical.get(surface.adjacency);
+  if (kept) return kept;
   const csr = toCsr(surface.adjacency);
-  const sets: Int32Array[] = new Array(count);
-  for (let i = 0; i < count; i++) sets[i] = neighbourSet(csr, i);
+  const count = csr.offsets.length - 1;
+  let sets: Sets;
+  if (isCanonical(csr)) sets = { offsets: csr.offsets, ids: csr.neighbours };
+  else {
+    const lists = Array.from({ length: count }, (_, i) => neighbourSet(csr, i));
+    const offsets = new Int32Array(count + 1);
+    for (let i = 0; i < count; i++) offsets[i + 1] = offsets[i] + lists[i].length;
+    const ids = new Int32Array(offsets[count]);
+    lists.forEach((list, i) => ids.set(list, offsets[i]));
+    sets = { offsets, ids };
+  }
+  canonical.set(surface.adjacency, sets);
   return sets;
 }
 
-function sidesOf(surface: SurfaceAdjacency, sets: Int32Array[]): Int32Array {
-  const out = new Int32Array(sets.length);
-  for (let i = 0; i < sets.length; i++) out[i] = surface.sides ? surface.sides[i] : sets[i].length;
+/** Every list strictly ascending and without the cell itself: neighbourSet would return it as is. */
+function isCanonical(adj: CsrAdjacency): boolean {
+  const count = adj.offsets.length - 1;
+  for (let i = 0; i < count; i++) {
+    for (let k = adj.offsets[i]; k < adj.offsets[i + 1]; k++) {
+      if (adj.neighbours[k] === i || (k > adj.offsets[i] && adj.neighbours[k] <= adj.neighbours[k - 1])) return false;
+    }
+  }
+  return true;
+}
+
+function sidesOf(surface: SurfaceAdjacency, sets: Sets, count: number): Int32Array {
+  const out = new Int32Array(count);
+  for (let i = 0; i < count; i++) out[i] = surface.sides ? surface.sides[i] : sets.offsets[i + 1] - sets.offsets[i];
   return out;
 }
 
 function start(surface: SurfaceAdjacency, count: number): Carried {
-  const first = setsOf(surface, count);
+  const first = setsOf(surface);
   return {
     count,
     layers: [surface.adjacency],
     first,
     last: first,
     transitions: new Int32Array(count),
-    union: first.slice(),
+    union: Array.from({ length: count }, (_, i) => Array.from(first.ids.subarray(first.offsets[i], first.offsets[i + 1]))),
     lost: Array.from({ length: count }, () => []),
     won: Array.from({ length: count }, () => []),
-    sides: [sidesOf(surface, first)],
+    sides: [sidesOf(surface, first, count)],
     summaries: new Map(),
   };
 }
 
 /** Folds one more layer into the carried sums. */
 function fold(state: Carried, surface: SurfaceAdjacency): void {
-  const next = setsOf(surface, state.count);
+  const a = state.last;
+  const b = setsOf(surface);
   for (let i = 0; i < state.count; i++) {
-    const a = state.last[i];
-    const b = next[i];
-    state.transitions[i] += differenceSize(a, b) + differenceSize(b, a);
-    state.union[i] = union(state.union[i], b);
-    addDifference(a, b, state.lost[i]);
-    addDifference(b, a, state.won[i]);
+    const a0 = a.offsets[i];
+    const a1 = a.offsets[i + 1];
+    const b0 = b.offsets[i];
+    const b1 = b.offsets[i + 1];
+    state.transitions[i] += differenceSize(a.ids, a0, a1, b.ids, b0, b1) + differenceSize(b.ids, b0, b1, a.ids, a0, a1);
+    const u = state.union[i];
+    for (let k = b0; k < b1; k++) if (!u.includes(b.ids[k])) u.push(b.ids[k]);
+    addDifference(a.ids, a0, a1, b.ids, b0, b1, state.lost[i]);
+    addDifference(b.ids, b0, b1, a.ids, a0, a1, state.won[i]);
   }
-  state.last = next;
+  state.last = b;
   state.layers.push(surface.adjacency);
-  state.sides.push(sidesOf(surface, next));
+  state.sides.push(sidesOf(surface, b, state.count));
 }
 
 /** The analysis of the carried prefix plus the stack's last surface (the state is not changed). */
 function finish(state: Carried, stack: SurfaceAdjacency[], invalid: Uint8Array): ScutoidAnalysis {
-  const { count } = state;
+  const { count, first, last: previous } = state;
   const outer = stack[stack.length - 1];
-  const lastSets = setsOf(outer, count);
+  const last = setsOf(outer);
   const excluded = invalidOnAnySurface(stack, invalid.length, invalid.slice());
 
   const valid = new Uint8Array(count);
@@ -116,26 +151,25 @@ function finish(state: Carried, stack: SurfaceAdjacency[], invalid: Uint8Array):
   const scutoid = new Uint8Array(count);
   const labWon = new Int32Array(count);
   const labLost = new Int32Array(count);
-  const extra: number[] = [];
   for (let i = 0; i < count; i++) {
-    const first = state.first[i];
-    const previous = state.last[i];
-    const last = lastSets[i];
-    won[i] = differenceSize(last, first);
-    lost[i] = differenceSize(first, last);
-    const t = state.transitions[i] + differenceSize(previous, last) + differenceSize(last, previous);
-    neighbours3D[i] = union(state.union[i], last).length;
+    const f0 = first.offsets[i];
+    const f1 = first.offsets[i + 1];
+    const p0 = previous.offsets[i];
+    const p1 = previous.offsets[i + 1];
+    const l0 = last.offsets[i];
+    const l1 = last.offsets[i + 1];
+    won[i] = differenceSize(last.ids, l0, l1, first.ids, f0, f1);
+    lost[i] = differenceSize(first.ids, f0, f1, last.ids, l0, l1);
+    const t = state.transitions[i] + differenceSize(previous.ids, p0, p1, last.ids, l0, l1) + differenceSize(last.ids, l0, l1, previous.ids, p0, p1);
+    const u = state.union[i];
+    let all = u.length;
+    for (let k = l0; k < l1; k++) if (!u.includes(last.ids[k])) all++;
+    neighbours3D[i] = all;
     changed[i] = t > 0 ? 1 : 0;
     scutoid[i] = valid[i] && changed[i] ? 1 : 0;
     // The lab's counts: the carried sets plus what the last step adds.
-    extra.length = 0;
-    for (const v of state.lost[i]) extra.push(v);
-    addDifference(previous, last, extra);
-    labLost[i] = extra.length;
-    extra.length = 0;
-    for (const v of state.won[i]) extra.push(v);
-    addDifference(last, previous, extra);
-    labWon[i] = extra.length;
+    labLost[i] = state.lost[i].length + newDifference(previous.ids, p0, p1, last.ids, l0, l1, state.lost[i]);
+    labWon[i] = state.won[i].length + newDifference(last.ids, l0, l1, previous.ids, p0, p1, state.won[i]);
     transitions[i] = labWon[i] + labLost[i];
   }
 
@@ -157,7 +191,7 @@ function finish(state: Carried, stack: SurfaceAdjacency[], invalid: Uint8Array):
     sum3D += neighbours3D[i];
   }
 
-  const sides = [...state.sides.slice(0, stack.length - 1), sidesOf(outer, lastSets)];
+  const sides = [...state.sides.slice(0, stack.length - 1), sidesOf(outer, last, count)];
   const perSurface = stack.map((surface) => surfaceSummary(state, surface, excluded));
   return {
     cells: { valid, sides, won, lost, transitions, neighbours3D, changed, scutoid },
@@ -180,11 +214,13 @@ function finish(state: Carried, stack: SurfaceAdjacency[], invalid: Uint8Array):
 
 /** One surface's summary on the valid set (analyzeSurfaces' perSurface entry), once per valid set. */
 function surfaceSummary(state: Carried, surface: SurfaceAdjacency, excluded: Uint8Array): SurfaceSummary {
-  const kept = state.summaries.get(surface.adjacency);
-  if (kept && kept.label === surface.label && kept.areas === surface.areas && sameBytes(kept.excluded, excluded)) return kept.summary;
+  let byLabel = state.summaries.get(surface.adjacency);
+  if (!byLabel) state.summaries.set(surface.adjacency, (byLabel = new Map()));
+  const kept = byLabel.get(surface.label);
+  if (kept && kept.areas === surface.areas && sameBytes(kept.excluded, excluded)) return kept.summary;
   // A stack of one surface masked as in the whole stack: the same valid set, sets and sides.
   const summary = analyzeSurfaces([{ ...surface, touchesBorder: excluded }]).summary.perSurface[0];
-  state.summaries.set(surface.adjacency, { label: surface.label, areas: surface.areas, excluded, summary });
+  byLabel.set(surface.label, { areas: surface.areas, excluded, summary });
   return summary;
 }
 
@@ -196,13 +232,13 @@ function sameBytes(a: Uint8Array, b: Uint8Array): boolean {
 
 const mean = (sum: number, n: number): number => (n > 0 ? sum / n : NaN);
 
-/** Sorted arrays a, b: |a \ b|. */
-function differenceSize(a: Int32Array, b: Int32Array): number {
-  let i = 0;
-  let j = 0;
+/** Ascending ranges a[a0, a1), b[b0, b1): |a \ b|. */
+function differenceSize(a: Int32Array, a0: number, a1: number, b: Int32Array, b0: number, b1: number): number {
+  let i = a0;
+  let j = b0;
   let n = 0;
-  while (i < a.length) {
-    if (j >= b.length || a[i] < b[j]) {
+  while (i < a1) {
+    if (j >= b1 || a[i] < b[j]) {
       n++;
       i++;
     } else if (a[i] > b[j]) j++;
@@ -214,30 +250,26 @@ function differenceSize(a: Int32Array, b: Int32Array): number {
   return n;
 }
 
-/** Sorted, deduplicated arrays a, b: their union (sorted). */
-function union(a: Int32Array, b: Int32Array): Int32Array {
-  const out = new Int32Array(a.length + b.length);
-  let i = 0;
-  let j = 0;
-  let n = 0;
-  while (i < a.length || j < b.length) {
-    if (j >= b.length || (i < a.length && a[i] < b[j])) out[n++] = a[i++];
-    else if (i >= a.length || b[j] < a[i]) out[n++] = b[j++];
-    else {
-      out[n++] = a[i++];
-      j++;
-    }
-  }
-  return out.subarray(0, n);
-}
-
-/** Sorted sets a, b: adds the elements of a \ b not yet in `into`. */
-function addDifference(a: Int32Array, b: Int32Array, into: number[]): void {
-  let j = 0;
-  for (let k = 0; k < a.length; k++) {
+/** Adds the elements of a \ b (ascending ranges) not yet in `into`. */
+function addDifference(a: Int32Array, a0: number, a1: number, b: Int32Array, b0: number, b1: number, into: number[]): void {
+  let j = b0;
+  for (let k = a0; k < a1; k++) {
     const v = a[k];
-    while (j < b.length && b[j] < v) j++;
-    if (j < b.length && b[j] === v) continue;
+    while (j < b1 && b[j] < v) j++;
+    if (j < b1 && b[j] === v) continue;
     if (!into.includes(v)) into.push(v);
   }
+}
+
+/** How many elements of a \ b (ascending ranges) are not in `into` (which is not changed). */
+function newDifference(a: Int32Array, a0: number, a1: number, b: Int32Array, b0: number, b1: number, into: readonly number[]): number {
+  let j = b0;
+  let n = 0;
+  for (let k = a0; k < a1; k++) {
+    const v = a[k];
+    while (j < b1 && b[j] < v) j++;
+    if (j < b1 && b[j] === v) continue;
+    if (!into.includes(v)) n++;
+  }
+  return n;
 }

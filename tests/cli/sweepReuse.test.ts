@@ -102,6 +102,20 @@ describe('analyzeLabStackReusing', () => {
       expect(reused, `stack to s = ${ratios[k]} (call ${n})`).toEqual(fresh);
       expect(JSON.stringify(reused.summary)).toBe(JSON.stringify(fresh.summary));
     });
+    // Neighbour lists that are not ascending (labels adjacency): reversed, one repeated, the cell itself.
+    const messy = (surface: SurfaceAdjacency): SurfaceAdjacency => {
+      const csr = surface.adjacency as { offsets: Int32Array; neighbours: Int32Array };
+      const lists = Array.from({ length: surface.count }, (_, i) => {
+        const list = Array.from(csr.neighbours.subarray(csr.offsets[i], csr.offsets[i + 1])).reverse();
+        return list.length > 0 ? [...list, list[0], i] : list;
+      });
+      return { ...surface, adjacency: lists };
+    };
+    const messyLayers = layers.map(messy);
+    for (const k of [3, 6, 2, 12]) {
+      const stack = [...messyLayers.slice(0, k), messy(layerAt(ratios[k], 'basal'))];
+      expect(analyzeLabStackReusing(stack, invalid), `lists, s = ${ratios[k]}`).toEqual(analyzeLabStack(stack, invalid));
+    }
     // A valid set that differs (a cell excluded beyond the validity layers) is not a stale summary.
     const more = invalid.slice();
     more[more.indexOf(0)] = 1;
