@@ -68,7 +68,8 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
 
   stack: (config, geometry) => surfaceStack(config, geometry.grid),
 
-  project: (geometry, layer, sites) => (layer.role === 'seeded' ? sites : projectSites(geometry.grid, layer.grid, sites)),
+  // Once per seeded surface and grid, as the layer's exact diagram (exactLayer).
+  project: (geometry, layer, sites) => (layer.role === 'seeded' ? sites : projected(geometry.grid, layer.grid, sites)),
 
   labeller: (context, config, _geometry, choice) => planarLabeller(context, config, choice),
 
@@ -108,7 +109,7 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
       const sheet = { ...config.sheet, surfaceRatio: settings.validityMaxRatio, direction: 'outward' as const, layerStep: settings.layerStep };
       const layers = surfaceStack({ ...config, sheet }, geometry.grid);
       return invalidOnAnySurface(
-        layers.map((layer) => exactLayer(layer.grid, sites, layer.role === 'seeded' ? sites : projectSites(geometry.grid, layer.grid, sites))),
+        layers.map((layer) => exactLayer(layer.grid, sites, layer.role === 'seeded' ? sites : projected(geometry.grid, layer.grid, sites))),
         config.cells,
       );
     });
@@ -170,6 +171,11 @@ function memo<T>(sites: PlanarSites, key: string, compute: () => T): T {
 function exactLayer(grid: Grid, sites: PlanarSites, projected: ArrayLike<number>): SurfaceAdjacency {
   const { width, height, texelX, texelY, periodicX, periodicY } = grid;
   return memo(sites, `exact ${width} ${height} ${texelX} ${texelY} ${periodicX} ${periodicY}`, () => exactSurface(grid, projected));
+}
+
+/** The seeded sites moved onto a layer's grid (projectSites), once per seeded surface and grid. */
+function projected(seededGrid: Grid, grid: Grid, sites: PlanarSites): PlanarSites {
+  return memo(sites, `project ${seededGrid.width} ${grid.width}`, () => projectSites(seededGrid, grid, sites));
 }
 
 /** The exact engine's seeded surface has no label image (the stack draws its cells for views). */
