@@ -13,8 +13,9 @@
  * carried prefix plus more layers starts it again from its first surface. The state is kept per
  * first surface in a WeakMap, so it lives as long as the seeded surface's layers do.
  */
-import { analyzeLabStack, analyzeSurfaces, invalidOnAnySurface, neighbourSet, toCsr, type ScutoidAnalysis, type SurfaceAdjacency, type SurfaceSummary } from '../core/analysis';
+import { analyzeLabStack, invalidOnAnySurface, neighbourSet, toCsr, type ScutoidAnalysis, type SurfaceAdjacency, type SurfaceSummary } from '../core/analysis';
 import { adjacencyCount, type AdjacencyInput, type CsrAdjacency } from '../core/analysis/adjacency';
+import { summarizeSurface } from '../core/analysis/scutoids';
 
 /** Neighbour sets of one surface as CSR: each cell's ids ascending, once, without the cell. */
 interface Sets {
@@ -38,8 +39,8 @@ interface Carried {
   readonly won: number[][];
   /** Side counts per folded layer. */
   readonly sides: Int32Array[];
-  /** Per-surface summaries by adjacency object and label, for one valid set. */
-  readonly summaries: Map<AdjacencyInput, Map<string | undefined, { areas: unknown; excluded: Uint8Array; summary: SurfaceSummary }>>;
+  /** Per-surface summaries by adjacency object, for one valid set. */
+  readonly summaries: Map<AdjacencyInput, { areas: unknown; sides: unknown; excluded: Uint8Array; summary: SurfaceSummary }>;
 }
 
 const carried = new WeakMap<AdjacencyInput, Carried>();
@@ -191,8 +192,9 @@ function finish(state: Carried, stack: SurfaceAdjacency[], invalid: Uint8Array):
     sum3D += neighbours3D[i];
   }
 
-  const sides = [...state.sides.slice(0, stack.length - 1), sidesOf(outer, last, count)];
-  const perSurface = stack.map((surface) => surfaceSummary(state, surface, excluded));
+  // Carried side counts, except where a surface brings its own (`sides`).
+  const sides = stack.map((surface, k) => (k === stack.length - 1 ? sidesOf(outer, last, count) : surface.sides ? sidesOf(surface, setsOf(surface), count) : state.sides[k]));
+  const perSurface = stack.map((surface, k) => surfaceSummary(state, surface, k === stack.length - 1 ? last : k === 0 ? first : setsOf(surface), sides[k], excluded, valid, validCells));
   return {
     cells: { valid, sides, won, lost, transitions, neighbours3D, changed, scutoid },
     summary: {
@@ -212,15 +214,21 @@ function finish(state: Carried, stack: SurfaceAdjacency[], invalid: Uint8Array):
   };
 }
 
-/** One surface's summary on the valid set (analyzeSurfaces' perSurface entry), once per valid set. */
-function surfaceSummary(state: Carried, surface: SurfaceAdjacency, excluded: Uint8Array): SurfaceSummary {
-  let byLabel = state.summaries.get(surface.adjacency);
-  if (!byLabel) state.summaries.set(surface.adjacency, (byLabel = new Map()));
-  const kept = byLabel.get(surface.label);
-  if (kept && kept.areas === surface.areas && sameBytes(kept.excluded, excluded)) return kept.summary;
-  // A stack of one surface masked as in the whole stack: the same valid set, sets and sides.
-  const summary = analyzeSurfaces([{ ...surface, touchesBorder: excluded }]).summary.perSurface[0];
-  byLabel.set(surface.label, { areas: surface.areas, excluded, summary });
+/**
+ * One surface's summary on the valid set (analyzeSurfaces' perSurface entry: summarizeSurface of
+ * the surface's neighbour sets and sides), once per surface and valid set; a surface met again
+ * under another label (a ratio's outer surface is a layer of the larger ratios' stacks) gets
+ * the same numbers with its own label.
+ */
+function surfaceSummary(state: Carried, surface: SurfaceAdjacency, sets: Sets, sides: Int32Array, excluded: Uint8Array, valid: Uint8Array, validCells: number): SurfaceSummary {
+  const kept = state.summaries.get(surface.adjacency);
+  if (kept && kept.areas === surface.areas && kept.sides === surface.sides && sameBytes(kept.excluded, excluded)) {
+    return kept.summary.label === surface.label ? kept.summary : { ...kept.summary, label: surface.label };
+  }
+  const lists: Int32Array[] = new Array(sides.length);
+  for (let i = 0; i < sides.length; i++) lists[i] = sets.ids.subarray(sets.offsets[i], sets.offsets[i + 1]);
+  const summary = summarizeSurface({ ...surface, touchesBorder: excluded }, lists, sides, valid, validCells, {});
+  state.summaries.set(surface.adjacency, { areas: surface.areas, sides: surface.sides, excluded, summary });
   return summary;
 }
 

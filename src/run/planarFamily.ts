@@ -2,7 +2,7 @@ import { invalidOnAnySurface, LAB_PROTOCOL, labelContactThresholdTexels, labMinB
 import { checkFeasible, checkSheet, layerStepOf, makeGrid, minContactPixelsOf, type Config } from '../core/config';
 import { densityField, type GrayImage } from '../core/density';
 import { exactVoronoi } from '../core/exact';
-import { ExactLloydRun, exactDensity, exactSurface, rasterizeCells } from '../core/exactEngine';
+import { ExactLloydRun, exactDensity, exactSurface, PlanarVoronoi, rasterizeCells } from '../core/exactEngine';
 import type { Grid } from '../core/grid';
 import { labelAdjacency } from '../core/labels';
 import { projectSites, surfaceStack, type StackSurface } from '../core/sheetGeometry';
@@ -170,7 +170,18 @@ function memo<T>(sites: PlanarSites, key: string, compute: () => T): T {
  */
 function exactLayer(grid: Grid, sites: PlanarSites, projected: ArrayLike<number>): SurfaceAdjacency {
   const { width, height, texelX, texelY, periodicX, periodicY } = grid;
-  return memo(sites, `exact ${width} ${height} ${texelX} ${texelY} ${periodicX} ${periodicY}`, () => exactSurface(grid, projected));
+  return memo(sites, `exact ${width} ${height} ${texelX} ${texelY} ${periodicX} ${periodicY}`, () => exactSurface(grid, projected, undefined, scratchVoronoi(grid, sites.length / 2)));
+}
+
+/**
+ * The triangulation buffers exactSurface builds in, kept for the next layer of the same shape
+ * (one set: the last cell count and periodic axes), as bench/exactSweep.ts reuses them.
+ */
+let scratch: { key: string; voronoi: PlanarVoronoi } | null = null;
+function scratchVoronoi(grid: Grid, count: number): PlanarVoronoi {
+  const key = `${count} ${grid.periodicX} ${grid.periodicY}`;
+  if (scratch?.key !== key) scratch = { key, voronoi: new PlanarVoronoi(grid, count) };
+  return scratch.voronoi;
 }
 
 /** The seeded sites moved onto a layer's grid (projectSites), once per seeded surface and grid. */

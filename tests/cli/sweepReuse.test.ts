@@ -109,7 +109,9 @@ describe('analyzeLabStackReusing', () => {
         const list = Array.from(csr.neighbours.subarray(csr.offsets[i], csr.offsets[i + 1])).reverse();
         return list.length > 0 ? [...list, list[0], i] : list;
       });
-      return { ...surface, adjacency: lists };
+      // and side counts of its own on some surfaces
+      const sides = surface.label === 'layer 2' || surface.label === 'basal' ? Int32Array.from(lists, (l) => l.length) : undefined;
+      return { ...surface, adjacency: lists, ...(sides ? { sides } : {}) };
     };
     const messyLayers = layers.map(messy);
     for (const k of [3, 6, 2, 12]) {
