@@ -19,6 +19,7 @@ import { availableParallelism } from 'node:os';
 import { pathToFileURL } from 'node:url';
 import { isMainThread, parentPort, Worker, workerData } from 'node:worker_threads';
 import { ConfigError, validateAnyConfig } from '../core/config';
+import { flattenSummary } from '../core/sweep';
 import type { GpuCapabilities, GpuContext } from '../gpu/context';
 import { SheetRunner, sweepSummary } from '../run/index';
 import { InputError } from './errors';
@@ -45,7 +46,11 @@ interface SerializedError {
   stack?: string;
 }
 type FromWorker =
-  | { type: 'done'; id: number; key: string; summary: Record<string, unknown> }
+  /**
+   * A run's summary, flattened (flattenSummary): its values, and the number of its key list
+   * (each distinct list is sent once per thread, with the first run that has it).
+   */
+  | { type: 'done'; id: number; key: string; layout: number; keys?: string[]; numbers: Float64Array; others: [number, unknown][] }
   | { type: 'failed'; id: number; error: SerializedError }
   | { type: 'finished'; id: number };
 
@@ -60,6 +65,8 @@ interface Slot {
   affinity: string | null;
   /** Unused: set on a thread that failed to start or exited. */
   reserved: boolean;
+  /** The summary key lists the thread has sent, by number. */
+  readonly layouts: Map<number, string[]>;
   current: {
     id: number;
     done: (key: string, summary: Record<string, unknown>) => void;
@@ -84,7 +91,7 @@ export class SweepWorkers {
     };
     for (let k = 0; k < size; k++) {
       const worker = newWorker(setup);
-      const slot: Slot = { worker, affinity: null, reserved: false, current: null };
+      const slot: Slot = { worker, affinity: null, reserved: false, layouts: new Map(), current: null };
       worker.on('message', (message: FromWorker) => this.receive(slot, message));
       worker.on('error', (error) => this.lost(slot, error));
       worker.on('exit', (code) => {
@@ -135,11 +142,17 @@ export class SweepWorkers {
   }
 
   private receive(slot: Slot, message: FromWorker): void {
+    if (message.type === 'done' && message.keys) slot.layouts.set(message.layout, message.keys);
     const current = slot.current;
     if (!current || current.id !== message.id) return;
     if (message.type === 'done') {
       try {
-        current.done(message.key, message.summary);
+        const keys = slot.layouts.get(message.layout);
+        if (!keys || keys.length !== message.numbers.length) throw new Error('a sweep worker thread sent a summary without its keys');
+        const summary: Record<string, unknown> = {};
+        for (let k = 0; k < keys.length; k++) summary[keys[k]] = message.numbers[k];
+        for (const [k, value] of message.others) summary[keys[k]] = value;
+        current.done(message.key, summary);
       } catch (error) {
         // The thread goes on with its task; its messages for it are ignored from now on.
         slot.reserved = true;
@@ -222,6 +235,7 @@ function startWorker(setup: WorkerSetup): void {
   const runner = new SheetRunner(capabilitiesOnly(setup.capabilities));
   const inputs = new Map(setup.inputs);
   let controller = new AbortController();
+  const layouts = new Map<string, number>();
   let queue: Promise<void> = Promise.resolve();
   const send = (message: FromWorker) => port.postMessage(message);
   port.on('message', (message: ToWorker) => {
@@ -239,7 +253,22 @@ function startWorker(setup: WorkerSetup): void {
         order.sort((a, b) => a.config.lloyd.maxIterations - b.config.lloyd.maxIterations || a.k - b.k);
         for (const { run, config } of order) {
           const output = await runner.run(config, { ...inputs.get(run.pointKey), signal, views: false });
-          send({ type: 'done', id, key: run.key, summary: sweepSummary(output.result) });
+          // Flat values cross faster than the nested summary (a structured clone per key).
+          const flat = flattenSummary(sweepSummary(output.result));
+          const keys = Object.keys(flat);
+          const signature = keys.join('\n');
+          let layout = layouts.get(signature);
+          const known = layout !== undefined;
+          if (layout === undefined) layouts.set(signature, (layout = layouts.size));
+          // Numbers in a transferred Float64Array (cloning a list of values costs per value), the rest apart.
+          const numbers = new Float64Array(keys.length);
+          const others: [number, unknown][] = [];
+          keys.forEach((k, n) => {
+            const value = flat[k];
+            if (typeof value === 'number') numbers[n] = value;
+            else others.push([n, value]);
+          });
+          port.postMessage({ type: 'done', id, key: run.key, layout, ...(known ? {} : { keys }), numbers, others } satisfies FromWorker, [numbers.buffer]);
         }
         send({ type: 'finished', id });
       } catch (error) {
