@@ -52,6 +52,8 @@ const FILES = ['runs.csv', 'aggregate.csv', 'aggregate.json', 'flintstones.csv']
 interface Timed {
   ms: number;
   peakMiB: number | null;
+  /** User + system CPU seconds of the child (all its threads), with /usr/bin/time. */
+  cpuS: number | null;
   stdout: string;
   stderr: string;
   status: number | null;
@@ -59,7 +61,7 @@ interface Timed {
 
 /** Runs a command; wall time and (with /usr/bin/time) peak RSS in MiB. */
 function timed(command: string[]): Promise<Timed> {
-  const full = hasTime ? ['/usr/bin/time', '-f', 'PEAK_KB %M', ...command] : command;
+  const full = hasTime ? ['/usr/bin/time', '-f', 'PEAK_KB %M CPU %U %S', ...command] : command;
   const t = performance.now();
   return new Promise((done) => {
     const child = spawn(full[0], full.slice(1), { cwd: root, stdio: ['ignore', 'pipe', 'pipe'] });
@@ -68,13 +70,14 @@ function timed(command: string[]): Promise<Timed> {
     child.stdout.on('data', (d) => (stdout += d));
     child.stderr.on('data', (d) => (stderr += d));
     child.on('close', (status) => {
-      const peak = /PEAK_KB (\d+)/.exec(stderr);
-      done({ ms: performance.now() - t, peakMiB: peak ? Number(peak[1]) / 1024 : null, stdout, stderr, status });
+      const peak = /PEAK_KB (\d+) CPU ([\d.]+) ([\d.]+)/.exec(stderr);
+      done({ ms: performance.now() - t, peakMiB: peak ? Number(peak[1]) / 1024 : null, cpuS: peak ? Number(peak[2]) + Number(peak[3]) : null, stdout, stderr, status });
     });
   });
 }
 const s = (ms: number) => `${(ms / 1000).toFixed(2)} s`;
 const mib = (x: number | null) => (x === null ? '' : `, peak RSS ${x.toFixed(0)} MiB`);
+const cpu = (r: Timed) => (r.cpuS === null ? '' : `, CPU ${r.cpuS.toFixed(2)} s`);
 const load = () => loadavg()[0].toFixed(1);
 const median = (xs: number[]) => [...xs].sort((a, b) => a - b)[Math.floor((xs.length - 1) / 2)];
 
@@ -96,6 +99,7 @@ async function main() {
   console.log(`published tube sweep, lab protocol, exact engine: ${runs} runs (Voronoi 1-10 x 12 ratios x ${realizations} realizations)`);
   console.log(`CLI: ${cliCommand.join(' ')}; ${availableParallelism()} cores; load ${load()} at start`);
   const ratios: number[] = [];
+  const cpuRatios: number[] = [];
   let last = '';
   for (let k = 0; k < repeats; k++) {
     const base = await numpy();
@@ -103,16 +107,17 @@ async function main() {
     const cli = await sweep(out, workers);
     last = out;
     ratios.push(cli.ms / base.ms);
+    if (cli.cpuS !== null && base.cpuS !== null) cpuRatios.push(cli.cpuS / base.cpuS);
     const inner = /in ([\d.]+) s/.exec(base.stdout)?.[1];
     console.log(
-      `  pair ${k + 1}: NumPy/SciPy ${s(base.ms)} (computing ${inner} s${mib(base.peakMiB)}); tissue-sheet sweep --workers ${workers} ${s(cli.ms)}${mib(cli.peakMiB)}; ratio ${(cli.ms / base.ms).toFixed(2)}x (load ${load()})`,
+      `  pair ${k + 1}: NumPy/SciPy ${s(base.ms)} (computing ${inner} s${cpu(base)}${mib(base.peakMiB)}); tissue-sheet sweep --workers ${workers} ${s(cli.ms)}${cpu(cli)}${mib(cli.peakMiB)}; wall ratio ${(cli.ms / base.ms).toFixed(2)}x (load ${load()})`,
     );
   }
-  console.log(`CLI / NumPy: median ${median(ratios).toFixed(2)}x over ${repeats} pairs (target <= 0.2x)`);
+  console.log(`CLI / NumPy, wall: median ${median(ratios).toFixed(2)}x over ${repeats} pairs (target <= 0.2x)${cpuRatios.length ? `; CPU time: median ${median(cpuRatios).toFixed(2)}x` : ''}`);
 
   const one = join(work, 'workers1');
   const single = await sweep(one, 1);
-  console.log(`tissue-sheet sweep --workers 1: ${s(single.ms)}${mib(single.peakMiB)}; files ${same(one, last) ? 'identical to' : 'DIFFER from'} --workers ${workers}'s`);
+  console.log(`tissue-sheet sweep --workers 1: ${s(single.ms)}${cpu(single)}${mib(single.peakMiB)}; files ${same(one, last) ? 'identical to' : 'DIFFER from'} --workers ${workers}'s`);
 
   if (shards > 0) {
     const t = performance.now();
