@@ -23,13 +23,11 @@ const context = createHeadlessContext();
 const runner = new SheetRunner(context);
 const t = performance.now();
 const cpu0 = process.cpuUsage();
-let lloydMs = 0;
 let adjacencyMs = 0;
 for (const { config } of order) {
   const { result } = await runner.run(config, { views: false });
   sweepSummary(result);
   adjacencyMs += result.timings.adjacencyMs;
-  lloydMs = result.timings.lloydMs;
 }
 const ms = performance.now() - t;
 const cpu = process.cpuUsage(cpu0);
