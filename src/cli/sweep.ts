@@ -98,6 +98,8 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
     // still holds that Lloyd run continues it to the next Voronoi k. Exact-engine tasks go to
     // worker threads, GPU tasks run here on the one GL context; rows are written in the sweep's
     // order (runSweep), so the files are the same whatever the number of threads.
+    // A grid point's config (the same for all its runs but for `seed`: for the engine, chain and
+    // iterations; a run itself is computed from its own config).
     const valid = new Map<string, AnyConfig>();
     const configOf = (run: Run): AnyConfig => {
       let config = valid.get(run.pointKey);
@@ -129,7 +131,7 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
     const runHere = (task: Run[], done: (run: Run, summary: Record<string, unknown>) => void): Promise<void> => {
       const next = mainThread.then(async () => {
         const order = [...task].sort((a, b) => iterationsOf(a) - iterationsOf(b));
-        for (const run of order) done(run, sweepSummary((await runner.run(configOf(run), { ...inputs.get(run.pointKey), signal, views: false })).result));
+        for (const run of order) done(run, sweepSummary((await runner.run(validateAnyConfig(run.config), { ...inputs.get(run.pointKey), signal, views: false })).result));
       });
       mainThread = next.catch(() => {});
       return next;

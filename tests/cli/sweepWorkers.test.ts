@@ -3,7 +3,10 @@ import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
-import { expandSweep, readCsvTable, runSweep, type SweepRun } from '../../src/core/sweep';
+import { validateAnyConfig } from '../../src/core/config';
+import { expandSweep, readCsvTable, runRow, runSweep, validateSweepSpec, variedFields, type SweepRun } from '../../src/core/sweep';
+import { createHeadlessContext } from '../../src/node/headless';
+import { SheetRunner, sweepSummary } from '../../src/run/index';
 
 // The CLI from its sources (same main() as bin/tissue-sheet.mjs); its worker threads load the
 // sources through tsx too.
@@ -48,6 +51,37 @@ describe('sweep --workers N', () => {
     expect(d.stderr).toMatch(/sweep: 26 runs computed, 10 resumed/);
     for (const f of FILES.slice(1)) expect(read(cut, f), f).toBe(read(one, f));
     expect(read(cut, 'runs.csv')).toBe(text);
+  }, 180_000);
+
+  it('every row is its run computed alone, GPU runs (main thread) and exact runs (threads) mixed', async () => {
+    // adjacency "labels" takes the GPU engine (main thread), "exact" the exact engine (threads).
+    const mixed = {
+      base: { surface: { kind: 'tube', radius: 30, length: 200 }, resolution: 64, cells: 20, engine: 'auto' },
+      vary: { 'sheet.adjacency': ['labels', 'exact'], 'lloyd.maxIterations': [0, 2], 'sheet.surfaceRatio': [1, 2] },
+      realizations: 2,
+      seed: 4,
+    };
+    const mixedPath = join(dir, 'mixed.json');
+    writeFileSync(mixedPath, JSON.stringify(mixed));
+    const out = join(dir, 'mixed');
+    const r = cli(['sweep', mixedPath, '--out', out, '--workers', '2']);
+    expect(r.status, r.stderr).toBe(0);
+    const table = readCsvTable(read(out, 'runs.csv'));
+    const runs = expandSweep(validateSweepSpec(mixed));
+    const fields = variedFields(validateSweepSpec(mixed));
+    const byKey = new Map(table.rows.map((row) => [row.key, row]));
+    const context = createHeadlessContext();
+    try {
+      const engines = new Set<string>();
+      for (const run of runs) {
+        const { result } = await new SheetRunner(context).run(validateAnyConfig(run.config), { views: false });
+        engines.add(result.engine.name);
+        expect(byKey.get(run.key), run.key).toEqual(runRow(run, fields, sweepSummary(result), table.header));
+      }
+      expect([...engines].sort()).toEqual(['exact', 'gpu']);
+    } finally {
+      context.dispose();
+    }
   }, 180_000);
 
   it('refuses a bad --workers value', () => {
