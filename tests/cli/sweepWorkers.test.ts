@@ -100,10 +100,14 @@ describe('runSweep with tasks finishing in any order', () => {
 
   async function sweep(concurrency: number, shuffle: (n: number) => number): Promise<string> {
     let file = '';
+    let appends = 0;
     await runSweep({
       runs,
       fields,
       append: (text) => {
+        // One row per append (the header with the first), as the page's reader expects.
+        expect(readCsvTable(text).rows.length + (appends === 0 ? 0 : 1)).toBe(1);
+        appends++;
         file += text;
       },
       runner: async (_config, run) => summary(run),
@@ -121,6 +125,7 @@ describe('runSweep with tasks finishing in any order', () => {
         },
       },
     });
+    expect(appends).toBe(runs.length);
     return file;
   }
 

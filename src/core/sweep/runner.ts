@@ -181,21 +181,20 @@ export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, 
   let writes: Promise<void> = Promise.resolve();
   const writeRows = (items: { run: SweepRun<C>; summary: S }[]): Promise<void> => {
     if (items.length === 0) return writes;
+    // One append per row (the header with the first), as a caller reading each append expects.
     writes = writes.then(async () => {
-      let text = '';
-      if (!header) {
-        const summaryColumns = options.summaryColumns ?? Object.keys(flattenSummary(items[0].summary)).filter((c) => !baseColumns(fields).includes(c));
-        header = [...baseColumns(fields), ...summaryColumns];
-        text += formatCsvRow(header);
-      }
-      const written: Record<string, string>[] = [];
       for (const { run, summary } of items) {
+        let text = '';
+        if (!header) {
+          const summaryColumns = options.summaryColumns ?? Object.keys(flattenSummary(summary)).filter((c) => !baseColumns(fields).includes(c));
+          header = [...baseColumns(fields), ...summaryColumns];
+          text += formatCsvRow(header);
+        }
         const { cells, row } = runCells(run, fields, summary, header);
         text += formatCsvRow(cells);
-        written.push(row);
+        await options.append(text);
+        rows.push(row);
       }
-      await options.append(text);
-      rows.push(...written);
     });
     return writes;
   };
