@@ -26,7 +26,7 @@ import { lockDirectory } from './lock';
 import { checkOutDir, writeFileAtomic } from './output';
 import { checkRunnable, computeBudget, loadInputs, readJsonFile, type RunInputs } from './prepare';
 import { Sources } from './sources';
-import { defaultWorkers, SweepWorkers } from './sweepWorkers';
+import { defaultWorkers, SweepThreadLost, SweepWorkers } from './sweepWorkers';
 import { gitCommit, sweepLayout, writeAggregates, type Run } from './sweepFiles';
 
 export async function sweepCommand(options: CliOptions, signal: AbortSignal, log: (line: string) => void): Promise<void> {
@@ -148,14 +148,26 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
         tasks: {
           key: layout.reuseGroup,
           before: (a, b) => firstOfChain.get(chainOf(a))! - firstOfChain.get(chainOf(b))! || iterationsOf(a) - iterationsOf(b),
-          run: (task, done) => {
-            if (!pool || !onThreads(task[0])) return runHere(task, done);
+          run: async (task, done) => {
+            if (!pool?.usable || !onThreads(task[0])) return runHere(task, done);
             const byKey = new Map(task.map((run) => [run.key, run]));
-            return pool.run(
-              task.map((run) => ({ key: run.key, pointKey: run.pointKey, config: run.config })),
-              chainOf(task[0]),
-              (key, summary) => done(byKey.get(key)!, summary),
-            );
+            const reported = new Set<string>();
+            try {
+              await pool.run(
+                task.map((run) => ({ key: run.key, pointKey: run.pointKey, config: run.config })),
+                chainOf(task[0]),
+                (key, summary) => {
+                  reported.add(key);
+                  done(byKey.get(key)!, summary);
+                },
+              );
+            } catch (error) {
+              // A thread that failed or exited (not a run that failed): the main thread computes
+              // the task's other runs, the same numbers.
+              if (!(error instanceof SweepThreadLost) || signal.aborted) throw error;
+              log(`warning: ${error.message}; its runs are computed on the main thread`);
+              await runHere(task.filter((run) => !reported.has(run.key)), done);
+            }
           },
         },
         // One lane per thread, and one for the main thread's GPU runs.

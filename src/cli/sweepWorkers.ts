@@ -54,6 +54,11 @@ type FromWorker =
   | { type: 'failed'; id: number; error: SerializedError }
   | { type: 'finished'; id: number };
 
+/** A thread failed or exited under a task: its runs not reported yet can be computed elsewhere. */
+export class SweepThreadLost extends Error {
+  override readonly name = 'SweepThreadLost';
+}
+
 /** The default number of threads: the machine's cores. */
 export function defaultWorkers(): number {
   return Math.max(1, availableParallelism());
@@ -93,9 +98,9 @@ export class SweepWorkers {
       const worker = newWorker(setup);
       const slot: Slot = { worker, affinity: null, reserved: false, layouts: new Map(), current: null };
       worker.on('message', (message: FromWorker) => this.receive(slot, message));
-      worker.on('error', (error) => this.lost(slot, error));
+      worker.on('error', (error) => this.lost(slot, new SweepThreadLost(`a sweep worker thread failed: ${error instanceof Error ? error.message : String(error)}`)));
       worker.on('exit', (code) => {
-        if (!this.closed) this.lost(slot, new Error(`a sweep worker thread exited (code ${code})`));
+        if (!this.closed) this.lost(slot, new SweepThreadLost(`a sweep worker thread exited (code ${code})`));
       });
       this.slots.push(slot);
     }
@@ -105,6 +110,11 @@ export class SweepWorkers {
     return this.slots.length;
   }
 
+  /** False once every thread failed or exited (the caller then computes on its own thread). */
+  get usable(): boolean {
+    return this.slots.some((s) => !s.reserved);
+  }
+
   /**
    * Computes `runs` in one thread, preferring a free thread whose last task had the same
    * `affinity` (it still holds that Lloyd run); `done` gets each run's summary as it finishes.
@@ -112,7 +122,7 @@ export class SweepWorkers {
   async run(runs: WorkerRun[], affinity: string, done: (key: string, summary: Record<string, unknown>) => void): Promise<void> {
     // Wait for a free thread (callers may run more tasks at once than there are threads).
     while (!this.slots.some((s) => s.current === null && !s.reserved)) {
-      if (this.slots.every((s) => s.reserved)) throw new Error('no sweep worker thread is left (they failed or exited)');
+      if (this.slots.every((s) => s.reserved)) throw new SweepThreadLost('no sweep worker thread is left (they failed or exited)');
       await new Promise<void>((wake) => this.waiting.push(wake));
     }
     const free = this.slots.filter((s) => s.current === null && !s.reserved);
