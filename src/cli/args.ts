@@ -14,12 +14,14 @@ export interface CliOptions {
   maxRuns?: number;
   /** Sweeps: "I/N" or "slurm" (parsed by parseShard). */
   shard?: string;
+  /** Sweeps: worker threads for the exact-engine runs (default: the machine's cores). */
+  workers?: number;
 }
 
 export function parseArgs(args: string[], form: string, sweep = false): CliOptions {
   let input: string | undefined;
   let out: string | undefined;
-  const options = { force: false, allowNetwork: false, allowLarge: false, maxRuns: undefined as number | undefined, shard: undefined as string | undefined };
+  const options = { force: false, allowNetwork: false, allowLarge: false, maxRuns: undefined as number | undefined, shard: undefined as string | undefined, workers: undefined as number | undefined };
   const usage = `usage: tissue-sheet ${form}`;
   for (let i = 0; i < args.length; i++) {
     const arg = args[i];
@@ -38,7 +40,13 @@ export function parseArgs(args: string[], form: string, sweep = false): CliOptio
       const n = Number(v);
       if (!Number.isInteger(n) || n < 1) throw new InputError(`--max-runs: must be a positive integer (got ${JSON.stringify(v)})`);
       options.maxRuns = n;
-    } else if (sweep && name === '--shard') options.shard = value(); else if (arg.startsWith('-') && arg !== '-') throw new InputError(`unknown option ${name}; ${usage}`);
+    } else if (sweep && name === '--shard') options.shard = value();
+    else if (sweep && name === '--workers') {
+      const v = value();
+      const n = Number(v);
+      if (!Number.isInteger(n) || n < 1 || n > 1024) throw new InputError(`--workers: must be an integer from 1 to 1024 (got ${JSON.stringify(v)})`);
+      options.workers = n;
+    } else if (arg.startsWith('-') && arg !== '-') throw new InputError(`unknown option ${name}; ${usage}`);
     else if (input === undefined) input = arg;
     else throw new InputError(`unexpected argument ${arg}; ${usage}`);
   }

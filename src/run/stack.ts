@@ -1,8 +1,9 @@
-import { analyzeLabStack, analyzeSurfaces, toCsr, withMinBoundaryLength, type SurfaceAdjacency } from '../core/analysis';
+import { analyzeSurfaces, toCsr, withMinBoundaryLength, type SurfaceAdjacency } from '../core/analysis';
 import { analysisMethods, type AnyConfig } from '../core/config';
 import type { GpuContext } from '../gpu/context';
 import { analysisRecord } from '../core/analysis';
 import type { StackLayer, SurfaceFamily } from './family';
+import { analyzeLabStackReusing } from './labStackReuse';
 import { throwIfAborted, yieldToEventLoop, type SeededSurface } from './relax';
 import type { AnalysisRecord, CellRecord, ClosedSurfaceRecord, LabelImage, SurfaceRecord } from './result';
 
@@ -68,7 +69,9 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
 
     // The protocol: which cells are valid, how intercalations are counted (docs/protocols.md).
     const invalid = family.protocolInvalid(config, geometry, seeded.sites);
-    const analyze = (surfaces: SurfaceAdjacency[]) => (invalid ? analyzeLabStack(surfaces, invalid) : analyzeSurfaces(surfaces));
+    // The lab's analysis carries the sums of layers shared with the previous run's stack (the
+    // same seeded surface at a smaller ratio): the same numbers, see labStackReuse.ts.
+    const analyze = (surfaces: SurfaceAdjacency[]) => (invalid ? analyzeLabStackReusing(surfaces, invalid) : analyzeSurfaces(surfaces));
     const analyses: AnalysisRecord[] = [];
     if (methods.includes('labels')) {
       const minContact = family.minContactLengths(config, geometry, layers);
@@ -87,22 +90,44 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
     const section = family.resultSection(config, geometry, seeded, labeller);
     // Cells and their contacts: exact where only the exact method ran, else from the label images.
     const cellSurfaces = exactOnly && exactSurfaces ? exactSurfaces : labelled;
-    const cellsOf = (k: number) => cellRecords(cellSurfaces[k], (id) => family.cellPlacement(config, layers[k], seeded.sites, projected[k], id));
-    const surfaces: SurfaceRecord[] = layers.slice(1).map((layer, index) => ({
-      name: layer.name,
-      role: layer.role === 'layer' ? 'layer' : 'other',
-      offset: layer.offset,
-      ratio: family.layerRatio(geometry, layer),
-      grid: { ...labelImages[index + 1].grid },
-      cells: cellsOf(index + 1),
-    }));
-    return { seededCells: cellsOf(0), surfaces, analyses, labelImages, ...section, adjacencyMs };
+    // Built on first read (a sweep reads only the analyses): hundreds of objects per surface.
+    const cellsOf = (k: number) => once(() => cellRecords(cellSurfaces[k], (id) => family.cellPlacement(config, layers[k], seeded.sites, projected[k], id)));
+    const surfaces: SurfaceRecord[] = layers.slice(1).map((layer, index) => {
+      const cells = cellsOf(index + 1);
+      return {
+        name: layer.name,
+        role: layer.role === 'layer' ? 'layer' : 'other',
+        offset: layer.offset,
+        ratio: family.layerRatio(geometry, layer),
+        grid: { ...labelImages[index + 1].grid },
+        get cells() {
+          return cells();
+        },
+      };
+    });
+    const seededCells = cellsOf(0);
+    return {
+      get seededCells() {
+        return seededCells();
+      },
+      surfaces,
+      analyses,
+      labelImages,
+      ...section,
+      adjacencyMs,
+    };
   } finally {
     labeller.dispose();
   }
 }
 
 const EMPTY_LABELS = new Int32Array(0);
+
+/** `compute()` on the first call, the same value after. */
+function once<T>(compute: () => T): () => T {
+  let value: { v: T } | null = null;
+  return () => (value ??= { v: compute() }).v;
+}
 
 /** A label image whose labels are computed on first read (and kept). */
 function lazyLabels(image: LabelImage, compute: () => Int32Array): LabelImage {

@@ -278,7 +278,8 @@ export function analyzeSurfaces(surfaces: SurfaceAdjacency[], options: AnalysisO
   };
 }
 
-function summarizeSurface(
+/** One surface of a stack over the valid cells: analyzeSurfaces' perSurface entry. */
+export function summarizeSurface(
   surface: SurfaceAdjacency,
   sets: Int32Array[],
   sides: Int32Array,
