@@ -84,7 +84,10 @@ function makeVolume(): Uint16Array {
             for (let i = Math.max(0, bx - reach); i <= Math.min(B - 1, bx + reach); i++) {
               for (const k of cells[(k2 * B + j) * B + i]) {
                 const dot = ux * warped[3 * k] + uy * warped[3 * k + 1] + uz * warped[3 * k + 2];
-                if (dot > best) (best = dot), (bestK = k);
+                if (dot > best) {
+                  best = dot;
+                  bestK = k;
+                }
               }
             }
           }

@@ -86,12 +86,21 @@ export function parseMeasureArgs(args: string[]): MeasureArgs {
     } else if (name === '--quartet-filter' || name === '--quartets') {
       parsed.quartetFilter = true;
       volumeOnly.push(name);
-    } else if (name === '--pixel-size') (parsed.pixelSize = positiveNumber(name, value())), layersOnly.push(name);
+    } else if (name === '--pixel-size') {
+      parsed.pixelSize = positiveNumber(name, value());
+      layersOnly.push(name);
+    }
     else if (name === '--min-contact') parsed.minContact = positiveNumber(name, value(), true);
-    else if (name === '--ratio') (parsed.ratio = positiveNumber(name, value())), layersOnly.push(name);
+    else if (name === '--ratio') {
+      parsed.ratio = positiveNumber(name, value());
+      layersOnly.push(name);
+    }
     else if (name === '--realizations') parsed.realizations = integer(name, value(), 1, 1000);
     else if (name === '--seed') parsed.seed = integer(name, value(), 0, 2 ** 31 - 1);
-    else if (name === '--periodic-x') (parsed.periodicX = true), layersOnly.push(name);
+    else if (name === '--periodic-x') {
+      parsed.periodicX = true;
+      layersOnly.push(name);
+    }
     else if (name === '--compare') parsed.compare = true;
     else if (name === '--force') parsed.force = true;
     else if (arg.startsWith('-')) throw optionError(arg, 'unknown option');

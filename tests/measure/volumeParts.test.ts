@@ -46,7 +46,10 @@ function staircase(dx: number, dy: number, dz: number, repeats: number) {
     let lag = -Infinity;
     for (let a = 0; a < 3; a++) {
       const l = total[a] * t - p[a];
-      if (p[a] < total[a] && l > lag) (lag = l), (axis = a);
+      if (p[a] < total[a] && l > lag) {
+        lag = l;
+        axis = a;
+      }
     }
     const q = [...p];
     q[axis]++;
@@ -94,7 +97,10 @@ describe('contact curve length', () => {
 describe('quartet filter', () => {
   const sets = (n: number, pairs: [number, number][]) => {
     const s = Array.from({ length: n }, () => new Set<number>());
-    for (const [a, b] of pairs) s[a].add(b), s[b].add(a);
+    for (const [a, b] of pairs) {
+      s[a].add(b);
+      s[b].add(a);
+    }
     return s;
   };
   it('keeps a T1 exchange confirmed by its quartet and removes a lone one', () => {
@@ -292,8 +298,14 @@ describe('contact curve length of a closed loop', () => {
       const id = (x: number, y: number) => (y + 100) * 1000 + (x + 100);
       for (let y = -R - 2; y <= R + 2; y++) {
         for (let x = -R - 2; x <= R + 2; x++) {
-          if (inside(x, y) !== inside(x + 1, y)) v0.push(id(x + 1, y)), v1.push(id(x + 1, y + 1));
-          if (inside(x, y) !== inside(x, y + 1)) v0.push(id(x, y + 1)), v1.push(id(x + 1, y + 1));
+          if (inside(x, y) !== inside(x + 1, y)) {
+            v0.push(id(x + 1, y));
+            v1.push(id(x + 1, y + 1));
+          }
+          if (inside(x, y) !== inside(x, y + 1)) {
+            v0.push(id(x, y + 1));
+            v1.push(id(x + 1, y + 1));
+          }
         }
       }
       const position = (v: number, out: Float64Array, o: number) => {

@@ -104,7 +104,10 @@ export function tubeVolume(spec: TubeSpec): SyntheticVolume {
             const du = r * d;
             const dz = pz - zs[k];
             const dd = du * du + dz * dz;
-            if (dd < best) (best = dd), (bestId = k);
+            if (dd < best) {
+              best = dd;
+              bestId = k;
+            }
           }
           site[i] = bestId;
         }
@@ -209,7 +212,10 @@ export function shellVolume(spec: ShellSpec): SyntheticVolume {
           let bestId = -1;
           for (let k = 0; k < n; k++) {
             const dd = (px - sites[3 * k] * fx) ** 2 + (py - sites[3 * k + 1] * fy) ** 2 + (pz - sites[3 * k + 2] * fz) ** 2;
-            if (dd < best) (best = dd), (bestId = k);
+            if (dd < best) {
+              best = dd;
+              bestId = k;
+            }
           }
           site[i] = bestId;
         }

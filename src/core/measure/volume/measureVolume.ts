@@ -134,7 +134,11 @@ function assemble(
     if (options.minContact !== undefined) return options.minContact;
     let area = 0;
     let count = 0;
-    for (let i = 0; i < n; i++) if (reaches[k][i]) (area += areas[k][i]), count++;
+    for (let i = 0; i < n; i++) {
+      if (!reaches[k][i]) continue;
+      area += areas[k][i];
+      count++;
+    }
     return count > 0 ? labMinBoundaryLength(area, count) : 0;
   });
 
@@ -234,7 +238,11 @@ function assemble(
   const layers: VolumeSurfaceRecord[] = [0, 1].map((k) => {
     let area = 0;
     let count = 0;
-    for (let i = 0; i < n; i++) if (reaches[k][i]) (area += areas[k][i]), count++;
+    for (let i = 0; i < n; i++) {
+      if (!reaches[k][i]) continue;
+      area += areas[k][i];
+      count++;
+    }
     return {
       name: LAYER_NAMES[k],
       faces: layerClass[k] === OUTSIDE ? 'outside' : 'lumen',

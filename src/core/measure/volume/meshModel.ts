@@ -95,7 +95,10 @@ export function randomSitesOnMesh(mesh: PreparedMesh, count: number, minSpacing:
     const a = 3 * t[3 * lo], b = 3 * t[3 * lo + 1], c = 3 * t[3 * lo + 2];
     let u = random.next();
     let v = random.next();
-    if (u + v > 1) (u = 1 - u), (v = 1 - v);
+    if (u + v > 1) {
+      u = 1 - u;
+      v = 1 - v;
+    }
     const p = mesh.positions;
     const x = p[a] + u * (p[b] - p[a]) + v * (p[c] - p[a]);
     const y = p[a + 1] + u * (p[b + 1] - p[a + 1]) + v * (p[c + 1] - p[a + 1]);

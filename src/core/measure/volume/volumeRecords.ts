@@ -27,8 +27,13 @@ export function backgroundRecord(classes: VoxelClasses, W: number, H: number, D:
   let pocketVoxels = 0;
   for (const c of classes.components) {
     if (c.kind === 'outside') outsideVoxels += c.voxels;
-    else if (c.kind === 'lumen') (lumenVoxels += c.voxels), lumenComponents++;
-    else (pocketVoxels += c.voxels), pockets++;
+    else if (c.kind === 'lumen') {
+      lumenVoxels += c.voxels;
+      lumenComponents++;
+    } else {
+      pocketVoxels += c.voxels;
+      pockets++;
+    }
   }
   return { outsideVoxels, lumenComponents, lumenVoxels, labelledLumenVoxels: classes.labelledLumenVoxels, pockets, pocketVoxels, lumenReachesFaces };
 }
