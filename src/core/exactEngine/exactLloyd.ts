@@ -60,11 +60,14 @@ export class ExactCentroids {
   /** Integrates every cell of the last build; returns the sums (GPU layout). */
   computeSums(): Float64Array {
     const { grid, count, voronoi, moments, sums } = this;
-    moments.fill(0);
-    for (let i = 0; i < count; i++) {
-      voronoi.cell(i, this.cell);
-      this.integrator.integrate(this.cell, voronoi.siteX[i], voronoi.siteY[i], moments, 4 * i);
-    }
+    // Again (rarely) when a cell of a site near a periodic seam was not certified (planarVoronoi.ts).
+    do {
+      moments.fill(0);
+      for (let i = 0; i < count; i++) {
+        voronoi.cell(i, this.cell);
+        this.integrator.integrate(this.cell, voronoi.siteX[i], voronoi.siteY[i], moments, 4 * i);
+      }
+    } while (voronoi.retry());
     const texelArea = grid.texelX * grid.texelY;
     for (let i = 0; i < count; i++) {
       sums[4 * i] = moments[4 * i + 1] / grid.texelX / texelArea;
@@ -108,6 +111,11 @@ export class ExactLloydRun {
       throw new Error(`lloyd.overRelaxation must be in (0, 2) (got ${options.overRelaxation})`);
     }
     this.centroids = new ExactCentroids(grid, sites.length / 2, density);
+  }
+
+  /** Triangulations done again because a cell near a periodic seam was not certified (PlanarVoronoi). */
+  get retries(): number {
+    return this.centroids.voronoi.retries;
   }
 
   get done(): boolean {
