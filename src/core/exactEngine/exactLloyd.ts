@@ -63,7 +63,9 @@ export class ExactCentroids {
     // Again (rarely) when a cell of a site near a periodic seam was not certified (planarVoronoi.ts).
     do {
       moments.fill(0);
-      for (let i = 0; i < count; i++) {
+      // Cells in the diagram's spatial order (cache); each cell's sums are its own.
+      for (let k = 0; k < count; k++) {
+        const i = voronoi.siteAt(k);
         voronoi.cell(i, this.cell);
         this.integrator.integrate(this.cell, voronoi.siteX[i], voronoi.siteY[i], moments, 4 * i);
       }

@@ -64,6 +64,14 @@ export class PlanarVoronoi {
   pointCount = 0;
   /** Rebuilds forced by an uncertified cell since construction (for tests and benchmarks). */
   retries = 0;
+  /**
+   * Site of original point p (points are the sites in a spatial order: rows of buckets of about
+   * two sites, so a walk over the cells in this order reads the triangulation from cache),
+   * and the point of each site.
+   */
+  private readonly order: Int32Array;
+  private readonly rank: Int32Array;
+  private bucketStart = new Int32Array(0);
   private points = new Float64Array(0);
   /** Site of copy k (point n + k). */
   private source = new Int32Array(0);
@@ -80,6 +88,8 @@ export class PlanarVoronoi {
     this.count = count;
     this.siteX = new Float64Array(count);
     this.siteY = new Float64Array(count);
+    this.order = new Int32Array(count);
+    this.rank = new Int32Array(count);
     this.setGrid(grid);
   }
 
@@ -110,6 +120,7 @@ export class PlanarVoronoi {
       this.siteY[i] = wrapCoordinate(sites[2 * i + 1], grid.height, grid.periodicY) * grid.texelY;
     }
     this.sites = sites;
+    this.sortSpatially();
     this.marginX = this.baseMarginX;
     this.marginY = this.baseMarginY;
     return this.triangulate();
@@ -143,7 +154,38 @@ export class PlanarVoronoi {
     return this;
   }
 
-  /** Writes the sites and their copies in the band to `points`; returns the point count. */
+  /**
+   * The site of the k-th cell in the spatial order (k = 0 .. count - 1): walking the cells in this
+   * order is several times faster on large diagrams than in id order (cache).
+   */
+  siteAt(k: number): number {
+    return this.order[k];
+  }
+
+  /** Counting sort of the sites into rows of buckets (row-major), stable in id: order and rank. */
+  private sortSpatially(): void {
+    const { count: n, siteX, siteY, order, rank, widthUm: W, heightUm: H } = this;
+    const columns = Math.max(1, Math.round(Math.sqrt((n / 2) * (W / H))));
+    const rows = Math.max(1, Math.ceil(n / 2 / columns));
+    const buckets = columns * rows;
+    if (this.bucketStart.length < buckets + 1) this.bucketStart = new Int32Array(buckets + 1);
+    const start = this.bucketStart;
+    start.fill(0, 0, buckets + 1);
+    const bucketOf = (i: number) => {
+      const c = Math.min(columns - 1, Math.max(0, Math.floor((siteX[i] / W) * columns)));
+      const r = Math.min(rows - 1, Math.max(0, Math.floor((siteY[i] / H) * rows)));
+      return r * columns + c;
+    };
+    for (let i = 0; i < n; i++) start[bucketOf(i) + 1]++;
+    for (let b = 0; b < buckets; b++) start[b + 1] += start[b];
+    for (let i = 0; i < n; i++) {
+      const p = start[bucketOf(i)]++;
+      order[p] = i;
+      rank[i] = p;
+    }
+  }
+
+  /** Writes the sites (in spatial order) and their copies in the band to `points`; returns the point count. */
   private placePoints(): number {
     const { grid, count: n, siteX, siteY, widthUm: W, heightUm: H, marginX, marginY } = this;
     const px = grid.periodicX;
@@ -159,13 +201,15 @@ export class PlanarVoronoi {
     if (this.points.length < 2 * total) this.points = new Float64Array(2 * Math.ceil(total * 1.1));
     if (this.source.length < total - n) this.source = new Int32Array(Math.ceil((total - n) * 1.25) + 16);
     const { points, source } = this;
-    for (let i = 0; i < n; i++) {
-      points[2 * i] = siteX[i];
-      points[2 * i + 1] = siteY[i];
+    const order = this.order;
+    for (let k = 0; k < n; k++) {
+      points[2 * k] = siteX[order[k]];
+      points[2 * k + 1] = siteY[order[k]];
     }
     let p = n;
     if (px || py) {
-      for (let i = 0; i < n; i++) {
+      for (let k = 0; k < n; k++) {
+        const i = order[k];
         const x = siteX[i];
         const y = siteY[i];
         // Shifts along each axis: 0, then +L near 0, -L near L.
@@ -193,7 +237,7 @@ export class PlanarVoronoi {
 
   /** The label of point p: the site for an original, n + site for a copy. */
   private labelOf(p: number): number {
-    return p < this.count ? p : this.count + this.source[p - this.count];
+    return p < this.count ? this.order[p] : this.count + this.source[p - this.count];
   }
 
   /** d3-delaunay's test: no triangle with a cross product above 1e-10 (also true for none). */
@@ -268,8 +312,9 @@ export class PlanarVoronoi {
   }
 
   /** The fan of site i: circumcenters in order, each labelled with the site across the next edge. */
-  private walk(i: number, raw: PolygonBuffer): boolean {
+  private walk(site: number, raw: PolygonBuffer): boolean {
     raw.clear();
+    const i = this.rank[site];
     const { triangles, halfedges, inedges, length } = this.triangulation;
     const cc = this.circumcenters;
     const e0 = inedges[i];
