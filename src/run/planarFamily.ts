@@ -1,13 +1,13 @@
-import { LAB_PROTOCOL, labelContactThresholdTexels, labInvalidCells, labMinBoundaryLength, surfaceFromExact, surfaceFromLabels, type LabProtocolSettings } from '../core/analysis';
+import { LAB_PROTOCOL, labelContactThresholdTexels, labInvalidCells, labMinBoundaryLength, surfaceFromLabels, type LabProtocolSettings } from '../core/analysis';
 import { checkFeasible, checkSheet, layerStepOf, makeGrid, minContactPixelsOf, type Config } from '../core/config';
 import { densityField, type GrayImage } from '../core/density';
 import { exactVoronoi } from '../core/exact';
-import { ExactLloydRun, exactDensity, exactSurface, rasterizeCells } from '../core/exactEngine';
+import { ExactLloydRun, exactDensity, exactSurface, rasterizeCells, type PlanarVoronoi } from '../core/exactEngine';
 import type { Grid } from '../core/grid';
 import { labelAdjacency } from '../core/labels';
 import { projectSites, surfaceStack, type StackSurface } from '../core/sheetGeometry';
 import { placeSites } from '../core/sites';
-import { embed, surfaceCoordinates } from '../core/surface';
+import { embed, embedAll, surfaceCoordinates } from '../core/surface';
 import type { EngineChoice } from './enginePolicy';
 import type { GpuContext } from '../gpu/context';
 import { CcvtEngine } from '../gpu/engine';
@@ -49,6 +49,9 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
     const sites = placeSites(grid, config.cells, config.seed, config.minSpacing, placementDensity(config, density));
     if (choice.name === 'exact') {
       const run = new ExactLloydRun(grid, sites, config.lloyd, exactDensity(config.density, grid, geometry.densityImage));
+      // finish() leaves the diagram of the final sites built: the seeded surface's exact
+      // adjacency reads it instead of triangulating the same sites again (exactAdjacency).
+      memo(sites, FINAL_DIAGRAM, () => run.voronoi);
       // No label image: the stack rasterizes the exact cells for views when asked.
       return { sites, relaxation: relaxation(run, () => NO_LABELS) };
     }
@@ -109,15 +112,30 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
   // The exact Delaunay needs no threshold: every contact of positive length counts.
   exactMinContactLengths: () => null,
 
-  // Kept per seeded surface: runs that differ in the sheet share most of their layers.
-  exactAdjacency: (_config, _geometry, layer, sites, projected) =>
-    memo(sites, `exact ${layer.name} ${layer.grid.width} ${layer.grid.texelX}`, () => surfaceFromExact(exactVoronoi(layer.grid, projected), layer.name)),
+  // Kept per seeded surface: runs that differ in the sheet share most of their layers. The
+  // exact engine's allocation-free walk (exactSurface: the numbers of exactVoronoi, tested cell
+  // by cell), not the per-cell records of exactVoronoi: a million cells fit.
+  // A surface with the seeded grid and sites (the seeded one; a plane's other surface) shares
+  // the seeded surface's adjacency: nothing is computed twice.
+  exactAdjacency(_config, geometry, layer, sites, projected) {
+    if (layer.role === 'seeded' || (sameGrid(layer.grid, geometry.grid) && sameValues(projected, sites))) {
+      const seeded = memo(sites, `exact seeded ${geometry.grid.width} ${geometry.grid.texelX}`, () => {
+        const diagram = memos.get(sites)?.get(FINAL_DIAGRAM) as PlanarVoronoi | undefined;
+        memos.get(sites)?.delete(FINAL_DIAGRAM); // read once; its buffers are not kept
+        return exactSurface(geometry.grid, sites, undefined, diagram);
+      });
+      return { ...seeded, label: layer.name };
+    }
+    return memo(sites, `exact ${layer.name} ${layer.grid.width} ${layer.grid.texelX}`, () => exactSurface(layer.grid, projected, layer.name));
+  },
 
   cellPlacement(config, layer, _sites, projected, id) {
     const x = projected[2 * id];
     const y = projected[2 * id + 1];
     return { position: embed(config.surface, layer.grid, x, y, layer.offset).position, surface: surfaceCoordinates(layer.grid, x, y) };
   },
+
+  cellPlacements: (config, layer, _sites, projected, position, coordinates) => embedAll(config.surface, layer.grid, projected, layer.offset, position, coordinates),
 
   layerRatio: (_geometry, layer) => layer.ratio,
 
@@ -152,6 +170,19 @@ function memo<T>(sites: PlanarSites, key: string, compute: () => T): T {
   if (!values) memos.set(sites, (values = new Map()));
   if (!values.has(key)) values.set(key, compute());
   return values.get(key) as T;
+}
+
+/** Memo key of the exact Lloyd run's diagram of the final sites. */
+const FINAL_DIAGRAM = 'final diagram';
+
+function sameGrid(a: Grid, b: Grid): boolean {
+  return a.width === b.width && a.height === b.height && a.texelX === b.texelX && a.texelY === b.texelY && a.periodicX === b.periodicX && a.periodicY === b.periodicY;
+}
+
+function sameValues(a: ArrayLike<number>, b: ArrayLike<number>): boolean {
+  if (a.length !== b.length) return false;
+  for (let k = 0; k < a.length; k++) if (a[k] !== b[k]) return false;
+  return true;
 }
 
 /** The exact engine's seeded surface has no label image (the stack draws its cells for views). */

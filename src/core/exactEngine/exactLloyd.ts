@@ -115,6 +115,11 @@ export class ExactLloydRun {
     this.centroids = new ExactCentroids(grid, sites.length / 2, density);
   }
 
+  /** The diagram: after finish(), of the final sites (exactSurface can read it without rebuilding). */
+  get voronoi(): PlanarVoronoi {
+    return this.centroids.voronoi;
+  }
+
   /** Triangulations done again because a cell near a periodic seam was not certified (PlanarVoronoi). */
   get retries(): number {
     return this.centroids.voronoi.retries;

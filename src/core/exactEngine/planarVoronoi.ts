@@ -72,11 +72,14 @@ export class PlanarVoronoi {
   private readonly order: Int32Array;
   private readonly rank: Int32Array;
   private bucketStart = new Int32Array(0);
+  /** A diagram of siteX, siteY on this grid is built. */
+  private built = false;
   private points = new Float64Array(0);
   /** Site of copy k (point n + k). */
   private source = new Int32Array(0);
   private readonly triangulation = new Triangulation();
-  private circumcenters = new Float64Array(0);
+  private ccx = 0;
+  private ccy = 0;
   private fallback: Float64Array[] | null = null;
   private far = 0;
   private uncertified = false;
@@ -101,6 +104,8 @@ export class PlanarVoronoi {
     if (grid.periodicX !== this.grid.periodicX || grid.periodicY !== this.grid.periodicY) {
       throw new Error('PlanarVoronoi.setGrid: the periodic axes must stay the same');
     }
+    const old = this.grid;
+    if (grid.width !== old.width || grid.height !== old.height || grid.texelX !== old.texelX || grid.texelY !== old.texelY) this.built = false;
     this.grid = grid;
     this.widthUm = grid.width * grid.texelX;
     this.heightUm = grid.height * grid.texelY;
@@ -112,14 +117,26 @@ export class PlanarVoronoi {
     return this;
   }
 
-  /** Triangulates `sites` (interleaved x, y texel units); reuses every buffer after the first call. */
+  /**
+   * Triangulates `sites` (interleaved x, y texel units); reuses every buffer after the first call.
+   * Sites equal to the last build's on the same grid keep the diagram as it is (nothing is
+   * recomputed: e.g. the final Lloyd sites, then the seeded surface's adjacency of the same sites).
+   */
   build(sites: ArrayLike<number>): this {
-    const { grid, count: n } = this;
+    const { grid, count: n, siteX, siteY } = this;
+    let same = this.built;
     for (let i = 0; i < n; i++) {
-      this.siteX[i] = wrapCoordinate(sites[2 * i], grid.width, grid.periodicX) * grid.texelX;
-      this.siteY[i] = wrapCoordinate(sites[2 * i + 1], grid.height, grid.periodicY) * grid.texelY;
+      const x = wrapCoordinate(sites[2 * i], grid.width, grid.periodicX) * grid.texelX;
+      const y = wrapCoordinate(sites[2 * i + 1], grid.height, grid.periodicY) * grid.texelY;
+      if (x !== siteX[i] || y !== siteY[i]) {
+        same = false;
+        siteX[i] = x;
+        siteY[i] = y;
+      }
     }
     this.sites = sites;
+    if (same) return this;
+    this.built = true;
     this.sortSpatially();
     this.marginX = this.baseMarginX;
     this.marginY = this.baseMarginY;
@@ -150,7 +167,6 @@ export class PlanarVoronoi {
       this.useFallback(this.sites!);
       return this;
     }
-    this.computeCircumcenters();
     return this;
   }
 
@@ -316,16 +332,15 @@ export class PlanarVoronoi {
     raw.clear();
     const i = this.rank[site];
     const { triangles, halfedges, inedges, length } = this.triangulation;
-    const cc = this.circumcenters;
     const e0 = inedges[i];
     if (e0 < 0) return false;
     const onHull = halfedges[e0] === -1;
     if (onHull) {
       // Ray across the hull edge (p0, i), outward (away from the triangle's third vertex).
-      const t = (e0 / 3) | 0;
       const p0 = triangles[e0];
       const third = triangles[e0 % 3 === 0 ? e0 + 2 : e0 - 1];
-      this.pushRayEnd(raw, cc[2 * t], cc[2 * t + 1], p0, i, third, this.labelOf(p0));
+      this.circumcenter((e0 / 3) | 0);
+      this.pushRayEnd(raw, this.ccx, this.ccy, p0, i, third, this.labelOf(p0));
     }
     let e = e0;
     for (let guard = 0; guard < length; guard++) {
@@ -333,20 +348,21 @@ export class PlanarVoronoi {
       const next = e % 3 === 2 ? e - 2 : e + 1;
       if (triangles[next] !== i) return false;
       const across = triangles[e % 3 === 0 ? e + 2 : e - 1];
-      raw.push(cc[2 * t], cc[2 * t + 1], this.labelOf(across));
+      this.circumcenter(t);
+      const cx = this.ccx;
+      const cy = this.ccy;
+      raw.push(cx, cy, this.labelOf(across));
       const twin = halfedges[next];
       if (twin === -1) {
         // Last fan triangle on the hull: ray across (i, across), then close far away.
         const third = triangles[e];
         const end = raw.count;
-        this.pushRayEnd(raw, cc[2 * t], cc[2 * t + 1], i, across, third, EDGE_FAR);
+        this.pushRayEnd(raw, cx, cy, i, across, third, EDGE_FAR);
         // A point on the bisector of both rays keeps the far closure outside the domain.
         const fx = raw.xy[2 * end];
         const fy = raw.xy[2 * end + 1];
         const gx = raw.xy[0];
         const gy = raw.xy[1];
-        const cx = cc[2 * t];
-        const cy = cc[2 * t + 1];
         let mx = fx - cx + (gx - cx);
         let my = fy - cy + (gy - cy);
         const len = Math.hypot(mx, my);
@@ -400,34 +416,34 @@ export class PlanarVoronoi {
     for (let k = 0; k < a.count; k++) out.push(a.xy[2 * k] - sx, a.xy[2 * k + 1] - sy, a.labels[k]);
   }
 
-  private computeCircumcenters(): void {
-    const { triangles, length } = this.triangulation;
+  /**
+   * Circumcentre of triangle t into (ccx, ccy), computed where the walk needs it (the triangle's
+   * points are close in memory, a table of centres would not be): the same arithmetic, from the
+   * same first vertex, as a table computed after the triangulation.
+   */
+  private circumcenter(t: number): void {
+    const triangles = this.triangulation.triangles;
     const points = this.points;
-    const nt = length / 3;
-    if (this.circumcenters.length < 2 * nt) this.circumcenters = new Float64Array(2 * Math.ceil(nt * 1.25));
-    const cc = this.circumcenters;
-    for (let t = 0; t < nt; t++) {
-      const i1 = 2 * triangles[3 * t];
-      const i2 = 2 * triangles[3 * t + 1];
-      const i3 = 2 * triangles[3 * t + 2];
-      const x1 = points[i1];
-      const y1 = points[i1 + 1];
-      const dx = points[i2] - x1;
-      const dy = points[i2 + 1] - y1;
-      const ex = points[i3] - x1;
-      const ey = points[i3 + 1] - y1;
-      const ab = (dx * ey - dy * ex) * 2;
-      if (Math.abs(ab) < 1e-12 * (dx * dx + dy * dy + ex * ex + ey * ey)) {
-        // Degenerate sliver: its circumcentre is far along the perpendicular (as d3-delaunay does).
-        cc[2 * t] = (x1 + points[i3]) / 2 - this.far * ey;
-        cc[2 * t + 1] = (y1 + points[i3 + 1]) / 2 + this.far * ex;
-        continue;
-      }
-      const bl = dx * dx + dy * dy;
-      const cl = ex * ex + ey * ey;
-      cc[2 * t] = x1 + (ey * bl - dy * cl) / ab;
-      cc[2 * t + 1] = y1 + (dx * cl - ex * bl) / ab;
+    const i1 = 2 * triangles[3 * t];
+    const i2 = 2 * triangles[3 * t + 1];
+    const i3 = 2 * triangles[3 * t + 2];
+    const x1 = points[i1];
+    const y1 = points[i1 + 1];
+    const dx = points[i2] - x1;
+    const dy = points[i2 + 1] - y1;
+    const ex = points[i3] - x1;
+    const ey = points[i3 + 1] - y1;
+    const ab = (dx * ey - dy * ex) * 2;
+    if (Math.abs(ab) < 1e-12 * (dx * dx + dy * dy + ex * ex + ey * ey)) {
+      // Degenerate sliver: its circumcentre is far along the perpendicular (as d3-delaunay does).
+      this.ccx = (x1 + points[i3]) / 2 - this.far * ey;
+      this.ccy = (y1 + points[i3 + 1]) / 2 + this.far * ex;
+      return;
     }
+    const bl = dx * dx + dy * dy;
+    const cl = ex * ex + ey * ey;
+    this.ccx = x1 + (ey * bl - dy * cl) / ab;
+    this.ccy = y1 + (dx * cl - ex * bl) / ab;
   }
 
   private useFallback(sites: ArrayLike<number>): void {
