@@ -31,7 +31,7 @@ export function exactSurface(grid: Grid, sites: ArrayLike<number>, label?: strin
     touchesBorder.fill(0);
     for (let k = 0; k < n; k++) {
       const i = v.siteAt(k);
-      v.cell(i, cell);
+      v.cellAt(k, cell);
       const from = start[k];
       let m = 0;
       if (from + cell.count > scratchIds.length) {
