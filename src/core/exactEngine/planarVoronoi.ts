@@ -423,6 +423,17 @@ export class PlanarVoronoi {
     const { grid } = this;
     let a = raw;
     let b = this.pong;
+    // Most cells lie inside the open axes' range: clipping would keep every vertex as it is.
+    let inside = true;
+    for (let k = 0; k < raw.count && inside; k++) {
+      const x = raw.xy[2 * k];
+      const y = raw.xy[2 * k + 1];
+      if ((!grid.periodicX && !(x >= 0 && x <= this.widthUm)) || (!grid.periodicY && !(y >= 0 && y <= this.heightUm))) inside = false;
+    }
+    if (inside) {
+      for (let k = 0; k < raw.count; k++) out.push(raw.xy[2 * k] - sx, raw.xy[2 * k + 1] - sy, raw.labels[k]);
+      return;
+    }
     if (!grid.periodicY) {
       clipHalfPlane(a, b, 1, 0, 1, EDGE_Y0);
       [a, b] = [b, a];
