@@ -143,12 +143,11 @@ export class Triangulation {
       i2x = x;
       i2y = y;
     }
-    const center = { cx: 0, cy: 0 };
-    circumcenter(i0x, i0y, i1x, i1y, i2x, i2y, center);
-    this.cx = center.cx;
-    this.cy = center.cy;
-    const centerX = center.cx;
-    const centerY = center.cy;
+    circumcenter(i0x, i0y, i1x, i1y, i2x, i2y, CENTER);
+    this.cx = CENTER[0];
+    this.cy = CENTER[1];
+    const centerX = this.cx;
+    const centerY = this.cy;
     for (let i = 0; i < n; i++) dists[i] = dist(coords[2 * i], coords[2 * i + 1], centerX, centerY);
     quicksort(ids, dists, 0, n - 1);
 
@@ -326,8 +325,11 @@ function circumradius(ax: number, ay: number, bx: number, by: number, cx: number
   return x * x + y * y;
 }
 
-/** Circumcentre of A, B, C written to out.cx, out.cy (no object allocated). */
-function circumcenter(ax: number, ay: number, bx: number, by: number, cx: number, cy: number, out: { cx: number; cy: number }): void {
+/** Scratch for the seed triangle's circumcentre. */
+const CENTER = new Float64Array(2);
+
+/** Circumcentre of A, B, C written to out[0], out[1] (no object allocated). */
+function circumcenter(ax: number, ay: number, bx: number, by: number, cx: number, cy: number, out: Float64Array): void {
   const dx = bx - ax;
   const dy = by - ay;
   const ex = cx - ax;
@@ -335,8 +337,8 @@ function circumcenter(ax: number, ay: number, bx: number, by: number, cx: number
   const bl = dx * dx + dy * dy;
   const cl = ex * ex + ey * ey;
   const d = 0.5 / (dx * ey - dy * ex);
-  out.cx = ax + (ey * bl - dy * cl) * d;
-  out.cy = ay + (dx * cl - ex * bl) * d;
+  out[0] = ax + (ey * bl - dy * cl) * d;
+  out[1] = ay + (dx * cl - ex * bl) * d;
 }
 
 function quicksort(ids: Uint32Array, dists: Float64Array, left: number, right: number): void {

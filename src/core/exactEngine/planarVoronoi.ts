@@ -193,15 +193,17 @@ export class PlanarVoronoi {
     const cx = W / 2;
     const cy = H / 2;
     const scale = buckets / (cx * cx + cy * cy || 1);
-    const bucketOf = (i: number) => {
+    // The bucket of each site, kept in rank for the second pass.
+    for (let i = 0; i < n; i++) {
       const dx = siteX[i] - cx;
       const dy = siteY[i] - cy;
-      return Math.min(buckets - 1, Math.floor((dx * dx + dy * dy) * scale));
-    };
-    for (let i = 0; i < n; i++) start[bucketOf(i) + 1]++;
+      const bucket = Math.min(buckets - 1, Math.floor((dx * dx + dy * dy) * scale));
+      rank[i] = bucket;
+      start[bucket + 1]++;
+    }
     for (let b = 0; b < buckets; b++) start[b + 1] += start[b];
     for (let i = 0; i < n; i++) {
-      const p = start[bucketOf(i)]++;
+      const p = start[rank[i]]++;
       order[p] = i;
       rank[i] = p;
     }
