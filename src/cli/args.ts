@@ -10,6 +10,8 @@ export interface CliOptions {
   allowNetwork: boolean;
   /** Lift the work and memory budget (texture limits still apply). */
   allowLarge: boolean;
+  /** `run`: per-cell lists in a binary side file whatever the size (README, "Result JSON"). */
+  cellsFile: boolean;
   /** Sweeps: the largest number of runs accepted. */
   maxRuns?: number;
   /** Sweeps: "I/N" or "slurm" (parsed by parseShard). */
@@ -21,7 +23,15 @@ export interface CliOptions {
 export function parseArgs(args: string[], form: string, sweep = false): CliOptions {
   let input: string | undefined;
   let out: string | undefined;
-  const options = { force: false, allowNetwork: false, allowLarge: false, maxRuns: undefined as number | undefined, shard: undefined as string | undefined, workers: undefined as number | undefined };
+  const options = {
+    force: false,
+    allowNetwork: false,
+    allowLarge: false,
+    cellsFile: false,
+    maxRuns: undefined as number | undefined,
+    shard: undefined as string | undefined,
+    workers: undefined as number | undefined,
+  };
   const usage = `usage: tissue-sheet ${form}`;
   for (let i = 0; i < args.length; i++) {
     const arg = args[i];
@@ -35,6 +45,7 @@ export function parseArgs(args: string[], form: string, sweep = false): CliOptio
     else if (name === '--force') options.force = true;
     else if (name === '--allow-network' || name === '--allow-fetch') options.allowNetwork = true;
     else if (name === '--allow-large') options.allowLarge = true;
+    else if (!sweep && name === '--cells-file') options.cellsFile = true;
     else if (sweep && name === '--max-runs') {
       const v = value();
       const n = Number(v);

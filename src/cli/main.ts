@@ -20,6 +20,8 @@ Options:
   --force           overwrite an existing --out that is not a previous tissue-sheet result
   --allow-network   fetch http(s) mesh and density sources (default: file paths only)
   --allow-large     lift the work and memory limits (GPU texture limits still apply)
+  --cells-file      run: per-cell lists in RESULT.cells.bin (columns) instead of the JSON;
+                    done anyway above 100,000 cell records (README, "Result JSON")
   --max-runs N      sweep: accept up to N runs (default 100000)
   --shard I/N       sweep: compute only shard I of N (1 <= I <= N); every run is in exactly
                     one shard; "slurm" takes I and N from SLURM_ARRAY_TASK_ID/_MIN/_COUNT
@@ -39,7 +41,7 @@ Progress goes to stderr. Exit codes:
 type Command = (args: string[], signal: AbortSignal, log: (line: string) => void) => Promise<number | void>;
 
 const commands: Record<string, Command> = {
-  run: (args, signal, log) => runCommand(parseArgs(args, 'run CONFIG.json --out RESULT.json [--force] [--allow-network] [--allow-large]'), signal, log),
+  run: (args, signal, log) => runCommand(parseArgs(args, 'run CONFIG.json --out RESULT.json [--force] [--allow-network] [--allow-large] [--cells-file]'), signal, log),
   sweep: (args, signal, log) =>
     sweepCommand(parseArgs(args, 'sweep SWEEP.json --out DIR [--force] [--allow-network] [--allow-large] [--max-runs N] [--shard I/N|slurm] [--workers N]', true), signal, log),
   merge: async (args, _signal, log) => (await import('./merge')).mergeCommand(args, log),

@@ -13,7 +13,7 @@ import { describeEngine, runSheet } from '../run/index';
 import { findForbiddenKey } from '../core/sweep';
 import { InputError, InterruptedError } from './errors';
 import type { CliOptions } from './args';
-import { checkOutFile, writeFileAtomic } from './output';
+import { cellsFilePath, checkOutFile, isOurCellsFile, MAX_CELL_RECORDS_IN_JSON, writeResult } from './output';
 import { checkRunnable, computeBudget, loadInputs, readJsonFile } from './prepare';
 import { Sources } from './sources';
 
@@ -25,25 +25,29 @@ export async function runCommand(options: CliOptions, signal: AbortSignal, log: 
   const config = validateAnyConfig(json);
   checkOutFile(options.out, [options.input], options.force);
   // Schema-level scale checks first (no GPU needed), then the texture limit once a context exists.
-  checkRunnable(config, computeBudget(Number.MAX_SAFE_INTEGER, options.allowLarge));
+  const estimate = checkRunnable(config, computeBudget(Number.MAX_SAFE_INTEGER, options.allowLarge));
+  // Large results keep their cells as columns and write them to a side file (README, "Result JSON").
+  const cellTables = options.cellsFile || config.cells * estimate.surfaces > MAX_CELL_RECORDS_IN_JSON;
+  if (cellTables) checkOutFile(cellsFilePath(options.out), [options.input], options.force, isOurCellsFile);
   const sources = new Sources({ baseDir: dirname(options.input), allowNetwork: options.allowNetwork });
   const inputs = await loadInputs(config, sources);
   const context = createHeadlessContext();
   try {
     checkRunnable(config, computeBudget(context.capabilities.maxTextureSize, options.allowLarge));
-    const { result } = await runSheet(config, context, {
+    const { result, tables } = await runSheet(config, context, {
       ...inputs,
       signal,
+      cellTables,
       onIteration(record, total) {
         log(`iteration ${record.iteration}/${total}  energy ${record.energy.toPrecision(8)}  max displacement ${record.maxDisplacement.toPrecision(4)} µm`);
       },
     });
     if (signal.aborted) throw new InterruptedError('interrupted; nothing was written');
     checkFinite(result.lloyd.finalEnergy);
-    writeFileAtomic(options.out, JSON.stringify(result, null, 2) + '\n');
+    const side = writeResult(options.out, result, tables, [options.input], options.force);
     log(
-      `done: ${result.cells.length} cells, ${result.lloyd.iterations.length} iterations, ` +
-        `${describeEngine(result.engine)}, ${result.timings.totalMs.toFixed(0)} ms -> ${options.out}`,
+      `done: ${tables?.cells.count ?? result.cells.length} cells, ${result.lloyd.iterations.length} iterations, ` +
+        `${describeEngine(result.engine)}, ${result.timings.totalMs.toFixed(0)} ms -> ${options.out}${side ? ` (cells in ${side})` : ''}`,
     );
     // Last, the number a biologist reads: result.headline, with its method and Voronoi k.
     log(`headline: ${describeHeadline(result.headline)}`);

@@ -225,9 +225,7 @@ function surfaceSummary(state: Carried, surface: SurfaceAdjacency, sets: Sets, s
   if (kept && kept.areas === surface.areas && kept.sides === surface.sides && sameBytes(kept.excluded, excluded)) {
     return kept.summary.label === surface.label ? kept.summary : { ...kept.summary, label: surface.label };
   }
-  const lists: Int32Array[] = new Array(sides.length);
-  for (let i = 0; i < sides.length; i++) lists[i] = sets.ids.subarray(sets.offsets[i], sets.offsets[i + 1]);
-  const summary = summarizeSurface({ ...surface, touchesBorder: excluded }, lists, sides, valid, validCells, {});
+  const summary = summarizeSurface({ ...surface, touchesBorder: excluded }, sets, sides, valid, validCells, {});
   state.summaries.set(surface.adjacency, { areas: surface.areas, sides: surface.sides, excluded, summary });
   return summary;
 }

@@ -7,7 +7,7 @@ import type { Grid } from '../core/grid';
 import { labelAdjacency } from '../core/labels';
 import { projectSites, surfaceStack, type StackSurface } from '../core/sheetGeometry';
 import { placeSites } from '../core/sites';
-import { embed, surfaceCoordinates } from '../core/surface';
+import { embed, embedAll, surfaceCoordinates } from '../core/surface';
 import type { EngineChoice } from './enginePolicy';
 import type { GpuContext } from '../gpu/context';
 import { CcvtEngine } from '../gpu/engine';
@@ -49,6 +49,9 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
     const sites = placeSites(grid, config.cells, config.seed, config.minSpacing, placementDensity(config, density));
     if (choice.name === 'exact') {
       const run = new ExactLloydRun(grid, sites, config.lloyd, exactDensity(config.density, grid, geometry.densityImage));
+      // finish() leaves the diagram of the final sites built: the seeded surface's exact
+      // adjacency reads it instead of triangulating the same sites again (exactAdjacency).
+      memo(sites, FINAL_DIAGRAM, () => run.voronoi);
       // No label image: the stack rasterizes the exact cells for views when asked.
       return { sites, relaxation: relaxation(run, () => NO_LABELS) };
     }
@@ -118,7 +121,8 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
   // The exact Delaunay needs no threshold: every contact of positive length counts.
   exactMinContactLengths: () => null,
 
-  // Kept per seeded surface: runs that differ in the sheet share most of their layers.
+  // Kept per seeded surface: runs that differ in the sheet share most of their layers (and the
+  // seeded surface's own sites reuse the exact Lloyd run's final diagram: see exactLayer).
   exactAdjacency: (_config, _geometry, layer, sites, projected) => ({ ...exactLayer(layer.grid, sites, projected), label: layer.name }),
 
   cellPlacement(config, layer, _sites, projected, id) {
@@ -126,6 +130,8 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
     const y = projected[2 * id + 1];
     return { position: embed(config.surface, layer.grid, x, y, layer.offset).position, surface: surfaceCoordinates(layer.grid, x, y) };
   },
+
+  cellPlacements: (config, layer, _sites, projected, position, coordinates) => embedAll(config.surface, layer.grid, projected, layer.offset, position, coordinates),
 
   layerRatio: (_geometry, layer) => layer.ratio,
 
@@ -162,15 +168,27 @@ function memo<T>(sites: PlanarSites, key: string, compute: () => T): T {
   return values.get(key) as T;
 }
 
+/** Memo key of the exact Lloyd run's diagram of the final sites. */
+const FINAL_DIAGRAM = 'final diagram';
+
 /**
  * The exact adjacency of the seeded sites projected onto a layer's grid (`projected`: as
  * `project` moves them there), once per seeded surface and grid: the same grid is the same
  * surface in every stack and in the lab validity. exactSurface gives the numbers of
- * surfaceFromExact(exactVoronoi(...)) (tested cell by cell) without the per-cell records.
+ * surfaceFromExact(exactVoronoi(...)) (tested cell by cell) without the per-cell records. The
+ * seeded sites themselves (the seeded surface; a plane's other surface) read the exact Lloyd
+ * run's final diagram, already built for them: nothing is triangulated twice.
  */
 function exactLayer(grid: Grid, sites: PlanarSites, projected: ArrayLike<number>): SurfaceAdjacency {
   const { width, height, texelX, texelY, periodicX, periodicY } = grid;
-  return memo(sites, `exact ${width} ${height} ${texelX} ${texelY} ${periodicX} ${periodicY}`, () => exactSurface(grid, projected, undefined, scratchVoronoi(grid, sites.length / 2)));
+  return memo(sites, `exact ${width} ${height} ${texelX} ${texelY} ${periodicX} ${periodicY}`, () => {
+    const final = memos.get(sites)?.get(FINAL_DIAGRAM) as PlanarVoronoi | undefined;
+    if (final && sameValues(projected, sites)) {
+      memos.get(sites)?.delete(FINAL_DIAGRAM); // read once; its buffers are not kept
+      return exactSurface(grid, projected, undefined, final);
+    }
+    return exactSurface(grid, projected, undefined, scratchVoronoi(grid, sites.length / 2));
+  });
 }
 
 /**
@@ -187,6 +205,12 @@ function scratchVoronoi(grid: Grid, count: number): PlanarVoronoi {
 /** The seeded sites moved onto a layer's grid (projectSites), once per seeded surface and grid. */
 function projected(seededGrid: Grid, grid: Grid, sites: PlanarSites): PlanarSites {
   return memo(sites, `project ${seededGrid.width} ${grid.width}`, () => projectSites(seededGrid, grid, sites));
+}
+
+function sameValues(a: ArrayLike<number>, b: ArrayLike<number>): boolean {
+  if (a.length !== b.length) return false;
+  for (let k = 0; k < a.length; k++) if (a[k] !== b[k]) return false;
+  return true;
 }
 
 /** The exact engine's seeded surface has no label image (the stack draws its cells for views). */

@@ -71,8 +71,8 @@ export class SheetRunner {
       this.cached = null;
       throw error;
     }
-    const stack = await analyzeStack(family, config, seeded, this.context, callbacks.signal);
-    const { closed, labelImages } = stack;
+    const stack = await analyzeStack(family, config, seeded, this.context, callbacks.signal, callbacks.cellTables === true);
+    const { closed, labelImages, tables } = stack;
     return {
       result: {
         software: { name: 'tissue-sheet', version },
@@ -103,6 +103,7 @@ export class SheetRunner {
         ...(closed ? { closed } : {}),
       },
       labelImages,
+      ...(tables ? { tables } : {}),
     };
   }
 
