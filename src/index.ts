@@ -16,6 +16,8 @@
 
 // The pipeline, its GPU contexts and its result types (one shape for every surface).
 export { runSheet, SheetRunner, sweepSummary, describeEngine, fetchMeshFile, createCanvasContext, GpuCapabilityError } from './run/index';
+// A result whose per-cell lists are in a binary side file (RESULT.cells.bin; README "Result JSON").
+export { decodeCellsFile, withCellRecords, type CellsFileRecord, type ResultCellTables } from './run/index';
 export type {
   AnalysisRecord,
   CellRecord,
