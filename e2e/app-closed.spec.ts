@@ -74,7 +74,7 @@ test('uploading a mesh runs; a corrupt file and a genus-1 mesh show their messag
   await waitForRun(page);
   await expect(page.locator('#run-info')).toContainText('/meshes/egg-chamber.ply (1962 vertices');
 
-  let before = await runs(page);
+  const before = await runs(page);
   await page.locator('input[name="surface.src"]').setInputFiles('public/meshes/organoid.ply');
   await waitForRun(page, before);
   await expect(page.locator('#error')).toBeHidden();

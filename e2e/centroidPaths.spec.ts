@@ -1,5 +1,17 @@
 import { expect, test } from '@playwright/test';
 
+interface PathDifference {
+  worstCentroid: number;
+  worstEnergy: number;
+}
+/** What the test page's compareCentroidPaths returns: blend against gather and readback. */
+interface PathComparison {
+  capabilities: { floatBlend: boolean };
+  emptyCells: number;
+  gather: PathDifference;
+  readback: PathDifference;
+}
+
 test.describe('centroid paths in Chromium', () => {
   test('additive-blend, gather and readback paths give the same centroids', async ({ page }) => {
     await page.goto('/e2e/pages/engine.html');
@@ -11,7 +23,7 @@ test.describe('centroid paths in Chromium', () => {
     for (const { grid, count, weighted } of cases) {
       const result = await page.evaluate(
         ({ grid, count, weighted }) =>
-          (window as unknown as { tissueSheetTest: { compareCentroidPaths: Function } }).tissueSheetTest.compareCentroidPaths(grid, count, 3, weighted),
+          (window as unknown as { tissueSheetTest: { compareCentroidPaths: (...args: unknown[]) => PathComparison } }).tissueSheetTest.compareCentroidPaths(grid, count, 3, weighted),
         { grid, count, weighted },
       );
       expect(result.capabilities.floatBlend).toBe(true);

@@ -4,6 +4,16 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
 
+/** The parts of a result JSON (README, "Result JSON") these tests read. */
+interface ResultJson {
+  config: Record<string, unknown>;
+  gpu: { centroidPath: string };
+  analyses: { method: string; summary: { percentScutoids: number }; cells: { sides: number[] }[] }[];
+  cells: { neighbours: { id: number }[] }[];
+  surfaces: { cells: { neighbours: { id: number }[] }[] }[];
+  lloyd: { finalEnergy: number };
+}
+
 /**
  * `<tissue-sheet>` on Debian's Chromium. Screenshot tolerance: maxDiffPixelRatio 0.02.
  * The CLI comparison runs `node bin/tissue-sheet.mjs run` (headless-gl under xvfb-run on Mesa's
@@ -100,27 +110,27 @@ test('the element fires result with the same numbers as the CLI for the same con
     document.body.append(element);
     const detail = new Promise<unknown>((resolve) => element.addEventListener('result', (e) => resolve(e.detail), { once: true }));
     await element.run();
-    return { config: element.config, detail: (await detail) as { result: any; percentScutoids: number } };
+    return { config: element.config, detail: (await detail) as { result: ResultJson; percentScutoids: number } };
   });
   const dir = mkdtempSync(join(tmpdir(), 'tissue-sheet-e2e-'));
   writeFileSync(join(dir, 'cfg.json'), JSON.stringify({ ...browser.config, centroidPath: 'auto' }));
   execFileSync(process.execPath, ['bin/tissue-sheet.mjs', 'run', join(dir, 'cfg.json'), '--out', join(dir, 'out.json')], { stdio: 'pipe', timeout: 120_000 });
-  const cli = JSON.parse(readFileSync(join(dir, 'out.json'), 'utf8'));
+  const cli = JSON.parse(readFileSync(join(dir, 'out.json'), 'utf8')) as ResultJson;
   const web = browser.detail.result;
 
   expect(web.gpu.centroidPath).toBe('blend');
   expect(cli.gpu.centroidPath).toBe('readback');
   expect({ ...cli.config, centroidPath: 'blend' }).toEqual(web.config);
   for (const method of ['labels', 'exact']) {
-    const a = web.analyses.find((x: { method: string }) => x.method === method);
-    const b = cli.analyses.find((x: { method: string }) => x.method === method);
+    const a = web.analyses.find((x) => x.method === method)!;
+    const b = cli.analyses.find((x) => x.method === method)!;
     expect(a.summary.percentScutoids, `${method} % scutoids`).toBe(b.summary.percentScutoids);
-    expect(a.cells.map((c: { sides: number[] }) => c.sides)).toEqual(b.cells.map((c: { sides: number[] }) => c.sides));
+    expect(a.cells.map((c) => c.sides)).toEqual(b.cells.map((c) => c.sides));
   }
-  expect(browser.detail.percentScutoids).toBe(cli.analyses.find((a: { method: string }) => a.method === 'exact').summary.percentScutoids);
-  const neighbourSets = (r: any) => r.cells.map((c: any) => c.neighbours.map((n: any) => n.id).sort((x: number, y: number) => x - y));
+  expect(browser.detail.percentScutoids).toBe(cli.analyses.find((a) => a.method === 'exact')!.summary.percentScutoids);
+  const neighbourSets = (r: Pick<ResultJson, 'cells'>) => r.cells.map((c) => c.neighbours.map((n) => n.id).sort((x, y) => x - y));
   expect(neighbourSets(web)).toEqual(neighbourSets(cli));
-  expect(neighbourSets({ cells: web.surfaces.at(-1).cells })).toEqual(neighbourSets({ cells: cli.surfaces.at(-1).cells }));
+  expect(neighbourSets({ cells: web.surfaces.at(-1)!.cells })).toEqual(neighbourSets({ cells: cli.surfaces.at(-1)!.cells }));
   const relative = Math.abs(web.lloyd.finalEnergy - cli.lloyd.finalEnergy) / cli.lloyd.finalEnergy;
   expect(relative).toBeLessThan(1e-4);
 });

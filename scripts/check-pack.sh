@@ -48,7 +48,7 @@ done
 echo "installed: $(ls node_modules | wc -l) packages, $(du -sh node_modules | cut -f1)"
 
 step "import the library in Node"
-node -e "import('tissue-sheet').then((m) => { console.log('tissue-sheet: runSheet', typeof m.runSheet, '| validateAnyConfig', typeof m.validateAnyConfig, '| runSweep', typeof m.runSweep); if (typeof m.runSheet !== 'function') process.exit(1); })"
+node -e "import('tissue-sheet').then((m) => { console.log('tissue-sheet: runSheet', typeof m.runSheet, '| validateConfig', typeof m.validateConfig, '| runSweep', typeof m.runSweep); if (typeof m.runSheet !== 'function') process.exit(1); })"
 node -e "import('tissue-sheet/node').then((m) => { console.log('tissue-sheet/node: createHeadlessContext', typeof m.createHeadlessContext); if (typeof m.createHeadlessContext !== 'function') process.exit(1); })"
 
 step "the main entry is browser-safe: no Node built-in, gl or pngjs in its static imports"
@@ -96,10 +96,10 @@ node deps-used.cjs || fail "a runtime dependency is not used; make it a devDepen
 
 step "typecheck a consumer (moduleResolution nodenext)"
 cat > consumer.ts <<'EOF'
-import { runSheet, validateAnyConfig, type SheetResult } from 'tissue-sheet';
+import { runSheet, validateConfig, type SheetResult } from 'tissue-sheet';
 import { createHeadlessContext } from 'tissue-sheet/node';
 export async function cellCount(json: unknown): Promise<number> {
-  const { result }: { result: SheetResult } = await runSheet(validateAnyConfig(json), createHeadlessContext());
+  const { result }: { result: SheetResult } = await runSheet(validateConfig(json), createHeadlessContext());
   return result.cells.length;
 }
 // @ts-expect-error the declarations are real types, not `any`

@@ -3,47 +3,87 @@
  * or headless-gl, so a bundler can take it for a web page; Node-only pieces (a headless WebGL2
  * context, PNG files from disk) are in `tissue-sheet/node`.
  *
- *   import { runSheet, validateAnyConfig, createCanvasContext } from 'tissue-sheet';
- *   const { result } = await runSheet(validateAnyConfig(json), createCanvasContext());
+ *   import { runSheet, validateConfig, createCanvasContext } from 'tissue-sheet';
+ *   const { result } = await runSheet(validateConfig(json), createCanvasContext());
  *
  * The `<tissue-sheet>` element is not defined by importing this module (its class extends
  * HTMLElement, which Node lacks): import `tissue-sheet/element`, or call
  * `defineTissueSheetElement()` in a browser.
  */
 
-// The pipeline, its GPU contexts and its result types (one shape for every surface).
-export * from './run/index';
+// The public API, named one by one (a semver promise each; api/tissue-sheet.api.md lists them
+// and `npm run api:check` keeps that report true). Runtime values: at most 30.
 
-// The configuration: JSON Schema, types, validation with one-line errors, feasibility checks.
-export * from './core/config/index';
+// The pipeline, its GPU contexts and its result types (one shape for every surface).
+export { runSheet, SheetRunner, sweepSummary, describeEngine, fetchMeshFile, createCanvasContext, GpuCapabilityError } from './run/index';
+// A result whose per-cell lists are in a binary side file (RESULT.cells.bin; README "Result JSON").
+export { decodeCellsFile, withCellRecords, type CellsFileRecord, type ResultCellTables } from './run/index';
+export type {
+  AnalysisRecord,
+  CellRecord,
+  CellStatisticsRecord,
+  ClosedSurfaceRecord,
+  EngineChoice,
+  GpuCapabilities,
+  GpuContext,
+  GridRecord,
+  Headline,
+  IterationRecord,
+  LabelImage,
+  MeshFile,
+  NeighbourContact,
+  RunCallbacks,
+  SheetOutput,
+  SheetResult,
+  SurfaceRecord,
+} from './run/index';
+export { describeHeadline } from './core/analysis/headline';
+export type { ByConstruction } from './core/analysis/byConstruction';
+
+// The configuration: JSON Schema, types, validation with one-line errors. `Config` is any
+// configuration (planes, tubes and closed surfaces); `PlanarConfig` and `ClosedConfig` its two
+// layouts. validateConfig fills every default and resolves the resolution; validateConfigDraft
+// keeps a default resolution null, as forms and links do.
+export {
+  validateAnyConfig as validateConfig,
+  validateConfigDraft,
+  ConfigError,
+  configSchema,
+  defaultResolution,
+  isClosedConfig,
+} from './core/config/index';
+export type {
+  AnyConfig as Config,
+  Config as PlanarConfig,
+  ClosedConfig,
+  ConfigDraft,
+  ConfigInput,
+  AnySurfaceConfig as SurfaceConfig,
+  DensitySpec,
+  SheetConfig,
+  LloydConfig,
+  AdjacencyMethod,
+} from './core/config/index';
 export type { GrayImage } from './core/density';
 
-// The headline over realizations (the mean % scutoids with its 95 % CI and n), as the page, the
-// element and `tissue-sheet run --realizations N` compute it.
-export { describeHeadline, describeRealizations, type OmittedMethod } from './core/analysis/headline';
-export {
-  combineHeadlines,
-  DEFAULT_REALIZATIONS,
-  headlineOverRealizations,
-  meanInterval,
-  realizationSeed,
-  realizationSeeds,
-  tQuantile975,
-} from './core/analysis/realizations';
+// A headline's omitted methods (Headline.omittedMethods). The headline over realizations is
+// computed by the page, the element and `tissue-sheet run --realizations N`
+// (core/analysis/realizations.ts); the public API stays at 30 runtime values.
+export type { OmittedMethod } from './core/analysis/headline';
 
-// Parameter sweeps: expansion, tidy CSV rows, aggregation and the resumable loop. (Their
-// generic `Config` record is not re-exported: it would shadow the run configuration's type.)
+// Parameter sweeps: the spec, expansion, tidy CSV rows, aggregation and the resumable loop.
 export {
+  validateSweepSpec,
+  SweepSpecError,
+  expandSweep,
+  runSweep,
   aggregateRows,
   aggregateToCsv,
   aggregateToJson,
-  expandSweep,
   flattenSummary,
-  formatCsv,
   parseCsv,
+  formatCsv,
   readCsvTable,
-  remainingRuns,
-  runSweep,
   variedFields,
   type Aggregate,
   type RunSweepOptions,
@@ -52,11 +92,13 @@ export {
   type SweepRun,
   type SweepRunner,
   type SweepSpec,
+  type ValidSweepSpec,
 } from './core/sweep/index';
 
 // The element's types; its class and registration load with `defineTissueSheetElement`.
 export type { TissueSheetElement } from './element/TissueSheetElement';
 export type {
+  TissueSheetCellHoverDetail,
   TissueSheetErrorDetail,
   TissueSheetEventMap,
   TissueSheetProgressDetail,

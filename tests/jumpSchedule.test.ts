@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { coldSchedule, nextPowerOfTwo, warmFirstStep, warmSchedule } from '../src/core/jumpSchedule';
+import { coldSchedule, FloodSchedules, nextPowerOfTwo, warmFirstStep, warmSchedule } from '../src/core/jumpSchedule';
 
 describe('jump flood schedules', () => {
   it('halves from half the next power of two of the larger side', () => {
@@ -18,5 +18,19 @@ describe('jump flood schedules', () => {
   });
   it('rounds up to powers of two', () => {
     expect([1, 2, 3, 1000, 1024].map(nextPowerOfTwo)).toEqual([1, 2, 4, 1024, 1024]);
+  });
+});
+
+describe('FloodSchedules (both GPU engines)', () => {
+  it('gives the cold schedule and each warm schedule, built once per first step (a Lloyd loop allocates none)', () => {
+    const schedules = new FloodSchedules(256, 96, 'jfa+2');
+    expect(schedules.steps()).toEqual(coldSchedule(256, 96, 'jfa+2'));
+    for (const moved of [0, 0.4, 3, 7.9, 40, 1e6]) {
+      const steps = schedules.steps(moved);
+      expect(steps).toEqual(warmSchedule(256, 96, moved));
+      expect(schedules.steps(moved)).toBe(steps); // the same array, not a copy
+    }
+    // displacements with the same first step share one schedule
+    expect(schedules.steps(5)).toBe(schedules.steps(6));
   });
 });

@@ -11,10 +11,14 @@ export interface CliOptions {
   allowNetwork: boolean;
   /** Lift the work and memory budget (texture limits still apply). */
   allowLarge: boolean;
+  /** `run`: per-cell lists in a binary side file whatever the size (README, "Result JSON"). */
+  cellsFile: boolean;
   /** Sweeps: the largest number of runs accepted. */
   maxRuns?: number;
   /** Sweeps: "I/N" or "slurm" (parsed by parseShard). */
   shard?: string;
+  /** Sweeps: worker threads for the exact-engine runs (default: the machine's cores). */
+  workers?: number;
   /** run: realizations the headline is over (seeds seed, seed + 1, ...; default DEFAULT_REALIZATIONS). */
   realizations?: number;
 }
@@ -22,7 +26,16 @@ export interface CliOptions {
 export function parseArgs(args: string[], form: string, sweep = false): CliOptions {
   let input: string | undefined;
   let out: string | undefined;
-  const options = { force: false, allowNetwork: false, allowLarge: false, maxRuns: undefined as number | undefined, shard: undefined as string | undefined, realizations: undefined as number | undefined };
+  const options = {
+    force: false,
+    allowNetwork: false,
+    allowLarge: false,
+    cellsFile: false,
+    maxRuns: undefined as number | undefined,
+    shard: undefined as string | undefined,
+    workers: undefined as number | undefined,
+    realizations: undefined as number | undefined,
+  };
   const usage = `usage: tissue-sheet ${form}`;
   for (let i = 0; i < args.length; i++) {
     const arg = args[i];
@@ -36,6 +49,7 @@ export function parseArgs(args: string[], form: string, sweep = false): CliOptio
     else if (name === '--force') options.force = true;
     else if (name === '--allow-network' || name === '--allow-fetch') options.allowNetwork = true;
     else if (name === '--allow-large') options.allowLarge = true;
+    else if (!sweep && name === '--cells-file') options.cellsFile = true;
     else if (sweep && name === '--max-runs') {
       const v = value();
       const n = Number(v);
@@ -47,6 +61,11 @@ export function parseArgs(args: string[], form: string, sweep = false): CliOptio
       const n = Number(v);
       if (!Number.isInteger(n) || n < 1 || n > MAX_REALIZATIONS) throw new InputError(`--realizations: must be a whole number from 1 to ${MAX_REALIZATIONS} (got ${JSON.stringify(v)})`);
       options.realizations = n;
+    } else if (sweep && name === '--workers') {
+      const v = value();
+      const n = Number(v);
+      if (!Number.isInteger(n) || n < 1 || n > 1024) throw new InputError(`--workers: must be an integer from 1 to 1024 (got ${JSON.stringify(v)})`);
+      options.workers = n;
     } else if (arg.startsWith('-') && arg !== '-') throw new InputError(`unknown option ${name}; ${usage}`);
     else if (input === undefined) input = arg;
     else throw new InputError(`unexpected argument ${arg}; ${usage}`);

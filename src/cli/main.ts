@@ -11,6 +11,9 @@ Usage:
   tissue-sheet sweep SWEEP.json --out DIR          a grid of runs; resumes when rerun (docs/sweep.md)
   tissue-sheet sweep SWEEP.json --out DIR --shard I/N   the I-th of N shares of the grid (or --shard slurm)
   tissue-sheet merge DIR... --out DIR              join shard directories into one sweep directory
+  tissue-sheet measure LAYER_FILE... --out RESULT.json   measure segmented layers, basal first (docs/measure.md)
+  tissue-sheet measure --volume VOLUME.tif --out RESULT.json [--voxel-size X,Y,Z] [--apical lumen|outside]
+                       [--lumen-label N] [--min-contact µm] [--quartet-filter] [--compare]   measure a 3D label volume
   tissue-sheet --version | --help
 
 Options:
@@ -20,9 +23,13 @@ Options:
   --realizations N  run: the headline is the mean % scutoids over N realizations (seeds
                     seed, seed + 1, ...) with its 95 % CI (default 5; 1: this seed alone);
                     RESULT.json is realization 1's, its headline the mean
+  --cells-file      run: per-cell lists in RESULT.cells.bin (columns) instead of the JSON;
+                    done anyway above 100,000 cell records (README, "Result JSON")
   --max-runs N      sweep: accept up to N runs (default 100000)
   --shard I/N       sweep: compute only shard I of N (1 <= I <= N); every run is in exactly
                     one shard; "slurm" takes I and N from SLURM_ARRAY_TASK_ID/_MIN/_COUNT
+  --workers N       sweep: worker threads for the exact-engine runs (default: the machine's
+                    cores); the files are the same whatever N
 
 Progress goes to stderr. Exit codes:
   0    done
@@ -37,9 +44,9 @@ Progress goes to stderr. Exit codes:
 type Command = (args: string[], signal: AbortSignal, log: (line: string) => void) => Promise<number | void>;
 
 const commands: Record<string, Command> = {
-  run: (args, signal, log) => runCommand(parseArgs(args, 'run CONFIG.json --out RESULT.json [--realizations N] [--force] [--allow-network] [--allow-large]'), signal, log),
+  run: (args, signal, log) => runCommand(parseArgs(args, 'run CONFIG.json --out RESULT.json [--realizations N] [--force] [--allow-network] [--allow-large] [--cells-file]'), signal, log),
   sweep: (args, signal, log) =>
-    sweepCommand(parseArgs(args, 'sweep SWEEP.json --out DIR [--force] [--allow-network] [--allow-large] [--max-runs N] [--shard I/N|slurm]', true), signal, log),
+    sweepCommand(parseArgs(args, 'sweep SWEEP.json --out DIR [--force] [--allow-network] [--allow-large] [--max-runs N] [--shard I/N|slurm] [--workers N]', true), signal, log),
   merge: async (args, _signal, log) => (await import('./merge')).mergeCommand(args, log),
   measure: async (args, _signal, log) => (await import('./measure')).measureCommand(args, log),
 };

@@ -21,8 +21,7 @@ import { InputError } from './errors';
 import { lockDirectory } from './lock';
 import { checkOutDir, writeFileAtomic } from './output';
 import { readJsonFile } from './prepare';
-import { gitCommit, sweepLayout } from './sweepFiles';
-import { writeAggregates } from './sweepFiles';
+import { gitCommit, sweepLayout, writeAggregates } from './sweepFiles';
 
 const USAGE = 'usage: tissue-sheet merge DIR... --out DIR [--force]';
 

@@ -4,8 +4,10 @@
  * result of ours (or with --force). Files are written atomically: a temporary file next to the
  * target, then a rename, so a reader never sees half a file.
  */
-import { closeSync, existsSync, lstatSync, openSync, readdirSync, readSync, realpathSync, renameSync, rmSync, writeFileSync } from 'node:fs';
+import { closeSync, existsSync, lstatSync, openSync, readdirSync, readSync, realpathSync, renameSync, rmSync, writeFileSync, writeSync } from 'node:fs';
 import { basename, dirname, join, resolve } from 'node:path';
+import { CELLS_FILE_MAGIC, cellsFileLayout, type ResultCellTables } from '../run/cellTables';
+import type { SheetResult } from '../run/result';
 import { EnvironmentError, InputError } from './errors';
 
 /** Whether two paths name the same file (through links and relative parts). */
@@ -92,6 +94,66 @@ export function writeFileAtomic(path: string, data: string): void {
   const temp = join(dirname(path), `.${basename(path)}.${process.pid}.tmp`);
   try {
     writeFileSync(temp, data, { flag: 'w' });
+    renameSync(temp, path);
+  } catch (error) {
+    rmSync(temp, { force: true });
+    throw new EnvironmentError(`cannot write ${path} (${(error as Error).message})`);
+  }
+}
+
+/**
+ * Above this many cell records (cells x surfaces of the stack), `tissue-sheet run` writes the
+ * per-cell lists to a binary side file instead of the JSON (README, "Result JSON"): 100,000
+ * records are about 100 MB of JSON.
+ */
+export const MAX_CELL_RECORDS_IN_JSON = 100_000;
+
+/** The side file of a result: RESULT.json -> RESULT.cells.bin (any other name: NAME.cells.bin). */
+export function cellsFilePath(out: string): string {
+  return out.endsWith('.json') ? `${out.slice(0, -'.json'.length)}.cells.bin` : `${out}.cells.bin`;
+}
+
+/** A side file written by `tissue-sheet run` starts with its magic bytes. */
+export const isOurCellsFile = (path: string): boolean => head(path, CELLS_FILE_MAGIC.length) === CELLS_FILE_MAGIC;
+
+/**
+ * Writes a result: the JSON alone, or with `tables` the side file (checked like --out, written
+ * atomically column by column from the tables' own memory: no second copy) and then the JSON,
+ * whose cell lists are null and whose `cellsFile` describes the side file.
+ */
+export function writeResult(out: string, result: SheetResult, tables: ResultCellTables | undefined, inputs: readonly string[], force: boolean): string | null {
+  if (!tables) {
+    writeFileAtomic(out, JSON.stringify(result, null, 2) + '\n');
+    return null;
+  }
+  const side = cellsFilePath(out);
+  checkOutFile(side, inputs, force, isOurCellsFile);
+  const { record, chunks } = cellsFileLayout(tables, basename(side));
+  writeChunksAtomic(side, chunks);
+  const json = {
+    ...result,
+    cells: null,
+    surfaces: result.surfaces.map((surface) => ({ ...surface, cells: null })),
+    analyses: result.analyses.map((analysis) => ({ ...analysis, cells: null })),
+    cellsFile: record,
+  };
+  writeFileAtomic(out, JSON.stringify(json, null, 2) + '\n');
+  return side;
+}
+
+/** Writes byte chunks to `path` through a temporary file and a rename. */
+function writeChunksAtomic(path: string, chunks: readonly Uint8Array[]): void {
+  const temp = join(dirname(path), `.${basename(path)}.${process.pid}.tmp`);
+  try {
+    const fd = openSync(temp, 'w');
+    try {
+      for (const chunk of chunks) {
+        let done = 0;
+        while (done < chunk.byteLength) done += writeSync(fd, chunk, done, chunk.byteLength - done);
+      }
+    } finally {
+      closeSync(fd);
+    }
     renameSync(temp, path);
   } catch (error) {
     rmSync(temp, { force: true });

@@ -14,7 +14,7 @@ import { describeEngine, runSheet } from '../run/index';
 import { findForbiddenKey } from '../core/sweep';
 import { InputError, InterruptedError } from './errors';
 import type { CliOptions } from './args';
-import { checkOutFile, writeFileAtomic } from './output';
+import { cellsFilePath, checkOutFile, isOurCellsFile, MAX_CELL_RECORDS_IN_JSON, writeResult } from './output';
 import { checkRunnable, computeBudget, loadInputs, readJsonFile } from './prepare';
 import { Sources } from './sources';
 
@@ -26,15 +26,19 @@ export async function runCommand(options: CliOptions, signal: AbortSignal, log: 
   const config = validateAnyConfig(json);
   checkOutFile(options.out, [options.input], options.force);
   // Schema-level scale checks first (no GPU needed), then the texture limit once a context exists.
-  checkRunnable(config, computeBudget(Number.MAX_SAFE_INTEGER, options.allowLarge));
+  const estimate = checkRunnable(config, computeBudget(Number.MAX_SAFE_INTEGER, options.allowLarge));
+  // Large results keep their cells as columns and write them to a side file (README, "Result JSON").
+  const cellTables = options.cellsFile || config.cells * estimate.surfaces > MAX_CELL_RECORDS_IN_JSON;
+  if (cellTables) checkOutFile(cellsFilePath(options.out), [options.input], options.force, isOurCellsFile);
   const sources = new Sources({ baseDir: dirname(options.input), allowNetwork: options.allowNetwork });
   const inputs = await loadInputs(config, sources);
   const context = createHeadlessContext();
   try {
     checkRunnable(config, computeBudget(context.capabilities.maxTextureSize, options.allowLarge));
-    const { result: drawn } = await runSheet(config, context, {
+    const { result: drawn, tables } = await runSheet(config, context, {
       ...inputs,
       signal,
+      cellTables,
       onIteration(record, total) {
         log(`iteration ${record.iteration}/${total}  energy ${record.energy.toPrecision(8)}  max displacement ${record.maxDisplacement.toPrecision(4)} µm`);
       },
@@ -47,17 +51,17 @@ export async function runCommand(options: CliOptions, signal: AbortSignal, log: 
     let r = 1;
     const headline = await headlineOverRealizations(config.seed, n, drawn.headline, async (seed) => {
       if (signal.aborted) throw new InterruptedError('interrupted; nothing was written');
-      const { result: other } = await runSheet({ ...config, seed }, context, { ...inputs, signal });
+      const { result: other } = await runSheet({ ...config, seed }, context, { ...inputs, signal, cellTables });
       if (signal.aborted) throw new InterruptedError('interrupted; nothing was written');
       const value = other.headline?.percentScutoids;
       log(`realization ${++r} of ${n} (seed ${seed}): ${typeof value === 'number' ? `${value.toFixed(1)} % scutoids` : 'no % scutoids'}`);
       return other.headline;
     });
     const result = { ...drawn, headline };
-    writeFileAtomic(options.out, JSON.stringify(result, null, 2) + '\n');
+    const side = writeResult(options.out, result, tables, [options.input], options.force);
     log(
-      `done: ${result.cells.length} cells, ${result.lloyd.iterations.length} iterations, ` +
-        `${describeEngine(result.engine)}, ${result.timings.totalMs.toFixed(0)} ms -> ${options.out}`,
+      `done: ${tables?.cells.count ?? result.cells.length} cells, ${result.lloyd.iterations.length} iterations, ` +
+        `${describeEngine(result.engine)}, ${result.timings.totalMs.toFixed(0)} ms -> ${options.out}${side ? ` (cells in ${side})` : ''}`,
     );
     // Last, the number a biologist reads: result.headline, with its method and Voronoi k.
     log(`headline: ${describeHeadline(result.headline)}`);

@@ -3,22 +3,22 @@
  * once per file, before any run, with one-line errors naming the field and the file.
  *
  * - Paths are relative to the config (or sweep spec) file; a mesh is also looked for as given
- *   (working directory) and under public/meshes/, as the library does.
+ *   (working directory) and under public/meshes/ (the Node host's loader, node/meshFile.ts).
  * - An http(s) source is a network request: refused unless --allow-network (alias
  *   --allow-fetch), then fetched here with a byte cap, so the pipeline never fetches anything.
  * - A mesh is parsed and checked here (finite coordinates, closed genus 0, consistent PLY
  *   element counts), so a broken mesh fails in a second, not when its run starts.
  */
-import { existsSync, readFileSync, statSync } from 'node:fs';
-import { basename, join, resolve } from 'node:path';
+import { resolve } from 'node:path';
 import type { GrayImage } from '../core/density';
 import { checkMesh } from '../core/mesh/check';
 import { parseMesh } from '../core/mesh/parse';
-import { decodeGrayPng, ImageError, loadGrayImage, MAX_PNG_BYTES } from '../node/image';
+import { MAX_MESH_BYTES, MAX_PNG_BYTES } from '../core/inputLimits';
+import { decodeGrayPng, ImageError, loadGrayImage } from '../node/image';
+import { loadMeshFile } from '../node/meshFile';
 import type { MeshFile } from '../run/index';
 import { InputError } from './errors';
 
-export const MAX_MESH_BYTES = 512 * 2 ** 20;
 
 export const isUrl = (src: string): boolean => /^https?:\/\//i.test(src);
 
@@ -64,7 +64,7 @@ export class Sources {
       const bytes = await this.fetchBytes(src, 'surface.src', MAX_MESH_BYTES);
       file = { data: bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength) as ArrayBuffer, name: src };
     } else {
-      file = readMeshFile(src, this.options.baseDir);
+      file = loadMeshFile(src, this.options.baseDir);
     }
     checkMeshFile(file);
     return file;
@@ -96,19 +96,6 @@ export class Sources {
     }
     return Buffer.concat(chunks);
   }
-}
-
-/** Reads a mesh file: relative to the config, else as given, else under public/meshes/. */
-export function readMeshFile(src: string, baseDir: string): MeshFile {
-  const candidates = [resolve(baseDir, src), resolve(src), join('public', 'meshes', basename(src))];
-  const path = candidates.find((p) => existsSync(p));
-  if (!path) throw new InputError(`surface.src: cannot find "${src}" (looked next to the config, in the working directory and in public/meshes/); give the path of an .obj, .ply or .stl file`);
-  const stat = statSync(path);
-  if (stat.isDirectory()) throw new InputError(`surface.src: ${path} is a directory; give the path of an .obj, .ply or .stl file`);
-  if (stat.size === 0) throw new InputError(`surface.src: ${path} is empty; give an .obj, .ply or .stl file`);
-  if (stat.size > MAX_MESH_BYTES) throw new InputError(`surface.src: ${path} is ${stat.size} bytes, more than the ${MAX_MESH_BYTES} allowed`);
-  const bytes = readFileSync(path);
-  return { data: bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength) as ArrayBuffer, name: path };
 }
 
 /** Parses and checks a mesh file; every problem is one InputError line on surface.src. */

@@ -13,10 +13,12 @@
  */
 import { appendFileSync, existsSync, mkdirSync, readFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
-import { ConfigError, validateAnyConfig, type AnyConfig } from '../core/config';
+import { ConfigError, isClosedConfig, validateAnyConfig, type AnyConfig } from '../core/config';
 import { parseShard, planResume, ResumeError, runSweep, shardRuns, SweepSpecError, validateSweepSpec, type Shard } from '../core/sweep';
 import { createHeadlessContext } from '../node/headless';
+import { chooseEngine } from '../run/enginePolicy';
 import { SheetRunner, sweepSummary } from '../run/index';
+import { chainKey } from '../run/runSheet';
 import { version } from '../version';
 import type { CliOptions } from './args';
 import { InputError, InterruptedError } from './errors';
@@ -24,6 +26,7 @@ import { lockDirectory } from './lock';
 import { checkOutDir, writeFileAtomic } from './output';
 import { checkRunnable, computeBudget, loadInputs, readJsonFile, type RunInputs } from './prepare';
 import { Sources } from './sources';
+import { defaultWorkers, SweepThreadLost, SweepWorkers } from './sweepWorkers';
 import { gitCommit, sweepLayout, writeAggregates, type Run } from './sweepFiles';
 
 export async function sweepCommand(options: CliOptions, signal: AbortSignal, log: (line: string) => void): Promise<void> {
@@ -88,18 +91,87 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
     }
     if (plan.rewrite) writeFileAtomic(csvPath, plan.cleanText);
 
-    // Runs sharing a seeded surface (same config but for `sheet`) run consecutively (layout.ordered,
-    // and shards keep those groups whole): the runner relaxes it once for every ratio or thickness.
+    // Tasks: the runs sharing a seeded surface (same config but for `sheet`, same seed), computed
+    // by one SheetRunner, which relaxes the surface once for every ratio or thickness and keeps
+    // the layers and validity its runs share. Tasks of one Lloyd run (same config but for `sheet`
+    // and `lloyd.maxIterations`) start next to each other, fewer iterations first: a thread that
+    // still holds that Lloyd run continues it to the next Voronoi k. Exact-engine tasks go to
+    // worker threads, GPU tasks run here on the one GL context; rows are written in the sweep's
+    // order (runSweep), so the files are the same whatever the number of threads.
+    // A grid point's config (the same for all its runs but for `seed`: for the engine, chain and
+    // iterations; a run itself is computed from its own config).
+    const valid = new Map<string, AnyConfig>();
+    const configOf = (run: Run): AnyConfig => {
+      let config = valid.get(run.pointKey);
+      if (!config) valid.set(run.pointKey, (config = validateAnyConfig(run.config)));
+      return config;
+    };
+    const onThreads = (run: Run) => chooseEngine(configOf(run), isClosedConfig(configOf(run)) ? 'cube map' : 'planar grid', context.capabilities).name === 'exact';
+    const chains = new Map<string, string>();
+    const chainOf = (run: Run): string => {
+      const id = `${run.pointKey}#${run.seed}`;
+      let key = chains.get(id);
+      if (key === undefined) chains.set(id, (key = chainKey({ ...configOf(run), seed: run.seed })));
+      return key;
+    };
+    const firstOfChain = new Map<string, number>();
+    runs.forEach((run, k) => {
+      const chain = chainOf(run);
+      if (!firstOfChain.has(chain)) firstOfChain.set(chain, k);
+    });
+    const iterationsOf = (run: Run) => configOf(run).lloyd.maxIterations;
+    const doneKeys = new Set(plan.rows.map((row) => row.key));
+    const groups = new Set(runs.filter((run) => !doneKeys.has(run.key) && onThreads(run)).map((run) => layout.reuseGroup(run)));
+    const threads = Math.min(options.workers ?? defaultWorkers(), groups.size);
+    const pool = threads > 0 ? new SweepWorkers(threads, context.capabilities, inputs) : null;
+    const stopThreads = () => pool?.abort();
+    signal.addEventListener('abort', stopThreads);
     const runner = new SheetRunner(context);
+    let mainThread: Promise<void> = Promise.resolve();
+    const runHere = (task: Run[], done: (run: Run, summary: Record<string, unknown>) => void): Promise<void> => {
+      const next = mainThread.then(async () => {
+        const order = [...task].sort((a, b) => iterationsOf(a) - iterationsOf(b));
+        for (const run of order) done(run, sweepSummary((await runner.run(validateAnyConfig(run.config), { ...inputs.get(run.pointKey), signal, views: false })).result));
+      });
+      mainThread = next.catch(() => {});
+      return next;
+    };
     let result;
     try {
-      result = await runSweep({
+      result = await runSweep<AnyConfig & Record<string, unknown>, Record<string, unknown>>({
         runs,
         fields,
         summaryColumns: summary,
         existingCsv: plan.cleanText,
         append: (text) => appendFileSync(csvPath, text),
-        runner: async (config, run) => sweepSummary((await runner.run(validateAnyConfig(config), { ...inputs.get(run.pointKey), signal })).result),
+        runner: async (config, run) => sweepSummary((await runner.run(validateAnyConfig(config), { ...inputs.get(run.pointKey), signal, views: false })).result),
+        tasks: {
+          key: layout.reuseGroup,
+          before: (a, b) => firstOfChain.get(chainOf(a))! - firstOfChain.get(chainOf(b))! || iterationsOf(a) - iterationsOf(b),
+          run: async (task, done) => {
+            if (!pool?.usable || !onThreads(task[0])) return runHere(task, done);
+            const byKey = new Map(task.map((run) => [run.key, run]));
+            const reported = new Set<string>();
+            try {
+              await pool.run(
+                task.map((run) => ({ key: run.key, pointKey: run.pointKey, config: run.config })),
+                chainOf(task[0]),
+                (key, summary) => {
+                  reported.add(key);
+                  done(byKey.get(key)!, summary);
+                },
+              );
+            } catch (error) {
+              // A thread that failed or exited (not a run that failed): the main thread computes
+              // the task's other runs, the same numbers.
+              if (!(error instanceof SweepThreadLost) || signal.aborted) throw error;
+              log(`warning: ${error.message}; its runs are computed on the main thread`);
+              await runHere(task.filter((run) => !reported.has(run.key)), done);
+            }
+          },
+        },
+        // One lane per thread, and one for the main thread's GPU runs.
+        concurrency: threads + 1,
         signal,
         onProgress: (p) => {
           if (p.phase === 'start') return;
@@ -110,6 +182,9 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
     } catch (error) {
       if (signal.aborted) throw new InterruptedError(`interrupted; finished runs are in ${csvPath}: rerun the same command to resume`);
       throw error;
+    } finally {
+      signal.removeEventListener('abort', stopThreads);
+      await pool?.close();
     }
     writeAggregates(options.out, result.rows, layout, log);
     record({ runs: runs.length, ended: new Date().toISOString(), computed: result.completed, resumed: result.skipped });

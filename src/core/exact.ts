@@ -26,8 +26,9 @@
  *   when the domain is so small that a cell touches its own periodic copy, the shared length is
  *   reported in `selfContact` instead (0 otherwise).
  * - `borderSides`: bit mask of the open domain edges the cell touches with an edge of positive
- *   length: 1 = y = 0, 2 = y = height, 4 = x = 0, 8 = x = width (bits 4 and 8 only when x is
- *   open, 1 and 2 only when y is open). `touchesBorder` = borderSides != 0. For a tube
+ *   length, in core/border.ts's convention: BORDER_Y_START (y = 0), BORDER_Y_END (y = height),
+ *   BORDER_X_START (x = 0), BORDER_X_END (x = width); x bits only when x is open, y bits only
+ *   when y is open. `touchesBorder` = borderSides != 0. For a tube
  *   (periodic x, open y) this is "touches an open end of the tube".
  * - `edgeCount`: number of polygon edges of positive length shared with other cells (copies
  *   included, self-copies included); equal to the neighbour count except in tiny periodic
@@ -35,6 +36,7 @@
  * - Duplicate sites: d3-delaunay gives the later duplicate no cell; it gets an empty polygon,
  *   area 0 and no neighbours.
  */
+import { BORDER_X_END, BORDER_X_START, BORDER_Y_END, BORDER_Y_START } from './border';
 import { Delaunay } from 'd3-delaunay';
 import type { Grid } from './grid';
 import { wrapCoordinate } from './grid';
@@ -80,10 +82,6 @@ export interface ExactVoronoi {
   readonly touchesBorder: Uint8Array;
 }
 
-export const BORDER_Y0 = 1;
-export const BORDER_Y1 = 2;
-export const BORDER_X0 = 4;
-export const BORDER_X1 = 8;
 
 /** Exact Voronoi diagram of `sites` (interleaved x, y in texel units) on `grid`. */
 export function exactVoronoi(grid: Grid, sites: Float32Array | Float64Array | ArrayLike<number>): ExactVoronoi {
@@ -299,10 +297,10 @@ function contactLengths(grid: Grid, copies: PeriodicCopies, candidates: number[]
  * whose box side no original's cell reaches); null for an edge inside the box.
  */
 function clipBoxSide(grid: Grid, box: PeriodicCopies['box'], eps: number, ax: number, ay: number, bx: number, by: number): number | null {
-  if (Math.abs(ay - box.y0) <= eps && Math.abs(by - box.y0) <= eps) return grid.periodicY ? 0 : BORDER_Y0;
-  if (Math.abs(ay - box.y1) <= eps && Math.abs(by - box.y1) <= eps) return grid.periodicY ? 0 : BORDER_Y1;
-  if (Math.abs(ax - box.x0) <= eps && Math.abs(bx - box.x0) <= eps) return grid.periodicX ? 0 : BORDER_X0;
-  if (Math.abs(ax - box.x1) <= eps && Math.abs(bx - box.x1) <= eps) return grid.periodicX ? 0 : BORDER_X1;
+  if (Math.abs(ay - box.y0) <= eps && Math.abs(by - box.y0) <= eps) return grid.periodicY ? 0 : BORDER_Y_START;
+  if (Math.abs(ay - box.y1) <= eps && Math.abs(by - box.y1) <= eps) return grid.periodicY ? 0 : BORDER_Y_END;
+  if (Math.abs(ax - box.x0) <= eps && Math.abs(bx - box.x0) <= eps) return grid.periodicX ? 0 : BORDER_X_START;
+  if (Math.abs(ax - box.x1) <= eps && Math.abs(bx - box.x1) <= eps) return grid.periodicX ? 0 : BORDER_X_END;
   return null;
 }
 

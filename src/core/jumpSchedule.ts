@@ -37,6 +37,36 @@ export function warmSchedule(width: number, height: number, maxDisplacement: num
   return steps;
 }
 
+/**
+ * The flood schedules of one grid, built once each: the cold one, and a warm one per first step
+ * (the only thing a warm schedule depends on), so a Lloyd loop asking for them allocates nothing.
+ * Both GPU engines (planar grid, cube map) take their schedules from here.
+ */
+export class FloodSchedules {
+  readonly cold: readonly number[];
+  private readonly warm = new Map<number, readonly number[]>();
+
+  constructor(
+    private readonly width: number,
+    private readonly height: number,
+    variant: JumpFloodVariant,
+  ) {
+    this.cold = coldSchedule(width, height, variant);
+  }
+
+  /** The cold schedule, or the warm one for sites that moved at most `maxDisplacement` texels. */
+  steps(maxDisplacement?: number): readonly number[] {
+    if (maxDisplacement === undefined) return this.cold;
+    const first = warmFirstStep(this.width, this.height, maxDisplacement);
+    let steps = this.warm.get(first);
+    if (!steps) {
+      steps = warmSchedule(this.width, this.height, maxDisplacement);
+      this.warm.set(first, steps);
+    }
+    return steps;
+  }
+}
+
 /** The first (largest) step of a warm schedule; the rest follows from it. */
 export function warmFirstStep(width: number, height: number, maxDisplacement: number): number {
   const limit = nextPowerOfTwo(Math.max(width, height)) >> 1;

@@ -8,6 +8,7 @@
  * All positions are in texel units and all lengths/areas in µm (µm²), per grid.ts. The CPU
  * references the tests check the GPU passes against live in tests/oracles/labels.ts.
  */
+import { BORDER_X_END, BORDER_X_START, BORDER_Y_END, BORDER_Y_START } from './border';
 import { type Grid, wrapDelta } from './grid';
 
 // ---------------------------------------------------------------------------------------------
@@ -85,11 +86,8 @@ function addRun(grid: Grid, sums: Float64Array, id: number, j: number, siteY: nu
 // Adjacency
 // ---------------------------------------------------------------------------------------------
 
-/** Bits of LabelAdjacency.borderSides: which open domain edges a cell owns texels on. */
-export const BORDER_X_START = 1; // first column, x axis not periodic
-export const BORDER_X_END = 2; // last column
-export const BORDER_Y_START = 4; // first row, y axis not periodic (a tube's y = 0 end)
-export const BORDER_Y_END = 8; // last row (a tube's far end)
+// Bits of LabelAdjacency.borderSides: which open domain edges a cell owns texels on (core/border.ts).
+export { BORDER_X_END, BORDER_X_START, BORDER_Y_END, BORDER_Y_START } from './border';
 
 /** Cell adjacency from a label image, in compressed sparse rows. */
 export interface LabelAdjacency {
@@ -149,10 +147,9 @@ export function labelAdjacency(grid: Grid, labels: ArrayLike<number>, count: num
   if (labels.length !== width * height) throw new Error(`labelAdjacency: ${labels.length} labels for ${width * height} texels`);
   if (2 * count * count > Number.MAX_SAFE_INTEGER) throw new Error(`labelAdjacency: ${count} cells is too many to encode pairs`);
 
-  // Pass 1: texels per cell, border sides, and how many boundary pairs there are.
+  // Pass 1: texels per cell and border sides.
   const texels = new Int32Array(count);
   const borderSides = new Uint8Array(count);
-  let pairs = 0;
   for (let j = 0; j < height; j++) {
     for (let i = 0; i < width; i++) {
       const a = labels[j * width + i];
@@ -167,26 +164,15 @@ export function labelAdjacency(grid: Grid, labels: ArrayLike<number>, count: num
         if (j === 0) borderSides[a] |= BORDER_Y_START;
         if (j === height - 1) borderSides[a] |= BORDER_Y_END;
       }
-      const right = rightOf(labels, grid, i, j);
-      if (right >= 0 && right !== a) pairs++;
-      const up = upOf(labels, grid, i, j);
-      if (up >= 0 && up !== a) pairs++;
     }
   }
 
-  // Pass 2: encode every boundary pair.
+  // Pass 2: count the boundary pairs, then encode every one (orientation 0: side by side in x).
+  let pairs = 0;
+  forEachLabelEdge(labels, grid, () => pairs++);
   const keys = new Float64Array(pairs);
   let n = 0;
-  for (let j = 0; j < height; j++) {
-    for (let i = 0; i < width; i++) {
-      const a = labels[j * width + i];
-      if (a < 0) continue;
-      const right = rightOf(labels, grid, i, j);
-      if (right >= 0 && right !== a) keys[n++] = (Math.min(a, right) * count + Math.max(a, right)) * 2;
-      const up = upOf(labels, grid, i, j);
-      if (up >= 0 && up !== a) keys[n++] = (Math.min(a, up) * count + Math.max(a, up)) * 2 + 1;
-    }
-  }
+  forEachLabelEdge(labels, grid, (a, b, orientation) => (keys[n++] = (Math.min(a, b) * count + Math.max(a, b)) * 2 + orientation));
   keys.sort();
 
   // Pass 3: degrees of the distinct pairs, then rows. Sorted by (a, b) with a < b, filling
@@ -199,23 +185,14 @@ export function labelAdjacency(grid: Grid, labels: ArrayLike<number>, count: num
   });
   const offsets = degree; // prefix sums in place: offsets[c] = start of row c
   for (let c = 0; c < count; c++) offsets[c + 1] += offsets[c];
-  const neighbours = new Int32Array(offsets[count]);
-  const lengths = new Float64Array(offsets[count]);
-  const staircaseLengths = new Float64Array(offsets[count]);
-  const cursor = offsets.slice(0, count);
+  const rows = new ContactRows(offsets, count);
   forEachPair(keys, count, (a, b, alongX, alongY) => {
     // alongX pairs sit side by side in x and share a vertical edge of length texelY.
     const vertical = alongX * texelY;
     const horizontal = alongY * texelX;
-    const length = Math.sqrt(vertical * vertical + horizontal * horizontal);
-    const staircase = vertical + horizontal;
-    neighbours[cursor[a]] = b;
-    staircaseLengths[cursor[a]] = staircase;
-    lengths[cursor[a]++] = length;
-    neighbours[cursor[b]] = a;
-    staircaseLengths[cursor[b]] = staircase;
-    lengths[cursor[b]++] = length;
+    rows.add(a, b, Math.sqrt(vertical * vertical + horizontal * horizontal), vertical + horizontal);
   });
+  const { neighbours, lengths, staircaseLengths } = rows;
 
   const area = new Float64Array(count);
   const touchesBorder = new Uint8Array(count);
@@ -251,5 +228,57 @@ function forEachPair(keys: Float64Array, count: number, visit: (a: number, b: nu
       k++;
     }
     visit(Math.floor(pair / count), pair % count, alongX, alongY);
+  }
+}
+
+/**
+ * Calls `visit(a, b, orientation)` for every pair of edge-adjacent texels with different cell
+ * labels (none -1): each texel with its right neighbour (orientation 0) and the one above it
+ * (orientation 1), across periodic seams.
+ */
+function forEachLabelEdge(labels: ArrayLike<number>, grid: Grid, visit: (a: number, b: number, orientation: 0 | 1) => void): void {
+  const { width, height } = grid;
+  for (let j = 0; j < height; j++) {
+    for (let i = 0; i < width; i++) {
+      const a = labels[j * width + i];
+      if (a < 0) continue;
+      const right = rightOf(labels, grid, i, j);
+      if (right >= 0 && right !== a) visit(a, right, 0);
+      const up = upOf(labels, grid, i, j);
+      if (up >= 0 && up !== a) visit(a, up, 1);
+    }
+  }
+}
+
+/**
+ * The rows of a CSR adjacency being filled from contacts a-b, both directions at once, with
+ * the contact's true length and its staircase length. Adding the contacts in (a, b) order with
+ * a < b leaves every row ascending (a row receives its smaller neighbours first).
+ */
+export class ContactRows {
+  readonly neighbours: Int32Array;
+  readonly lengths: Float64Array;
+  readonly staircaseLengths: Float64Array;
+  private readonly cursor: Int32Array;
+
+  /** `offsets`: the row starts (count + 1 entries, the last the number of entries). */
+  constructor(offsets: Int32Array, count: number) {
+    const size = offsets[count];
+    this.neighbours = new Int32Array(size);
+    this.lengths = new Float64Array(size);
+    this.staircaseLengths = new Float64Array(size);
+    this.cursor = offsets.slice(0, count);
+  }
+
+  add(a: number, b: number, length: number, staircase: number): void {
+    this.put(a, b, length, staircase);
+    this.put(b, a, length, staircase);
+  }
+
+  private put(row: number, neighbour: number, length: number, staircase: number): void {
+    const k = this.cursor[row]++;
+    this.neighbours[k] = neighbour;
+    this.lengths[k] = length;
+    this.staircaseLengths[k] = staircase;
   }
 }

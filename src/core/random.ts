@@ -66,3 +66,18 @@ export class Random {
 export function createRandom(seed: number): Random {
   return new Random(seed);
 }
+
+/**
+ * The index of the first entry of the cumulative sums `cdf[0..length)` above `r` (r in
+ * [0, cdf[length - 1])): sampling an index with probability proportional to its weight.
+ */
+export function searchCdf(cdf: ArrayLike<number>, length: number, r: number): number {
+  let lo = 0;
+  let hi = length - 1;
+  while (lo < hi) {
+    const mid = (lo + hi) >> 1;
+    if (cdf[mid] > r) hi = mid;
+    else lo = mid + 1;
+  }
+  return lo;
+}

@@ -1,4 +1,4 @@
-import { layerStepOf, steppedOffsets, type Config } from './config';
+import { layerStepOf, steppedOffsets, type AnyConfig, type Config } from './config';
 import type { Grid } from './grid';
 
 /** One surface of the sheet's stack: the seeded surface, a layer, or the other surface. */
@@ -23,14 +23,8 @@ export interface StackSurface {
 export function surfaceStack(config: Config, seededGrid: Grid): StackSurface[] {
   const { sheet, surface } = config;
   const otherName = sheet.seeded === 'basal' ? 'apical' : 'basal';
-  const sign = sheet.direction === 'outward' ? 1 : -1;
-  let otherOffset = sign * sheet.thickness;
-  if (surface.kind === 'tube' && sheet.surfaceRatio !== null) {
-    const otherRadius = sign > 0 ? surface.radius * sheet.surfaceRatio : surface.radius / sheet.surfaceRatio;
-    otherOffset = otherRadius - surface.radius;
-  }
   const stack: StackSurface[] = [];
-  const offsets = stackOffsets(config, otherOffset);
+  const offsets = sheetOffsets(config);
   const count = offsets.length;
   for (let k = 0; k < count; k++) {
     const offset = offsets[k];
@@ -49,11 +43,30 @@ export function surfaceStack(config: Config, seededGrid: Grid): StackSurface[] {
 }
 
 /**
- * Signed offsets of the stack [seeded, layers..., other]: sheet.layers evenly spaced, or a fixed
- * layer step (sheet.layerStep, or the lab protocol's): in surface-ratio units on a tube
- * (s = 1, 1 + step, ..., the other surface), in µm of thickness on a plane.
+ * Signed offsets (µm along the seeded surface's normal) of every surface of a sheet's stack
+ * [seeded, layers..., other], on any surface: the one description of the stack that the
+ * pipeline builds (planar and cube-map families), the run budget counts (config/limits.ts) and
+ * the sweep's columns name (sweep/columns.ts). The other surface lies at `thickness` along the
+ * normal (outward or inward), or on a tube at radius R·s or R/s for a surface ratio s.
  */
-export function stackOffsets(config: Config, otherOffset: number): number[] {
+export function sheetOffsets(config: AnyConfig): number[] {
+  const { sheet, surface } = config;
+  const sign = sheet.direction === 'outward' ? 1 : -1;
+  let otherOffset = sign * sheet.thickness;
+  if (surface.kind === 'tube' && sheet.surfaceRatio !== null) {
+    const otherRadius = sign > 0 ? surface.radius * sheet.surfaceRatio : surface.radius / sheet.surfaceRatio;
+    otherOffset = otherRadius - surface.radius;
+  }
+  return stackOffsets(config, otherOffset);
+}
+
+/**
+ * Signed offsets of the stack [seeded, layers..., other] whose other surface is at
+ * `otherOffset`: sheet.layers evenly spaced, or a fixed layer step (sheet.layerStep, or the lab
+ * protocol's): in surface-ratio units on a tube (s = 1, 1 + step, ..., the other surface), in µm
+ * of thickness elsewhere (planes and closed surfaces).
+ */
+export function stackOffsets(config: AnyConfig, otherOffset: number): number[] {
   const { sheet, surface } = config;
   const step = layerStepOf(sheet);
   if (step === null) {

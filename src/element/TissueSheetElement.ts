@@ -7,12 +7,20 @@
 import type { AnyConfig, ConfigInput } from '../core/config';
 import type { GrayImage } from '../core/density';
 import { ConfigError, validateAnyConfig } from '../core/config';
-import type { MeshFile, SheetResult } from '../run';
-import { isAbort, LatestRunner } from '../view/pageRunner';
-import { computeSite as pipelineSite } from '../view/pageRunner';
+import type { MeshFile, SheetResult, ComputeSite } from '../run';
+import { isAbort, LatestRunner, computeSite as pipelineSite, computeContext } from '../view/pageRunner';
 import { sweepInPage } from '../view/pageSweep';
-import type { TissueSheetSweepOptions, TissueSheetSweepProgressDetail, TissueSheetSweepResult, TissueSheetWaitingDetail, TissueSheetWarningDetail } from './events';
-import type { ComputeSite } from '../run';
+import type {
+  TissueSheetSweepOptions,
+  TissueSheetSweepProgressDetail,
+  TissueSheetSweepResult,
+  TissueSheetErrorDetail,
+  TissueSheetEventMap,
+  TissueSheetProgressDetail,
+  TissueSheetResultDetail,
+  TissueSheetWaitingDetail,
+  TissueSheetWarningDetail,
+} from './events';
 import { SheetView3D } from '../view/sheetView3d';
 import { trackCellHover } from '../view/cellHover';
 import { byConstruction } from '../core/analysis/byConstruction';
@@ -21,11 +29,9 @@ import { describeRealizations } from '../core/analysis/headline';
 import { realizationsHeadline } from '../view/realizations';
 import { checkPageBudget } from '../view/pageBudget';
 import { pendingSources, type ForeignSource } from '../view/sources';
-import { computeContext } from '../view/pageRunner';
 import { methodCaption, primaryAnalysis, viewStack } from '../view/stack';
 import { askToLoad } from './sourcePrompt';
 import { ATTRIBUTES, OTHER_ATTRIBUTES, configFromAttributes } from './attributes';
-import type { TissueSheetErrorDetail, TissueSheetEventMap, TissueSheetProgressDetail, TissueSheetResultDetail } from './events';
 import { TEMPLATE } from './template';
 
 export class TissueSheetElement extends HTMLElement {

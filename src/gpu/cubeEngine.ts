@@ -1,6 +1,6 @@
 import * as THREE from 'three';
 import { texelEdgeTable } from '../core/cubemap/cubemap';
-import { coldSchedule, warmSchedule, type JumpFloodVariant } from '../core/jumpSchedule';
+import { FloodSchedules, type JumpFloodVariant } from '../core/jumpSchedule';
 import centroidScatterFrag from '../shaders/centroidScatter.frag';
 import clearLabelsFrag from '../shaders/clearLabels.frag';
 import cubeCentroidScatterVert from '../shaders/cubeCentroidScatter.vert';
@@ -10,6 +10,7 @@ import fullscreenVert from '../shaders/fullscreen.vert';
 import splatFrag from '../shaders/splat.frag';
 import { chooseCentroidPath, type RequestedCentroidPath } from './centroidPolicy';
 import { GpuCapabilityError, type GpuContext } from './context';
+import { PackedLabels } from './packedLabels';
 import { floodPingPong } from './pingPong';
 import { ShaderPass } from './shaderPass';
 import { createFloatDataTexture, createFloatTarget, readTargetRGBA } from './textures';
@@ -56,13 +57,13 @@ export class CubeCcvtEngine {
   private current = 0;
   private readonly sumsTargets: THREE.WebGLRenderTarget[] = [];
   private readonly sumsStaging: Float32Array;
-  private readonly labelStaging: Float32Array;
+  private readonly packedLabels: PackedLabels;
   private readonly labelBuffer: Int32Array;
   private readonly clearPass: ShaderPass;
   private readonly splatPass: ShaderPass;
   private readonly floodPass: ShaderPass;
   private readonly scatterPass: ShaderPass | null = null;
-  private readonly coldSteps: number[];
+  private readonly schedules: FloodSchedules;
 
   constructor(
     private readonly context: GpuContext,
@@ -93,11 +94,8 @@ export class CubeCcvtEngine {
     ];
     this.sums = new Float64Array(siteCount * CUBE_SUMS_STRIDE);
     this.sumsStaging = new Float32Array(this.siteTextureWidth * this.siteTextureHeight * 4);
-    // Label readback in bands of rows keeps the RGBA staging buffer small.
-    const rows = Math.max(1, Math.min(this.height, Math.floor((1 << 20) / this.width)));
-    this.labelStaging = new Float32Array(this.width * rows * 4);
     this.labelBuffer = new Int32Array(this.width * this.height);
-    this.coldSteps = coldSchedule(n, n, options.variant);
+    this.schedules = new FloodSchedules(n, n, options.variant);
 
     const metric = {
       faceSize: { value: n },
@@ -107,6 +105,13 @@ export class CubeCcvtEngine {
       siteWidth: { value: this.siteTextureWidth },
     };
     this.clearPass = new ShaderPass('triangles', fullscreenVert, clearLabelsFrag, {});
+    // The planar engine's packed-id readback; here the labels are the ids themselves.
+    this.packedLabels = new PackedLabels(
+      this.renderer,
+      { width: this.width, height: this.height },
+      { labels: { value: this.labelTargets[0].texture as THREE.Texture } },
+      { LABELS_ARE_IDS: 1, PERIODIC_X: 0, PERIODIC_Y: 0 },
+    );
     this.splatPass = new ShaderPass('points', cubeSplatVert, splatFrag, { ...metric });
     this.floodPass = new ShaderPass('triangles', fullscreenVert, cubeJumpFloodFrag, {
       ...metric,
@@ -169,7 +174,7 @@ export class CubeCcvtEngine {
    * the previous labels, given how far (in texels, an upper bound) any site moved since.
    */
   floodLabels(warmFromTexels?: number): void {
-    const steps = warmFromTexels === undefined ? this.coldSteps : warmSchedule(this.n, this.n, warmFromTexels);
+    const steps = this.schedules.steps(warmFromTexels);
     if (warmFromTexels === undefined) this.clearPass.draw(this.renderer, this.labelTargets[this.current]);
     this.splatPass.draw(this.renderer, this.labelTargets[this.current], this.siteCount);
     this.current = floodPingPong(this.renderer, this.floodPass, this.labelTargets, this.current, steps);
@@ -222,14 +227,10 @@ export class CubeCcvtEngine {
 
   /** Reads the current labels: one site id (or -1) per texel, atlas order (index (f n + j) n + i). */
   readLabels(out: Int32Array = new Int32Array(this.width * this.height)): Int32Array {
-    const { width, height } = this;
-    const rowsPerBand = this.labelStaging.length / (4 * width);
-    for (let y0 = 0; y0 < height; y0 += rowsPerBand) {
-      const rows = Math.min(rowsPerBand, height - y0);
-      readTargetRGBA(this.renderer, this.labelTargets[this.current], this.labelStaging, 0, y0, width, rows);
-      const base = y0 * width;
-      for (let i = 0; i < rows * width; i++) out[base + i] = this.labelStaging[4 * i];
-    }
+    const { width } = this;
+    this.packedLabels.read(this.labelTargets[this.current].texture, (ids, firstRow, rows) => {
+      out.set(ids.subarray(0, rows * width), firstRow * width);
+    });
     return out;
   }
 
@@ -238,13 +239,10 @@ export class CubeCcvtEngine {
     readTargetRGBA(this.renderer, this.labelTargets[this.current], this.sumsStaging, 0, 0, 1, 1);
   }
 
-  get labelTexture(): THREE.Texture {
-    return this.labelTargets[this.current].texture;
-  }
-
   dispose(): void {
     for (const pass of [this.clearPass, this.splatPass, this.floodPass, this.scatterPass]) pass?.dispose();
     for (const target of [...this.labelTargets, ...this.sumsTargets]) target.dispose();
+    this.packedLabels.dispose();
     this.siteTexture.dispose();
     this.geometryTexture.dispose();
   }

@@ -1,12 +1,11 @@
 import * as THREE from 'three';
 import type { Grid } from '../core/grid';
 import { accumulateCentroidRows } from '../core/labels';
-import { coldSchedule, warmFirstStep, warmSchedule, type JumpFloodVariant } from '../core/jumpSchedule';
+import { FloodSchedules, type JumpFloodVariant } from '../core/jumpSchedule';
 import centroidScatterFrag from '../shaders/centroidScatter.frag';
 import centroidScatterVert from '../shaders/centroidScatter.vert';
 import idSplatFrag from '../shaders/idSplat.frag';
 import refreshLabelsFrag from '../shaders/refreshLabels.frag';
-import resolveIdsFrag from '../shaders/resolveIds.frag';
 import fullscreenVert from '../shaders/fullscreen.vert';
 import jumpFloodFrag from '../shaders/jumpFlood.frag';
 import labelSplatFrag from '../shaders/labelSplat.frag';
@@ -52,9 +51,7 @@ export class CcvtEngine {
   private readonly weightTexture: THREE.DataTexture;
   private readonly labelTargets: [THREE.WebGLRenderTarget, THREE.WebGLRenderTarget];
   private current = 0;
-  private idsStale = true;
   private readonly idMapTarget: THREE.WebGLRenderTarget;
-  private readonly idTarget: THREE.WebGLRenderTarget;
   private readonly sumsTarget: THREE.WebGLRenderTarget;
   private readonly gather: GatherCentroids | null;
   private readonly packedLabels: PackedLabels;
@@ -63,11 +60,9 @@ export class CcvtEngine {
   private readonly refreshPass: ShaderPass;
   private readonly splatPass: ShaderPass;
   private readonly idSplatPass: ShaderPass;
-  private readonly resolvePass: ShaderPass;
   private readonly floodPass: ShaderPass;
   private readonly centroidPass: ShaderPass | null;
-  private readonly coldSteps: number[];
-  private readonly warmSchedules = new Map<number, readonly number[]>();
+  private readonly schedules: FloodSchedules;
   private readonly syncPixel = new Float32Array(4);
   /** Largest distance (texels) any site moved since the last computeSums(). */
   private movedSinceSums = Infinity;
@@ -102,16 +97,16 @@ export class CcvtEngine {
       THREE.RedFormat,
     );
     // Labels: the nearest site's position (RG32F) per texel, flooded; the id map: each site's
-    // id at the texel it is splatted to; ids: each texel's site id, resolved after a flood.
+    // id at the texel it is splatted to. A texel's site id is its position's entry in the id map
+    // (read by the centroid passes and the packed readback; never resolved into a texture).
     this.labelTargets = [
       createFloatTarget(grid.width, grid.height, THREE.RGFormat),
       createFloatTarget(grid.width, grid.height, THREE.RGFormat),
     ];
     this.idMapTarget = createFloatTarget(grid.width, grid.height, THREE.RedFormat);
-    this.idTarget = createFloatTarget(grid.width, grid.height, THREE.RedFormat);
     this.sumsTarget = createFloatTarget(this.siteTextureWidth, this.siteTextureHeight, THREE.RGBAFormat);
     this.sums = new Float32Array(this.siteTextureWidth * this.siteTextureHeight * 4);
-    this.coldSteps = coldSchedule(grid.width, grid.height, options.variant);
+    this.schedules = new FloodSchedules(grid.width, grid.height, options.variant);
 
     // Uniform objects are shared between programs: one update reaches all of them.
     const metric = {
@@ -127,7 +122,6 @@ export class CcvtEngine {
     this.refreshPass = new ShaderPass('triangles', fullscreenVert, refreshLabelsFrag, { ...metric, labels, idMap }, false, defines);
     this.splatPass = new ShaderPass('points', labelSplatVert, labelSplatFrag, { ...metric }, false, defines);
     this.idSplatPass = new ShaderPass('points', labelSplatVert, idSplatFrag, { ...metric }, false, defines);
-    this.resolvePass = new ShaderPass('triangles', fullscreenVert, resolveIdsFrag, { ...metric, labels, idMap }, false, defines);
     this.floodPass = new ShaderPass(
       'triangles',
       fullscreenVert,
@@ -185,7 +179,7 @@ export class CcvtEngine {
    * labels, given the largest distance (texels) any site moved since they were computed.
    */
   floodLabels(warmFromDisplacement?: number): void {
-    const steps = warmFromDisplacement === undefined ? this.coldSteps : this.warmSteps(warmFromDisplacement);
+    const steps = this.schedules.steps(warmFromDisplacement);
     if (warmFromDisplacement === undefined) {
       this.clearToEmpty(this.labelTargets[this.current]);
     } else {
@@ -199,7 +193,6 @@ export class CcvtEngine {
     // Splatting on top of old labels makes sure every site owns at least its own texel.
     this.splatPass.draw(this.renderer, this.labelTargets[this.current], this.siteCount);
     this.current = floodPingPong(this.renderer, this.floodPass, this.labelTargets, this.current, steps);
-    this.idsStale = true;
     this.lastPassCount = steps.length;
   }
 
@@ -207,31 +200,6 @@ export class CcvtEngine {
   private clearToEmpty(target: THREE.WebGLRenderTarget): void {
     this.renderer.setRenderTarget(target);
     this.context.gl.clearBufferfv(this.context.gl.COLOR, 0, EMPTY_LABEL);
-  }
-
-  /**
-   * Site id per texel for the current labels, resolved through the id map on first use after
-   * a flood (by the centroid pass, a readback or a view): a flood itself ends at positions,
-   * like the plainest jump flood.
-   */
-  private resolvedIds(): THREE.Texture {
-    if (this.idsStale) {
-      this.resolvePass.uniforms.labels.value = this.labelTargets[this.current].texture;
-      this.resolvePass.draw(this.renderer, this.idTarget);
-      this.idsStale = false;
-    }
-    return this.idTarget.texture;
-  }
-
-  /** Warm schedules depend only on their first step: built once each, so the loop allocates nothing. */
-  private warmSteps(maxDisplacement: number): readonly number[] {
-    const first = warmFirstStep(this.grid.width, this.grid.height, maxDisplacement);
-    let steps = this.warmSchedules.get(first);
-    if (!steps) {
-      steps = warmSchedule(this.grid.width, this.grid.height, maxDisplacement);
-      this.warmSchedules.set(first, steps);
-    }
-    return steps;
   }
 
   /** Sums (w*dx, w*dy, w, w*d²) per site over the current labels; result in `this.sums`. */
@@ -283,15 +251,10 @@ export class CcvtEngine {
     return this.gather;
   }
 
-  /** Site id per texel after the last flood (R32F; for views that draw the diagram). */
-  get labelTexture(): THREE.Texture {
-    return this.resolvedIds();
-  }
-
   dispose(): void {
-    const passes = [this.refreshPass, this.splatPass, this.idSplatPass, this.floodPass, this.resolvePass, this.centroidPass];
+    const passes = [this.refreshPass, this.splatPass, this.idSplatPass, this.floodPass, this.centroidPass];
     for (const pass of passes) pass?.dispose();
-    for (const target of [...this.labelTargets, this.idMapTarget, this.idTarget, this.sumsTarget]) target.dispose();
+    for (const target of [...this.labelTargets, this.idMapTarget, this.sumsTarget]) target.dispose();
     this.gather?.dispose();
     this.packedLabels.dispose();
     this.siteTexture.dispose();

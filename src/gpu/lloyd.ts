@@ -1,20 +1,9 @@
 import type { Grid } from '../core/grid';
 import { moveSitesToCentroids, type LloydMove } from '../core/lloydUpdate';
 import type { CcvtEngine } from './engine';
-import { LloydLoop, type MoveSummary } from './lloydLoop';
+import { LloydLoop, type LloydOptions, type MoveSummary } from './lloydLoop';
 
-export interface LloydOptions {
-  readonly maxIterations: number;
-  /** Stop once the largest site displacement (µm) falls below this; 0 runs every iteration. */
-  readonly tolerance: number;
-  /** 1 = plain Lloyd; up to ~1.9 over-relaxes. */
-  readonly overRelaxation: number;
-  /** Start each jump flood from the previous labels instead of from scratch. */
-  readonly warmStart: boolean;
-  /** Wait for the GPU after each jump flood, so jump flood and centroid times are apart. */
-  readonly profile?: boolean;
-}
-
+export type { LloydOptions } from './lloydLoop';
 export type { IterationRecord } from '../core/iterationRecord';
 
 /**

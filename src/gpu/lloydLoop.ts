@@ -1,4 +1,17 @@
-import type { IterationRecord, LloydOptions } from './lloyd';
+import type { IterationRecord } from '../core/iterationRecord';
+
+/** Lloyd's settings, as the config's `lloyd` section gives them. */
+export interface LloydOptions {
+  readonly maxIterations: number;
+  /** Stop once the largest site displacement (µm) falls below this; 0 runs every iteration. */
+  readonly tolerance: number;
+  /** 1 = plain Lloyd; up to ~1.9 over-relaxes. */
+  readonly overRelaxation: number;
+  /** Start each jump flood from the previous labels instead of from scratch. */
+  readonly warmStart: boolean;
+  /** Wait for the GPU after each jump flood, so jump flood and centroid times are apart. */
+  readonly profile?: boolean;
+}
 
 /** What a Lloyd loop asks of a GPU engine besides its own sums. */
 export interface FloodingEngine {

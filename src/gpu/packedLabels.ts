@@ -25,7 +25,7 @@ export class PackedLabels {
 
   constructor(
     private readonly renderer: THREE.WebGLRenderer,
-    private readonly grid: Grid,
+    private readonly grid: Pick<Grid, 'width' | 'height'>,
     uniforms: Record<string, THREE.IUniform>,
     defines: Record<string, number>,
   ) {
@@ -47,8 +47,8 @@ export class PackedLabels {
   }
 
   /**
-   * Packs the ids of `labels` (flood positions, resolved through the id map the pass's uniforms
-   * name) and hands them over band by band: `visit(ids, firstRow, rows)`, with `ids` holding
+   * Packs the ids of `labels` (flood positions resolved through the id map the pass's uniforms
+   * name; or, compiled with LABELS_ARE_IDS, the ids themselves) and hands them over band by band: `visit(ids, firstRow, rows)`, with `ids` holding
    * rows firstRow .. firstRow + rows - 1, row-major. `ids` is reused by the next band.
    */
   read(labels: THREE.Texture, visit: (ids: Int32Array, firstRow: number, rows: number) => void): void {

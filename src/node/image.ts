@@ -16,9 +16,10 @@ import { PNG } from 'pngjs';
 import type { GrayImage } from '../core/density';
 
 const PNG_SIGNATURE = [0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a];
-/** Pixels a density image may have: 8192 x 8192 (decoding takes 8 bytes a pixel). */
-export const MAX_IMAGE_PIXELS = 8192 * 8192;
-export const MAX_PNG_BYTES = 256 * 2 ** 20;
+import { MAX_IMAGE_PIXELS, MAX_PNG_BYTES } from '../core/inputLimits';
+
+// The limits every host shares (core/inputLimits.ts): 8192 x 8192 pixels, 256 MiB.
+export { MAX_IMAGE_PIXELS, MAX_PNG_BYTES };
 
 export class ImageError extends Error {
   override name = 'ImageError';

@@ -8,3 +8,5 @@
  */
 export { createHeadlessContext, headlessRendererName } from './headless';
 export { decodeGrayPng, loadGrayImage } from './image';
+export { loadMeshFile } from './meshFile';
+export { readResultFile, type ResultFile } from './resultFile';

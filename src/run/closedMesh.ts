@@ -1,4 +1,5 @@
 import { ConfigError, type MeshSurface } from '../core/config';
+import { MAX_MESH_BYTES } from '../core/inputLimits';
 import { sampleSurface, type CubeGeometryImage } from '../core/cubemap/sample';
 import { checkMesh } from '../core/mesh/check';
 import { flipOrientation } from '../core/mesh/generate';
@@ -21,42 +22,11 @@ export interface PreparedMesh {
   readonly samplingMs: number;
 }
 
-// No Node typings here: this module is also part of the browser bundle and the library's types.
-interface NodeFs {
-  readFile(path: string): Promise<Uint8Array>;
-}
-interface NodePath {
-  join(...parts: string[]): string;
-  basename(path: string): string;
-}
-const isNode = () =>
-  !!(globalThis as { process?: { versions?: { node?: string } } }).process?.versions?.node && typeof window === 'undefined';
-
 /**
- * Reads `surface.src`: in Node a file path (as given, then under public/meshes/ for a bare
- * name); in a browser a URL. Errors become one-line ConfigErrors on `surface.src`.
+ * A browser library user's mesh loader: fetches `src` (a URL the caller chose) with the size
+ * limit every host shares; errors are one-line ConfigErrors on `surface.src`. The pipeline never
+ * calls it: hosts load inputs and hand them to runSheet as `meshFile`.
  */
-export async function readMeshSource(src: string): Promise<MeshFile> {
-  if (isNode() && !/^https?:\/\//.test(src)) {
-    const fsName = 'node:fs/promises';
-    const pathName = 'node:path';
-    const fs = (await import(/* @vite-ignore */ fsName)) as NodeFs;
-    const path = (await import(/* @vite-ignore */ pathName)) as NodePath;
-    const candidates = [src, path.join('public', 'meshes', path.basename(src)), path.join('public', src.replace(/^\/+/, ''))];
-    for (const file of candidates) {
-      try {
-        const buffer = await fs.readFile(file);
-        return { data: buffer.buffer.slice(buffer.byteOffset, buffer.byteOffset + buffer.byteLength) as ArrayBuffer, name: file };
-      } catch {
-        // try the next candidate
-      }
-    }
-    throw new ConfigError('surface.src', `surface.src: cannot read "${src}" (looked in the working directory and public/meshes/); give the path of an .obj, .ply or .stl file`);
-  }
-  return fetchMeshFile(src);
-}
-
-/** Fetches a mesh file from a URL; errors are one-line ConfigErrors on `surface.src`. */
 export async function fetchMeshFile(src: string): Promise<MeshFile> {
   let response: Response;
   try {
@@ -65,7 +35,11 @@ export async function fetchMeshFile(src: string): Promise<MeshFile> {
     throw new ConfigError('surface.src', `surface.src: cannot fetch "${src}" (${(error as Error).message}); give a reachable URL of an .obj, .ply or .stl file`);
   }
   if (!response.ok) throw new ConfigError('surface.src', `surface.src: fetching "${src}" gave HTTP ${response.status}; give a reachable URL of an .obj, .ply or .stl file`);
-  return { data: await response.arrayBuffer(), name: src };
+  const declared = Number(response.headers.get('content-length') ?? 0);
+  if (declared > MAX_MESH_BYTES) throw new ConfigError('surface.src', `surface.src: "${src}" is ${declared} bytes, more than the ${MAX_MESH_BYTES} allowed; simplify the mesh`);
+  const data = await response.arrayBuffer();
+  if (data.byteLength > MAX_MESH_BYTES) throw new ConfigError('surface.src', `surface.src: "${src}" is ${data.byteLength} bytes, more than the ${MAX_MESH_BYTES} allowed; simplify the mesh`);
+  return { data, name: src };
 }
 
 /**

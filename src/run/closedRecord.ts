@@ -3,7 +3,7 @@ import type { ClosedSites } from '../core/closed/geometry';
 import { directionToTexel, texelIndex } from '../core/cubemap/cubemap';
 import { HeatGeodesics, geodesicVoronoi } from '../core/mesh/heat';
 import type { EngineChoice } from './enginePolicy';
-import type { CubeMapGeometry, CubeMapLayer, CubeMapProjected } from './cubeMapFamily';
+import type { CubeMapGeometry, CubeMapLayer, CubeMapProjected } from './cubeMapTypes';
 import type { Labeller } from './family';
 import type { ClosedSurfaceRecord } from './result';
 

@@ -2,7 +2,7 @@ import { ConfigError, inwardOffsetError, makeCubeGrid, minCurvatureRadius, type 
 import { meshCurvatureRadii } from '../core/closed/geometry';
 import { ellipsoidProjector, meshProjector, sphereProjector, type ClosedProjector } from '../core/closed/projector';
 import { sampleSurface, type CubeGeometryImage } from '../core/cubemap/sample';
-import { prepareMesh, readMeshSource, type PreparedMesh } from './closedMesh';
+import { prepareMesh, type PreparedMesh } from './closedMesh';
 import type { RunCallbacks } from './family';
 
 /** A closed surface ready for Lloyd: its geometry image and closest-point projector. */
@@ -17,12 +17,19 @@ export interface ClosedSurface {
   readonly nearestVertex?: (x: number, y: number, z: number) => number;
 }
 
-/** Samples (or loads, checks and parameterizes) the closed surface of `config` on its cube map. */
+/** Samples (or checks and parameterizes the loaded mesh of) the closed surface of `config` on its cube map. */
 export async function prepareClosedSurface(config: ClosedConfig, callbacks: RunCallbacks = {}): Promise<ClosedSurface> {
   const { surface } = config;
   const n = makeCubeGrid(config).n;
   if (surface.kind === 'mesh') {
-    const file = callbacks.meshFile ?? (await readMeshSource(surface.src));
+    // The pipeline reads no file: the host (CLI, page, worker, a library user) loads it.
+    const file = callbacks.meshFile;
+    if (!file) {
+      throw new ConfigError(
+        'surface.src',
+        `surface.src: "${surface.src}" is not loaded: the pipeline reads no files; load the mesh first (tissue-sheet/node loadMeshFile, or fetchMeshFile in a browser) and pass it as meshFile`,
+      );
+    }
     const mesh = prepareMesh(file, surface, n);
     const projector = meshProjector(mesh.mesh, mesh.parameterization.sphere);
     const radii = meshCurvatureRadii(mesh.mesh);

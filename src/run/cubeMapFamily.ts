@@ -1,5 +1,6 @@
-import { surfaceFromLabels } from '../core/analysis';
-import { checkClosedFeasible, checkClosedSheet, layerStepOf, makeCubeGrid, steppedOffsets, type ClosedConfig } from '../core/config';
+import { labMinBoundaryLength, surfaceFromLabels } from '../core/analysis';
+import { checkClosedFeasible, checkClosedSheet, makeCubeGrid, type ClosedConfig } from '../core/config';
+import { sheetOffsets } from '../core/sheetGeometry';
 import { KdTree3 } from '../core/closed/kdTree';
 import { ellipsoidProjector, PROJECTION_STRIDE } from '../core/closed/projector';
 import { sampleSurface } from '../core/cubemap/sample';
@@ -11,7 +12,6 @@ import {
   placeClosedSites,
   texelNeighbours,
   type ClosedSites,
-  type CubeSurfaceSample,
 } from '../core/closed/geometry';
 import type { Grid } from '../core/grid';
 import type { EngineChoice } from './enginePolicy';
@@ -21,31 +21,12 @@ import { CubeCcvtEngine } from '../gpu/cubeEngine';
 import { ClosedLloydRun } from '../gpu/cubeLloyd';
 import { closedExactAdjacency } from './closedExact';
 import { closedSection } from './closedRecord';
-import { checkOffsets, prepareClosedSurface, type ClosedSurface } from './closedSurface';
-import type { Labeller, StackLayer, SurfaceFamily } from './family';
+import { checkOffsets, prepareClosedSurface } from './closedSurface';
+import type { CubeMapGeometry, CubeMapLayer, CubeMapProjected } from './cubeMapTypes';
+import type { Labeller, SurfaceFamily } from './family';
 import { relaxation } from './relax';
 
-/** A closed surface on its cube map, with the texel neighbour table every surface of its stack shares. */
-export interface CubeMapGeometry extends ClosedSurface {
-  /** Four edge-neighbour texels per texel, across face edges. */
-  readonly neighbours: Int32Array;
-}
-
-/** A surface of a closed sheet's stack, sampled on the seeded surface's cube map. */
-export interface CubeMapLayer extends StackLayer {
-  readonly sample: CubeSurfaceSample;
-  /**
-   * `sheet.offset = "axes"`: this layer is the ellipsoid with these semi-axes (a + t, b + t,
-   * c + t) and sites move to their closest points on it; absent: the parallel surface.
-   */
-  readonly axes?: readonly [number, number, number];
-}
-
-/** Sites moved onto a layer: their 3D positions, and the texels they were seeded in. */
-export interface CubeMapProjected {
-  readonly positions: Float64Array;
-  readonly texels: Int32Array;
-}
+export type { CubeMapGeometry, CubeMapLayer, CubeMapProjected } from './cubeMapTypes';
 
 /**
  * Sphere, ellipsoid and genus-0 meshes on a cube-map geometry image (docs/closed-surfaces.md):
@@ -85,8 +66,7 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
 
   stack(config, geometry) {
     const { sheet } = config;
-    const other = (sheet.direction === 'outward' ? 1 : -1) * sheet.thickness;
-    const offsets = closedStackOffsets(sheet, other);
+    const offsets = sheetOffsets(config);
     const count = offsets.length;
     return offsets.map((offset, k) => {
       const role = k === 0 ? 'seeded' : k === count - 1 ? 'other' : 'layer';
@@ -137,7 +117,7 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
 
   minContactLengths(config, geometry, layers) {
     const { totalArea } = geometry.image;
-    const length = config.sheet.minContactLength ?? (6 / 102.4) * Math.sqrt(totalArea / config.cells);
+    const length = config.sheet.minContactLength ?? labMinBoundaryLength(totalArea, config.cells);
     // Every surface has the same cube map (n² texels per face), so the threshold, like the
     // lab's pixels, scales with each surface's linear size (sqrt of its area ratio).
     return { reported: length, perLayer: layers.map((layer) => length * Math.sqrt(layer.sample.totalArea / totalArea)) };
@@ -183,14 +163,6 @@ function closestPointsOn(axes: readonly [number, number, number], sites: ClosedS
     storeProjection(moved, i, buffer, 0, n);
   }
   return { positions: moved.positions, texels: moved.texels };
-}
-
-/** Signed offsets of a closed stack: sheet.layers evenly spaced, or every sheet.layerStep µm. */
-function closedStackOffsets(sheet: ClosedConfig['sheet'], other: number): number[] {
-  const step = layerStepOf(sheet);
-  if (step !== null) return steppedOffsets(Math.abs(other), step).map((d) => (other < 0 ? -d : d));
-  const count = sheet.layers + 2;
-  return Array.from({ length: count }, (_, k) => (other * k) / (count - 1));
 }
 
 /** The n x 6n atlas as a grid record: square texels of the mean texel area. */

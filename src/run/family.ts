@@ -24,6 +24,12 @@ export interface RunCallbacks {
    * then sends none back, and lazily drawn images are never drawn.
    */
   views?: boolean;
+  /**
+   * true: every per-cell list of the result (`cells`, `surfaces[].cells`, `analyses[].cells`) is
+   * left empty and given as columns in SheetOutput.tables instead (src/run/cellTables.ts): a
+   * million cells without millions of objects. `tissue-sheet run` asks for it on large runs.
+   */
+  cellTables?: boolean;
 }
 
 /** One surface of the sheet's stack: the seeded surface, a layer, or the other surface. */
@@ -105,6 +111,8 @@ export interface SurfaceFamily<C extends AnyConfig, Geometry, Sites, Layer exten
   /** The exact adjacency of a layer (every surface has one: planar Delaunay, restricted Voronoi). */
   exactAdjacency(config: C, geometry: Geometry, layer: Layer, sites: Sites, projected: Projected): SurfaceAdjacency;
   cellPlacement(config: C, layer: Layer, sites: Sites, projected: Projected, id: number): CellPlacement;
+  /** Optional: cellPlacement of every cell at once into columns ((x, y, z) at 3·id, (u, v) at 2·id), the same values. */
+  cellPlacements?(config: C, layer: Layer, sites: Sites, projected: Projected, position: Float64Array, coordinates: Float64Array): void;
   /** Size of a layer relative to the seeded surface (R / R_seeded on a tube; 1 on a plane). */
   layerRatio(geometry: Geometry, layer: Layer): number;
   /** The texel grid of the seeded surface, as the result reports it. */

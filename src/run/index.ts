@@ -5,6 +5,17 @@
  */
 export { runSheet, SheetRunner, seededKey, type RunCallbacks } from './runSheet';
 export { sweepSummary } from './sweepSummary';
+export {
+  analysisCellRecordsOf,
+  cellRecordsOf,
+  decodeCellsFile,
+  withCellRecords,
+  CELLS_FILE_FORMAT,
+  type AnalysisCellTable,
+  type CellTable,
+  type CellsFileRecord,
+  type ResultCellTables,
+} from './cellTables';
 export { WorkerSheetRunner, type ComputeSite } from './worker/workerRunner';
 export { describeEngine, type EngineChoice } from './enginePolicy';
 export { fetchMeshFile, type MeshFile } from './closedMesh';

@@ -1,13 +1,13 @@
-import { LAB_PROTOCOL, labelContactThresholdTexels, labInvalidCells, labMinBoundaryLength, surfaceFromExact, surfaceFromLabels, type LabProtocolSettings } from '../core/analysis';
+import { invalidOnAnySurface, LAB_PROTOCOL, labelContactThresholdTexels, labMinBoundaryLength, surfaceFromLabels, type LabProtocolSettings, type SurfaceAdjacency } from '../core/analysis';
 import { checkFeasible, checkSheet, layerStepOf, makeGrid, minContactPixelsOf, type Config } from '../core/config';
 import { densityField, type GrayImage } from '../core/density';
 import { exactVoronoi } from '../core/exact';
-import { ExactLloydRun, exactDensity, exactSurface, rasterizeCells } from '../core/exactEngine';
+import { ExactLloydRun, exactDensity, exactSurface, PlanarVoronoi, rasterizeCells } from '../core/exactEngine';
 import type { Grid } from '../core/grid';
 import { labelAdjacency } from '../core/labels';
 import { projectSites, surfaceStack, type StackSurface } from '../core/sheetGeometry';
 import { placeSites } from '../core/sites';
-import { embed, surfaceCoordinates } from '../core/surface';
+import { embed, embedAll, surfaceCoordinates } from '../core/surface';
 import type { EngineChoice } from './enginePolicy';
 import type { GpuContext } from '../gpu/context';
 import { CcvtEngine } from '../gpu/engine';
@@ -49,6 +49,9 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
     const sites = placeSites(grid, config.cells, config.seed, config.minSpacing, placementDensity(config, density));
     if (choice.name === 'exact') {
       const run = new ExactLloydRun(grid, sites, config.lloyd, exactDensity(config.density, grid, geometry.densityImage));
+      // finish() leaves the diagram of the final sites built: the seeded surface's exact
+      // adjacency reads it instead of triangulating the same sites again (exactAdjacency).
+      memo(sites, FINAL_DIAGRAM, () => run.voronoi);
       // No label image: the stack rasterizes the exact cells for views when asked.
       return { sites, relaxation: relaxation(run, () => NO_LABELS) };
     }
@@ -68,7 +71,8 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
 
   stack: (config, geometry) => surfaceStack(config, geometry.grid),
 
-  project: (geometry, layer, sites) => (layer.role === 'seeded' ? sites : projectSites(geometry.grid, layer.grid, sites)),
+  // Once per seeded surface and grid, as the layer's exact diagram (exactLayer).
+  project: (geometry, layer, sites) => (layer.role === 'seeded' ? sites : projected(geometry.grid, layer.grid, sites)),
 
   labeller: (context, config, _geometry, choice) => planarLabeller(context, config, choice),
 
@@ -97,27 +101,37 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
     return { reported: length, perLayer: layers.map(() => length) };
   },
 
-  // Once per seeded surface and settings: a sweep over ratios asks again for every ratio.
+  // Once per seeded surface and settings: a sweep over ratios asks again for every ratio. The
+  // layers s = 1 : step : validityMaxRatio are laid out as a stack to that ratio lays them out
+  // (surfaceStack, projectSites), so they are the very surfaces the stacks of the sweep's ratios
+  // are made of: one exact diagram per layer serves the validity and every ratio (exactLayer).
   protocolInvalid(config, geometry, sites) {
     if (config.sheet.protocol !== 'lab') return null;
     const settings = labSettings(config.sheet);
-    return memo(sites, `lab ${settings.layerStep} ${settings.validityMaxRatio}`, () =>
-      labInvalidCells(geometry.grid, sites, settings, (grid, layerSites, label) => exactSurface(grid, layerSites, label)),
-    );
+    return memo(sites, `lab ${settings.layerStep} ${settings.validityMaxRatio}`, () => {
+      const sheet = { ...config.sheet, surfaceRatio: settings.validityMaxRatio, direction: 'outward' as const, layerStep: settings.layerStep };
+      const layers = surfaceStack({ ...config, sheet }, geometry.grid);
+      return invalidOnAnySurface(
+        layers.map((layer) => exactLayer(layer.grid, sites, layer.role === 'seeded' ? sites : projected(geometry.grid, layer.grid, sites))),
+        config.cells,
+      );
+    });
   },
 
   // The exact Delaunay needs no threshold: every contact of positive length counts.
   exactMinContactLengths: () => null,
 
-  // Kept per seeded surface: runs that differ in the sheet share most of their layers.
-  exactAdjacency: (_config, _geometry, layer, sites, projected) =>
-    memo(sites, `exact ${layer.name} ${layer.grid.width} ${layer.grid.texelX}`, () => surfaceFromExact(exactVoronoi(layer.grid, projected), layer.name)),
+  // Kept per seeded surface: runs that differ in the sheet share most of their layers (and the
+  // seeded surface's own sites reuse the exact Lloyd run's final diagram: see exactLayer).
+  exactAdjacency: (_config, _geometry, layer, sites, projected) => ({ ...exactLayer(layer.grid, sites, projected), label: layer.name }),
 
   cellPlacement(config, layer, _sites, projected, id) {
     const x = projected[2 * id];
     const y = projected[2 * id + 1];
     return { position: embed(config.surface, layer.grid, x, y, layer.offset).position, surface: surfaceCoordinates(layer.grid, x, y) };
   },
+
+  cellPlacements: (config, layer, _sites, projected, position, coordinates) => embedAll(config.surface, layer.grid, projected, layer.offset, position, coordinates),
 
   layerRatio: (_geometry, layer) => layer.ratio,
 
@@ -152,6 +166,51 @@ function memo<T>(sites: PlanarSites, key: string, compute: () => T): T {
   if (!values) memos.set(sites, (values = new Map()));
   if (!values.has(key)) values.set(key, compute());
   return values.get(key) as T;
+}
+
+/** Memo key of the exact Lloyd run's diagram of the final sites. */
+const FINAL_DIAGRAM = 'final diagram';
+
+/**
+ * The exact adjacency of the seeded sites projected onto a layer's grid (`projected`: as
+ * `project` moves them there), once per seeded surface and grid: the same grid is the same
+ * surface in every stack and in the lab validity. exactSurface gives the numbers of
+ * surfaceFromExact(exactVoronoi(...)) (tested cell by cell) without the per-cell records. The
+ * seeded sites themselves (the seeded surface; a plane's other surface) read the exact Lloyd
+ * run's final diagram, already built for them: nothing is triangulated twice.
+ */
+function exactLayer(grid: Grid, sites: PlanarSites, projected: ArrayLike<number>): SurfaceAdjacency {
+  const { width, height, texelX, texelY, periodicX, periodicY } = grid;
+  return memo(sites, `exact ${width} ${height} ${texelX} ${texelY} ${periodicX} ${periodicY}`, () => {
+    const final = memos.get(sites)?.get(FINAL_DIAGRAM) as PlanarVoronoi | undefined;
+    if (final && sameValues(projected, sites)) {
+      memos.get(sites)?.delete(FINAL_DIAGRAM); // read once; its buffers are not kept
+      return exactSurface(grid, projected, undefined, final);
+    }
+    return exactSurface(grid, projected, undefined, scratchVoronoi(grid, sites.length / 2));
+  });
+}
+
+/**
+ * The triangulation buffers exactSurface builds in, kept for the next layer of the same shape
+ * (one set: the last cell count and periodic axes), as bench/exactSweep.ts reuses them.
+ */
+let scratch: { key: string; voronoi: PlanarVoronoi } | null = null;
+function scratchVoronoi(grid: Grid, count: number): PlanarVoronoi {
+  const key = `${count} ${grid.periodicX} ${grid.periodicY}`;
+  if (scratch?.key !== key) scratch = { key, voronoi: new PlanarVoronoi(grid, count) };
+  return scratch.voronoi;
+}
+
+/** The seeded sites moved onto a layer's grid (projectSites), once per seeded surface and grid. */
+function projected(seededGrid: Grid, grid: Grid, sites: PlanarSites): PlanarSites {
+  return memo(sites, `project ${seededGrid.width} ${grid.width}`, () => projectSites(seededGrid, grid, sites));
+}
+
+function sameValues(a: ArrayLike<number>, b: ArrayLike<number>): boolean {
+  if (a.length !== b.length) return false;
+  for (let k = 0; k < a.length; k++) if (a[k] !== b[k]) return false;
+  return true;
 }
 
 /** The exact engine's seeded surface has no label image (the stack draws its cells for views). */

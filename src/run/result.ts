@@ -5,6 +5,7 @@ import type { AnyConfig } from '../core/config';
 import type { Grid } from '../core/grid';
 import type { Vec3 } from '../core/surface';
 import type { IterationRecord } from '../gpu/lloyd';
+import type { ResultCellTables } from './cellTables';
 import type { EngineChoice } from './enginePolicy';
 
 /** A neighbour of a cell and the length (µm) of the boundary they share. */
@@ -146,4 +147,6 @@ export interface SheetOutput {
   readonly result: SheetResult;
   /** [seeded, layers..., other]. */
   readonly labelImages: LabelImage[];
+  /** With RunCallbacks.cellTables: every per-cell list as columns (the result's lists are then empty). */
+  readonly tables?: ResultCellTables;
 }

@@ -4,9 +4,11 @@ import type { GpuContext } from '../gpu/context';
 import { version } from '../version';
 import { cubeMapFamily } from './cubeMapFamily';
 import { chooseEngine } from './enginePolicy';
-import type { RunCallbacks, StackLayer, SurfaceFamily } from './family';
+import type { IterationRecord } from '../gpu/lloyd';
+import type { EngineChoice } from './enginePolicy';
+import type { Relaxation, RunCallbacks, StackLayer, SurfaceFamily } from './family';
 import { planarFamily } from './planarFamily';
-import { relaxSeededSurface, type SeededSurface } from './relax';
+import { relaxSeededSurface, throwIfAborted, yieldToEventLoop, type SeededSurface } from './relax';
 import type { SheetOutput } from './result';
 import { analyzeStack } from './stack';
 
@@ -23,11 +25,20 @@ export function runSheet(config: AnyConfig, context: GpuContext, callbacks: RunC
 }
 
 /**
- * Runs sheets one after another and reuses the converged seeded surface when only `sheet.*`
- * changed (a sweep over surface ratios or thickness relaxes each realization once).
+ * Runs sheets one after another and reuses what the previous runs computed, wherever the result
+ * is the same as computing the run alone:
+ * - the converged seeded surface when only `sheet.*` changed (a sweep over surface ratios or
+ *   thickness relaxes each realization once; the layers and lab validity computed from its sites
+ *   are kept with them, see planarFamily's memo);
+ * - on the exact engine, the Lloyd run itself when only `lloyd.maxIterations` grows: Voronoi k is
+ *   the sites after k − 1 iterations, so one run serves every k on its way (the sites are copied
+ *   at each k; continuing a paused ExactLloydRun gives bit for bit the iterations a fresh run with
+ *   the larger maxIterations does, tested in tests/cli/sweepReuse.test.ts). A run asking for fewer
+ *   iterations than the kept run has done starts a new one.
  */
 export class SheetRunner {
   private cached: { key: string; seeded: Promise<SeededSurface<unknown, unknown>> } | null = null;
+  private chain: { key: string; lloyd: Promise<LloydChain<unknown, unknown>> } | null = null;
 
   constructor(private readonly context: GpuContext) {}
 
@@ -47,7 +58,10 @@ export class SheetRunner {
     const engine = chooseEngine(config, family.name, this.context.capabilities);
     const key = `${engine.name}/${engine.centroidPath}/${seededKey(config)}`;
     if (this.cached?.key !== key) {
-      this.cached = { key, seeded: relaxSeededSurface(family, config, this.context, engine, callbacks) };
+      this.cached = {
+        key,
+        seeded: engine.name === 'exact' ? this.fromChain(family, config, engine, callbacks) : relaxSeededSurface(family, config, this.context, engine, callbacks),
+      };
     }
     let seeded: SeededSurface<G, S>;
     try {
@@ -57,8 +71,8 @@ export class SheetRunner {
       this.cached = null;
       throw error;
     }
-    const stack = await analyzeStack(family, config, seeded, this.context, callbacks.signal);
-    const { closed, labelImages } = stack;
+    const stack = await analyzeStack(family, config, seeded, this.context, callbacks.signal, callbacks.cellTables === true);
+    const { closed, labelImages, tables } = stack;
     return {
       result: {
         software: { name: 'tissue-sheet', version },
@@ -78,7 +92,10 @@ export class SheetRunner {
         },
         adjacency: { method: seeded.engine.name === 'exact' ? 'exact' : 'labels' },
         timings: { setupMs: seeded.setupMs, lloydMs: seeded.lloydMs, adjacencyMs: stack.adjacencyMs, totalMs: performance.now() - start },
-        cells: stack.seededCells,
+        // Read from the stack on first use (see analyzeStack), in its place in the result's order.
+        get cells() {
+          return stack.seededCells;
+        },
         surfaces: stack.surfaces,
         analyses: stack.analyses,
         headline: runHeadline(config, stack.analyses, seeded.iterations.length),
@@ -86,8 +103,127 @@ export class SheetRunner {
         ...(closed ? { closed } : {}),
       },
       labelImages,
+      ...(tables ? { tables } : {}),
     };
   }
+
+  /**
+   * The exact engine's seeded surface after `config.lloyd.maxIterations` iterations, from the kept
+   * Lloyd run when it is the same run (same config but for `sheet` and `lloyd.maxIterations`) and
+   * has not gone past that many iterations; else from a new one.
+   */
+  private async fromChain<C extends AnyConfig, G, S, L extends StackLayer, P>(
+    family: SurfaceFamily<C, G, S, L, P>,
+    config: C,
+    engine: EngineChoice,
+    callbacks: RunCallbacks,
+  ): Promise<SeededSurface<G, S>> {
+    const key = `${engine.name}/${chainKey(config)}`;
+    const target = config.lloyd.maxIterations;
+    if (this.chain?.key === key) {
+      const kept = this.chain.lloyd;
+      try {
+        const chain = (await kept) as LloydChain<G, S>;
+        if (chain.iterations.length <= target) return await chain.advance(target, callbacks);
+      } catch {
+        // A failed or cancelled chain is not reused.
+      }
+      if (this.chain?.lloyd === kept) this.chain = null;
+    }
+    const lloyd = LloydChain.start(family, config, this.context, engine, callbacks);
+    this.chain = { key, lloyd: lloyd as Promise<LloydChain<unknown, unknown>> };
+    try {
+      return await (await lloyd).advance(target, callbacks);
+    } catch (error) {
+      if (this.chain?.lloyd === lloyd) this.chain = null;
+      throw error;
+    }
+  }
+}
+
+/**
+ * One Lloyd run on the exact engine, advanced on demand: `advance(m)` steps it to m iterations
+ * (or until it converges, as a fresh run with maxIterations m would stop) and returns the seeded
+ * surface a fresh run with maxIterations m gives: a copy of the sites, the iteration records so
+ * far, and the final energy from `finish()`, which only reads the sites (the next step rebuilds
+ * the diagram from them).
+ */
+class LloydChain<G, S> {
+  private busy: Promise<unknown> = Promise.resolve();
+
+  private constructor(
+    private readonly geometry: G,
+    private readonly sites: S,
+    private readonly relaxation: Relaxation,
+    private readonly engine: EngineChoice,
+    private readonly setupMs: number,
+    private lloydMs: number,
+  ) {}
+
+  get iterations(): readonly IterationRecord[] {
+    return this.relaxation.iterations;
+  }
+
+  static async start<C extends AnyConfig, G, S, L extends StackLayer, P>(
+    family: SurfaceFamily<C, G, S, L, P>,
+    config: C,
+    context: GpuContext,
+    engine: EngineChoice,
+    callbacks: RunCallbacks,
+  ): Promise<LloydChain<G, S>> {
+    const start = performance.now();
+    const geometry = await family.prepare(config, callbacks);
+    family.checkSheet(config, geometry);
+    // No iteration limit: advance() decides how far it goes. Tolerance, over-relaxation and the
+    // rest are the config's, so every step is the step a fresh run takes.
+    const open = { ...config, lloyd: { ...config.lloyd, maxIterations: Number.MAX_SAFE_INTEGER } };
+    const { sites, relaxation } = family.relax(context, open, geometry, engine);
+    if (!(sites instanceof Float32Array)) {
+      relaxation.dispose();
+      throw new Error('LloydChain: the exact engine keeps its sites in a Float32Array');
+    }
+    return new LloydChain(geometry, sites, relaxation, engine, performance.now() - start, 0);
+  }
+
+  /** Serialized: two runs of one SheetRunner never step the same Lloyd run at once. */
+  advance(target: number, callbacks: RunCallbacks): Promise<SeededSurface<G, S>> {
+    const next = this.busy.then(() => this.advanceNow(target, callbacks));
+    this.busy = next.catch(() => {});
+    return next;
+  }
+
+  private async advanceNow(target: number, callbacks: RunCallbacks): Promise<SeededSurface<G, S>> {
+    const { relaxation } = this;
+    if (relaxation.iterations.length > target) throw new Error(`LloydChain: already past ${target} iterations`);
+    const start = performance.now();
+    while (relaxation.iterations.length < target && !relaxation.converged) {
+      throwIfAborted(callbacks.signal);
+      const record = relaxation.step();
+      callbacks.onIteration?.(record, target);
+      await yieldToEventLoop();
+    }
+    const final = relaxation.finish();
+    this.lloydMs += performance.now() - start;
+    return {
+      geometry: this.geometry,
+      sites: (this.sites as unknown as Float32Array).slice() as unknown as S,
+      labels: final.labels,
+      engine: this.engine,
+      iterations: relaxation.iterations.slice(),
+      converged: relaxation.converged,
+      finalEnergy: final.energy,
+      emptyCells: final.emptyCells,
+      setupMs: this.setupMs,
+      lloydMs: this.lloydMs,
+    };
+  }
+}
+
+/** What a Lloyd run depends on: the config without its `sheet` section and `lloyd.maxIterations`. */
+export function chainKey(config: AnyConfig): string {
+  const { sheet: _sheet, lloyd, ...rest } = config;
+  const { maxIterations: _max, ...lloydRest } = lloyd;
+  return JSON.stringify({ ...rest, lloyd: lloydRest });
 }
 
 /** Everything the seeded surface depends on: the config without its `sheet` section. */

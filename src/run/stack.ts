@@ -1,8 +1,10 @@
-import { analyzeLabStack, analyzeSurfaces, toCsr, withMinBoundaryLength, type SurfaceAdjacency } from '../core/analysis';
+import { analyzeSurfaces, withMinBoundaryLength, type SurfaceAdjacency } from '../core/analysis';
 import { analysisMethods, type AnyConfig } from '../core/config';
 import type { GpuContext } from '../gpu/context';
 import { analysisRecord } from '../core/analysis';
+import { analysisCellTable, cellRecordsOf, cellTable, type CellTable, type ResultCellTables } from './cellTables';
 import type { StackLayer, SurfaceFamily } from './family';
+import { analyzeLabStackReusing } from './labStackReuse';
 import { throwIfAborted, yieldToEventLoop, type SeededSurface } from './relax';
 import type { AnalysisRecord, CellRecord, ClosedSurfaceRecord, LabelImage, SurfaceRecord } from './result';
 
@@ -17,6 +19,8 @@ export interface SheetStack {
   readonly labelImages: LabelImage[];
   readonly closed?: ClosedSurfaceRecord;
   readonly adjacencyMs: number;
+  /** With `cellTables`: every cell list as columns, and the records' cell lists left empty. */
+  readonly tables?: ResultCellTables;
 }
 
 /**
@@ -31,6 +35,7 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
   seeded: SeededSurface<G, S>,
   context: GpuContext,
   signal?: AbortSignal,
+  cellTables = false,
 ): Promise<SheetStack> {
   const start = performance.now();
   const { geometry } = seeded;
@@ -68,41 +73,82 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
 
     // The protocol: which cells are valid, how intercalations are counted (docs/protocols.md).
     const invalid = family.protocolInvalid(config, geometry, seeded.sites);
-    const analyze = (surfaces: SurfaceAdjacency[]) => (invalid ? analyzeLabStack(surfaces, invalid) : analyzeSurfaces(surfaces));
+    // The lab's analysis carries the sums of layers shared with the previous run's stack (the
+    // same seeded surface at a smaller ratio): the same numbers, see labStackReuse.ts.
+    const analyze = (surfaces: SurfaceAdjacency[]) => (invalid ? analyzeLabStackReusing(surfaces, invalid) : analyzeSurfaces(surfaces));
     const analyses: AnalysisRecord[] = [];
+    const analysisTables: ResultCellTables['analyses'] = [];
+    // With cell tables, the per-cell statistics stay columns and the record's list is empty.
+    const record = (method: 'labels' | 'exact', minContactLength: number, analysis: ReturnType<typeof analyze>) => {
+      if (!cellTables) return analysisRecord(method, minContactLength, analysis, config.sheet.protocol);
+      analysisTables.push(analysisCellTable(analysis.cells));
+      return { method, protocol: config.sheet.protocol, minContactLength, summary: analysis.summary, cells: [] };
+    };
     if (methods.includes('labels')) {
       const minContact = family.minContactLengths(config, geometry, layers);
       const inputs = labelled.map((surface, k) => withMinBoundaryLength(surface, minContact.perLayer[k]));
-      analyses.push(analysisRecord('labels', minContact.reported, analyze(inputs), config.sheet.protocol));
+      analyses.push(record('labels', minContact.reported, analyze(inputs)));
     }
     let exactSurfaces: SurfaceAdjacency[] | null = null;
     if (methods.includes('exact')) {
       exactSurfaces = layers.map((layer, k) => family.exactAdjacency(config, geometry, layer, seeded.sites, projected[k]));
       const minContact = family.exactMinContactLengths(config, geometry, layers);
       const inputs = minContact ? exactSurfaces.map((surface, k) => withMinBoundaryLength(surface, minContact.perLayer[k])) : exactSurfaces;
-      analyses.push(analysisRecord('exact', minContact?.reported ?? 0, analyze(inputs), config.sheet.protocol));
+      analyses.push(record('exact', minContact?.reported ?? 0, analyze(inputs)));
     }
     const adjacencyMs = performance.now() - start;
 
     const section = family.resultSection(config, geometry, seeded, labeller);
     // Cells and their contacts: exact where only the exact method ran, else from the label images.
     const cellSurfaces = exactOnly && exactSurfaces ? exactSurfaces : labelled;
-    const cellsOf = (k: number) => cellRecords(cellSurfaces[k], (id) => family.cellPlacement(config, layers[k], seeded.sites, projected[k], id));
-    const surfaces: SurfaceRecord[] = layers.slice(1).map((layer, index) => ({
-      name: layer.name,
-      role: layer.role === 'layer' ? 'layer' : 'other',
-      offset: layer.offset,
-      ratio: family.layerRatio(geometry, layer),
-      grid: { ...labelImages[index + 1].grid },
-      cells: cellsOf(index + 1),
-    }));
-    return { seededCells: cellsOf(0), surfaces, analyses, labelImages, ...section, adjacencyMs };
+    const tables: CellTable[] = layers.map((layer, k) =>
+      cellTable(
+        cellSurfaces[k],
+        (id) => family.cellPlacement(config, layer, seeded.sites, projected[k], id),
+        family.cellPlacements && ((position, coordinates) => family.cellPlacements!(config, layer, seeded.sites, projected[k], position, coordinates)),
+      ),
+    );
+    // Records built on first read (a sweep reads only the analyses): hundreds of objects per
+    // surface; none with cell tables (the columns are the cells).
+    const cellsOf = (k: number) => once(() => (cellTables ? [] : cellRecordsOf(tables[k])));
+    const surfaces: SurfaceRecord[] = layers.slice(1).map((layer, index) => {
+      const cells = cellsOf(index + 1);
+      return {
+        name: layer.name,
+        role: layer.role === 'layer' ? 'layer' : 'other',
+        offset: layer.offset,
+        ratio: family.layerRatio(geometry, layer),
+        grid: { ...labelImages[index + 1].grid },
+        get cells() {
+          return cells();
+        },
+      };
+    });
+    const seededCells = cellsOf(0);
+    const resultTables = cellTables ? { tables: { cells: tables[0], surfaces: tables.slice(1), analyses: analysisTables } } : {};
+    return {
+      get seededCells() {
+        return seededCells();
+      },
+      surfaces,
+      analyses,
+      labelImages,
+      ...section,
+      adjacencyMs,
+      ...resultTables,
+    };
   } finally {
     labeller.dispose();
   }
 }
 
 const EMPTY_LABELS = new Int32Array(0);
+
+/** `compute()` on the first call, the same value after. */
+function once<T>(compute: () => T): () => T {
+  let value: { v: T } | null = null;
+  return () => (value ??= { v: compute() }).v;
+}
 
 /** A label image whose labels are computed on first read (and kept). */
 function lazyLabels(image: LabelImage, compute: () => Int32Array): LabelImage {
@@ -114,17 +160,4 @@ function lazyLabels(image: LabelImage, compute: () => Int32Array): LabelImage {
       return labels;
     },
   };
-}
-
-/** The cells of one surface from its adjacency (contact lengths in µm). */
-function cellRecords(surface: SurfaceAdjacency, placement: (id: number) => Pick<CellRecord, 'position' | 'surface'>): CellRecord[] {
-  const { offsets, neighbours: ids, lengths } = toCsr(surface.adjacency);
-  const cells: CellRecord[] = [];
-  for (let id = 0; id < surface.count; id++) {
-    const neighbours = [];
-    for (let k = offsets[id]; k < offsets[id + 1]; k++) neighbours.push({ id: ids[k], length: lengths ? lengths[k] : 0 });
-    const { position, surface: coordinates } = placement(id);
-    cells.push({ id, position, surface: coordinates, area: surface.areas[id], neighbours, touchesBorder: surface.touchesBorder[id] === 1 });
-  }
-  return cells;
 }

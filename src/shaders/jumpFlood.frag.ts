@@ -6,8 +6,8 @@ import gridMetric from './gridMetric.glsl';
  *
  * A label is the nearest site's position (x, y) in RG32F, an exact copy of the site texture's
  * value (written by the splat or the refresh pass, never computed), so a step needs one 8-byte
- * fetch per neighbour, like the plainest jump flood. The site's id is looked up once, after
- * the flood (resolveIds.frag). Empty texels have x = -1. Distances are compared in units of
+ * fetch per neighbour, like the plainest jump flood. The site's id is looked up in the id map
+ * by the passes that need it (centroids, the packed readback), never by the flood. Empty texels have x = -1. Distances are compared in units of
  * texelX (only y is scaled, by the texel aspect ratio), as cheap as the plainest flood. On an
  * exact tie the label found first in the fixed scan order stays: deterministic; the CPU
  * reference breaks ties by smaller id, and exact ties are rare enough to stay within the

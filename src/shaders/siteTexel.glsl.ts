@@ -1,6 +1,6 @@
 /**
  * Shared GLSL: the texel a site position is splatted to, and where its id is kept
- * (the id map). Used by the splat, the refresh and the id resolve passes alike.
+ * (the id map). Used by the splat and the refresh passes alike.
  */
 export default /* glsl */ `
 ivec2 siteTexel(vec2 site) {

@@ -9,7 +9,7 @@
  * seam. Pure data (no three.js, no DOM); the triangles of a resolution are built once.
  */
 import { CUBE_EDGE, CUBE_EDGES, CUBE_FACES, texelIndex, wrapTexel } from '../core/cubemap/cubemap';
-import { meanEdgeLength } from '../core/mesh/types';
+import { meanEdgeLength, signedVolume } from '../core/mesh/types';
 import type { LabelImage } from '../run';
 
 /** A surface as triangles, outward normals, and the cell of every vertex. */
@@ -52,7 +52,7 @@ export function closedSurfaceMesh(image: LabelImage): ClosedSurfaceMesh {
   const normals = texelNormals(positions, topology.neighbours);
   // Triangles and normals face the s x t side of the cube map, inward on the direction sphere;
   // a surface may be mapped either way round, so the enclosed volume's sign says which it is.
-  const inward = signedVolume(positions, topology.indices) < 0;
+  const inward = signedVolume({ positions, indices: topology.indices }) < 0;
   const indices = inward ? reversedTriangles(topology.indices) : topology.indices;
   if (inward) for (let k = 0; k < normals.length; k++) normals[k] = -normals[k];
   return {
@@ -179,19 +179,6 @@ function texelNormals(positions: Float32Array, neighbours: Int32Array): Float32A
     normals[3 * v + 2] = nz / l;
   }
   return normals;
-}
-
-/** Six times the signed volume enclosed by the triangles (positive when they face outward). */
-function signedVolume(p: Float32Array, t: Uint32Array): number {
-  let volume = 0;
-  for (let f = 0; f < t.length; f += 3) {
-    const a = 3 * t[f], b = 3 * t[f + 1], c = 3 * t[f + 2];
-    volume +=
-      p[a] * (p[b + 1] * p[c + 2] - p[b + 2] * p[c + 1]) -
-      p[a + 1] * (p[b] * p[c + 2] - p[b + 2] * p[c]) +
-      p[a + 2] * (p[b] * p[c + 1] - p[b + 1] * p[c]);
-  }
-  return volume;
 }
 
 function reversedTriangles(t: Uint32Array): Uint32Array {

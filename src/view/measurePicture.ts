@@ -8,8 +8,7 @@
  * Large layers are reduced first (nearest pixel, one integer step in both directions) to at most
  * `maxSide` pixels per side: the picture of an 8k x 8k layer would be 256 MB of RGBA.
  */
-import type { LabelPixels } from '../core/measure';
-import type { MeasuredCellRecord } from '../core/measure';
+import type { LabelPixels, MeasuredCellRecord } from '../core/measure';
 import { RGB, SELECTED_RGB, sideColorIndex, writePixel } from './sideColors';
 
 /** One layer's labels at picture resolution: raw labels (0 = background), row 0 = top. */

@@ -16,6 +16,7 @@
  * else's page) an approved source is fetched directly, under the host page's own policy.
  */
 import { ConfigError, type AnyConfig } from '../core/config';
+import { MAX_MESH_BYTES, MAX_PNG_BYTES } from '../core/inputLimits';
 
 export type SourceField = 'surface.src' | 'density.src';
 
@@ -83,8 +84,8 @@ export function approveSource(source: ForeignSource): void {
   approved.add(source.href);
 }
 
-/** The page's own sources, or an approved foreign one: at most this many bytes are read. */
-export const MAX_SOURCE_BYTES = 256 * 2 ** 20;
+/** The page's own sources, or an approved foreign one: at most this many bytes are read (the limit every host shares). */
+export const MAX_SOURCE_BYTES = Math.max(MAX_MESH_BYTES, MAX_PNG_BYTES);
 
 /**
  * The bytes of `src` (a same-origin URL, a data: or blob: URL, or a foreign URL the user

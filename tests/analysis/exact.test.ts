@@ -1,6 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import type { Grid } from '../../src/core/grid';
-import { BORDER_X0, BORDER_X1, BORDER_Y0, BORDER_Y1, cellContains, exactVoronoi } from '../../src/core/exact';
+import { BORDER_X_END as BORDER_X1, BORDER_X_START as BORDER_X0, BORDER_Y_END as BORDER_Y1, BORDER_Y_START as BORDER_Y0 } from '../../src/core/border';
+import { cellContains, exactVoronoi } from '../../src/core/exact';
 import { bruteForceLabels, randomSites } from './helpers';
 
 const grid = (width: number, height: number, periodicX: boolean, periodicY: boolean, texelX = 1, texelY = 1): Grid =>

@@ -53,7 +53,8 @@ describe('closed surface config', () => {
 
 describe('directionTexel (allocation-free) matches directionToTexel', () => {
   it('on random directions and on cube edges and corners', async () => {
-    const { directionTexel, directionTexelReference } = await import('../../src/core/closed/projector');
+    const { directionTexel } = await import('../../src/core/closed/projector');
+    const { directionTexelReference } = await import('../oracles/cubeMap');
     const { createRandom } = await import('../../src/core/random');
     const random = createRandom(9);
     const dirs: number[][] = [[1, 1, 1], [-1, 1, 0], [0, -1, -1], [1, 0, 0], [0, 0, -1], [-1, -1, -1]];

@@ -3,7 +3,7 @@ import { describe, expect, it } from 'vitest';
 import { validateAnyConfig, type ClosedConfig } from '../../src/core/config';
 import { runSheet } from '../../src/run/runSheet';
 import { useHeadlessContext } from '../gpu/context';
-import { MESH_DIR } from '../mesh/helpers';
+import { MESH_DIR, meshInputs } from '../mesh/helpers';
 
 const context = useHeadlessContext();
 
@@ -16,7 +16,7 @@ describe('geodesic option: heat method vs the GPU geometry-image Voronoi', () =>
       lloyd: { maxIterations: 10 },
       sheet: { adjacency: 'labels' },
     }) as ClosedConfig;
-    const { result } = await runSheet(config, context);
+    const { result } = await runSheet(config, context, meshInputs(config));
     const g = result.closed!.geodesic!;
     console.log(
       `heat method, ${g.sites} sites on ${g.vertices} vertices: setup ${g.setupMs.toFixed(0)} ms, solves ${g.solveMs.toFixed(0)} ms (${g.msPerSite.toFixed(1)} ms per site); ` +

@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
-import { cubeBruteForceLabels, placeClosedSites } from '../../src/core/closed/geometry';
+import { placeClosedSites } from '../../src/core/closed/geometry';
+import { cubeBruteForceLabels } from '../oracles/cubeMap';
 import { ellipsoidProjector, sphereProjector } from '../../src/core/closed/projector';
 import { sampleSurface } from '../../src/core/cubemap/sample';
 import { CubeCcvtEngine } from '../../src/gpu/cubeEngine';

@@ -8,7 +8,8 @@
  */
 import { describe, expect, it } from 'vitest';
 import { labMinBoundaryLength } from '../../src/core/analysis/adjacency';
-import { cubeBruteForceLabels, cubeLabelAdjacency } from '../../src/core/closed/geometry';
+import { cubeLabelAdjacency } from '../../src/core/closed/geometry';
+import { cubeBruteForceLabels } from '../oracles/cubeMap';
 import { randomSequentialSites } from '../../src/core/closed/randomSequentialSites';
 import { restrictedVoronoi } from '../../src/core/closed/restrictedVoronoi';
 import { sphereSurface, type EllipsoidSurface } from '../../src/core/closed/restrictedSurface';

@@ -7,7 +7,8 @@ import { writePlyAscii } from '../../src/core/mesh/write';
 import { runSheet } from '../../src/run/runSheet';
 import type { SheetResult } from '../../src/run/result';
 import { useHeadlessContext } from '../gpu/context';
-import { MESH_DIR } from '../mesh/helpers';
+import { loadMeshFile } from '../../src/node/meshFile';
+import { MESH_DIR, meshInputs } from '../mesh/helpers';
 
 const context = useHeadlessContext();
 const closed = (input: ConfigInput) => validateAnyConfig(input) as ClosedConfig;
@@ -48,10 +49,8 @@ describe('a mesh of a sphere vs the analytic sphere', () => {
 
 describe('cells of a mesh are uniform in mesh area', () => {
   it('egg-chamber.ply (parameterization area ratio 0.19..1.83): cell areas on the mesh', async () => {
-    const { result } = await runSheet(
-      closed({ surface: { kind: 'mesh', src: join(MESH_DIR, 'egg-chamber.ply'), scale: 40 }, resolution: 96, cells: 200, minSpacing: 5, lloyd: { maxIterations: 40, overRelaxation: 1.9 }, sheet: { thickness: 0 } }),
-      context,
-    );
+    const config = closed({ surface: { kind: 'mesh', src: join(MESH_DIR, 'egg-chamber.ply'), scale: 40 }, resolution: 96, cells: 200, minSpacing: 5, lloyd: { maxIterations: 40, overRelaxation: 1.9 }, sheet: { thickness: 0 } });
+    const { result } = await runSheet(config, context, meshInputs(config));
     const areas = result.cells.map((c) => c.area);
     const mean = areas.reduce((x, y) => x + y) / areas.length;
     const sd = Math.sqrt(areas.reduce((s, x) => s + (x / mean - 1) ** 2, 0) / areas.length);
@@ -67,7 +66,8 @@ describe('cells of a mesh are uniform in mesh area', () => {
 describe('malformed meshes get their message through the pipeline', () => {
   const messageOf = async (input: ConfigInput): Promise<ConfigError> => {
     try {
-      await runSheet(closed(input), context);
+      const config = closed(input);
+      await runSheet(config, context, meshInputs(config));
     } catch (e) {
       return e as ConfigError;
     }
@@ -91,7 +91,14 @@ describe('malformed meshes get their message through the pipeline', () => {
     expect((bad as ConfigError).field).toBe('surface.src');
     expect((bad as ConfigError).message).toMatch(/^surface\.src: x\.ply: /);
     const missing = await messageOf({ surface: { kind: 'mesh', src: 'no-such-mesh.ply' }, resolution: 32, cells: 10 });
-    expect(missing.message).toContain('cannot read "no-such-mesh.ply"');
+    expect(missing.message).toContain('cannot find "no-such-mesh.ply"');
+    expect(() => loadMeshFile(MESH_DIR)).toThrow(/is a directory/);
+  });
+  it('the pipeline reads no file: a mesh config without its loaded file is refused, naming what to do', async () => {
+    const e = (await runSheet(closed({ surface: { kind: 'mesh', src: join(MESH_DIR, 'organoid.ply') }, resolution: 32, cells: 10 }), context).catch((x: unknown) => x)) as ConfigError;
+    expect(e).toBeInstanceOf(ConfigError);
+    expect(e.field).toBe('surface.src');
+    expect(e.message).toMatch(/is not loaded: the pipeline reads no files; load the mesh first/);
   });
   it('a mesh inside out is flipped, not refused; an inward offset beyond its curvature is refused', async () => {
     const flipped = mapVertices(icosphere(6), ([x, y, z]) => [x, y, z]);

@@ -1,7 +1,7 @@
 /**
  * Independent references for the restricted Voronoi diagram (tests only). They share no code
  * with src/core/closed/restricted*: nearest sites come from the grid brute force of
- * src/core/closed/geometry.ts (cubeBruteForceLabels, the jump flood's reference), curves are
+ * tests/oracles/cubeMap.ts (cubeBruteForceLabels, the jump flood's reference), curves are
  * sampled densely instead of clipped, and endpoints are found by bisection on the labels.
  *
  * - ellipsoidContactsReference: for every pair of sites closer than `cutoff`, the conic
@@ -13,7 +13,7 @@
  *   sites owning samples of it or of a triangle around its vertices, the bisector plane ∩
  *   triangle segment is sampled and measured the same way.
  */
-import { cubeBruteForceLabels } from '../../src/core/closed/geometry';
+import { cubeBruteForceLabels } from '../oracles/cubeMap';
 
 export interface PairLengths {
   /** key i * count + j (i < j) → contact length, µm. */

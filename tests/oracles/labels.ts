@@ -9,7 +9,7 @@
  * All positions are in texel units and all lengths/areas in µm (µm²), per src/core/grid.ts.
  */
 import { distanceSquared, type Grid, wrapCoordinate } from '../../src/core/grid';
-import { accumulateCentroidRows, type LabelAdjacency } from '../../src/core/labels';
+import type { LabelAdjacency } from '../../src/core/labels';
 import { type LloydMove, moveSitesToCentroids } from '../../src/core/lloydUpdate';
 
 // ---------------------------------------------------------------------------------------------
@@ -148,7 +148,26 @@ export function reduceCentroids(
   if (labels.length !== width * height) throw new Error(`reduceCentroids: ${labels.length} labels for ${width * height} texels`);
   if (weight && weight.length !== width * height) throw new Error(`reduceCentroids: ${weight.length} weights for ${width * height} texels`);
   sums.fill(0, 0, 4 * count);
-  accumulateCentroidRows(grid, labels, 0, height, sites, 2, count, weight, sums);
+  // From the definition, texel by texel (independent of the production run-length sums in
+  // src/core/labels.ts accumulateCentroidRows, which it checks): the minimum-image offset from
+  // the site to the texel centre, in texel units, and the squared physical distance.
+  const { texelX, texelY, periodicX, periodicY } = grid;
+  for (let j = 0; j < height; j++) {
+    for (let i = 0; i < width; i++) {
+      const id = labels[j * width + i];
+      if (id < 0) continue;
+      if (id >= count) throw new Error(`reduceCentroids: label ${id} at texel (${i}, ${j}) but only ${count} sites`);
+      const w = weight ? weight[j * width + i] : 1;
+      let dx = i + 0.5 - sites[2 * id];
+      let dy = j + 0.5 - sites[2 * id + 1];
+      if (periodicX) dx -= width * Math.round(dx / width);
+      if (periodicY) dy -= height * Math.round(dy / height);
+      sums[4 * id] += w * dx;
+      sums[4 * id + 1] += w * dy;
+      sums[4 * id + 2] += w;
+      sums[4 * id + 3] += w * ((dx * texelX) ** 2 + (dy * texelY) ** 2);
+    }
+  }
   return sums;
 }
 

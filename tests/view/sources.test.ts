@@ -1,6 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { validateAnyConfig } from '../../src/core/config';
-import { ConfigError } from '../../src/core/config';
+import { validateAnyConfig, ConfigError } from '../../src/core/config';
 import { checkPageBudget, PAGE_MAX_WORK } from '../../src/view/pageBudget';
 import { approveSource, foreignSource, pendingSources, sourceQuestion } from '../../src/view/sources';
 

@@ -13,10 +13,9 @@
  * (referenceOverlay.ts); they are never part of the downloads.
  */
 import { validateConfigDraft, type ConfigDraft as Config } from '../../core/config';
-import { readCsvTable } from '../../core/sweep';
+import { readCsvTable, FLINTSTONES_RATIO, sweepFlintstones } from '../../core/sweep';
 import { computeContext, isAbort } from '../../view/pageRunner';
 import { methodsOnRenderer } from '../../core/config/analysisMethods';
-import { FLINTSTONES_RATIO, sweepFlintstones } from '../../core/sweep';
 import { planSweep, sweepInPage, type SweepPlan } from '../../view/pageSweep';
 import { FlintstonesChart } from './flintstonesChart';
 import { version } from '../../version';

@@ -12,7 +12,7 @@
 import { FACE_NAMES } from '../../core/cubemap/cubemap';
 import { drawExactCells } from '../../view/exactCells';
 import { PICTURE_LAYOUT, workerPicture, workerRgba } from '../../view/workerPictures';
-import { flipRows, paintSurface } from '../../view/sideColors';
+import { paintSurface } from '../../view/sideColors';
 import type { ViewStack, ViewSurface } from '../../view/stack';
 
 export interface UnrolledOptions {

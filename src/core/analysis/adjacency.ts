@@ -13,7 +13,6 @@
  *   512 texels wide). The exact (Delaunay) adjacency needs no threshold; results must say which
  *   one was used.
  */
-import type { Grid } from '../grid';
 
 export interface CsrAdjacency {
   /** count + 1 offsets into `neighbours`. */

@@ -79,31 +79,72 @@ function admissible(theta: number[], anchor: number | null, sMin: number): boole
   return p.c > 0.02 && p.d < 0 && p.d > p.b && p.d + Math.exp(sMin / p.c) > 0 && p.nMax > 0 && Number.isFinite(p.b);
 }
 
-function residuals(theta: number[], points: readonly FlintstonesPoint[], anchor: number | null, out: number[]): number {
+/**
+ * The points as the fit reads them: each distinct ratio once (a sweep gives one point per run, so
+ * each ratio as many times as there are realizations), the law evaluated there once per call.
+ */
+interface FitData {
+  readonly ratios: number[];
+  /** Per point: index into `ratios`, n3D and weight (1 / sigma, else 1). */
+  readonly at: Int32Array;
+  readonly n: Float64Array;
+  readonly w: Float64Array;
+  /** Scratch: the law at each ratio, and the residuals either side of a parameter. */
+  readonly law: Float64Array;
+  readonly plus: number[];
+  readonly minus: number[];
+}
+
+function newMatrix(rows: number, columns: number): number[][] {
+  return Array.from({ length: rows }, () => new Array<number>(columns).fill(0));
+}
+
+function fitData(points: readonly FlintstonesPoint[]): FitData {
+  const ratios: number[] = [];
+  const index = new Map<number, number>();
+  const at = new Int32Array(points.length);
+  points.forEach((q, k) => {
+    let i = index.get(q.s);
+    if (i === undefined) index.set(q.s, (i = ratios.push(q.s) - 1));
+    at[k] = i;
+  });
+  return {
+    ratios,
+    at,
+    n: Float64Array.from(points, (q) => q.n),
+    w: Float64Array.from(points, (q) => (q.sigma ? 1 / q.sigma : 1)),
+    law: new Float64Array(ratios.length),
+    plus: new Array<number>(points.length),
+    minus: new Array<number>(points.length),
+  };
+}
+
+function residuals(theta: number[], data: FitData, anchor: number | null, out: number[]): number {
   const p = parametersOf(theta, anchor);
+  const { law, at, n, w } = data;
+  for (let i = 0; i < law.length; i++) law[i] = flintstonesLaw(data.ratios[i], p);
   let chi = 0;
-  for (let k = 0; k < points.length; k++) {
-    const w = points[k].sigma ? 1 / points[k].sigma! : 1;
-    const r = (points[k].n - flintstonesLaw(points[k].s, p)) * w;
+  for (let k = 0; k < at.length; k++) {
+    const r = (n[k] - law[at[k]]) * w[k];
     out[k] = r;
     chi += r * r;
   }
   return chi;
 }
 
-function jacobian(theta: number[], points: readonly FlintstonesPoint[], anchor: number | null): number[][] {
-  const m = points.length;
-  const J: number[][] = Array.from({ length: m }, () => new Array(theta.length).fill(0));
-  const plus: number[] = new Array(m);
-  const minus: number[] = new Array(m);
+/** Central differences of the residuals, into `J` (m rows of theta.length, reused across iterations). */
+function jacobian(theta: number[], data: FitData, anchor: number | null, J: number[][] = newMatrix(data.at.length, theta.length)): number[][] {
+  const m = data.at.length;
+  const plus = data.plus;
+  const minus = data.minus;
   for (let j = 0; j < theta.length; j++) {
     const h = 1e-6 * Math.max(1, Math.abs(theta[j]));
     const tp = theta.slice();
     const tm = theta.slice();
     tp[j] += h;
     tm[j] -= h;
-    residuals(tp, points, anchor, plus);
-    residuals(tm, points, anchor, minus);
+    residuals(tp, data, anchor, plus);
+    residuals(tm, data, anchor, minus);
     // Residuals are (data - model): the model's derivative is minus their derivative.
     for (let k = 0; k < m; k++) J[k][j] = -(plus[k] - minus[k]) / (2 * h);
   }
@@ -152,16 +193,17 @@ function normalEquations(J: number[][], r: number[]): { A: number[][]; g: number
   return { A, g };
 }
 
-function levenbergMarquardt(start: number[], points: readonly FlintstonesPoint[], anchor: number | null, sMin: number, maxIterations: number) {
+function levenbergMarquardt(start: number[], data: FitData, anchor: number | null, sMin: number, maxIterations: number) {
   let theta = start.slice();
-  const r: number[] = new Array(points.length);
-  const trial: number[] = new Array(points.length);
-  let chi = residuals(theta, points, anchor, r);
+  const r: number[] = new Array(data.at.length);
+  const trial: number[] = new Array(data.at.length);
+  let chi = residuals(theta, data, anchor, r);
+  const J = newMatrix(data.at.length, theta.length);
   let lambda = 1e-3;
   let iterations = 0;
   let converged = false;
   for (; iterations < maxIterations; iterations++) {
-    const J = jacobian(theta, points, anchor);
+    jacobian(theta, data, anchor, J);
     const { A, g } = normalEquations(J, r);
     let improved = false;
     while (lambda < 1e12) {
@@ -170,7 +212,7 @@ function levenbergMarquardt(start: number[], points: readonly FlintstonesPoint[]
       if (step) {
         const next = theta.map((t, i) => t + step[i]);
         if (admissible(next, anchor, sMin)) {
-          const chiNext = residuals(next, points, anchor, trial);
+          const chiNext = residuals(next, data, anchor, trial);
           if (chiNext < chi) {
             const relative = (chi - chiNext) / Math.max(chi, 1e-300);
             theta = next;
@@ -209,6 +251,7 @@ export function fitFlintstones(points: readonly FlintstonesPoint[], options: Fli
   const n1 = anchor ?? Math.min(...points.map((q) => q.n));
   const maxIterations = options.maxIterations ?? 500;
 
+  const data = fitData(points);
   let best: ReturnType<typeof levenbergMarquardt> | null = null;
   for (const cScale of [0.1, 0.25, 0.5, 1]) {
     for (const dFraction of [0.2, 0.6, 0.95]) {
@@ -217,13 +260,13 @@ export function fitFlintstones(points: readonly FlintstonesPoint[], options: Fli
       const nMax = nTop + 0.3;
       const start = anchor === null ? [nMax, c, d, anchoredB(nMax, c, d, n1)] : [nMax, c, d];
       if (!admissible(start, anchor, sMin)) continue;
-      const fit = levenbergMarquardt(start, points, anchor, sMin, maxIterations);
+      const fit = levenbergMarquardt(start, data, anchor, sMin, maxIterations);
       if (!best || fit.chi < best.chi) best = fit;
     }
   }
   if (!best) throw new Error('fitFlintstones: no admissible starting point; check that n3D grows with s');
 
-  const J = jacobian(best.theta, points, anchor);
+  const J = jacobian(best.theta, data, anchor);
   const { A } = normalEquations(J, new Array(points.length).fill(0));
   const dof = points.length - p;
   const scale = best.chi / dof;

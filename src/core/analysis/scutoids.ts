@@ -137,13 +137,13 @@ export interface ScutoidAnalysis {
   summary: ScutoidSummary;
 }
 
-/** Sorted arrays a, b: |a \ b|. */
-function differenceSize(a: Int32Array, b: Int32Array): number {
-  let i = 0;
-  let j = 0;
+/** Sorted ranges a[a0, a1), b[b0, b1): |a \ b|. */
+function differenceSize(a: Int32Array, a0: number, a1: number, b: Int32Array, b0: number, b1: number): number {
+  let i = a0;
+  let j = b0;
   let n = 0;
-  while (i < a.length) {
-    if (j >= b.length || a[i] < b[j]) {
+  while (i < a1) {
+    if (j >= b1 || a[i] < b[j]) {
       n++;
       i++;
     } else if (a[i] > b[j]) j++;
@@ -155,21 +155,52 @@ function differenceSize(a: Int32Array, b: Int32Array): number {
   return n;
 }
 
-/** Sorted, deduplicated arrays a, b: their union (sorted). */
-function union(a: Int32Array, b: Int32Array): Int32Array {
-  const out = new Int32Array(a.length + b.length);
+/** Sorted, deduplicated a[0, an) and b[b0, b1): their union written to out (sorted); its size. */
+function unionInto(a: Int32Array, an: number, b: Int32Array, b0: number, b1: number, out: Int32Array): number {
   let i = 0;
-  let j = 0;
+  let j = b0;
   let n = 0;
-  while (i < a.length || j < b.length) {
-    if (j >= b.length || (i < a.length && a[i] < b[j])) out[n++] = a[i++];
-    else if (i >= a.length || b[j] < a[i]) out[n++] = b[j++];
+  while (i < an || j < b1) {
+    if (j >= b1 || (i < an && a[i] < b[j])) out[n++] = a[i++];
+    else if (i >= an || b[j] < a[i]) out[n++] = b[j++];
     else {
       out[n++] = a[i++];
       j++;
     }
   }
-  return out.subarray(0, n);
+  return n;
+}
+
+/**
+ * Every cell's neighbour set (sorted, deduplicated, without the cell: neighbourSet's form) in one
+ * flat list: cell i's is ids[offsets[i] .. offsets[i + 1]). Segments that are already strictly
+ * ascending without the cell (the exact methods') are copied as they are, others sorted.
+ */
+function neighbourSets(adj: CsrAdjacency, count: number): { offsets: Int32Array; ids: Int32Array } {
+  const offsets = new Int32Array(count + 1);
+  const ids = new Int32Array(adj.offsets[count] - adj.offsets[0]);
+  let n = 0;
+  for (let i = 0; i < count; i++) {
+    const from = adj.offsets[i];
+    const to = adj.offsets[i + 1];
+    let canonical = true;
+    for (let k = from; k < to; k++) {
+      const v = adj.neighbours[k];
+      if (v === i || (k > from && adj.neighbours[k - 1] >= v)) {
+        canonical = false;
+        break;
+      }
+    }
+    if (canonical) {
+      for (let k = from; k < to; k++) ids[n++] = adj.neighbours[k];
+    } else {
+      const set = neighbourSet(adj, i);
+      ids.set(set, n);
+      n += set.length;
+    }
+    offsets[i + 1] = n;
+  }
+  return { offsets, ids };
 }
 
 /** Neighbours won and lost by cell i between two surfaces (ids). */
@@ -195,15 +226,12 @@ export function analyzeSurfaces(surfaces: SurfaceAdjacency[], options: AnalysisO
   });
   const S = surfaces.length;
 
-  // Neighbour sets per surface.
-  const sets: Int32Array[][] = csr.map((adj) => {
-    const out: Int32Array[] = new Array(count);
-    for (let i = 0; i < count; i++) out[i] = neighbourSet(adj, i);
-    return out;
-  });
+  // Neighbour sets per surface (flat: no object per cell).
+  const sets = csr.map((adj) => neighbourSets(adj, count));
   const sides: Int32Array[] = surfaces.map((s, k) => {
     const out = new Int32Array(count);
-    for (let i = 0; i < count; i++) out[i] = s.sides ? s.sides[i] : sets[k][i].length;
+    const o = sets[k].offsets;
+    for (let i = 0; i < count; i++) out[i] = s.sides ? s.sides[i] : o[i + 1] - o[i];
     return out;
   });
 
@@ -220,21 +248,36 @@ export function analyzeSurfaces(surfaces: SurfaceAdjacency[], options: AnalysisO
   const neighbours3D = new Int32Array(count);
   const changed = new Uint8Array(count);
   const scutoid = new Uint8Array(count);
+  // The union of a cell's sets over the surfaces, merged in two scratch lists.
+  let largest = 0;
+  for (const set of sets) for (let i = 0; i < count; i++) largest = Math.max(largest, set.offsets[i + 1] - set.offsets[i]);
+  let all = new Int32Array(S * largest);
+  let merged = new Int32Array(S * largest);
+  const first = sets[0];
+  const last = sets[S - 1];
   for (let i = 0; i < count; i++) {
-    const first = sets[0][i];
-    const last = sets[S - 1][i];
-    won[i] = differenceSize(last, first);
-    lost[i] = differenceSize(first, last);
+    const f0 = first.offsets[i];
+    const f1 = first.offsets[i + 1];
+    const l0 = last.offsets[i];
+    const l1 = last.offsets[i + 1];
+    won[i] = differenceSize(last.ids, l0, l1, first.ids, f0, f1);
+    lost[i] = differenceSize(first.ids, f0, f1, last.ids, l0, l1);
     let t = 0;
-    let all = first;
+    let n = f1 - f0;
+    for (let e = f0; e < f1; e++) all[e - f0] = first.ids[e];
     for (let k = 0; k + 1 < S; k++) {
-      const a = sets[k][i];
-      const b = sets[k + 1][i];
-      t += differenceSize(a, b) + differenceSize(b, a);
-      all = union(all, b);
+      const a = sets[k];
+      const b = sets[k + 1];
+      const a0 = a.offsets[i];
+      const a1 = a.offsets[i + 1];
+      const b0 = b.offsets[i];
+      const b1 = b.offsets[i + 1];
+      t += differenceSize(a.ids, a0, a1, b.ids, b0, b1) + differenceSize(b.ids, b0, b1, a.ids, a0, a1);
+      n = unionInto(all, n, b.ids, b0, b1, merged);
+      [all, merged] = [merged, all];
     }
     transitions[i] = t;
-    neighbours3D[i] = all.length;
+    neighbours3D[i] = n;
     changed[i] = t > 0 ? 1 : 0;
     scutoid[i] = valid[i] && changed[i] ? 1 : 0;
   }
@@ -278,9 +321,10 @@ export function analyzeSurfaces(surfaces: SurfaceAdjacency[], options: AnalysisO
   };
 }
 
-function summarizeSurface(
+/** One surface of a stack over the valid cells: analyzeSurfaces' perSurface entry. */
+export function summarizeSurface(
   surface: SurfaceAdjacency,
-  sets: Int32Array[],
+  sets: { offsets: Int32Array; ids: Int32Array },
   sides: Int32Array,
   valid: Uint8Array,
   validCells: number,
@@ -310,7 +354,8 @@ function summarizeSurface(
     areaSums[c] += area;
     let m = 0;
     let q = 0;
-    for (const j of sets[i]) {
+    for (let e = sets.offsets[i]; e < sets.offsets[i + 1]; e++) {
+      const j = sets.ids[e];
       if (validOnly && !valid[j]) continue;
       m += sides[j];
       q++;

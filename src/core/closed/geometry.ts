@@ -3,12 +3,12 @@
  * (apical) surfaces, label adjacency across face edges, a brute-force nearest-site reference,
  * and the curvature bound for offsets of a mesh.
  */
-import type { LabelAdjacency } from '../labels';
+import { ContactRows, type LabelAdjacency } from '../labels';
 import { texelFromIndex, texelIndex, wrapTexel, type Vec3 } from '../cubemap/cubemap';
 import type { CubeGeometryImage } from '../cubemap/sample';
 import type { TriangleMesh } from '../mesh/types';
 import { vertexNormals } from '../mesh/types';
-import { createRandom } from '../random';
+import { createRandom, searchCdf } from '../random';
 import { directionTexel, PROJECTION_STRIDE, type ClosedProjector } from './projector';
 
 /** Sites on a closed surface: xyz, unit normal, atlas texel per site. */
@@ -76,24 +76,18 @@ export function placeClosedSites(
     if (failures > 20000) {
       throw new Error(`minSpacing: could place only ${placed} of ${count} sites at least ${minSpacing} µm apart; lower minSpacing or cells`);
     }
-    const r = random.next() * total;
-    let lo = 0, hi = texels - 1;
-    while (lo < hi) {
-      const mid = (lo + hi) >> 1;
-      if (cdf[mid] > r) hi = mid;
-      else lo = mid + 1;
-    }
+    const texel = searchCdf(cdf, texels, random.next() * total);
     // Jitter within the texel: up to half the spacing towards the neighbours along i and j
     // (wrapped across face edges), then onto the surface.
-    const { face, i, j } = texelFromIndex(lo, n);
+    const { face, i, j } = texelFromIndex(texel, n);
     const ju = random.next() - 0.5, jv = random.next() - 0.5;
     const ni = wrapTexel(face, i + (ju >= 0 ? 1 : -1), j, n);
     const nj = wrapTexel(face, i, j + (jv >= 0 ? 1 : -1), n);
     const ki = texelIndex(ni.face, ni.i, ni.j, n), kj = texelIndex(nj.face, nj.i, nj.j, n);
     const fu = Math.abs(ju), fv = Math.abs(jv);
-    const x = position[3 * lo] + fu * (position[3 * ki] - position[3 * lo]) + fv * (position[3 * kj] - position[3 * lo]);
-    const y = position[3 * lo + 1] + fu * (position[3 * ki + 1] - position[3 * lo + 1]) + fv * (position[3 * kj + 1] - position[3 * lo + 1]);
-    const z = position[3 * lo + 2] + fu * (position[3 * ki + 2] - position[3 * lo + 2]) + fv * (position[3 * kj + 2] - position[3 * lo + 2]);
+    const x = position[3 * texel] + fu * (position[3 * ki] - position[3 * texel]) + fv * (position[3 * kj] - position[3 * texel]);
+    const y = position[3 * texel + 1] + fu * (position[3 * ki + 1] - position[3 * texel + 1]) + fv * (position[3 * kj + 1] - position[3 * texel + 1]);
+    const z = position[3 * texel + 2] + fu * (position[3 * ki + 2] - position[3 * texel + 2]) + fv * (position[3 * kj + 2] - position[3 * texel + 2]);
     projector.project(x, y, z, buffer, 0);
     const px = buffer[0], py = buffer[1], pz = buffer[2];
     if (minSpacing > 0) {
@@ -291,71 +285,14 @@ export function cubeLabelAdjacency(
   }
   for (let c = 0; c < count; c++) degree[c + 1] += degree[c];
   const offsets = degree;
-  const neighboursOut = new Int32Array(offsets[count]);
-  const lengths = new Float64Array(offsets[count]);
-  const staircaseLengths = new Float64Array(offsets[count]);
-  const cursor = offsets.slice(0, count);
+  const rows = new ContactRows(offsets, count);
   const sorted = [...pairs.entries()].sort((x, y) => x[0] - y[0]);
   for (const [key, staircase] of sorted) {
     const a = Math.floor(key / count), b = key % count;
-    const length = unbiased.get(key)!;
-    neighboursOut[cursor[a]] = b;
-    staircaseLengths[cursor[a]] = staircase;
-    lengths[cursor[a]++] = length;
-    neighboursOut[cursor[b]] = a;
-    staircaseLengths[cursor[b]] = staircase;
-    lengths[cursor[b]++] = length;
+    rows.add(a, b, unbiased.get(key)!, staircase);
   }
-  return { count, offsets, neighbours: neighboursOut, lengths, staircaseLengths, texels, area, touchesBorder: new Uint8Array(count) };
-}
-
-/**
- * Exact nearest-site labels of every texel by 3D distance (ties: smaller id), the reference
- * for the jump flood. Sites are bucketed in a 3D grid; O(texels · sites in nearby buckets).
- */
-export function cubeBruteForceLabels(position: ArrayLike<number>, sites: ArrayLike<number>, count: number): Int32Array {
-  const texels = position.length / 3;
-  const out = new Int32Array(texels);
-  let lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
-  for (let i = 0; i < count; i++) for (let c = 0; c < 3; c++) {
-    lo[c] = Math.min(lo[c], sites[3 * i + c]);
-    hi[c] = Math.max(hi[c], sites[3 * i + c]);
-  }
-  lo = lo.map((v) => v - 1e-9);
-  const extent = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-9);
-  const side = Math.max(1, Math.round(Math.cbrt(count / 2) * 2));
-  const size = (extent / side) * 1.0000001;
-  const bucket = (v: number, c: number) => Math.max(0, Math.min(side - 1, Math.floor((v - lo[c]) / size)));
-  const lists: number[][] = Array.from({ length: side ** 3 }, () => []);
-  for (let i = 0; i < count; i++) lists[(bucket(sites[3 * i], 0) * side + bucket(sites[3 * i + 1], 1)) * side + bucket(sites[3 * i + 2], 2)].push(i);
-  for (let k = 0; k < texels; k++) {
-    const x = position[3 * k], y = position[3 * k + 1], z = position[3 * k + 2];
-    const bx = bucket(x, 0), by = bucket(y, 1), bz = bucket(z, 2);
-    let best = -1, bestD = Infinity;
-    for (let ring = 0; ring <= side; ring++) {
-      // A site in ring r+1 or beyond is at least (r + distance to the bucket wall) away; stop
-      // once the best distance is below r · size (conservative).
-      if (best >= 0 && Math.sqrt(bestD) < (ring - 1) * size) break;
-      for (let a = bx - ring; a <= bx + ring; a++) {
-        for (let b = by - ring; b <= by + ring; b++) {
-          for (let c = bz - ring; c <= bz + ring; c++) {
-            if (Math.max(Math.abs(a - bx), Math.abs(b - by), Math.abs(c - bz)) !== ring) continue;
-            if (a < 0 || b < 0 || c < 0 || a >= side || b >= side || c >= side) continue;
-            for (const i of lists[(a * side + b) * side + c]) {
-              const dx = sites[3 * i] - x, dy = sites[3 * i + 1] - y, dz = sites[3 * i + 2] - z;
-              const d = dx * dx + dy * dy + dz * dz;
-              if (d < bestD || (d === bestD && i < best)) {
-                bestD = d;
-                best = i;
-              }
-            }
-          }
-        }
-      }
-    }
-    out[k] = best;
-  }
-  return out;
+  const { lengths, staircaseLengths } = rows;
+  return { count, offsets, neighbours: rows.neighbours, lengths, staircaseLengths, texels, area, touchesBorder: new Uint8Array(count) };
 }
 
 /**

@@ -13,7 +13,7 @@
  */
 import { BufferAttribute, BufferGeometry, Vector3 } from 'three';
 import { MeshBVH } from 'three-mesh-bvh';
-import { CUBE_FACES, directionToTexel, texelIndex, type Vec3 } from '../cubemap/cubemap';
+import { CUBE_FACES, texelIndex, type Vec3 } from '../cubemap/cubemap';
 import { closestPointOnEllipsoid } from '../cubemap/sample';
 import { vertexNormals, type TriangleMesh } from '../mesh/types';
 
@@ -156,10 +156,4 @@ export function directionTexel(dx: number, dy: number, dz: number, n: number): n
   const i = Math.min(n - 1, Math.max(0, Math.floor(((u + 1) / 2) * n)));
   const j = Math.min(n - 1, Math.max(0, Math.floor(((v + 1) / 2) * n)));
   return texelIndex(face, i, j, n);
-}
-
-/** directionToTexel's atlas index (reference for directionTexel). */
-export function directionTexelReference(dx: number, dy: number, dz: number, n: number): number {
-  const t = directionToTexel([dx, dy, dz], n);
-  return texelIndex(t.face, t.i, t.j, n);
 }

@@ -17,7 +17,7 @@
  * `minSpacing` and the largest spacing that is likely to fit. Neighbour checks use a hash
  * grid of cells `minSpacing` wide (typed arrays, collisions checked by distance).
  */
-import { createRandom } from '../random';
+import { createRandom, searchCdf } from '../random';
 import { areaWeightedVertexNormals } from '../mesh/types';
 import { ellipsoidArea } from './conicArc';
 import type { RestrictedSurface } from './restrictedSurface';
@@ -152,16 +152,10 @@ function meshSampler(P: ArrayLike<number>, T: ArrayLike<number>, random: { next(
   return {
     area: total,
     sample(out) {
-      const r = random.next() * total;
-      let lo = 0, hi = nf - 1;
-      while (lo < hi) {
-        const mid = (lo + hi) >> 1;
-        if (cdf[mid] > r) hi = mid;
-        else lo = mid + 1;
-      }
+      const triangle = searchCdf(cdf, nf, random.next() * total);
       const s = Math.sqrt(random.next()), u = random.next();
       const wa = 1 - s, wb = s * (1 - u), wc = s * u;
-      const a = 3 * T[3 * lo], b = 3 * T[3 * lo + 1], c = 3 * T[3 * lo + 2];
+      const a = 3 * T[3 * triangle], b = 3 * T[3 * triangle + 1], c = 3 * T[3 * triangle + 2];
       let nx = 0, ny = 0, nz = 0;
       for (let k = 0; k < 3; k++) out[k] = wa * P[a + k] + wb * P[b + k] + wc * P[c + k];
       nx = wa * N[a] + wb * N[b] + wc * N[c];

@@ -1,7 +1,8 @@
 /** The grid a configuration implies, and the checks that need it (or several fields at once). */
+import { LAB_MEAN_CELL_DIAMETER_PIXELS, LAB_MIN_BOUNDARY_PIXELS } from '../analysis/adjacency';
 import type { Grid } from '../grid';
 import { checkMethods } from './methods';
-import { ConfigError } from './validate';
+import { ConfigError } from './configError';
 import type { AnyConfig, ClosedConfig, ClosedSurfaceConfig, Config, SurfaceConfig } from './types';
 
 // ---------------------------------------------------------------------------------------------
@@ -131,7 +132,7 @@ function fmt(value: number): string {
 /** `resolution` of planes and tubes when the config leaves it null. */
 export const PLANAR_DEFAULT_RESOLUTION = 512;
 /** The lab's shortest counted contact relative to the mean cell diameter (6 px of 102.4 px). */
-const LAB_CONTACT_PER_DIAMETER = 6 / 102.4;
+const LAB_CONTACT_PER_DIAMETER = LAB_MIN_BOUNDARY_PIXELS / LAB_MEAN_CELL_DIAMETER_PIXELS;
 
 /**
  * The resolution a config gets when it leaves `resolution` null. Planes and tubes: 512. Closed

@@ -46,7 +46,7 @@ export type FromSchema<S, R extends SchemaReading = 'output'> = S extends { read
                     ? null
                     : unknown;
 
-type PropertiesOf<S> = S extends { readonly properties: infer P } ? P : {};
+type PropertiesOf<S> = S extends { readonly properties: infer P } ? P : Record<never, never>;
 type RequiredOf<S> = S extends { readonly required: readonly (infer K)[] } ? K : never;
 
 /** Keys that are always present in the reading R. */

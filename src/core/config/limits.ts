@@ -16,7 +16,7 @@
  *   anything is allocated and compared with the caller's budget.
  */
 import type { Grid } from '../grid';
-import { surfaceStack } from '../sheetGeometry';
+import { sheetOffsets, surfaceStack } from '../sheetGeometry';
 import { makeCubeGrid, makeGrid, unrolledDomain } from './feasibility';
 import { isClosedConfig, type AnyConfig, type Config } from './types';
 import { ConfigError } from './validate';
@@ -33,9 +33,19 @@ export const DEFAULT_MAX_WORK = 2 ** 34;
  * texel of every surface kept until the result is written (Int32 labels + adjacency).
  */
 const ACTIVE_BYTES_PER_TEXEL = 64;
+/** The exact engine: the density field and the placement density (float32 each). */
+const EXACT_BYTES_PER_TEXEL = 8;
 const KEPT_BYTES_PER_TEXEL = 8;
 /** A closed surface adds its cube-map geometry image (positions, normals, areas in float32/64). */
 const CUBE_EXTRA_BYTES_PER_TEXEL = 48;
+/**
+ * Per cell: the Lloyd run (the exact engine's triangulation of the sites and their copies near
+ * the seams, cell sums; GPU: site buffers) and, per surface of the stack, its adjacency, the
+ * analysis's neighbour sets and the result's cell columns. Measured: a 1,000,000-cell periodic
+ * plane, 2 surfaces, exact engine, peaks at 0.6 GB (docs/benchmark.md); this estimate says 0.9.
+ */
+const BYTES_PER_CELL = 400;
+const BYTES_PER_CELL_PER_SURFACE = 250;
 
 export interface ComputeBudget {
   /** The GPU's MAX_TEXTURE_SIZE. */
@@ -56,13 +66,16 @@ export interface RunEstimate {
   /** Texel-floods (see the module comment). */
   work: number;
   bytes: number;
+  /** The part of `bytes` that grows with the cells (the rest grows with the texels). */
+  cellBytes: number;
 }
 
 /** Texel sizes of every surface of the stack (planar: unrolled grids; closed: n x 6n cube maps). */
 export function stackGrids(config: AnyConfig): { width: number; height: number }[] {
   if (isClosedConfig(config)) {
     const { n } = makeCubeGrid(config);
-    return Array.from({ length: config.sheet.layers + 2 }, () => ({ width: n, height: 6 * n }));
+    // One cube map per surface the pipeline builds (layers, or every sheet.layerStep µm).
+    return sheetOffsets(config).map(() => ({ width: n, height: 6 * n }));
   }
   const seeded: Grid = makeGrid(config);
   return surfaceStack(config, seeded).map((s) => ({ width: s.grid.width, height: s.grid.height }));
@@ -75,13 +88,18 @@ export function estimateRun(config: AnyConfig): RunEstimate {
   const iterations = config.lloyd.maxIterations;
   const total = sizes.reduce((a, b) => a + b, 0);
   const perActive = ACTIVE_BYTES_PER_TEXEL + (isClosedConfig(config) ? CUBE_EXTRA_BYTES_PER_TEXEL : 0);
+  const cellBytes = config.cells * (BYTES_PER_CELL + BYTES_PER_CELL_PER_SURFACE * grids.length);
+  // The exact engine (planes and tubes) holds no texture: the density per texel, no label images
+  // unless a view draws them.
+  const texelBytes = config.engine === 'exact' ? EXACT_BYTES_PER_TEXEL * texels : perActive * Math.max(...sizes) + KEPT_BYTES_PER_TEXEL * total;
   return {
     grids,
     texels,
     surfaces: grids.length,
     iterations,
     work: texels * iterations + total,
-    bytes: perActive * Math.max(...sizes) + KEPT_BYTES_PER_TEXEL * total,
+    bytes: texelBytes + cellBytes,
+    cellBytes,
   };
 }
 
@@ -164,6 +182,12 @@ export function checkBudget(config: AnyConfig, budget: ComputeBudget, raiseHint:
     throw new ConfigError(
       field,
       `${field}: this run is ${fmt(e.work)} texel-floods (${e.texels} texels x ${e.iterations} iterations + ${e.surfaces} surfaces of ${e.grids.map((g) => `${g.width}x${g.height}`).join(', ')} texels), above the limit of ${fmt(budget.maxWork)}; lower ${field === 'resolution' ? 'resolution, lloyd.maxIterations or sheet.layers' : field}, or ${raiseHint}`,
+    );
+  }
+  if (e.bytes > budget.maxBytes && 2 * e.cellBytes > e.bytes) {
+    throw new ConfigError(
+      'cells',
+      `cells: this run needs about ${gib(e.bytes)} of memory (${config.cells} cells on ${e.surfaces} surfaces, ${gib(e.cellBytes)} of it for the cells), above the limit of ${gib(budget.maxBytes)}; lower cells or sheet.layers, or ${raiseHint}`,
     );
   }
   if (e.bytes > budget.maxBytes) {

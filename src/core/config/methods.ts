@@ -4,7 +4,7 @@
  */
 import { LAB_PROTOCOL, MAX_PROTOCOL_LAYERS, protocolProblem } from '../analysis/protocol';
 import type { AnyConfig } from './types';
-import { ConfigError } from './validate';
+import { ConfigError } from './configError';
 
 type Sheet = AnyConfig['sheet'];
 

@@ -91,7 +91,7 @@ export const configSchema = {
             src: {
               type: 'string',
               minLength: 1,
-              description: "An .obj, .ply or .stl file. Node: a file path, relative to the working directory (a bare name is also looked up in public/meshes/); browser: a URL, or the name of a user's file passed to runSheet.",
+              description: "An .obj, .ply or .stl file. The pipeline reads no file: the CLI reads a path (relative to the config file, else the working directory, else a sample of public/meshes/ by name), the page a URL or a user's uploaded file by its name; a library caller loads it (tissue-sheet/node loadMeshFile, or fetchMeshFile) and passes it to runSheet as meshFile.",
             },
             scale: {
               type: 'number',

@@ -1,6 +1,7 @@
 /** Validation of a configuration against the schema, with one-line errors naming the field. */
 import type { ErrorObject } from 'ajv';
 import { validate as generatedValidate } from './configValidator.generated';
+import { ConfigError } from './configError';
 import { defaultResolution } from './feasibility';
 import type { AnyConfig, Config } from './types';
 import { isClosedConfig } from './types';
@@ -9,15 +10,7 @@ import { isClosedConfig } from './types';
 // Validation
 // ---------------------------------------------------------------------------------------------
 
-/** A configuration problem. `field` is a dotted path (`surface.radius`, `density.center[1]`). */
-export class ConfigError extends Error {
-  readonly field: string;
-  constructor(field: string, message: string) {
-    super(message);
-    this.name = 'ConfigError';
-    this.field = field;
-  }
-}
+export { ConfigError } from './configError';
 
 type SchemaNode = Record<string, unknown>;
 

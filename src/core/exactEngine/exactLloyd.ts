@@ -44,12 +44,15 @@ export class ExactCentroids {
   private readonly integrator: CellIntegrator;
   private readonly cell = new PolygonBuffer();
   private readonly moments: Float64Array;
+  /** The moments in the diagram's spatial order, as the cells are walked. */
+  private readonly spatial: Float64Array;
 
   constructor(readonly grid: Grid, readonly count: number, density: ExactDensity = UNIFORM) {
     this.voronoi = new PlanarVoronoi(grid, count);
     this.integrator = new CellIntegrator(grid, density);
     this.sums = new Float64Array(4 * count);
     this.moments = new Float64Array(4 * count);
+    this.spatial = new Float64Array(4 * count);
   }
 
   /** Triangulates the sites (interleaved x, y texel units). */
@@ -59,11 +62,23 @@ export class ExactCentroids {
 
   /** Integrates every cell of the last build; returns the sums (GPU layout). */
   computeSums(): Float64Array {
-    const { grid, count, voronoi, moments, sums } = this;
-    moments.fill(0);
-    for (let i = 0; i < count; i++) {
-      voronoi.cell(i, this.cell);
-      this.integrator.integrate(this.cell, voronoi.siteX[i], voronoi.siteY[i], moments, 4 * i);
+    const { grid, count, voronoi, moments, spatial, sums } = this;
+    // Again (rarely) when a cell of a site near a periodic seam was not certified (planarVoronoi.ts).
+    do {
+      spatial.fill(0);
+      // Cells in the diagram's spatial order, summed in that order (everything read and written
+      // is close in memory), then moved to the sites' order; each cell's sums are its own.
+      for (let k = 0; k < count; k++) {
+        voronoi.cellAt(k, this.cell);
+        this.integrator.integrate(this.cell, voronoi.xAt(k), voronoi.yAt(k), spatial, 4 * k);
+      }
+    } while (voronoi.retry());
+    for (let k = 0; k < count; k++) {
+      const i = voronoi.siteAt(k);
+      moments[4 * i] = spatial[4 * k];
+      moments[4 * i + 1] = spatial[4 * k + 1];
+      moments[4 * i + 2] = spatial[4 * k + 2];
+      moments[4 * i + 3] = spatial[4 * k + 3];
     }
     const texelArea = grid.texelX * grid.texelY;
     for (let i = 0; i < count; i++) {
@@ -108,6 +123,16 @@ export class ExactLloydRun {
       throw new Error(`lloyd.overRelaxation must be in (0, 2) (got ${options.overRelaxation})`);
     }
     this.centroids = new ExactCentroids(grid, sites.length / 2, density);
+  }
+
+  /** The diagram: after finish(), of the final sites (exactSurface can read it without rebuilding). */
+  get voronoi(): PlanarVoronoi {
+    return this.centroids.voronoi;
+  }
+
+  /** Triangulations done again because a cell near a periodic seam was not certified (PlanarVoronoi). */
+  get retries(): number {
+    return this.centroids.voronoi.retries;
   }
 
   get done(): boolean {

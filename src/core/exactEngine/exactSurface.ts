@@ -19,70 +19,78 @@ export function exactSurface(grid: Grid, sites: ArrayLike<number>, label?: strin
   const moments = new Float64Array(4);
   const areas = new Float64Array(n);
   const touchesBorder = new Uint8Array(n);
-  const offsets = new Int32Array(n + 1);
-  let neighbours = new Int32Array(8 * n);
-  let lengths = new Float64Array(8 * n);
-  const ids: number[] = [];
-  const lens: number[] = [];
+  // Cells are walked in the diagram's spatial order (cache) into a scratch list in that order
+  // (start[k] .. start[k + 1] for the k-th cell), then laid out in id order.
+  const start = new Int32Array(n + 1);
+  let scratchIds = new Int32Array(8 * n);
+  let scratchLengths = new Float64Array(8 * n);
   const eps = v.epsilon;
-  for (let i = 0; i < n; i++) {
-    v.cell(i, cell);
-    ids.length = 0;
-    lens.length = 0;
-    if (cell.count >= 3) {
-      areas[i] = polygonMoments(cell.xy, cell.count, moments)[0];
-      for (let k = 0; k < cell.count; k++) {
-        const label = cell.labels[k];
-        if (label === EDGE_FAR) continue;
-        const l = k + 1 === cell.count ? 0 : k + 1;
-        const dx = cell.xy[2 * l] - cell.xy[2 * k];
-        const dy = cell.xy[2 * l + 1] - cell.xy[2 * k + 1];
-        const length = Math.sqrt(dx * dx + dy * dy);
-        if (length <= eps) continue;
-        if (label === EDGE_Y0 || label === EDGE_Y1 || label === EDGE_X0 || label === EDGE_X1) {
-          touchesBorder[i] = 1;
-          continue;
-        }
-        const id = label % n;
-        if (id === i) continue; // contact with its own periodic copy (tiny domains)
-        const at = ids.indexOf(id);
-        if (at >= 0) lens[at] += length;
-        else {
-          ids.push(id);
-          lens.push(length);
+  // Again (rarely) when a cell of a site near a periodic seam was not certified (planarVoronoi.ts).
+  do {
+    areas.fill(0);
+    touchesBorder.fill(0);
+    for (let k = 0; k < n; k++) {
+      const i = v.siteAt(k);
+      v.cellAt(k, cell);
+      const from = start[k];
+      let m = 0;
+      if (from + cell.count > scratchIds.length) {
+        const grownIds = new Int32Array(2 * (from + cell.count));
+        grownIds.set(scratchIds);
+        scratchIds = grownIds;
+        const grownLengths = new Float64Array(grownIds.length);
+        grownLengths.set(scratchLengths);
+        scratchLengths = grownLengths;
+      }
+      if (cell.count >= 3) {
+        areas[i] = polygonMoments(cell.xy, cell.count, moments)[0];
+        for (let e = 0; e < cell.count; e++) {
+          const label = cell.labels[e];
+          if (label === EDGE_FAR) continue;
+          const l = e + 1 === cell.count ? 0 : e + 1;
+          const dx = cell.xy[2 * l] - cell.xy[2 * e];
+          const dy = cell.xy[2 * l + 1] - cell.xy[2 * e + 1];
+          const length = Math.sqrt(dx * dx + dy * dy);
+          if (length <= eps) continue;
+          if (label === EDGE_Y0 || label === EDGE_Y1 || label === EDGE_X0 || label === EDGE_X1) {
+            touchesBorder[i] = 1;
+            continue;
+          }
+          const id = label % n;
+          if (id === i) continue; // contact with its own periodic copy (tiny domains)
+          // Summed per neighbour (several edges with one site: tiny periodic domains), kept
+          // ascending by id as exactVoronoi lists them (insertion: a handful of neighbours).
+          let at = from;
+          while (at < from + m && scratchIds[at] < id) at++;
+          if (at < from + m && scratchIds[at] === id) {
+            scratchLengths[at] += length;
+            continue;
+          }
+          for (let b = from + m; b > at; b--) {
+            scratchIds[b] = scratchIds[b - 1];
+            scratchLengths[b] = scratchLengths[b - 1];
+          }
+          scratchIds[at] = id;
+          scratchLengths[at] = length;
+          m++;
         }
       }
+      start[k + 1] = from + m;
     }
-    const start = offsets[i];
-    if (start + ids.length > neighbours.length) {
-      const grown = new Int32Array(2 * (start + ids.length));
-      grown.set(neighbours);
-      neighbours = grown;
-      const grownLengths = new Float64Array(grown.length);
-      grownLengths.set(lengths);
-      lengths = grownLengths;
-    }
-    // Ascending ids, as exactVoronoi lists them (insertion sort: a handful of neighbours).
-    for (let a = 0; a < ids.length; a++) {
-      let b = a;
-      const id = ids[a];
-      const len = lens[a];
-      while (b > 0 && neighbours[start + b - 1] > id) {
-        neighbours[start + b] = neighbours[start + b - 1];
-        lengths[start + b] = lengths[start + b - 1];
-        b--;
-      }
-      neighbours[start + b] = id;
-      lengths[start + b] = len;
-    }
-    offsets[i + 1] = start + ids.length;
+  } while (v.retry());
+  const offsets = new Int32Array(n + 1);
+  for (let k = 0; k < n; k++) {
+    const i = v.siteAt(k);
+    offsets[i + 1] = start[k + 1] - start[k];
   }
+  for (let i = 0; i < n; i++) offsets[i + 1] += offsets[i];
   const total = offsets[n];
-  return {
-    count: n,
-    adjacency: { offsets, neighbours: neighbours.slice(0, total), lengths: lengths.slice(0, total) },
-    areas,
-    touchesBorder,
-    label,
-  };
+  const neighbours = new Int32Array(total);
+  const lengths = new Float64Array(total);
+  for (let k = 0; k < n; k++) {
+    const i = v.siteAt(k);
+    neighbours.set(scratchIds.subarray(start[k], start[k + 1]), offsets[i]);
+    lengths.set(scratchLengths.subarray(start[k], start[k + 1]), offsets[i]);
+  }
+  return { count: n, adjacency: { offsets, neighbours, lengths }, areas, touchesBorder, label };
 }

@@ -58,6 +58,9 @@ export interface ModelComparison {
   readonly percentScutoids: number[];
   readonly meanPercentScutoids: number;
   readonly sdPercentScutoids: number;
+  /** Mean apico-basal transitions and mean 3D neighbours of the best model's valid cells, per realization. */
+  readonly meanTransitions: number[];
+  readonly meanNeighbours3D: number[];
   /** Summary of the best model's first realization at the measured ratio (same shape as the measured one). */
   readonly summary: ScutoidSummary;
 }
@@ -106,6 +109,8 @@ export function compareWithModel(options: CompareOptions): ModelComparison {
   const layers = Math.max(2, options.layers);
   const s = options.surfaceRatio;
   const percents: number[] = [];
+  const transitions: number[] = [];
+  const neighbours3D: number[] = [];
   let firstSummary: ScutoidSummary | null = null;
   for (const siteSet of atK[best.k - 1]) {
     const surfaces = [];
@@ -116,6 +121,8 @@ export function compareWithModel(options: CompareOptions): ModelComparison {
     const summary = analyzeSurfaces(surfaces).summary;
     firstSummary ??= summary;
     percents.push(summary.percentScutoids);
+    transitions.push(summary.meanTransitions);
+    neighbours3D.push(summary.meanNeighbours3D);
   }
   const mean = percents.reduce((a, b) => a + b, 0) / percents.length;
   const sd = percents.length > 1 ? Math.sqrt(percents.reduce((a, b) => a + (b - mean) ** 2, 0) / (percents.length - 1)) : NaN;
@@ -132,6 +139,8 @@ export function compareWithModel(options: CompareOptions): ModelComparison {
     percentScutoids: percents,
     meanPercentScutoids: mean,
     sdPercentScutoids: sd,
+    meanTransitions: transitions,
+    meanNeighbours3D: neighbours3D,
     summary: firstSummary!,
   };
 }

@@ -6,13 +6,14 @@
  * One pass over the rows reading two rows at a time; nothing image-sized is allocated. Per-label
  * tables are indexed by the raw label (at most 2^16 entries), so labels need not be dense.
  */
+import { BORDER_X_END, BORDER_X_START, BORDER_Y_END, BORDER_Y_START } from '../border';
 import type { LabelPixels } from './labelImage';
 
-/** Border bits: which non-periodic image edges a label touches. */
-export const BORDER_TOP = 1;
-export const BORDER_BOTTOM = 2;
-export const BORDER_LEFT = 4;
-export const BORDER_RIGHT = 8;
+/** Border bits (core/border.ts): which non-periodic image edges a label touches; the top row is y = 0. */
+export const BORDER_TOP = BORDER_Y_START;
+export const BORDER_BOTTOM = BORDER_Y_END;
+export const BORDER_LEFT = BORDER_X_START;
+export const BORDER_RIGHT = BORDER_X_END;
 export const BORDER_NAMES: ReadonlyArray<[number, string]> = [
   [BORDER_LEFT, 'left'],
   [BORDER_RIGHT, 'right'],

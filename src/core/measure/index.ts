@@ -10,3 +10,4 @@ export * from './measuredResult';
 export * from './measureTissue';
 export * from './compare';
 export * from './compareMeasured';
+export * from './volume';

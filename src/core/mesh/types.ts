@@ -72,7 +72,7 @@ export function surfaceArea(mesh: TriangleMesh): number {
  * Signed enclosed volume (divergence theorem). Positive when the triangles are oriented
  * outward; used to detect inside-out meshes.
  */
-export function signedVolume(mesh: TriangleMesh): number {
+export function signedVolume(mesh: { readonly positions: ArrayLike<number>; readonly indices: ArrayLike<number> }): number {
   const { positions: p, indices: t } = mesh;
   let v = 0;
   for (let f = 0; f < t.length; f += 3) {

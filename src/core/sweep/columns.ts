@@ -16,15 +16,12 @@
 import { SIDE_CLASSES } from '../analysis';
 import {
   ADJACENCY_METHODS,
-  isClosedConfig,
-  layerStepOf,
   methodsOnRenderer,
-  steppedOffsets,
   type AdjacencyMethod,
   type AnyConfig,
   type RendererTraits,
 } from '../config';
-import { stackOffsets } from '../sheetGeometry';
+import { sheetOffsets } from '../sheetGeometry';
 
 export const TOP_COLUMNS = ['iterations', 'finalEnergy', 'centroidPath'] as const;
 /** Summary columns holding text; every other summary column holds a number ("NaN" included). */
@@ -40,22 +37,9 @@ export function runMethods(config: AnyConfig, renderer: RendererTraits = { softw
   return methodsOnRenderer(config, renderer);
 }
 
-/**
- * Layers between the seeded and the other surface: sheet.layers, or with a layer step (the lab
- * protocol's every 0.25 of s on a tube) as many as the stack builders lay out
- * (src/core/sheetGeometry.ts stackOffsets; closed stacks: every step µm of thickness).
- */
+/** Layers between the seeded and the other surface: as many as the stack has (sheetOffsets). */
 export function stackLayerCount(config: AnyConfig): number {
-  const step = layerStepOf(config.sheet);
-  if (step === null) return config.sheet.layers;
-  const { sheet, surface } = config;
-  if (isClosedConfig(config)) return steppedOffsets(sheet.thickness, step).length - 2;
-  const sign = sheet.direction === 'outward' ? 1 : -1;
-  let other = sign * sheet.thickness;
-  if (surface.kind === 'tube' && sheet.surfaceRatio !== null) {
-    other = (sign > 0 ? surface.radius * sheet.surfaceRatio : surface.radius / sheet.surfaceRatio) - surface.radius;
-  }
-  return stackOffsets(config, other).length - 2;
+  return sheetOffsets(config).length - 2;
 }
 
 /** Surface names of the stack as they appear in column names (no spaces). */

@@ -17,15 +17,28 @@
  * is a done row whose seed differs from the run's (the spec changed).
  *
  * Errors: with `onError: 'throw'` (default) the first failing run stops the sweep (rows already
- * appended stay, so a rerun resumes); with 'skip' failures are collected and the sweep goes on.
- * `concurrency` runs that many at once (default 1); rows are appended in completion order.
- * An aborted `signal` stops starting new runs.
+ * finished are appended, so a rerun resumes); with 'skip' failures are collected and the sweep
+ * goes on. An aborted `signal` stops starting new runs.
+ *
+ * Parallel runs: `concurrency` tasks at once (default 1). A task is one run, or with `tasks` the
+ * runs sharing a `tasks.key` (in `runs` order; tasks start in order of their first run), computed
+ * together by `tasks.run`, which reports each run as it finishes (e.g. a worker that relaxes one
+ * Lloyd run for every Voronoi k). Rows are appended in `runs` order whatever order runs finish
+ * in, so the file is the same for any concurrency: a finished run waits for the runs before it.
+ * When the sweep stops early (an error, an abort) the finished rows still waiting are appended
+ * too, in `runs` order, so no finished run is lost.
  */
 import { flattenSummary, formatCsvRow, readCsvTable } from './csv';
 import type { Config, SweepRun } from './expand';
 import { valueText } from './expand';
 
 export type SweepRunner<C extends Config, S> = (config: C, run: SweepRun<C>) => Promise<S>;
+
+/**
+ * Computes a task's runs (given in `runs` order) and calls `done` once per run as it finishes,
+ * in any order; rejects on the first failure (runs already reported stay done).
+ */
+export type SweepTaskRunner<C extends Config, S> = (runs: SweepRun<C>[], done: (run: SweepRun<C>, summary: S) => void) => Promise<void>;
 
 export interface SweepProgress<C extends Config = Config> {
   phase: 'start' | 'done' | 'error';
@@ -51,6 +64,12 @@ export interface RunSweepOptions<C extends Config, S> {
   onProgress?: (p: SweepProgress<C>) => void;
   onError?: 'throw' | 'skip';
   concurrency?: number;
+  /**
+   * Runs computed together: those with the same key form one task, run by `run`. Tasks start in
+   * order of their first run, or as `before` sorts their first runs (stable), e.g. the tasks of one
+   * Lloyd run next to each other; rows are still written in `runs` order.
+   */
+  tasks?: { key: (run: SweepRun<C>) => string; run: SweepTaskRunner<C, S>; before?: (a: SweepRun<C>, b: SweepRun<C>) => number };
   signal?: AbortSignal;
 }
 
@@ -145,63 +164,137 @@ export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, 
   }
   const rows = [...existing.rows];
   const failed: { run: SweepRun<C>; error: unknown }[] = [];
-  const total = state.remaining.length;
+  const remaining = state.remaining;
+  const total = remaining.length;
   const skipped = state.done.length;
   const t0 = Date.now();
   let finished = 0;
   let completed = 0;
-  let next = 0;
   let stop = false;
   let aborted = false;
-  // Appends are serialized through this chain, in completion order.
-  let writes: Promise<void> = Promise.resolve();
 
-  const write = (run: SweepRun<C>, summary: S): Promise<void> => {
+  // Rows go out in `runs` order: finished summaries wait in `ready` until every run before them
+  // has finished (or failed); appends are serialized through `writes`.
+  const position = new Map(remaining.map((run, k) => [run.key, k]));
+  const ready = new Map<number, { run: SweepRun<C>; summary: S } | null>();
+  let cursor = 0;
+  let writes: Promise<void> = Promise.resolve();
+  const writeRows = (items: { run: SweepRun<C>; summary: S }[]): Promise<void> => {
+    if (items.length === 0) return writes;
+    // One append per row (the header with the first), as a caller reading each append expects.
     writes = writes.then(async () => {
-      let text = '';
-      if (!header) {
-        const summaryColumns = options.summaryColumns ?? Object.keys(flattenSummary(summary)).filter((c) => !baseColumns(fields).includes(c));
-        header = [...baseColumns(fields), ...summaryColumns];
-        text += formatCsvRow(header);
+      for (const { run, summary } of items) {
+        let text = '';
+        if (!header) {
+          const summaryColumns = options.summaryColumns ?? Object.keys(flattenSummary(summary)).filter((c) => !baseColumns(fields).includes(c));
+          header = [...baseColumns(fields), ...summaryColumns];
+          text += formatCsvRow(header);
+        }
+        const { cells, row } = runCells(run, fields, summary, header);
+        text += formatCsvRow(cells);
+        await options.append(text);
+        rows.push(row);
       }
-      const { cells, row } = runCells(run, fields, summary, header);
-      text += formatCsvRow(cells);
-      await options.append(text);
-      rows.push(row);
     });
     return writes;
   };
+  /** Appends the finished prefix; `all`: every finished row, past gaps too (the sweep stopped). */
+  const flush = (all = false): Promise<void> => {
+    const items: { run: SweepRun<C>; summary: S }[] = [];
+    while (cursor < remaining.length && (ready.has(cursor) || all)) {
+      const item = ready.get(cursor);
+      ready.delete(cursor);
+      if (item) items.push(item);
+      cursor++;
+    }
+    return writeRows(items);
+  };
 
-  const worker = async (): Promise<void> => {
+  const settle = (run: SweepRun<C>, summary: S | null): Promise<void> => {
+    const at = position.get(run.key);
+    if (at === undefined || at < cursor || ready.has(at)) throw new Error(`run ${run.key}: reported twice or not a run of this sweep`);
+    ready.set(at, summary === null ? null : { run, summary });
+    return flush();
+  };
+
+  const fail = (run: SweepRun<C>, error: unknown): void => {
+    finished++;
+    failed.push({ run, error });
+    options.onProgress?.({ phase: 'error', run, finished, total, skipped, elapsedMs: Date.now() - t0, error });
+    if ((options.onError ?? 'throw') === 'throw') stop = true;
+  };
+
+  // Tasks: single runs, or the runs sharing a task key (in `runs` order).
+  const taskList: SweepRun<C>[][] = [];
+  if (options.tasks) {
+    const byKey = new Map<string, SweepRun<C>[]>();
+    for (const run of remaining) {
+      const key = options.tasks.key(run);
+      let task = byKey.get(key);
+      if (!task) {
+        byKey.set(key, (task = []));
+        taskList.push(task);
+      }
+      task.push(run);
+    }
+    const before = options.tasks.before;
+    if (before) taskList.sort((a, b) => before(a[0], b[0]));
+  } else {
+    for (const run of remaining) taskList.push([run]);
+  }
+  const runTask: SweepTaskRunner<C, S> =
+    options.tasks?.run ??
+    (async (task, done) => {
+      for (const run of task) done(run, await runner(run.config, run));
+    });
+
+  let nextTask = 0;
+  let firstError: unknown = undefined;
+  let thrown = false;
+  const lane = async (): Promise<void> => {
     while (!stop) {
       if (options.signal?.aborted) {
         aborted = true;
         return;
       }
-      if (next >= state.remaining.length) return;
-      const run = state.remaining[next++];
-      options.onProgress?.({ phase: 'start', run, finished, total, skipped, elapsedMs: Date.now() - t0 });
+      if (nextTask >= taskList.length) return;
+      const task = taskList[nextTask++];
+      const pending = new Set(task.map((run) => run.key));
+      for (const run of task) options.onProgress?.({ phase: 'start', run, finished, total, skipped, elapsedMs: Date.now() - t0 });
+      let written: Promise<void> = Promise.resolve();
       try {
-        const summary = await runner(run.config, run);
-        await write(run, summary);
-        finished++;
-        completed++;
-        options.onProgress?.({ phase: 'done', run, finished, total, skipped, elapsedMs: Date.now() - t0 });
+        await runTask(task, (run, summary) => {
+          if (!pending.delete(run.key)) throw new Error(`run ${run.key}: reported twice or not in its task`);
+          finished++;
+          completed++;
+          written = settle(run, summary);
+          options.onProgress?.({ phase: 'done', run, finished, total, skipped, elapsedMs: Date.now() - t0 });
+        });
+        await written;
+        if (pending.size > 0) throw new Error(`a sweep task ended without ${pending.size} of its runs`);
       } catch (error) {
-        finished++;
-        failed.push({ run, error });
-        options.onProgress?.({ phase: 'error', run, finished, total, skipped, elapsedMs: Date.now() - t0, error });
-        if ((options.onError ?? 'throw') === 'throw') {
-          stop = true;
-          throw error;
+        await written.catch(() => {});
+        // The task's unfinished runs failed (the first with the error; where failures are
+        // skipped, the others too: they were not computed).
+        const left = task.filter((run) => pending.has(run.key));
+        const skipping = (options.onError ?? 'throw') === 'skip';
+        for (const run of skipping ? left : left.slice(0, 1)) fail(run, error);
+        for (const run of left) settle(run, null).catch(() => {});
+        if ((options.onError ?? 'throw') === 'throw' && !thrown) {
+          thrown = true;
+          firstError = error;
         }
+        if (stop) return;
       }
     }
   };
 
   const n = Math.max(1, Math.floor(options.concurrency ?? 1));
-  await Promise.all(Array.from({ length: Math.min(n, Math.max(1, total)) }, worker));
+  await Promise.all(Array.from({ length: Math.min(n, Math.max(1, taskList.length)) }, lane));
+  // Stopped early: the finished rows after a gap are kept too.
+  await flush(true);
   await writes;
+  if (thrown) throw firstError;
   return { header: header ?? baseColumns(fields), rows, completed, skipped, failed, aborted };
 }
 

@@ -1,0 +1,291 @@
+/**
+ * Worker threads for `tissue-sheet sweep --workers N`: each thread keeps its own SheetRunner
+ * (so it reuses a seeded surface for every `sheet.*` value and one Lloyd run for every Voronoi k
+ * it is given) and computes whole tasks (a task: the runs sharing a seeded surface), sending each
+ * run's summary back as it finishes. The main thread writes the rows in the sweep's order (see
+ * runSweep), so the files do not depend on N or on which thread finishes first.
+ *
+ * Only runs on the exact CPU engine go to threads: headless-gl is a native module that loads in
+ * one thread of a process only (a second gets "Module did not self-register"), so GPU runs stay
+ * on the main thread's context. A thread gets the main context's capabilities, from which the
+ * engine policy picks the same engine as it does there; a thread never opens a GL context.
+ *
+ * This module is also the threads' entry: a thread loads it (from the compiled bundle, or from
+ * the sources through tsx's loader when the CLI runs from TypeScript) and the code at the end
+ * starts the thread's loop when it finds its workerData.
+ */
+import { createRequire } from 'node:module';
+import { availableParallelism } from 'node:os';
+import { pathToFileURL } from 'node:url';
+import { isMainThread, parentPort, Worker, workerData } from 'node:worker_threads';
+import { ConfigError, validateAnyConfig } from '../core/config';
+import { flattenSummary } from '../core/sweep';
+import type { GpuCapabilities, GpuContext } from '../gpu/context';
+import { SheetRunner, sweepSummary } from '../run/index';
+import { InputError } from './errors';
+import type { RunInputs } from './prepare';
+
+/** One run as a thread receives it. */
+export interface WorkerRun {
+  readonly key: string;
+  readonly pointKey: string;
+  readonly config: unknown;
+}
+
+interface WorkerSetup {
+  readonly tissueSheetSweepWorker: true;
+  readonly capabilities: GpuCapabilities;
+  readonly inputs: [string, RunInputs][];
+}
+
+type ToWorker = { type: 'task'; id: number; runs: WorkerRun[] } | { type: 'abort' };
+interface SerializedError {
+  name: string;
+  message: string;
+  field?: string;
+  stack?: string;
+}
+type FromWorker =
+  /**
+   * A run's summary, flattened (flattenSummary): its values, and the number of its key list
+   * (each distinct list is sent once per thread, with the first run that has it).
+   */
+  | { type: 'done'; id: number; key: string; layout: number; keys?: string[]; numbers: Float64Array; others: [number, unknown][] }
+  | { type: 'failed'; id: number; error: SerializedError }
+  | { type: 'finished'; id: number };
+
+/** A thread failed or exited under a task: its runs not reported yet can be computed elsewhere. */
+export class SweepThreadLost extends Error {
+  override readonly name = 'SweepThreadLost';
+}
+
+/** The default number of threads: the machine's cores. */
+export function defaultWorkers(): number {
+  return Math.max(1, availableParallelism());
+}
+
+interface Slot {
+  readonly worker: Worker;
+  /** The affinity (e.g. the Lloyd run) of the last task it computed. */
+  affinity: string | null;
+  /** Unused: set on a thread that failed to start or exited. */
+  reserved: boolean;
+  /** The summary key lists the thread has sent, by number. */
+  readonly layouts: Map<number, string[]>;
+  current: {
+    id: number;
+    done: (key: string, summary: Record<string, unknown>) => void;
+    resolve: () => void;
+    reject: (error: unknown) => void;
+  } | null;
+}
+
+/** A pool of sweep threads; `run` sends a task to a free one (callers never exceed `size` at once). */
+export class SweepWorkers {
+  private readonly slots: Slot[] = [];
+  private waiting: (() => void)[] = [];
+  private nextId = 1;
+  private closed = false;
+
+  constructor(size: number, capabilities: GpuCapabilities, inputs: Map<string, RunInputs>) {
+    const setup: WorkerSetup = {
+      tissueSheetSweepWorker: true,
+      capabilities: { ...capabilities },
+      // Threads only run planes and tubes (exact engine): no mesh crosses.
+      inputs: [...inputs].map(([key, value]) => [key, value.densityImage ? { densityImage: value.densityImage } : {}]),
+    };
+    for (let k = 0; k < size; k++) {
+      const worker = newWorker(setup);
+      const slot: Slot = { worker, affinity: null, reserved: false, layouts: new Map(), current: null };
+      worker.on('message', (message: FromWorker) => this.receive(slot, message));
+      worker.on('error', (error) => this.lost(slot, new SweepThreadLost(`a sweep worker thread failed: ${error instanceof Error ? error.message : String(error)}`)));
+      worker.on('exit', (code) => {
+        if (!this.closed) this.lost(slot, new SweepThreadLost(`a sweep worker thread exited (code ${code})`));
+      });
+      this.slots.push(slot);
+    }
+  }
+
+  get size(): number {
+    return this.slots.length;
+  }
+
+  /** False once every thread failed or exited (the caller then computes on its own thread). */
+  get usable(): boolean {
+    return this.slots.some((s) => !s.reserved);
+  }
+
+  /**
+   * Computes `runs` in one thread, preferring a free thread whose last task had the same
+   * `affinity` (it still holds that Lloyd run); `done` gets each run's summary as it finishes.
+   */
+  async run(runs: WorkerRun[], affinity: string, done: (key: string, summary: Record<string, unknown>) => void): Promise<void> {
+    // Wait for a free thread (callers may run more tasks at once than there are threads).
+    while (!this.slots.some((s) => s.current === null && !s.reserved)) {
+      if (this.slots.every((s) => s.reserved)) throw new SweepThreadLost('no sweep worker thread is left (they failed or exited)');
+      await new Promise<void>((wake) => this.waiting.push(wake));
+    }
+    const free = this.slots.filter((s) => s.current === null && !s.reserved);
+    const slot = free.find((s) => s.affinity === affinity) ?? free.find((s) => s.affinity === null) ?? free[0];
+    slot.affinity = affinity;
+    const id = this.nextId++;
+    return new Promise<void>((resolve, reject) => {
+      slot.current = { id, done, resolve, reject };
+      slot.worker.postMessage({ type: 'task', id, runs } satisfies ToWorker);
+    });
+  }
+
+  /** Asks every thread to stop its task at the next iteration (the task then fails with an AbortError). */
+  abort(): void {
+    for (const slot of this.slots) slot.worker.postMessage({ type: 'abort' } satisfies ToWorker);
+  }
+
+  async close(): Promise<void> {
+    this.closed = true;
+    await Promise.all(this.slots.map((slot) => slot.worker.terminate()));
+  }
+
+  private release(slot: Slot): void {
+    slot.current = null;
+    const wake = this.waiting.shift();
+    wake?.();
+  }
+
+  private receive(slot: Slot, message: FromWorker): void {
+    if (message.type === 'done' && message.keys) slot.layouts.set(message.layout, message.keys);
+    const current = slot.current;
+    if (!current || current.id !== message.id) return;
+    if (message.type === 'done') {
+      try {
+        const keys = slot.layouts.get(message.layout);
+        if (!keys || keys.length !== message.numbers.length) throw new Error('a sweep worker thread sent a summary without its keys');
+        const summary: Record<string, unknown> = {};
+        for (let k = 0; k < keys.length; k++) summary[keys[k]] = message.numbers[k];
+        for (const [k, value] of message.others) summary[keys[k]] = value;
+        current.done(message.key, summary);
+      } catch (error) {
+        // The thread goes on with its task; its messages for it are ignored from now on.
+        slot.reserved = true;
+        this.release(slot);
+        current.reject(error);
+      }
+    } else if (message.type === 'failed') {
+      this.release(slot);
+      current.reject(deserializeError(message.error));
+    } else {
+      this.release(slot);
+      current.resolve();
+    }
+  }
+
+  private lost(slot: Slot, error: unknown): void {
+    const current = slot.current;
+    slot.reserved = true;
+    this.release(slot);
+    current?.reject(error);
+    // No thread left: nobody would wake the waiting callers.
+    if (this.slots.every((s) => s.reserved)) for (const wake of this.waiting.splice(0)) wake();
+  }
+}
+
+/**
+ * A thread running this file. From the TypeScript sources (tests, `npx tsx`) the thread first
+ * registers tsx's loader (`--import` in a worker's execArgv does not reach its entry in Node 20).
+ */
+function newWorker(setup: WorkerSetup): Worker {
+  const entry = import.meta.url;
+  if (!entry.endsWith('.ts')) return new Worker(new URL(entry), { workerData: setup });
+  const api = pathToFileURL(createRequire(entry).resolve('tsx/esm/api')).href;
+  const code = `import(${JSON.stringify(api)}).then((tsx) => { tsx.register(); return import(${JSON.stringify(entry)}); });`;
+  return new Worker(code, { eval: true, workerData: setup });
+}
+
+function serializeError(error: unknown): SerializedError {
+  if (error instanceof Error) {
+    const field = (error as { field?: unknown }).field;
+    return { name: error.name, message: error.message, ...(typeof field === 'string' ? { field } : {}), ...(error.stack ? { stack: error.stack } : {}) };
+  }
+  return { name: 'Error', message: String(error) };
+}
+
+/** The error a thread threw, as the class the CLI maps to its exit code where it is one of ours. */
+function deserializeError(e: SerializedError): Error {
+  let error: Error;
+  if (e.name === 'ConfigError') error = new ConfigError(e.field ?? '', e.message);
+  else if (e.name === 'InputError') error = new InputError(e.message);
+  else if (e.name === 'AbortError') error = new DOMException(e.message, 'AbortError');
+  else {
+    error = new Error(e.message);
+    error.name = e.name;
+  }
+  if (e.stack) error.stack = e.stack;
+  return error;
+}
+
+/** A context for the exact engine only: the capabilities the engine policy reads, no GL. */
+function capabilitiesOnly(capabilities: GpuCapabilities): GpuContext {
+  const noGl = (): never => {
+    throw new Error('a sweep worker thread has no GL context: GPU runs stay on the main thread');
+  };
+  return {
+    capabilities,
+    get renderer() {
+      return noGl();
+    },
+    get gl() {
+      return noGl();
+    },
+    dispose() {},
+  };
+}
+
+/** The thread's loop: tasks one at a time, each run's summary sent as it finishes. */
+function startWorker(setup: WorkerSetup): void {
+  const port = parentPort!;
+  const runner = new SheetRunner(capabilitiesOnly(setup.capabilities));
+  const inputs = new Map(setup.inputs);
+  let controller = new AbortController();
+  const layouts = new Map<string, number>();
+  let queue: Promise<void> = Promise.resolve();
+  const send = (message: FromWorker) => port.postMessage(message);
+  port.on('message', (message: ToWorker) => {
+    if (message.type === 'abort') {
+      controller.abort();
+      return;
+    }
+    const { id, runs } = message;
+    queue = queue.then(async () => {
+      if (controller.signal.aborted) controller = new AbortController();
+      const { signal } = controller;
+      try {
+        // Fewer Lloyd iterations first: one Lloyd run then serves every Voronoi k of the task.
+        const order = runs.map((run, k) => ({ run, k, config: validateAnyConfig(run.config) }));
+        order.sort((a, b) => a.config.lloyd.maxIterations - b.config.lloyd.maxIterations || a.k - b.k);
+        for (const { run, config } of order) {
+          const output = await runner.run(config, { ...inputs.get(run.pointKey), signal, views: false });
+          // Flat values cross faster than the nested summary (a structured clone per key).
+          const flat = flattenSummary(sweepSummary(output.result));
+          const keys = Object.keys(flat);
+          const signature = keys.join('\n');
+          let layout = layouts.get(signature);
+          const known = layout !== undefined;
+          if (layout === undefined) layouts.set(signature, (layout = layouts.size));
+          // Numbers in a transferred Float64Array (cloning a list of values costs per value), the rest apart.
+          const numbers = new Float64Array(keys.length);
+          const others: [number, unknown][] = [];
+          keys.forEach((k, n) => {
+            const value = flat[k];
+            if (typeof value === 'number') numbers[n] = value;
+            else others.push([n, value]);
+          });
+          port.postMessage({ type: 'done', id, key: run.key, layout, ...(known ? {} : { keys }), numbers, others } satisfies FromWorker, [numbers.buffer]);
+        }
+        send({ type: 'finished', id });
+      } catch (error) {
+        send({ type: 'failed', id, error: serializeError(error) });
+      }
+    });
+  });
+}
+
+if (!isMainThread && (workerData as Partial<WorkerSetup> | null)?.tissueSheetSweepWorker === true) startWorker(workerData as WorkerSetup);

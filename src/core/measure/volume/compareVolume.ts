@@ -1,0 +1,230 @@
+/**
+ * The Voronoi model of a measured volume (`measure --volume --compare`, docs/measure.md).
+ *
+ * Open pieces (a lumen reaching the volume's faces: a gland or tube cut by the volume): the
+ * model of the fitted tube (tubeFit.ts: axis, radii, length and thickness from the cells).
+ * The model is the lab's tube: the inner surface unrolled (2 pi R_inner around, periodic, by
+ * that length, open), as many sites as cells reach it, Voronoi k = 1..10 by k - 1 exact Lloyd
+ * steps, the best k the one whose polygon distribution is nearest (L1) the measured one on the
+ * lumen side; that k is then projected radially to the outer surface (ratio R_outer / R_inner),
+ * exact neighbours, cells on the open ends excluded (compareWithModel, the layers mode's code).
+ *
+ * Closed shells (cysts, organoids; the lumen reaches no face): the model runs on the tissue's
+ * own surfaces as triangle meshes (surfaceMesh.ts, from measureVolume's onSurfaceMeshes). The
+ * seeded surface is the lumen side, with as many sites as cells reach it (random, the lab's
+ * minimum spacing); Voronoi k = 1..10 by k - 1 sampled Lloyd steps on the mesh (meshModel.ts),
+ * each diagram the exact restricted Voronoi diagram of the mesh; the best k's sites are carried
+ * along the lumen surface's normal until they meet the outer surface (or, where the ray meets
+ * nothing within three mean thicknesses, placed along it at the height of the measured cell
+ * nearest: the parallel surface at the local thickness), and the outer diagram is the
+ * restricted Voronoi diagram there. The result says how
+ * many sites went each way.
+ */
+import { analyzeSurfaces, type ScutoidSummary } from '../../analysis';
+import { KdTree3 } from '../../closed/kdTree';
+import { compareWithModel, l1Distance, LAB_MIN_SPACING_PIXELS, type ModelCandidate, type ModelComparison } from '../compare';
+import { carryAlongNormals, lloydStepOnMesh, meshSurface, prepareMesh, randomSitesOnMesh } from './meshModel';
+import type { SurfaceMesh } from './surfaceMesh';
+import { fitTube, thicknessOf, type TubeGeometry } from './tubeFit';
+import type { VolumeMeasuredResult } from './volumeResult';
+
+export interface ShellGeometry {
+  readonly kind: 'mesh';
+  /** Which measured layer is the seeded (lumen-side) surface. */
+  readonly seededLayer: 'basal' | 'apical';
+  readonly seededCells: number;
+  /** Block size the meshes were extracted at (µm, about a fifth of a cell diameter). */
+  readonly spacing: number;
+  readonly seeded: { readonly vertices: number; readonly triangles: number; readonly area: number };
+  readonly other: { readonly vertices: number; readonly triangles: number; readonly area: number };
+  /** Sites (over all realizations) that met the other surface along their normal, and those put on the parallel surface. */
+  readonly projection: { readonly alongNormal: number; readonly parallel: number };
+  readonly thickness: { readonly mean: number; readonly sd: number; readonly cells: number };
+}
+
+export interface Interval {
+  readonly mean: number;
+  /** 95 % confidence interval of the mean over realizations (Student t), NaN with one realization. */
+  readonly ci95: [number, number];
+}
+
+export interface VolumeComparison extends ModelComparison {
+  /** The fitted tube of an open piece, or the meshes of a closed shell. */
+  readonly geometry: TubeGeometry | ShellGeometry;
+  /** The model's % scutoids, mean transitions and mean 3D neighbours over realizations, with 95 % CIs. */
+  readonly model: { readonly percentScutoids: Interval; readonly transitions: Interval; readonly neighbours3D: Interval };
+  /** The measured values beside them (valid cells). */
+  readonly measured: { readonly percentScutoids: number; readonly transitions: number; readonly neighbours3D: number };
+}
+
+export interface CompareVolumeOptions {
+  readonly realizations: number;
+  readonly seed: number;
+  readonly maxK?: number;
+  readonly onProgress?: (line: string) => void;
+}
+
+/** Two-sided 95 % Student t quantiles for 1..30 degrees of freedom. */
+const T975 = [12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.16, 2.145, 2.131, 2.12, 2.11, 2.101, 2.093, 2.086, 2.08, 2.074, 2.069, 2.064, 2.06, 2.056, 2.052, 2.048, 2.045, 2.042];
+
+export function interval(values: number[]): Interval {
+  const n = values.length;
+  const mean = values.reduce((a, b) => a + b, 0) / n;
+  if (n < 2) return { mean, ci95: [NaN, NaN] };
+  const sd = Math.sqrt(values.reduce((a, b) => a + (b - mean) ** 2, 0) / (n - 1));
+  const t = n - 1 <= 30 ? T975[n - 2] : 1.96 + 2.4 / (n - 1);
+  const half = (t * sd) / Math.sqrt(n);
+  return { mean, ci95: [mean - half, mean + half] };
+}
+
+/** The height of the measured cell whose lumen-side centroid is nearest a point (else `fallback`). */
+function localThickness(result: VolumeMeasuredResult, inner: number, fallback: number): (x: number, y: number, z: number) => number {
+  const cells = result.cells.filter((c) => c.height !== null && c.centroids[inner]);
+  if (cells.length === 0) return () => fallback;
+  const points = Float64Array.from(cells.flatMap((c) => c.centroids[inner]!));
+  const tree = new KdTree3(points, cells.length);
+  const ids = new Int32Array(1);
+  const d2 = new Float64Array(1);
+  return (x, y, z) => (tree.knn(x, y, z, 1, ids, d2) > 0 ? cells[ids[0]].height! : fallback);
+}
+
+/** The model of a closed shell on its own surface meshes (see the module comment). */
+export function compareShell(
+  result: VolumeMeasuredResult,
+  meshes: { lumen: SurfaceMesh; outer: SurfaceMesh; spacing: number },
+  options: CompareVolumeOptions,
+): { comparison: VolumeComparison | null; note: string } {
+  const inner = result.inputs.layers.findIndex((l) => l.faces === 'lumen');
+  const layer = result.inputs.layers[inner];
+  const cells = layer.cells;
+  if (cells < 4) return { comparison: null, note: `no model: ${cells} cells reach the lumen; a model needs at least 4` };
+  if (meshes.lumen.indices.length === 0 || meshes.outer.indices.length === 0) return { comparison: null, note: 'no model: a surface mesh came out empty' };
+  const seeded = prepareMesh(meshes.lumen);
+  const other = prepareMesh(meshes.outer);
+  const thickness = thicknessOf(result);
+  const reach = Number.isFinite(thickness.mean) ? thickness.mean : 5 * meshes.spacing;
+  const thicknessAt = localThickness(result, inner, reach);
+  const maxK = options.maxK ?? 10;
+  const { realizations, seed } = options;
+  const minSpacing = (LAB_MIN_SPACING_PIXELS * Math.sqrt(seeded.area / cells)) / Math.sqrt((512 * 4096) / 200);
+  const summary = result.analyses[0].summary;
+  const distribution = summary.perSurface[inner].polygonDistribution.map((f) => (Number.isNaN(f) ? 0 : f));
+
+  let sites = Array.from({ length: realizations }, (_, r) => randomSitesOnMesh(seeded, cells, minSpacing, seed + r));
+  const atK: Float64Array[][] = [];
+  const candidates: ModelCandidate[] = [];
+  for (let k = 1; k <= maxK; k++) {
+    if (k > 1) sites = sites.map((s) => lloydStepOnMesh(seeded, s));
+    atK.push(sites);
+    const mean = new Array<number>(distribution.length).fill(0);
+    for (const s of sites) {
+      const d = analyzeSurfaces([meshSurface(seeded, s, 'seeded')]).summary.perSurface[0].polygonDistribution;
+      d.forEach((f, c) => (mean[c] += (Number.isNaN(f) ? 0 : f) / realizations));
+    }
+    candidates.push({ k, polygonDistribution: mean, distance: l1Distance(distribution, mean) });
+    options.onProgress?.(`model Voronoi ${k}: L1 distance ${candidates[k - 1].distance.toFixed(4)}`);
+  }
+  const best = candidates.reduce((a, b) => (b.distance < a.distance ? b : a));
+  const percents: number[] = [];
+  const transitions: number[] = [];
+  const neighbours3D: number[] = [];
+  let alongNormal = 0;
+  let parallel = 0;
+  let first: ScutoidSummary | null = null;
+  for (const s of atK[best.k - 1]) {
+    const carried = carryAlongNormals(seeded, s, other, 1, 3 * reach, thicknessAt);
+    alongNormal += carried.alongNormal;
+    parallel += carried.parallel;
+    const analysis = analyzeSurfaces([meshSurface(seeded, s, 'lumen side'), meshSurface(other, carried.sites, 'outer side')]).summary;
+    first ??= analysis;
+    percents.push(analysis.percentScutoids);
+    transitions.push(analysis.meanTransitions);
+    neighbours3D.push(analysis.meanNeighbours3D);
+  }
+  const p = interval(percents);
+  const sd = percents.length > 1 ? Math.sqrt(percents.reduce((a, b) => a + (b - p.mean) ** 2, 0) / (percents.length - 1)) : NaN;
+  const meshInfo = (m: SurfaceMesh, prepared: { area: number }) => ({ vertices: m.positions.length / 3, triangles: m.indices.length / 3, area: prepared.area });
+  return {
+    comparison: {
+      method: 'exact',
+      distance: 'L1 over polygon classes 3..9, 10+',
+      cells,
+      realizations,
+      seed,
+      minSpacing,
+      candidates,
+      bestK: best.k,
+      surfaceRatio: other.area / seeded.area,
+      percentScutoids: percents,
+      meanPercentScutoids: p.mean,
+      sdPercentScutoids: sd,
+      meanTransitions: transitions,
+      meanNeighbours3D: neighbours3D,
+      summary: first!,
+      geometry: {
+        kind: 'mesh',
+        seededLayer: layer.name,
+        seededCells: cells,
+        spacing: meshes.spacing,
+        seeded: meshInfo(meshes.lumen, seeded),
+        other: meshInfo(meshes.outer, other),
+        projection: { alongNormal, parallel },
+        thickness,
+      },
+      model: { percentScutoids: p, transitions: interval(transitions), neighbours3D: interval(neighbours3D) },
+      measured: { percentScutoids: summary.percentScutoids, transitions: summary.meanTransitions, neighbours3D: summary.meanNeighbours3D },
+    },
+    note: '',
+  };
+}
+
+/**
+ * The model of the same tissue, or null with a note saying why there is none. Closed shells
+ * need `meshes` (measureVolume's onSurfaceMeshes).
+ */
+export function compareVolume(
+  result: VolumeMeasuredResult,
+  options: CompareVolumeOptions,
+  meshes?: { lumen: SurfaceMesh; outer: SurfaceMesh; spacing: number },
+): { comparison: VolumeComparison | null; note: string } {
+  if (!result.inputs.background.lumenReachesFaces) {
+    if (!meshes) return { comparison: null, note: 'no model: a closed shell is modelled on its own surface meshes; measure it with onSurfaceMeshes' };
+    return compareShell(result, meshes, options);
+  }
+  const { geometry, note } = fitTube(result);
+  if (!geometry) return { comparison: null, note: `no model: ${note}` };
+  const inner = result.inputs.layers.findIndex((l) => l.faces === 'lumen');
+  const summary = result.analyses[0].summary;
+  // The inner surface unrolled at the lab's resolution: 102.4 px per mean cell diameter.
+  const cellDiameter = Math.sqrt(result.inputs.layers[inner].area / geometry.seededCells);
+  const pixel = cellDiameter / Math.sqrt((512 * 4096) / 200);
+  const width = Math.max(8, Math.round((2 * Math.PI * geometry.innerRadius) / pixel));
+  const height = Math.max(8, Math.round(geometry.length / pixel));
+  const base = compareWithModel({
+    width,
+    height,
+    pixelSize: (2 * Math.PI * geometry.innerRadius) / width,
+    periodicX: true,
+    cells: geometry.seededCells,
+    distribution: summary.perSurface[inner].polygonDistribution.map((f) => (Number.isNaN(f) ? 0 : f)),
+    layers: 2,
+    surfaceRatio: geometry.outerRadius / geometry.innerRadius,
+    realizations: options.realizations,
+    seed: options.seed,
+    maxK: options.maxK,
+    onProgress: options.onProgress,
+  });
+  return {
+    comparison: {
+      ...base,
+      geometry,
+      model: {
+        percentScutoids: interval(base.percentScutoids),
+        transitions: interval(base.meanTransitions),
+        neighbours3D: interval(base.meanNeighbours3D),
+      },
+      measured: { percentScutoids: summary.percentScutoids, transitions: summary.meanTransitions, neighbours3D: summary.meanNeighbours3D },
+    },
+    note: '',
+  };
+}

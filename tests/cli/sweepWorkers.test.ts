@@ -1,0 +1,166 @@
+import { spawnSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { describe, expect, it } from 'vitest';
+import { validateAnyConfig } from '../../src/core/config';
+import { expandSweep, readCsvTable, runRow, runSweep, validateSweepSpec, variedFields, type SweepRun } from '../../src/core/sweep';
+import { createHeadlessContext } from '../../src/node/headless';
+import { SheetRunner, sweepSummary } from '../../src/run/index';
+
+// The CLI from its sources (same main() as bin/tissue-sheet.mjs); its worker threads load the
+// sources through tsx too.
+const bin = join(__dirname, 'fromSource.mjs');
+const dir = mkdtempSync(join(tmpdir(), 'tissue-sheet-workers-'));
+const cli = (args: string[]) => spawnSync(process.execPath, [bin, ...args], { encoding: 'utf8' });
+
+// Small, on the exact engine: 3 Voronoi k x 4 ratios x 3 realizations = 36 runs in 9 seeded-surface groups.
+const spec = {
+  base: { surface: { kind: 'tube', radius: 40, length: 300 }, resolution: 128, cells: 24, engine: 'exact', sheet: { protocol: 'lab', validityMaxRatio: 4 } },
+  vary: { 'lloyd.maxIterations': [0, 1, 3], 'sheet.surfaceRatio': [1, 1.5, 2, 4] },
+  realizations: 3,
+  seed: 11,
+};
+const specPath = join(dir, 'spec.json');
+writeFileSync(specPath, JSON.stringify(spec));
+const FILES = ['runs.csv', 'aggregate.csv', 'aggregate.json', 'flintstones.csv'];
+const read = (d: string, f: string) => readFileSync(join(d, f), 'utf8');
+
+describe('sweep --workers N', () => {
+  it('writes the same files byte for byte with 1 and 2 worker threads, and resumes with another N', () => {
+    const one = join(dir, 'one');
+    const two = join(dir, 'two');
+    const a = cli(['sweep', specPath, '--out', one, '--workers', '1']);
+    expect(a.status, a.stderr).toBe(0);
+    const b = cli(['sweep', specPath, '--out', two, '--workers=2']);
+    expect(b.status, b.stderr).toBe(0);
+    expect(b.stderr).toMatch(/sweep: 36 runs computed, 0 resumed/);
+    for (const f of FILES) expect(read(two, f), f).toBe(read(one, f));
+    expect(readCsvTable(read(one, 'runs.csv')).rows).toHaveLength(36);
+
+    // Cut runs.csv after 10 rows (and mid-row): resuming with 2 threads computes the rest, and the
+    // aggregates are those of the uninterrupted sweep.
+    const cut = join(dir, 'cut');
+    const c = cli(['sweep', specPath, '--out', cut, '--workers', '2']);
+    expect(c.status, c.stderr).toBe(0);
+    const text = read(cut, 'runs.csv');
+    const lines = text.split('\r\n');
+    writeFileSync(join(cut, 'runs.csv'), lines.slice(0, 11).join('\r\n') + '\r\n' + lines[11].slice(0, 7));
+    const d = cli(['sweep', specPath, '--out', cut, '--workers', '2']);
+    expect(d.status, d.stderr).toBe(0);
+    expect(d.stderr).toMatch(/sweep: 26 runs computed, 10 resumed/);
+    for (const f of FILES.slice(1)) expect(read(cut, f), f).toBe(read(one, f));
+    expect(read(cut, 'runs.csv')).toBe(text);
+  }, 180_000);
+
+  it('every row is its run computed alone, GPU runs (main thread) and exact runs (threads) mixed', async () => {
+    // adjacency "labels" takes the GPU engine (main thread), "exact" the exact engine (threads).
+    const mixed = {
+      base: { surface: { kind: 'tube', radius: 30, length: 200 }, resolution: 64, cells: 20, engine: 'auto' },
+      vary: { 'sheet.adjacency': ['labels', 'exact'], 'lloyd.maxIterations': [0, 2], 'sheet.surfaceRatio': [1, 2] },
+      realizations: 2,
+      seed: 4,
+    };
+    const mixedPath = join(dir, 'mixed.json');
+    writeFileSync(mixedPath, JSON.stringify(mixed));
+    const out = join(dir, 'mixed');
+    const r = cli(['sweep', mixedPath, '--out', out, '--workers', '2']);
+    expect(r.status, r.stderr).toBe(0);
+    const table = readCsvTable(read(out, 'runs.csv'));
+    const runs = expandSweep(validateSweepSpec(mixed));
+    const fields = variedFields(validateSweepSpec(mixed));
+    const byKey = new Map(table.rows.map((row) => [row.key, row]));
+    const context = createHeadlessContext();
+    try {
+      const engines = new Set<string>();
+      for (const run of runs) {
+        const { result } = await new SheetRunner(context).run(validateAnyConfig(run.config), { views: false });
+        engines.add(result.engine.name);
+        expect(byKey.get(run.key), run.key).toEqual(runRow(run, fields, sweepSummary(result), table.header));
+      }
+      expect([...engines].sort()).toEqual(['exact', 'gpu']);
+    } finally {
+      context.dispose();
+    }
+  }, 180_000);
+
+  it('refuses a bad --workers value', () => {
+    for (const v of ['0', 'many']) {
+      const r = cli(['sweep', specPath, '--out', join(dir, 'bad'), '--workers', v]);
+      expect(r.status, v).toBe(2);
+      expect(r.stderr).toMatch(/--workers: must be an integer from 1 to 1024/);
+    }
+  });
+});
+
+describe('runSweep with tasks finishing in any order', () => {
+  const runs = expandSweep({ base: { seed: 1, s: 1 }, vary: { k: [0, 1, 2], s: [1, 2, 3, 4] }, realizations: 3 }) as SweepRun<Record<string, unknown> & { seed: number }>[];
+  const fields = ['k', 's'];
+  const summary = (run: SweepRun) => ({ value: Number(run.config.k) * 100 + Number(run.config.s) * 10 + run.realization });
+
+  async function sweep(concurrency: number, shuffle: (n: number) => number): Promise<string> {
+    let file = '';
+    let appends = 0;
+    await runSweep({
+      runs,
+      fields,
+      append: (text) => {
+        // One row per append (the header with the first), as the page's reader expects.
+        expect(readCsvTable(text).rows.length + (appends === 0 ? 0 : 1)).toBe(1);
+        appends++;
+        file += text;
+      },
+      runner: async (_config, run) => summary(run),
+      concurrency,
+      tasks: {
+        key: (run) => `${run.config.k}#${run.realization}`,
+        before: (a, b) => a.realization - b.realization,
+        // Each task reports its runs in a shuffled order, after shuffled delays.
+        run: async (task, done) => {
+          const order = task.map((run, k) => ({ run, at: shuffle(k) })).sort((x, y) => x.at - y.at);
+          for (const { run, at } of order) {
+            await new Promise((r) => setTimeout(r, at % 3));
+            done(run, summary(run));
+          }
+        },
+      },
+    });
+    expect(appends).toBe(runs.length);
+    return file;
+  }
+
+  it('writes rows in run order whatever the concurrency and the finishing order', async () => {
+    let seed = 1;
+    const random = () => ((seed = (seed * 1103515245 + 12345) % 2147483648) % 97);
+    const reference = await sweep(1, (k) => k);
+    expect(readCsvTable(reference).rows.map((r) => r.key)).toEqual(runs.map((r) => r.key));
+    for (const concurrency of [2, 3, 8]) expect(await sweep(concurrency, random), `concurrency ${concurrency}`).toBe(reference);
+  });
+
+  it('keeps the finished rows of a sweep stopped by a failure', async () => {
+    let file = '';
+    const run = runSweep({
+      runs,
+      fields,
+      append: (text) => {
+        file += text;
+      },
+      runner: async (_config, r) => summary(r),
+      concurrency: 2,
+      tasks: {
+        key: (r) => String(r.realization),
+        run: async (task, done) => {
+          for (const r of task) {
+            if (r.realization === 0 && r.config.k === 2) throw new Error('boom');
+            done(r, summary(r));
+          }
+        },
+      },
+    });
+    await expect(run).rejects.toThrow('boom');
+    const keys = readCsvTable(file).rows.map((r) => r.key);
+    // Realization 0 stopped at its first k = 2 run; the other tasks that ran are all there.
+    expect(keys.filter((k) => k.endsWith('#r0'))).toHaveLength(8);
+    expect(new Set(keys).size).toBe(keys.length);
+  });
+});
