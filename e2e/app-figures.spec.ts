@@ -100,6 +100,7 @@ test('the sweep chart and the Flintstones fit as SVG and PNG: units, n, CI, numb
   await page.locator('#figure-width').fill('90');
   await page.locator('#figure-dpi').selectOption('600');
 
+  if (process.env.FIGURE_DIR) writeFileSync(`${process.env.FIGURE_DIR}/runs.csv`, (await download(page, '[data-sweep="runs-csv"]')).bytes);
   const chart = (await download(page, '[data-sweep="chart-svg"]')).text;
   expect(svgSize(chart).widthMm).toBe(90);
   expect(chart).toContain('>% scutoids (of valid cells)</text>');

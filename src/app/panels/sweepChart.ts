@@ -65,6 +65,12 @@ export class SweepChart {
     this.root.dataset.points = '0';
   }
 
+  /** The chart of exactly these runs (a finished sweep's rows: every run once). */
+  setRows(rows: readonly Record<string, string>[]): void {
+    this.values.clear();
+    this.add(rows);
+  }
+
   /** Adds finished runs (runs.csv rows) and schedules a redraw. */
   add(rows: readonly Record<string, string>[]): void {
     const setup = this.setup;

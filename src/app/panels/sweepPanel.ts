@@ -275,6 +275,9 @@ export class SweepPanel {
       });
       this.runsCsv = result.runsCsv;
       this.aggregateCsv = result.aggregateCsv;
+      // The chart and its figure hold exactly the sweep's runs (a progress event without its row
+      // would otherwise leave a point short of a realization).
+      this.chart.setRows(result.runs);
       // Over the surface ratio: the aggregate's Flintstones fits (one per Voronoi k), drawn.
       this.flintstones.show(plan.fields.includes(FLINTSTONES_RATIO) ? sweepFlintstones(result.runs, plan.runs, plan.fields) : [], result.runs);
       const done = result.runs.length;
