@@ -19,7 +19,7 @@ const withConfig = (config: unknown) => `/?config=${encodeURIComponent(JSON.stri
 
 
 async function percentScutoids(page: Page): Promise<number> {
-  return Number(await page.locator('#percent-scutoids').getAttribute('data-value'));
+  return Number(await page.locator('#percent-scutoids').getAttribute('data-drawn'));
 }
 
 test('a sphere runs: concentric spheres keep every neighbour (0 % scutoids)', async ({ page }) => {
@@ -127,7 +127,7 @@ test('a URL round trip reproduces a closed-surface result (sphere and sample mes
     await waitForRun(page, before);
     const link = page.url();
     expect(new URL(link).searchParams.get('config')).toContain('"seed":11');
-    const percent = await page.locator('#percent-scutoids').getAttribute('data-value');
+    const percent = await page.locator('#percent-scutoids').getAttribute('data-drawn');
     const summary = await page.locator('#summary').textContent();
     const cells = await page.locator('#cell-table').textContent();
 
@@ -135,7 +135,7 @@ test('a URL round trip reproduces a closed-surface result (sphere and sample mes
     const shared = await other.newPage();
     await shared.goto(link);
     await waitForRun(shared);
-    expect(await shared.locator('#percent-scutoids').getAttribute('data-value')).toBe(percent);
+    expect(await shared.locator('#percent-scutoids').getAttribute('data-drawn')).toBe(percent);
     expect(await shared.locator('#summary').textContent()).toBe(summary);
     expect(await shared.locator('#cell-table').textContent()).toBe(cells);
     await expect(shared.getByLabel('Random seed')).toHaveValue('11');

@@ -24,7 +24,7 @@ function table(text: string): Record<string, string>[] {
 test('exports download files that parse and match the on-screen numbers', async ({ page }) => {
   await page.goto('/');
   await waitForRun(page);
-  const percent = Number(await page.locator('#percent-scutoids').getAttribute('data-value'));
+  const percent = Number(await page.locator('#percent-scutoids').getAttribute('data-drawn'));
   const scutoidsShown = Number(await page.locator('#summary tr[data-key="scutoids"]').getAttribute('data-value'));
   const validShown = Number(await page.locator('#summary tr[data-key="validCells"]').getAttribute('data-value'));
 
@@ -94,7 +94,7 @@ test('a URL round trip reproduces the result, and reopening restores the last se
   await waitForRun(page, before);
   const link = page.url();
   expect(new URL(link).searchParams.get('config')).toContain('"seed":7');
-  const percent = await page.locator('#percent-scutoids').getAttribute('data-value');
+  const percent = await page.locator('#percent-scutoids').getAttribute('data-drawn');
   const summary = await page.locator('#summary').textContent();
   await page.locator('section[aria-labelledby="cells-title"] summary').click();
   const cells = await page.locator('#cell-table').textContent();
@@ -104,7 +104,7 @@ test('a URL round trip reproduces the result, and reopening restores the last se
   const shared = await other.newPage();
   await shared.goto(link);
   await waitForRun(shared);
-  expect(await shared.locator('#percent-scutoids').getAttribute('data-value')).toBe(percent);
+  expect(await shared.locator('#percent-scutoids').getAttribute('data-drawn')).toBe(percent);
   expect(await shared.locator('#summary').textContent()).toBe(summary);
   expect(await shared.locator('#cell-table').textContent()).toBe(cells);
   await expect(shared.getByLabel('Random seed')).toHaveValue('7');
@@ -114,5 +114,5 @@ test('a URL round trip reproduces the result, and reopening restores the last se
   await page.goto('/');
   await waitForRun(page);
   await expect(page.getByLabel('Cells', { exact: true })).toHaveValue('120');
-  expect(await page.locator('#percent-scutoids').getAttribute('data-value')).toBe(percent);
+  expect(await page.locator('#percent-scutoids').getAttribute('data-drawn')).toBe(percent);
 });

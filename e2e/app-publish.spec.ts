@@ -159,6 +159,8 @@ test('figure PNG: chosen DPI in pHYs, pixel width from mm and DPI, provenance in
 test('a saved project restores the exact view; a result JSON from the CLI opens and is drawn from its cells', async ({ page }) => {
   await page.goto(linkTo(TUBE));
   await waitForRun(page);
+  // The headline over its realizations is in before the result is saved.
+  await page.waitForFunction(() => document.body.dataset.headline === 'complete', undefined, { timeout: 120_000 });
   const result = await resultOf(page);
   // Change the view: pick a cell, hide the basal surface, orbit the camera.
   await page.locator('#cell-id').fill('7');
@@ -203,7 +205,7 @@ test('a saved project restores the exact view; a result JSON from the CLI opens 
   await page.locator('#open-file').setInputFiles(resultPath);
   await expect(page.locator('#status')).toContainText('exact cells of its sites');
   expect(await runs(page)).toBe(runsBefore);
-  expect(Number(await page.locator('#percent-scutoids').getAttribute('data-value'))).toBe(exact(cli).summary.percentScutoids);
+  expect(Number(await page.locator('#percent-scutoids').getAttribute('data-drawn'))).toBe(exact(cli).summary.percentScutoids);
   const shown = await resultOf(page);
   expect(shown.cells).toEqual(cli.cells);
 
@@ -310,7 +312,7 @@ test('a failed run and a cancelled run leave the result, the page and the link a
   await page.goto(linkTo(TUBE));
   await waitForRun(page);
   const url = page.url();
-  const percent = await page.locator('#percent-scutoids').getAttribute('data-value');
+  const percent = await page.locator('#percent-scutoids').getAttribute('data-drawn');
   // Failed: a run the page refuses (a hundred million cells) typed in the form.
   const cancelBefore = await runs(page);
   await page.evaluate(() => {
@@ -322,7 +324,7 @@ test('a failed run and a cancelled run leave the result, the page and the link a
   });
   await expect(page.locator('#error')).toBeVisible({ timeout: 20_000 });
   expect(page.url()).toBe(url);
-  await expect(page.locator('#percent-scutoids')).toHaveAttribute('data-value', percent!);
+  await expect(page.locator('#percent-scutoids')).toHaveAttribute('data-drawn', percent!);
   expect(await runs(page)).toBe(cancelBefore);
 
   // Cancelled: a long run, cancelled at its first iteration.
@@ -340,7 +342,7 @@ test('a failed run and a cancelled run leave the result, the page and the link a
   await page.waitForFunction(() => document.body.dataset.state === 'cancelled', undefined, { timeout: 20_000 });
   expect(page.url()).toBe(url);
   expect(await runs(page)).toBe(runsBefore);
-  await expect(page.locator('#percent-scutoids')).toHaveAttribute('data-value', percent!);
+  await expect(page.locator('#percent-scutoids')).toHaveAttribute('data-drawn', percent!);
   const shown = await resultOf(page);
   expect((shown.config as { lloyd: { maxIterations: number } }).lloyd.maxIterations).toBe(3);
 });

@@ -99,7 +99,7 @@ test('the headline says its method; 0 by construction says why; Voronoi k is sho
   const [download] = await Promise.all([page.waitForEvent('download'), page.locator('[data-export="json"]').click()]);
   const result = JSON.parse(readFileSync(await download.path(), 'utf8'));
   const exact = result.analyses.find((a: { method: string }) => a.method === 'exact');
-  expect(Number(await headline.getAttribute('data-value'))).toBe(exact.summary.percentScutoids);
+  expect(Number(await headline.getAttribute('data-drawn'))).toBe(exact.summary.percentScutoids);
 
   const before = await runs(page);
   await page.getByLabel('Surface ratio R_outer / R_inner').fill('1');

@@ -10,7 +10,7 @@ import { runs, waitForRun } from './appHelpers';
 
 
 async function percentScutoids(page: Page): Promise<number> {
-  return Number(await page.locator('#percent-scutoids').getAttribute('data-value'));
+  return Number(await page.locator('#percent-scutoids').getAttribute('data-drawn'));
 }
 
 test('default view (screenshot)', async ({ page }) => {
@@ -19,6 +19,8 @@ test('default view (screenshot)', async ({ page }) => {
   await expect(page.locator('#error')).toBeHidden();
   await expect(page.locator('#percent-scutoids')).toHaveText(/\d+\.\d %/);
   await expect(page.locator('#unrolled canvas')).toHaveCount(2);
+  // The headline over its realizations (mean, 95 % CI, n) is what a person reads.
+  await page.waitForFunction(() => document.body.dataset.headline === 'complete', undefined, { timeout: 120_000 });
   await page.evaluate(() => new Promise(requestAnimationFrame));
   await expect(page).toHaveScreenshot('app-default.png', {
     fullPage: true,

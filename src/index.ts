@@ -66,6 +66,11 @@ export type {
 } from './core/config/index';
 export type { GrayImage } from './core/density';
 
+// A headline's omitted methods (Headline.omittedMethods). The headline over realizations is
+// computed by the page, the element and `tissue-sheet run --realizations N`
+// (core/analysis/realizations.ts); the public API stays at 30 runtime values.
+export type { OmittedMethod } from './core/analysis/headline';
+
 // Parameter sweeps: the spec, expansion, tidy CSV rows, aggregation and the resumable loop.
 export {
   validateSweepSpec,

@@ -17,7 +17,12 @@ import { Charts } from './panels/charts';
 import { ConfigControls } from './panels/controls';
 import { bindExports } from './panels/exports';
 import { rerunNote, type OpenedFile } from './model/project';
-import { renderResults } from './panels/results';
+import { renderHeadline, renderResults } from './panels/results';
+import { cellSizeNote, explainRefusal } from './model/refusal';
+import { changedFields, setMeshExtent } from './panels/fields';
+import { realizationsHeadline } from '../view/realizations';
+import { checkRealizations, DEFAULT_REALIZATIONS } from '../core/analysis/realizations';
+import type { Headline } from '../core/analysis/headline';
 import { SweepPanel } from './panels/sweepPanel';
 import { mountLloydMovie } from './panels/lloydMovie';
 import { ViewPanel } from './panels/viewPanel';
@@ -47,15 +52,182 @@ let dragging = false;
 let runs = 0;
 const runner = new LatestRunner();
 
+/**
+ * The headline over realizations: after a result is on screen (realization 1), the other seeds
+ * run in a worker of their own (view/realizations.ts) and the headline becomes their mean with
+ * its 95 % CI. Combined headlines are kept by configuration and n, so a redraw or going back to
+ * a configuration does not compute them again.
+ */
+const realizationsInput = $<HTMLInputElement>('#realizations');
+let realizationsController: AbortController | null = null;
+const combined = new Map<string, Headline>();
+const combinedKey = (stack: ViewStack, n: number) => `${n}|${JSON.stringify(stack.result.config)}`;
+
+/** The number of realizations asked for, or null (and the field marked) when it is not one. */
+function realizationsAsked(): number | null {
+  try {
+    const n = checkRealizations(realizationsInput.value.trim().replace(',', '.'), 'Realizations');
+    realizationsInput.removeAttribute('aria-invalid');
+    return n;
+  } catch (error) {
+    realizationsInput.setAttribute('aria-invalid', 'true');
+    showError((error as Error).message);
+    return null;
+  }
+}
+
+/** `shown` with `headline` as its result's headline (the views and exports read the same stack). */
+function withHeadline(shown: ViewStack, headline: Headline | null): ViewStack {
+  return { ...shown, result: { ...shown.result, headline } };
+}
+
+function stopRealizations(): void {
+  realizationsController?.abort();
+  realizationsController = null;
+}
+
+/** Computes the headline of the result on screen over the realizations asked for. */
+async function startRealizations(output: SheetOutput): Promise<void> {
+  stopRealizations();
+  const shown = stack;
+  if (!shown) return;
+  const n = realizationsAsked();
+  if (n === null) return;
+  const drawn = output.result.headline;
+  const done = (headline: Headline | null) => {
+    if (stack !== shown) return;
+    stack = withHeadline(shown, headline);
+    renderHeadline($('main'), stack, null);
+    document.body.dataset.headline = 'complete';
+  };
+  if (n <= 1 || !drawn) {
+    done(drawn);
+    return;
+  }
+  const known = combined.get(combinedKey(shown, n));
+  if (known) {
+    done(known);
+    return;
+  }
+  const controller = new AbortController();
+  realizationsController = controller;
+  document.body.dataset.headline = 'partial';
+  renderHeadline($('main'), shown, { state: 'running', done: 1, n });
+  cancelButton.disabled = false;
+  try {
+    const headline = await realizationsHeadline({
+      output,
+      n,
+      signal: controller.signal,
+      onProgress: (k, total) => stack === shown && renderHeadline($('main'), shown, { state: 'running', done: k, n: total }),
+    });
+    if (controller.signal.aborted) return;
+    if (headline) {
+      if (combined.size > 32) combined.clear();
+      combined.set(combinedKey(shown, n), headline);
+    }
+    done(headline);
+  } catch (error) {
+    if (stack !== shown) return;
+    const cancelled = isAbort(error) || controller.signal.aborted;
+    renderHeadline($('main'), shown, { state: cancelled ? 'cancelled' : 'failed', n, message: (error as Error)?.message });
+    document.body.dataset.headline = cancelled ? 'cancelled' : 'failed';
+  } finally {
+    if (realizationsController === controller) realizationsController = null;
+    cancelButton.disabled = !runner.running && !realizationsController;
+  }
+}
+
+/**
+ * The number of realizations is part of the result on screen: the address carries it
+ * (`&realizations=N`) when it is not the default, and a link with it sets the control.
+ */
+const REALIZATIONS_PARAM = 'realizations';
+{
+  const fromLink = new URL(location.href).searchParams.get(REALIZATIONS_PARAM);
+  if (fromLink !== null) {
+    try {
+      realizationsInput.value = String(checkRealizations(fromLink, 'realizations (in the link)'));
+    } catch (error) {
+      // After the page's modules are set up (the form exists then).
+      queueMicrotask(() => showError((error as Error).message));
+    }
+  }
+}
+
+function syncRealizationsParam(): void {
+  const url = new URL(location.href);
+  const n = realizationsInput.value.trim();
+  if (n === String(DEFAULT_REALIZATIONS) || realizationsInput.getAttribute('aria-invalid') === 'true') url.searchParams.delete(REALIZATIONS_PARAM);
+  else url.searchParams.set(REALIZATIONS_PARAM, n);
+  if (url.toString() !== location.href) history.replaceState(null, '', url.toString());
+}
+
+realizationsInput.addEventListener('change', () => {
+  syncRealizationsParam();
+  if (!stack) return;
+  const output = { result: { ...stack.result, headline: stack.result.headline ? drawnHeadline(stack.result.headline) : null }, labelImages: stack.surfaces.map((s) => s.image) } as SheetOutput;
+  void startRealizations(output);
+});
+
+/** Realization 1's own headline, from a headline over realizations (its counts are realization 1's). */
+function drawnHeadline(h: Headline): Headline {
+  if (h.realizations <= 1) return h;
+  const value = h.realizationValues[0] ?? null;
+  return { ...h, percentScutoids: value, realizations: 1, ci95: null, sd: null, realizationSeeds: h.realizationSeeds.slice(0, 1), realizationValues: [value] };
+}
+
 function setState(state: 'running' | 'done' | 'error' | 'cancelled' | 'no-webgl' | 'waiting' | 'refused'): void {
   document.body.dataset.state = state;
 }
 
-function showError(error: unknown): void {
-  const message =
-    error instanceof ConfigError || error instanceof GpuCapabilityError || error instanceof Error ? error.message : String(error);
-  errorBox.textContent = message;
+/**
+ * Shows an error: a refusal in a biologist's words (model/refusal.ts), the engine's own message
+ * on a details line when the main line replaced it.
+ */
+function showError(error: unknown, config: AnyConfig | null = null): void {
+  const { message, details } =
+    error instanceof ConfigError || error instanceof GpuCapabilityError || error instanceof Error
+      ? explainRefusal(error, config)
+      : { message: String(error), details: null };
+  const main = document.createElement('span');
+  main.className = 'error-main';
+  main.textContent = message;
+  errorBox.replaceChildren(main);
+  if (details) {
+    const more = document.createElement('details');
+    more.className = 'error-details';
+    more.append(Object.assign(document.createElement('summary'), { textContent: 'Details (for the engine)' }), ' ', details);
+    errorBox.append(more);
+  }
   errorBox.hidden = false;
+  markStale();
+}
+
+/**
+ * Marks the result on screen stale while the form describes another configuration (an edit not
+ * yet run, running, or refused): `#stale-note` says which fields differ, and the body's
+ * `data-stale` is "true" until a result of the form's configuration is shown.
+ */
+function markStale(): void {
+  const note = $('#stale-note');
+  const form = controls.config;
+  const diffs = shownDraft ? changedFields(shownDraft, form) : [];
+  const stale = stack !== null && shownDraft !== null && diffs.length > 0;
+  document.body.dataset.stale = String(stale);
+  note.hidden = !stale;
+  if (!stale) {
+    note.textContent = '';
+    return;
+  }
+  const state = document.body.dataset.state;
+  const why =
+    state === 'running'
+      ? 'computing the new one…'
+      : state === 'error' || state === 'refused'
+        ? 'the new values were not run (see the message above).'
+        : 'the new values have not been run yet.';
+  note.textContent = `Stale: this result is for ${diffs.map((d) => `${d.label} ${d.shown}`).join(', ')}; the form says ${diffs.map((d) => `${d.label} ${d.form}`).join(', ')}; ${why}`;
 }
 
 /** True when `config` is the link's own configuration (its errors stay until dismissed). */
@@ -64,11 +236,12 @@ function isLinkConfig(config: unknown): boolean {
 }
 
 /** A configuration that cannot run: a link's refusal stays until dismissed, an edit's until the next run. */
-function refuse(error: unknown, fromLink: boolean): void {
+function refuse(error: unknown, fromLink: boolean, config: AnyConfig | null = null): void {
   const message = error instanceof Error ? error.message : String(error);
-  if (fromLink) linkAlert.show(`This link's configuration was not run: ${message}`);
-  else showError(error);
   setState(fromLink ? 'refused' : 'error');
+  if (fromLink) linkAlert.show(`This link's configuration was not run: ${message}`);
+  else showError(error, config);
+  markStale();
 }
 
 function clearError(): void {
@@ -88,7 +261,14 @@ bindHelp($('#help-open'), $<HTMLDialogElement>('#help'));
 const viewPanel = new ViewPanel($('main'), $('#unrolled'));
 const charts = new Charts($('#chart-polygons'), $('#chart-energy'), $('#chart-sweep'), $('#chart-lewis'), $('#chart-aboav'));
 const controls = new ConfigControls($('#controls'), initialConfig(link), {
-  onEdit: (draft, live) => {
+  onEdit: (draft, live, forced) => {
+    queueMicrotask(markStale);
+    // A mesh file uploaded under the name the configuration already holds (a link asking for
+    // the file again): the draft is the same, but the file is new, so it runs.
+    if (forced) {
+      void run(draft);
+      return;
+    }
     // A slider's "change" after its last "input" asks for the run already under way: skip it,
     // but draw the drag's draft pictures again in full once it has settled.
     dragging = live;
@@ -131,7 +311,7 @@ async function openInPage(file: OpenedFile, name: string): Promise<void> {
     statusLine.textContent = `Opened ${name}: ${rerunNote(file.result, stack)}`;
     return;
   }
-  await show(file.output, config);
+  await show(file.output, config, false, true);
   if (file.kind === 'project' && stack) viewPanel.restore(stack, file.view);
   saveConfig(config, openedLink);
   statusLine.textContent =
@@ -165,9 +345,15 @@ function showCharts(shown: ViewStack, live: boolean): void {
   charts.showStack(shown);
 }
 
-async function show(output: SheetOutput, draft: Config, live = false): Promise<void> {
-  const shown = viewStack(output);
+async function show(output: SheetOutput, draft: Config, live = false, opened = false): Promise<void> {
+  let shown = viewStack(output);
+  // A headline over realizations already computed for this configuration and n is shown at once.
+  const n = Number(realizationsInput.value);
+  const known = n > 1 ? combined.get(combinedKey(shown, n)) : undefined;
+  if (known) shown = withHeadline(shown, known);
   stack = shown;
+  const waiting = !known && !opened && n > 1 && (shown.result.headline?.realizations ?? 1) <= 1;
+  document.body.dataset.headline = waiting ? 'partial' : 'complete';
   shownDraft = draft;
   // Which pictures are on screen: a drag's drafts, or full (redrawInFull follows a drag).
   document.body.dataset.pictures = live ? 'draft' : 'full';
@@ -179,6 +365,13 @@ async function show(output: SheetOutput, draft: Config, live = false): Promise<v
   await nextTask();
   if (stack !== shown) return; // a newer result is being drawn
   renderResults($('main'), shown);
+  const surface = shown.result.config.surface;
+  if (surface.kind === 'mesh' && shown.result.closed) {
+    setMeshExtent(surface.src, surface.scale, shown.result.closed.area);
+    controls.refreshControls();
+  }
+  if (waiting) renderHeadline($('main'), shown, { state: 'waiting', n });
+  if (!live) sweep.configChanged();
   await nextTask();
   if (stack !== shown) return;
   showCharts(shown, live);
@@ -204,7 +397,7 @@ async function run(draft: Config, live = false): Promise<void> {
     // The work is bounded before anything is allocated (the page cannot raise the budget).
     checkPageBudget(config, computeContext().capabilities.maxTextureSize);
   } catch (error) {
-    refuse(error, isLinkConfig(config));
+    refuse(error, isLinkConfig(config), config);
     return;
   }
   const pending = pendingSources(config, location.href);
@@ -217,9 +410,12 @@ async function run(draft: Config, live = false): Promise<void> {
   }
   sourceQuestion.close();
   clearError();
+  stopRealizations();
   setState('running');
+  markStale();
   cancelButton.disabled = false;
-  statusLine.textContent = 'Running…';
+  const sizeNote = cellSizeNote(config);
+  statusLine.textContent = sizeNote ? `Running… ${sizeNote}` : 'Running…';
   progress.max = Math.max(1, config.lloyd.maxIterations);
   progress.value = 0;
   const started = performance.now();
@@ -229,30 +425,37 @@ async function run(draft: Config, live = false): Promise<void> {
       onIteration(record, total) {
         progress.max = Math.max(1, total);
         progress.value = record.iteration;
-        statusLine.textContent = `Lloyd iteration ${record.iteration} / ${total}, energy ${record.energy.toPrecision(6)} µm⁴`;
+        statusLine.textContent = `Lloyd iteration ${record.iteration} / ${total}, energy ${record.energy.toPrecision(6)} µm⁴${sizeNote ? `. ${sizeNote}` : ''}`;
       },
     });
     await show(output, input, live);
     // Saved once it ran: the URL and the session hold the configuration of the result on screen
     // (during a drag only once it ends: history.replaceState took 5-30 ms per streamed result).
-    if (!live || !dragging) saveConfig(input, openedLink);
+    if (!live || !dragging) {
+      saveConfig(input, openedLink);
+      syncRealizationsParam();
+    }
     runs += 1;
     document.body.dataset.runs = String(runs);
-    statusLine.textContent = `Done in ${((performance.now() - started) / 1000).toFixed(1)} s.${siteNote}`;
+    const note = cellSizeNote(config, output.result.closed?.area ?? undefined);
+    statusLine.textContent = `Done in ${((performance.now() - started) / 1000).toFixed(1)} s.${siteNote}${note ? ` ${note}` : ''}`;
     progress.value = progress.max;
     setState('done');
+    markStale();
+    if (!live) void startRealizations(output);
   } catch (error) {
     if (isAbort(error)) {
       // A newer run replaced this one, or the user cancelled: the previous result stays.
       if (!runner.running) {
         statusLine.textContent = 'Cancelled; the previous result is still shown.';
         setState('cancelled');
+        markStale();
       }
       return;
     }
-    showError(error);
-    statusLine.textContent = stack ? 'Failed; the previous result is still shown.' : 'Failed.';
     setState(error instanceof GpuCapabilityError ? 'no-webgl' : 'error');
+    showError(error, config);
+    statusLine.textContent = stack ? 'Failed; the previous result is still shown.' : 'Failed.';
   } finally {
     cancelButton.disabled = !runner.running;
   }
@@ -272,6 +475,7 @@ async function redrawInFull(): Promise<void> {
     stack = viewStack(output);
     viewPanel.show(stack);
     document.body.dataset.pictures = 'full';
+    void startRealizations(output);
   } catch {
     // The draft pictures stay: they show the same result.
   }
@@ -297,7 +501,10 @@ $('#step').addEventListener('click', () =>
 $('#converge').addEventListener('click', () =>
   runWith((c) => ({ ...c, lloyd: { ...c.lloyd, maxIterations: Math.max(c.lloyd.maxIterations, 500), tolerance: Math.max(c.lloyd.tolerance, 0.05) } })),
 );
-cancelButton.addEventListener('click', () => runner.cancel());
+cancelButton.addEventListener('click', () => {
+  runner.cancel();
+  stopRealizations();
+});
 $('#share').addEventListener('click', async () => {
   try {
     // The configuration of the result on screen, not the form's draft.

@@ -1,4 +1,5 @@
 /** Command-line arguments of `run` and `sweep`: one input, --out, and the opt-in flags. */
+import { MAX_REALIZATIONS } from '../core/analysis/realizations';
 import { InputError } from './errors';
 
 export interface CliOptions {
@@ -18,6 +19,8 @@ export interface CliOptions {
   shard?: string;
   /** Sweeps: worker threads for the exact-engine runs (default: the machine's cores). */
   workers?: number;
+  /** run: realizations the headline is over (seeds seed, seed + 1, ...; default DEFAULT_REALIZATIONS). */
+  realizations?: number;
 }
 
 export function parseArgs(args: string[], form: string, sweep = false): CliOptions {
@@ -31,6 +34,7 @@ export function parseArgs(args: string[], form: string, sweep = false): CliOptio
     maxRuns: undefined as number | undefined,
     shard: undefined as string | undefined,
     workers: undefined as number | undefined,
+    realizations: undefined as number | undefined,
   };
   const usage = `usage: tissue-sheet ${form}`;
   for (let i = 0; i < args.length; i++) {
@@ -52,7 +56,12 @@ export function parseArgs(args: string[], form: string, sweep = false): CliOptio
       if (!Number.isInteger(n) || n < 1) throw new InputError(`--max-runs: must be a positive integer (got ${JSON.stringify(v)})`);
       options.maxRuns = n;
     } else if (sweep && name === '--shard') options.shard = value();
-    else if (sweep && name === '--workers') {
+    else if (!sweep && name === '--realizations') {
+      const v = value();
+      const n = Number(v);
+      if (!Number.isInteger(n) || n < 1 || n > MAX_REALIZATIONS) throw new InputError(`--realizations: must be a whole number from 1 to ${MAX_REALIZATIONS} (got ${JSON.stringify(v)})`);
+      options.realizations = n;
+    } else if (sweep && name === '--workers') {
       const v = value();
       const n = Number(v);
       if (!Number.isInteger(n) || n < 1 || n > 1024) throw new InputError(`--workers: must be an integer from 1 to 1024 (got ${JSON.stringify(v)})`);

@@ -20,6 +20,9 @@ Options:
   --force           overwrite an existing --out that is not a previous tissue-sheet result
   --allow-network   fetch http(s) mesh and density sources (default: file paths only)
   --allow-large     lift the work and memory limits (GPU texture limits still apply)
+  --realizations N  run: the headline is the mean % scutoids over N realizations (seeds
+                    seed, seed + 1, ...) with its 95 % CI (default 5; 1: this seed alone);
+                    RESULT.json is realization 1's, its headline the mean
   --cells-file      run: per-cell lists in RESULT.cells.bin (columns) instead of the JSON;
                     done anyway above 100,000 cell records (README, "Result JSON")
   --max-runs N      sweep: accept up to N runs (default 100000)
@@ -41,7 +44,7 @@ Progress goes to stderr. Exit codes:
 type Command = (args: string[], signal: AbortSignal, log: (line: string) => void) => Promise<number | void>;
 
 const commands: Record<string, Command> = {
-  run: (args, signal, log) => runCommand(parseArgs(args, 'run CONFIG.json --out RESULT.json [--force] [--allow-network] [--allow-large] [--cells-file]'), signal, log),
+  run: (args, signal, log) => runCommand(parseArgs(args, 'run CONFIG.json --out RESULT.json [--realizations N] [--force] [--allow-network] [--allow-large] [--cells-file]'), signal, log),
   sweep: (args, signal, log) =>
     sweepCommand(parseArgs(args, 'sweep SWEEP.json --out DIR [--force] [--allow-network] [--allow-large] [--max-runs N] [--shard I/N|slurm] [--workers N]', true), signal, log),
   merge: async (args, _signal, log) => (await import('./merge')).mergeCommand(args, log),

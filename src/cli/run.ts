@@ -7,6 +7,7 @@
  */
 import { dirname } from 'node:path';
 import { describeHeadline } from '../core/analysis/headline';
+import { DEFAULT_REALIZATIONS, headlineOverRealizations } from '../core/analysis/realizations';
 import { ConfigError, validateAnyConfig } from '../core/config';
 import { createHeadlessContext } from '../node/headless';
 import { describeEngine, runSheet } from '../run/index';
@@ -34,7 +35,7 @@ export async function runCommand(options: CliOptions, signal: AbortSignal, log: 
   const context = createHeadlessContext();
   try {
     checkRunnable(config, computeBudget(context.capabilities.maxTextureSize, options.allowLarge));
-    const { result, tables } = await runSheet(config, context, {
+    const { result: drawn, tables } = await runSheet(config, context, {
       ...inputs,
       signal,
       cellTables,
@@ -43,7 +44,20 @@ export async function runCommand(options: CliOptions, signal: AbortSignal, log: 
       },
     });
     if (signal.aborted) throw new InterruptedError('interrupted; nothing was written');
-    checkFinite(result.lloyd.finalEnergy);
+    checkFinite(drawn.lloyd.finalEnergy);
+    // The headline is the mean over realizations (seeds seed, seed + 1, ...): the file is
+    // realization 1's, the one drawn; the others only give their headline.
+    const n = options.realizations ?? DEFAULT_REALIZATIONS;
+    let r = 1;
+    const headline = await headlineOverRealizations(config.seed, n, drawn.headline, async (seed) => {
+      if (signal.aborted) throw new InterruptedError('interrupted; nothing was written');
+      const { result: other } = await runSheet({ ...config, seed }, context, { ...inputs, signal, cellTables });
+      if (signal.aborted) throw new InterruptedError('interrupted; nothing was written');
+      const value = other.headline?.percentScutoids;
+      log(`realization ${++r} of ${n} (seed ${seed}): ${typeof value === 'number' ? `${value.toFixed(1)} % scutoids` : 'no % scutoids'}`);
+      return other.headline;
+    });
+    const result = { ...drawn, headline };
     const side = writeResult(options.out, result, tables, [options.input], options.force);
     log(
       `done: ${tables?.cells.count ?? result.cells.length} cells, ${result.lloyd.iterations.length} iterations, ` +

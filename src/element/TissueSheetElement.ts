@@ -6,14 +6,27 @@
  */
 import type { AnyConfig, ConfigInput } from '../core/config';
 import type { GrayImage } from '../core/density';
-import { ConfigError } from '../core/config';
+import { ConfigError, validateAnyConfig } from '../core/config';
 import type { MeshFile, SheetResult, ComputeSite } from '../run';
 import { isAbort, LatestRunner, computeSite as pipelineSite, computeContext } from '../view/pageRunner';
 import { sweepInPage } from '../view/pageSweep';
-import type { TissueSheetSweepOptions, TissueSheetSweepProgressDetail, TissueSheetSweepResult, TissueSheetErrorDetail, TissueSheetEventMap, TissueSheetProgressDetail, TissueSheetResultDetail } from './events';
+import type {
+  TissueSheetSweepOptions,
+  TissueSheetSweepProgressDetail,
+  TissueSheetSweepResult,
+  TissueSheetErrorDetail,
+  TissueSheetEventMap,
+  TissueSheetProgressDetail,
+  TissueSheetResultDetail,
+  TissueSheetWaitingDetail,
+  TissueSheetWarningDetail,
+} from './events';
 import { SheetView3D } from '../view/sheetView3d';
 import { trackCellHover } from '../view/cellHover';
 import { byConstruction } from '../core/analysis/byConstruction';
+import { checkRealizations, DEFAULT_REALIZATIONS } from '../core/analysis/realizations';
+import { describeRealizations } from '../core/analysis/headline';
+import { realizationsHeadline } from '../view/realizations';
 import { checkPageBudget } from '../view/pageBudget';
 import { pendingSources, type ForeignSource } from '../view/sources';
 import { methodCaption, primaryAnalysis, viewStack } from '../view/stack';
@@ -42,7 +55,34 @@ export class TissueSheetElement extends HTMLElement {
   }
 
   /** The effective, validated configuration (throws ConfigError when the attributes are invalid). */
+  /**
+   * The effective configuration. While an attribute is invalid it does not throw (issue 26): it
+   * gives the last valid configuration (of the last run, else the defaults with the `config`
+   * property), and `configError` says what is wrong; `run()` and the `error` event report it.
+   */
   get config(): AnyConfig {
+    try {
+      const config = this.readConfig();
+      this.lastValid = config;
+      return config;
+    } catch {
+      return this.lastValid ?? this.last?.config ?? validateAnyConfig(this.base ?? {});
+    }
+  }
+
+  /** What makes the attributes invalid, in words, or null when they are valid. */
+  get configError(): string | null {
+    try {
+      this.readConfig();
+      return null;
+    } catch (error) {
+      return (error as Error).message;
+    }
+  }
+
+  private lastValid: AnyConfig | null = null;
+
+  private readConfig(): AnyConfig {
     return configFromAttributes(this, this.base, this.mesh?.name);
   }
 
@@ -81,12 +121,22 @@ export class TissueSheetElement extends HTMLElement {
     return this.last;
   }
 
+  /**
+   * Realizations the headline is over (the `realizations` attribute, 1 to 100; default 5): the
+   * result event's headline is their mean with its 95 % CI; the cells shown are realization 1.
+   */
+  get realizations(): number {
+    const text = this.getAttribute('realizations');
+    return text === null ? DEFAULT_REALIZATIONS : checkRealizations(text, 'realizations');
+  }
+
   /** Without the `manual` attribute, the element runs when connected and when configured. */
   get manual(): boolean {
     return this.hasAttribute('manual');
   }
 
   connectedCallback(): void {
+    this.checkAttributes();
     if (!this.view) {
       try {
         this.view = new SheetView3D(this.shadow.querySelector('canvas')!);
@@ -102,6 +152,45 @@ export class TissueSheetElement extends HTMLElement {
 
   disconnectedCallback(): void {
     this.runner.cancel();
+    this.realizationsRun?.abort();
+  }
+
+
+  /** Warnings in words (unknown attributes, a fallback to the page), shown under every status. */
+  private warnings: string[] = [];
+  private fellBack = false;
+
+  /** Attributes the element does not know are said, never ignored silently. */
+  private checkAttributes(): void {
+    const known = new Set([...Object.keys(ATTRIBUTES), ...OTHER_ATTRIBUTES]);
+    const global = /^(id|class|style|title|slot|hidden|lang|dir|tabindex|part|role|is|draggable|translate|inert|autofocus|contenteditable|spellcheck|nonce|exportparts|popover|accesskey|enterkeyhint|inputmode|(data|aria)-.+|on[a-z]+)$/;
+    this.warnings = this.warnings.filter((w) => !w.startsWith('unknown attribute'));
+    for (const name of this.getAttributeNames()) {
+      if (known.has(name) || global.test(name)) continue;
+      const suggestion = closest(name, [...known]);
+      const message = `unknown attribute "${name}" ignored${suggestion ? ` (did you mean "${suggestion}"?)` : ''}`;
+      this.warnings.push(message);
+      this.emit<TissueSheetWarningDetail>('warning', { message, attribute: name, ...(suggestion ? { suggestion } : {}) });
+    }
+  }
+
+  /** Once: runs fell back from the worker to the page; said in the status and as a warning event. */
+  private noteFallback(): void {
+    const site = pipelineSite();
+    if (this.fellBack || site.where !== 'page') return;
+    this.fellBack = true;
+    const message = `computed on the page, not in a worker (${site.reason}): the page may pause during runs`;
+    this.warnings.push(message);
+    this.emit<TissueSheetWarningDetail>('warning', { message });
+  }
+
+  /** The realizations of the latest run: a newer run (or disconnecting) stops them. */
+  private realizationsRun: AbortController | null = null;
+
+  private runSignal(): AbortSignal {
+    this.realizationsRun?.abort();
+    this.realizationsRun = new AbortController();
+    return this.realizationsRun.signal;
   }
 
   attributeChangedCallback(name: string, previous: string | null, next: string | null): void {
@@ -111,8 +200,11 @@ export class TissueSheetElement extends HTMLElement {
   /** Runs the sheet now; resolves with the result (also sent as a `result` event). */
   async run(): Promise<SheetResult> {
     let config: AnyConfig;
+    let n: number;
     try {
-      config = this.config;
+      config = this.readConfig();
+      this.lastValid = config;
+      n = this.realizations;
     } catch (error) {
       this.fail(error);
       throw error;
@@ -126,6 +218,8 @@ export class TissueSheetElement extends HTMLElement {
     }
     const pending = pendingSources(config, location.href);
     if (pending.length > 0) return this.waitForApproval(pending);
+    // A question about an earlier configuration's source does not stay beside an unrelated run.
+    this.shadow.querySelector<HTMLElement>('.ask')!.hidden = true;
     this.status(`Running ${config.cells} cells…`);
     try {
       const output = await this.runner.start({
@@ -137,6 +231,7 @@ export class TissueSheetElement extends HTMLElement {
           this.emit<TissueSheetProgressDetail>('progress', { iteration: record.iteration, maxIterations, energy: record.energy, maxDisplacement: record.maxDisplacement });
         },
       });
+      this.noteFallback();
       const stack = viewStack(output);
       try {
         this.view?.setStack(stack);
@@ -144,7 +239,6 @@ export class TissueSheetElement extends HTMLElement {
       } catch (error) {
         this.status(`3D view: ${(error as Error).message}`, true);
       }
-      this.last = output.result;
       const analysis = primaryAnalysis(output.result);
       const percent = analysis?.summary.percentScutoids ?? Number.NaN;
       const method = analysis?.method ?? 'labels';
@@ -156,15 +250,37 @@ export class TissueSheetElement extends HTMLElement {
       this.shadow.querySelector<HTMLElement>('.method')!.textContent = method;
       const rule = byConstruction(output.result.config);
       const iterations = output.result.lloyd.iterations.length;
-      this.status(rule ? rule.message : `${config.cells} cells, Voronoi ${iterations + 1} (${iterations} Lloyd iterations), ${config.surface.kind}, ${method} adjacency`);
+      // The headline over realizations (realization 1 is on screen): the result event carries it.
+      const headline = await realizationsHeadline({
+        output,
+        n,
+        inputs: { densityImage: this.image ?? undefined, meshFile: config.surface.kind === 'mesh' ? this.mesh : null },
+        signal: this.runSignal(),
+        onProgress: (done, total) => done < total && this.status(`Realization ${done + 1} of ${total} (seed ${config.seed + done}) for the mean % scutoids…`),
+      });
+      const result = { ...output.result, headline };
+      this.last = result;
+      if (headline && headline.realizations > 1 && headline.percentScutoids !== null) {
+        label.textContent = `${headline.percentScutoids.toFixed(1)} %`;
+        label.dataset.value = String(headline.percentScutoids);
+      }
+      label.dataset.drawn = String(percent);
+      label.dataset.realizations = String(headline?.realizations ?? 1);
+      const over = headline ? describeRealizations(headline) : 'one realization';
+      label.title = `scutoids, from ${methodCaption(analysis)}; ${over}`;
+      this.status(
+        rule
+          ? rule.message
+          : `${config.cells} cells, Voronoi ${iterations + 1} (${iterations} Lloyd iterations), ${config.surface.kind}, ${method} adjacency; ${over}`,
+      );
       this.emit<TissueSheetResultDetail>('result', {
-        result: output.result,
-        headline: output.result.headline,
+        result,
+        headline,
         percentScutoids: percent,
         method,
         ...(rule ? { byConstruction: rule.message } : {}),
       });
-      return output.result;
+      return result;
     } catch (error) {
       if (!isAbort(error)) this.fail(error);
       throw error;
@@ -218,6 +334,7 @@ export class TissueSheetElement extends HTMLElement {
    */
   private waitForApproval(pending: ForeignSource[]): Promise<SheetResult> {
     this.status('Waiting for permission to load a source from another site.');
+    this.emit<TissueSheetWaitingDetail>('waiting', { sources: pending.map((p) => ({ path: p.path, host: p.host })) });
     return new Promise<SheetResult>((resolve, reject) => {
       askToLoad(this.shadow, pending, () => this.run().then(resolve, reject));
     });
@@ -234,7 +351,7 @@ export class TissueSheetElement extends HTMLElement {
 
   private status(text: string, error = false): void {
     const line = this.shadow.querySelector<HTMLElement>('.status')!;
-    line.textContent = text;
+    line.textContent = this.warnings.length ? `${text} — ${this.warnings.join('; ')}.` : text;
     line.classList.toggle('error', error);
   }
 
@@ -249,4 +366,32 @@ export class TissueSheetElement extends HTMLElement {
   private emit<T>(type: keyof TissueSheetEventMap, detail: T): void {
     this.dispatchEvent(new CustomEvent(type, { detail, bubbles: true, composed: true }));
   }
+}
+
+/** The known name nearest to `name` (edit distance at most 2), or null. */
+function closest(name: string, known: readonly string[]): string | null {
+  let best: string | null = null;
+  let bestDistance = 3;
+  for (const candidate of known) {
+    const d = editDistance(name, candidate);
+    if (d < bestDistance) {
+      bestDistance = d;
+      best = candidate;
+    }
+  }
+  return best;
+}
+
+function editDistance(a: string, b: string): number {
+  const row = Array.from({ length: b.length + 1 }, (_, j) => j);
+  for (let i = 1; i <= a.length; i++) {
+    let previous = row[0];
+    row[0] = i;
+    for (let j = 1; j <= b.length; j++) {
+      const current = row[j];
+      row[j] = Math.min(row[j] + 1, row[j - 1] + 1, previous + (a[i - 1] === b[j - 1] ? 0 : 1));
+      previous = current;
+    }
+  }
+  return row[b.length];
 }

@@ -8,13 +8,14 @@
  * Which config fields are attributes is listed here; how each one parses (number, nullable
  * number, string, boolean) and which surface kinds take it are read from the config schema.
  */
-import { configSchema, isClosedConfig, isClosedKind, validateAnyConfig, type AnyConfig, type ConfigInput, type SurfaceConfig } from '../core/config';
+import { ConfigError, configSchema, isClosedConfig, isClosedKind, validateAnyConfig, type AnyConfig, type ConfigInput, type SurfaceConfig } from '../core/config';
 
 /** The schema's default surface (the published tube). */
 const DEFAULT_SURFACE = configSchema.properties.surface.default as SurfaceConfig;
 import { densityPreset, surfaceOfKind } from '../core/config/presets';
 import { kindsWithField, schemaField } from '../core/config/schemaFields';
 import { setPath } from '../core/sweep';
+import { readDecimal } from '../core/config/decimal';
 
 type Kind = 'number' | 'string' | 'boolean' | 'nullable-number';
 
@@ -72,19 +73,27 @@ export const ATTRIBUTES: Record<string, [string, Kind]> = Object.fromEntries(
 );
 
 /** Attributes that are not configuration. */
-export const OTHER_ATTRIBUTES = ['manual'];
+export const OTHER_ATTRIBUTES = ['manual', 'realizations'];
 
-function parse(kind: Kind, text: string): unknown {
+function parse(kind: Kind, text: string, attribute: string, path: string): unknown {
   switch (kind) {
     case 'boolean':
       return text !== 'false';
     case 'string':
       return text.trim();
     case 'nullable-number':
-      return text.trim() === '' || text.trim() === 'null' ? null : Number(text);
+      return text.trim() === '' || text.trim() === 'null' ? null : number(text, attribute, path);
     default:
-      return text.trim() === '' ? Number.NaN : Number(text);
+      if (text.trim() === '') throw new ConfigError(path, `${attribute}: the attribute is empty; give a number or remove it`);
+      return number(text, attribute, path);
   }
+}
+
+/** A number attribute as a person writes it ("22,5" is 22.5: readDecimal), or a ConfigError in words. */
+function number(text: string, attribute: string, path: string): number {
+  const reading = readDecimal(text);
+  if (!reading.ok) throw new ConfigError(path, `${attribute}: ${reading.message}`);
+  return reading.value;
 }
 
 /**
@@ -119,7 +128,7 @@ export function configFromAttributes(element: Element, base: ConfigInput | null,
     const currentKind = (input.surface as { kind?: string } | undefined)?.kind ?? '';
     // Surface fields the current kind does not take are ignored (switching kind keeps them harmless).
     if (path.startsWith('surface.') && !kindsWithField(path).includes(currentKind)) continue;
-    setPath(input, path, parse(kind, text));
+    setPath(input, path, parse(kind, text, attribute, path));
   }
   const sheet = (input.sheet ?? {}) as Record<string, unknown>;
   const kind = (input.surface as { kind: string }).kind;

@@ -15,9 +15,17 @@ export interface TissueSheetProgressDetail {
 export interface TissueSheetResultDetail {
   /** The documented result JSON (the same document `tissue-sheet run` writes). */
   result: SheetResult;
-  /** `result.headline`: the number shown, with its method, counts, Voronoi k and uncertainty. */
+  /**
+   * `result.headline`: the number shown, with its method, counts, Voronoi k and uncertainty: the
+   * mean % scutoids over `realizations` (the attribute, default 5) with its 95 % CI (`ci95`), SD,
+   * every realization's seed and %, the first being the one drawn (the configuration's seed).
+   */
   headline: Headline | null;
-  /** % scutoids of the headline: the exact method wherever it ran, else labels (NaN when no cell was counted). */
+  /**
+   * % scutoids of the cells shown (realization 1, the configuration's own seed), by the headline's
+   * method: exact wherever it ran, else labels (NaN when no cell was counted). The mean over the
+   * realizations is `headline.percentScutoids`.
+   */
   percentScutoids: number;
   /** Which adjacency method `percentScutoids` comes from. */
   method: 'labels' | 'exact';
@@ -58,7 +66,25 @@ export type TissueSheetSweepResult = Pick<PageSweepResult, 'header' | 'runs' | '
  */
 export type TissueSheetCellHoverDetail = { cell: number; surface: number } | null;
 
+/** `waiting`: a run waits for the user's click to load a source from another origin. */
+export interface TissueSheetWaitingDetail {
+  sources: { path: string; host: string }[];
+}
+
+/**
+ * `warning`: something the element did not take or could not do as asked, in words: an attribute
+ * it does not know (ignored; `attribute`, and `suggestion` when one is close), or runs falling
+ * back from the worker to the page (`computeSite: { where: 'page', reason }`).
+ */
+export interface TissueSheetWarningDetail {
+  message: string;
+  attribute?: string;
+  suggestion?: string;
+}
+
 export interface TissueSheetEventMap {
+  waiting: CustomEvent<TissueSheetWaitingDetail>;
+  warning: CustomEvent<TissueSheetWarningDetail>;
   'cell-hover': CustomEvent<TissueSheetCellHoverDetail>;
   progress: CustomEvent<TissueSheetProgressDetail>;
   'sweep-progress': CustomEvent<TissueSheetSweepProgressDetail>;

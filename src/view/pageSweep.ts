@@ -38,6 +38,7 @@ import {
   type ValidSweepSpec,
 } from '../core/sweep';
 import { seededKey, sweepSummary, type WorkerSheetRunner } from '../run';
+import { tQuantile975 } from '../core/analysis/realizations';
 import { acquirePipelineRunner, isAbort, releasePipelineRunner, runInputs } from './pageRunner';
 
 type Run = SweepRun<AnyConfig & Record<string, unknown>>;
@@ -215,15 +216,8 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
   };
 }
 
-/** Two-sided 97.5 % quantile of Student's t with `df` degrees of freedom (for 95 % intervals). */
-export function tQuantile975(df: number): number {
-  const table = [12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.16, 2.145, 2.131, 2.12, 2.11, 2.101, 2.093, 2.086, 2.08, 2.074, 2.069, 2.064, 2.06, 2.056, 2.052, 2.048, 2.045, 2.042];
-  if (!(df >= 1)) return Number.NaN;
-  if (df <= table.length) return table[Math.floor(df) - 1];
-  // Cornish-Fisher expansion around the normal quantile: within 1e-3 for df > 30.
-  const z = 1.959964;
-  return z + (z ** 3 + z) / (4 * df) + (5 * z ** 5 + 16 * z ** 3 + 3 * z) / (96 * df ** 2);
-}
+/** Two-sided 97.5 % quantile of Student's t (the headline's realizations use the same). */
+export { tQuantile975 };
 
 export interface IntervalPoint {
   mean: number;

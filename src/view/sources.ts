@@ -113,7 +113,10 @@ export async function fetchSourceBytes(field: SourceField, src: string, pageHref
 
 async function fetchDirect(src: string): Promise<ArrayBuffer> {
   const response = await fetch(src, { credentials: 'same-origin', referrerPolicy: 'no-referrer' });
-  if (!response.ok) throw new Error(`HTTP ${response.status}`);
+  if (!response.ok) throw new Error(response.status === 404 ? 'not found (HTTP 404)' : `HTTP ${response.status}`);
+  // A development server answers a missing file with its web page (HTTP 200, text/html): that is
+  // a file not found, not a mesh or image that failed to parse.
+  if (/text\/html/i.test(response.headers.get('content-type') ?? '')) throw new Error('not found: the server answered with a web page, not the file');
   return response.arrayBuffer();
 }
 

@@ -312,7 +312,7 @@ describe('closed surfaces through the CLI (issue 24)', () => {
 
   it('run writes the headline (exact method on a closed surface) and prints it with the Voronoi k', () => {
     const out = join(dir, 'ellipsoid-result.json');
-    const run = cli(['run', writeJson('ellipsoid.json', ellipsoid), '--out', out]);
+    const run = cli(['run', writeJson('ellipsoid.json', ellipsoid), '--out', out, '--realizations', '1']);
     expect(run.status, run.stderr).toBe(0);
     const result = JSON.parse(readFileSync(out, 'utf8'));
     const exact = result.analyses.find((a: { method: string }) => a.method === 'exact');
@@ -320,19 +320,59 @@ describe('closed surfaces through the CLI (issue 24)', () => {
     expect(result.headline.percentScutoids).toBe(exact.summary.percentScutoids);
     expect(result.headline.voronoiK).toBe(3);
     expect(result.headline.realizations).toBe(1);
+    expect(result.headline.ci95).toBeNull();
+    expect(result.headline.realizationSeeds).toEqual([3]);
     expect(result.headline.byConstruction).toBeNull();
     expect(result.byConstruction).toBeNull();
     const last = run.stderr.trim().split('\n').pop()!;
     expect(last).toContain(`headline: ${exact.summary.percentScutoids.toFixed(1)} % scutoids (exact method`);
+    expect(last).toContain('one realization');
     expect(last).toContain('Voronoi 3');
+  });
+
+  it('run --realizations 3: the headline is the mean of seeds s, s + 1, s + 2 with its t interval; the file is realization 1', () => {
+    const out = join(dir, 'realizations-result.json');
+    const config = { ...ellipsoid, seed: 7 };
+    const run = cli(['run', writeJson('realizations.json', config), '--out', out, '--realizations', '3']);
+    expect(run.status, run.stderr).toBe(0);
+    const result = JSON.parse(readFileSync(out, 'utf8'));
+    const exact = result.analyses.find((a: { method: string }) => a.method === 'exact');
+    const h = result.headline;
+    expect(h.realizations).toBe(3);
+    expect(h.realizationSeeds).toEqual([7, 8, 9]);
+    expect(result.config.seed).toBe(7);
+    // realization 1 is the file's own run
+    expect(h.realizationValues[0]).toBe(exact.summary.percentScutoids);
+    const values = h.realizationValues as number[];
+    const mean = values.reduce((a, b) => a + b, 0) / 3;
+    expect(h.percentScutoids).toBeCloseTo(mean, 10);
+    const sd = Math.sqrt(values.reduce((a, v) => a + (v - mean) ** 2, 0) / 2);
+    expect(h.sd).toBeCloseTo(sd, 10);
+    const half = 4.303 * (sd / Math.sqrt(3));
+    expect(h.ci95[0]).toBeCloseTo(Math.max(0, mean - half), 10);
+    expect(h.ci95[1]).toBeCloseTo(Math.min(100, mean + half), 10);
+    const last = run.stderr.trim().split('\n').pop()!;
+    expect(last).toContain(`headline: ${mean.toFixed(1)} % scutoids (exact method`);
+    expect(last).toContain('mean of 3 realizations (seeds 7–9), 95 % CI');
+    expect(last).toContain(`realization 1 (seed 7, drawn): ${values[0].toFixed(1)} %`);
+  });
+
+  it('run --realizations refuses what is not a whole number from 1 to 100', () => {
+    for (const bad of ['0', '2.5', '101', 'five']) {
+      const run = cli(['run', writeJson('bad-n.json', ellipsoid), '--out', join(dir, 'bad-n.out.json'), '--realizations', bad]);
+      expect(run.status).toBe(2);
+      expect(run.stderr).toMatch(/--realizations: must be a whole number from 1 to 100/);
+    }
   });
 
   it('says why a sphere gives 0 % by construction, in the result and on stderr', () => {
     const out = join(dir, 'sphere-result.json');
-    const run = cli(['run', writeJson('sphere.json', { ...ellipsoid, surface: { kind: 'sphere', radius: 30 } }), '--out', out]);
+    const run = cli(['run', writeJson('sphere.json', { ...ellipsoid, surface: { kind: 'sphere', radius: 30 } }), '--out', out, '--realizations', '2']);
     expect(run.status, run.stderr).toBe(0);
     const result = JSON.parse(readFileSync(out, 'utf8'));
     expect(result.headline.percentScutoids).toBe(0);
+    expect(result.headline.realizations).toBe(2);
+    expect(result.headline.ci95).toEqual([0, 0]);
     expect(result.headline.byConstruction.reason).toBe('concentric-spheres');
     expect(result.byConstruction.reason).toBe('concentric-spheres');
     expect(run.stderr.trim().split('\n').pop()).toMatch(/headline: 0\.0 % scutoids .*Concentric spheres/);

@@ -10,6 +10,8 @@
  */
 import { formatCsv } from '../../core/sweep';
 import { methodCaption, type ViewStack } from '../../view/stack';
+import { describeHeadline, describeOmitted } from '../../core/analysis/headline';
+import { describeEngine } from '../../run/enginePolicy';
 
 export interface CellTable {
   header: string[];
@@ -53,13 +55,43 @@ export function cellTable(stack: ViewStack): CellTable {
   return { header, rows };
 }
 
-/** Comment lines that say where a file comes from: software, version, method and configuration. */
+/** The engine that ran, in words, with why (not the config's "auto"). */
+export function engineLine(stack: ViewStack): string {
+  const { engine, config } = stack.result;
+  return `engine: ${describeEngine(engine)} (engine setting "${config.engine}": ${engine.reason})`;
+}
+
+/**
+ * Comment lines that say where a file comes from: software, version, the engine that ran, the
+ * adjacency method, the headline (mean over realizations with its 95 % CI and n, or one
+ * realization, said so) and the configuration.
+ */
 export function provenanceLines(stack: ViewStack, what: string): string[] {
   const { result } = stack;
   return [
     `${what}, written by ${result.software.name} ${result.software.version}`,
-    `scutoid flags, sides and transitions from ${methodCaption(stack.analysis)}; label_neighbours_* columns: every contact in the label images`,
+    `scutoid flags, sides and transitions from ${methodCaption(stack.analysis)} (method ${stack.analysis?.method ?? 'none'}); label_neighbours_* columns: ${
+      result.adjacency?.method === 'exact' ? 'the neighbours of the exact cells (the exact engine makes no label images)' : 'every contact in the label images'
+    }`,
+    ...(describeOmitted(result.headline) ? [`methods: ${describeOmitted(result.headline)}`] : []),
     `seed ${result.seed}; config (rerun it to reproduce this file): ${JSON.stringify(result.config)}`,
+    engineLine(stack),
+    `headline: ${describeHeadline(result.headline)}; the cells in this file are realization 1 (seed ${result.seed})`,
+  ];
+}
+
+/** PNG tEXt chunks of a picture of `stack`: software, description, version, seed, engine, method, headline, config. */
+export function provenanceText(stack: ViewStack, what: string): [string, string][] {
+  const { result } = stack;
+  return [
+    ['Software', `${result.software.name} ${result.software.version}`],
+    ['Description', provenanceLines(stack, what).join('\n')],
+    ['tissue-sheet:version', result.software.version],
+    ['tissue-sheet:seed', String(result.seed)],
+    ['tissue-sheet:engine', result.engine.name],
+    ['tissue-sheet:method', stack.analysis?.method ?? 'none'],
+    ['tissue-sheet:headline', JSON.stringify(result.headline)],
+    ['tissue-sheet:config', JSON.stringify(result.config)],
   ];
 }
 

@@ -6,16 +6,21 @@
  * past the seam are drawn again one circumference over and clipped to the strip. Every polygon
  * carries data-cell, data-surface, data-sides, data-scutoid and data-valid, so a reader (and the
  * tests) can take the figure back to the numbers. Closed surfaces cannot be unrolled: refused.
+ * The SVG is printed at the chosen width (mm, default 180); its viewBox stays in µm, so the
+ * desc says how many µm one printed mm is. Under the surfaces: the scale bar, the headline's
+ * numbers (mean % with its CI and n, method, Voronoi k), then the legend (svgFigure.ts: items
+ * never overlap; the border-cell swatch is drawn on the surfaces' dark ground, as the cells are).
  */
 import { SIDE_COLORS, SIDE_LABELS, sideColorIndex } from '../../view/sideColors';
 import type { ViewStack } from '../../view/stack';
 import { surfacePolygons } from '../../view/cellPolygons';
 import { provenanceLines } from './cellRows';
 import { niceScaleLength } from './scaleBar';
+import { escapeXml, legendSvg, num, svgDocument, type LegendItem } from './svgFigure';
 
 const GAP_FRACTION = 0.06;
 
-export function unrolledSvg(stack: ViewStack): string {
+export function unrolledSvg(stack: ViewStack, options: { widthMm?: number } = {}): string {
   if (stack.closed) throw new Error('SVG of the unrolled view: a closed surface cannot be unrolled; export the cells as VTK or PLY instead.');
   const surfaces = stack.surfaces;
   const widths = surfaces.map((s) => s.image.grid.width * s.image.grid.texelX);
@@ -61,48 +66,50 @@ export function unrolledSvg(stack: ViewStack): string {
     x += w + gap;
   });
   const totalWidth = x - gap;
-  // Scale bar under the first surface; legend under the rest.
+  // Under the surfaces: the scale bar, then the headline's numbers, then the legend, each on its
+  // own band, so nothing overlaps.
   const bar = niceScaleLength(widths[0] * 0.4);
-  const barY = plotBottom + 1.5 * font;
-  const legendItems = SIDE_LABELS.map((label, k) => [SIDE_COLORS[k], `${label} sides`] as const);
-  const legend: string[] = [];
-  let lx = Math.min(widths[0] * 0.5 + gap, totalWidth * 0.3);
-  const itemWidth = font * 5.5;
-  let ly = barY - font * 0.8;
-  const legendRight = Math.max(totalWidth, lx + 4 * itemWidth);
-  const place = (swatch: string, text: string) => {
-    if (lx + itemWidth > legendRight) {
-      lx = Math.min(widths[0] * 0.5 + gap, totalWidth * 0.3);
-      ly += font * 1.4;
-    }
-    legend.push(`<rect x="${num(lx)}" y="${num(ly)}" width="${num(font)}" height="${num(font)}" ${swatch} stroke="#1a1a1a" stroke-width="${num(font / 12)}"/>`);
-    legend.push(`<text x="${num(lx + font * 1.3)}" y="${num(ly + font * 0.85)}" font-size="${num(font * 0.8)}">${escapeXml(text)}</text>`);
-    lx += itemWidth;
-  };
-  for (const [color, text] of legendItems) place(`fill="${color}"`, text);
-  place('fill="url(#hatch)"', 'scutoid (hatched)');
-  place(`fill="${SIDE_COLORS[3]}" fill-opacity="0.35"`, 'border cell (not counted)');
-  const totalHeight = ly + font * 2.5;
+  const barY = plotBottom + 1.2 * font;
+  const headline = headlineLine(stack);
+  const headlineY = barY + font * 2.6;
+  const items: LegendItem[] = [
+    ...SIDE_LABELS.map((label, k) => ({ swatch: `fill="${SIDE_COLORS[k]}"`, text: `${label} sides` })),
+    { swatch: 'fill="url(#hatch)"', text: 'scutoid (hatched)' },
+    // Faded cells lie on the surfaces' dark ground: the swatch is drawn the same way.
+    { swatch: `fill="${SIDE_COLORS[3]}" fill-opacity="0.35"`, ground: '#282828', text: 'border cell (not counted)' },
+  ];
+  const legendWidth = Math.max(totalWidth, font * 30);
+  const legend = legendSvg(items, 0, headlineY + font * 0.9, legendWidth, font);
+  const totalHeight = headlineY + font * 0.9 + legend.height + font;
+  const width = legendWidth + 2 * font;
   const provenance = provenanceLines(stack, 'tissue-sheet unrolled view (SVG, units µm)');
-  return [
-    `<?xml version="1.0" encoding="UTF-8"?>`,
-    `<svg xmlns="http://www.w3.org/2000/svg" viewBox="${num(-font)} 0 ${num(legendRight + 2 * font)} ${num(totalHeight)}" width="${num(legendRight + 2 * font)}mm" height="${num(totalHeight)}mm" font-family="sans-serif" data-units="um">`,
-    `<title>tissue-sheet ${escapeXml(stack.result.software.version)}: unrolled surfaces, seed ${stack.result.seed}</title>`,
-    `<desc>${escapeXml(provenance.join('\n'))}</desc>`,
-    `<metadata id="tissue-sheet-config">${escapeXml(JSON.stringify(stack.result.config))}</metadata>`,
-    `<defs><pattern id="hatch" patternUnits="userSpaceOnUse" width="${num(font / 2)}" height="${num(font / 2)}" patternTransform="rotate(45)"><rect width="${num(font / 6)}" height="${num(font / 2)}" fill="#141414"/></pattern></defs>`,
-    ...groups,
-    `<g id="scale-bar" data-length-um="${bar}"><rect x="0" y="${num(barY)}" width="${num(bar)}" height="${num(font / 3)}" fill="#000"/>` +
-      `<text x="0" y="${num(barY + font * 1.4)}" font-size="${num(font * 0.9)}">${bar} µm</text></g>`,
-    `<g id="legend">${legend.join('')}</g>`,
-    `</svg>`,
-  ].join('\n');
+  const { result } = stack;
+  return svgDocument({
+    box: [-font, 0, width, totalHeight],
+    widthMm: options.widthMm ?? DEFAULT_WIDTH_MM,
+    unit: 'µm',
+    title: `tissue-sheet ${result.software.version}: unrolled surfaces, seed ${result.seed}`,
+    provenance,
+    metadata: { software: result.software, seed: result.seed, engine: result.engine, method: stack.analysis?.method ?? null, headline: result.headline, config: result.config },
+    defs: `<pattern id="hatch" patternUnits="userSpaceOnUse" width="${num(font / 2)}" height="${num(font / 2)}" patternTransform="rotate(45)"><rect width="${num(font / 6)}" height="${num(font / 2)}" fill="#141414"/></pattern>`,
+    body: [
+      `<metadata id="tissue-sheet-config">${escapeXml(JSON.stringify(result.config))}</metadata>`,
+      ...groups,
+      `<g id="scale-bar" data-length-um="${bar}"><rect x="0" y="${num(barY)}" width="${num(bar)}" height="${num(font / 3)}" fill="#000"/>` +
+        `<text x="0" y="${num(barY + font * 1.4)}" font-size="${num(font * 0.9)}">${bar} µm</text></g>`,
+      `<text id="headline" x="0" y="${num(headlineY)}" font-size="${num(font * 0.9)}">${escapeXml(headline)}</text>`,
+      `<g id="legend">${legend.svg}</g>`,
+    ].join('\n'),
+  });
 }
 
-function num(value: number): string {
-  return String(Math.round(value * 1000) / 1000);
+/** The headline in one line for a figure: "% scutoids 37.1 % (mean of n = 5, 95 % CI 30.4–43.7 %), exact method, Voronoi 51". */
+export function headlineLine(stack: ViewStack): string {
+  const h = stack.result.headline;
+  if (!h || h.percentScutoids === null) return 'no % scutoids (no cell counted)';
+  const over = h.realizations > 1 && h.ci95 ? `mean of n = ${h.realizations}, 95 % CI ${h.ci95[0].toFixed(1)}–${h.ci95[1].toFixed(1)} %; cells shown: seed ${stack.result.seed}` : `one realization, seed ${stack.result.seed}`;
+  return `${h.percentScutoids.toFixed(1)} % scutoids (${over}), ${h.method} method, Voronoi ${h.voronoiK}`;
 }
 
-function escapeXml(text: string): string {
-  return text.replace(/[&<>"']/g, (ch) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;', "'": '&apos;' })[ch]!);
-}
+/** Width of an SVG figure when none is chosen (a two-column journal figure). */
+export const DEFAULT_WIDTH_MM = 180;

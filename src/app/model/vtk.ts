@@ -73,7 +73,9 @@ export function cellsVtk(stack: ViewStack): string {
   const { result } = stack;
   const mesh = sheetPolygons(stack);
   const method = stack.analysis?.method ?? 'none';
-  const title = `tissue-sheet ${result.software.version} cells, seed ${result.seed}, ${result.config.surface.kind}, ${method} adjacency, um`;
+  const h = result.headline;
+  const headline = h && h.percentScutoids !== null ? `, ${h.percentScutoids.toFixed(1)} % scutoids${h.realizations > 1 && h.ci95 ? ` (mean n=${h.realizations}, 95% CI ${h.ci95[0].toFixed(1)}-${h.ci95[1].toFixed(1)})` : ' (one realization)'}` : '';
+  const title = `tissue-sheet ${result.software.version} cells, seed ${result.seed}, ${result.config.surface.kind}, ${result.engine.name} engine, ${method} adjacency${headline}, um`;
   const lines = ['# vtk DataFile Version 3.0', title.replace(/[\r\n]/g, ' ').slice(0, 255), 'ASCII', 'DATASET POLYDATA'];
   const pointCount = mesh.points.length / 3;
   lines.push(`POINTS ${pointCount} float`);

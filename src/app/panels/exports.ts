@@ -6,13 +6,13 @@
  * seed and the full configuration (CSV and PLY comment lines, PNG tEXt chunks). File names carry the seed and the
  * surface, so several exports of a session stay apart.
  */
-import { cellCsv, provenanceLines } from '../model/cellRows';
+import { cellCsv, provenanceText } from '../model/cellRows';
 import { withPngText } from '../model/pngText';
 import { cellsPly } from '../model/ply';
 import { cellsVtk } from '../model/vtk';
 import { unrolledSvg } from '../model/svg';
 import { openFile, projectJson, type OpenedFile, type ViewState } from '../model/project';
-import { figurePng } from '../view/figure';
+import { figurePng, figureSize } from '../view/figure';
 import type { SheetView3D } from '../../view/sheetView3d';
 import type { ViewStack } from '../../view/stack';
 
@@ -112,18 +112,16 @@ export function bindExports(root: HTMLElement, sources: ExportSources): void {
       const stack = sources.stack();
       if (!stack) throw new Error('Nothing to save yet: the view is empty until a run has finished.');
       const png = new Uint8Array(await (await sources.viewPng()).arrayBuffer());
-      const { result } = stack;
-      const tagged = withPngText(png, [
-        ['Software', `${result.software.name} ${result.software.version}`],
-        ['Description', provenanceLines(stack, '3D view of a tissue-sheet result').join('\n')],
-        ['tissue-sheet:version', result.software.version],
-        ['tissue-sheet:seed', String(result.seed)],
-        ['tissue-sheet:config', JSON.stringify(result.config)],
-      ]);
+      const tagged = withPngText(png, provenanceText(stack, '3D view of a tissue-sheet result'));
       download(`${baseName(stack)}-view.png`, new Blob([tagged as BlobPart], { type: 'image/png' }));
     },
     vtk: () => withStack((s) => download(`${baseName(s)}-cells.vtk`, cellsVtk(s), 'application/octet-stream')),
-    svg: () => withStack((s) => download(`${baseName(s)}-unrolled.svg`, unrolledSvg(s), 'image/svg+xml')),
+    svg: () =>
+      withStack((s) => {
+        const widthMm = Number(more.width.value);
+        figureSize({ dpi: 300, widthMm }, 1); // the width is checked as for the PNG (20 to 500 mm)
+        download(`${baseName(s)}-unrolled.svg`, unrolledSvg(s, { widthMm }), 'image/svg+xml');
+      }),
     figure: async () => {
       const stack = sources.stack();
       if (!stack) throw new Error('Nothing to save yet: the view is empty until a run has finished.');

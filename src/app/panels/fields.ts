@@ -153,7 +153,38 @@ function withSurfaceKind(c: Config, kind: string): Config {
   } as Config;
 }
 
-/** Largest thickness offered by the slider. */
+/**
+ * A tube's wall in the other terms (issue 26): the surface ratio s of the current thickness t, or
+ * the thickness of the current s, around the seeded radius R (outward: R_outer = R·s, so
+ * t = R(s − 1); inward: the other radius is R/s, so t = R(1 − 1/s)).
+ */
+export function convertWall(c: Config, to: 'ratio' | 'thickness'): { surfaceRatio: number | null; thickness: number } {
+  if (c.surface.kind !== 'tube') return { surfaceRatio: to === 'ratio' ? 2 : null, thickness: to === 'ratio' ? 0 : thicknessForKind(c.surface) };
+  const r = c.surface.radius;
+  const inward = c.sheet.direction === 'inward';
+  if (to === 'thickness') {
+    const s = c.sheet.surfaceRatio;
+    if (s === null) return { surfaceRatio: null, thickness: c.sheet.thickness };
+    return { surfaceRatio: null, thickness: Number((inward ? r * (1 - 1 / s) : r * (s - 1)).toPrecision(6)) };
+  }
+  if (c.sheet.surfaceRatio !== null) return { surfaceRatio: c.sheet.surfaceRatio, thickness: 0 };
+  const t = c.sheet.thickness;
+  const s = inward ? (t < r ? r / (r - t) : 2) : (r + t) / r;
+  return { surfaceRatio: Number(Math.max(1, s).toPrecision(6)), thickness: 0 };
+}
+
+/**
+ * The size of the mesh last computed (its surface's equivalent radius sqrt(area / 4π), µm), by
+ * source and scale: a mesh's thickness slider follows its geometry, not its scale.
+ */
+let meshExtent: { src: string; scale: number; radius: number } | null = null;
+
+/** Records the size of a computed mesh (from the result's surface area). */
+export function setMeshExtent(src: string, scale: number, area: number): void {
+  meshExtent = { src, scale, radius: Math.sqrt(area / (4 * Math.PI)) };
+}
+
+/** Largest thickness offered by the slider (the number box beside it takes any valid value). */
 function maxThickness(c: Config): number {
   const s = c.surface;
   const inward = c.sheet.direction === 'inward';
@@ -164,7 +195,12 @@ function maxThickness(c: Config): number {
     const hi = Math.max(s.a, s.b, s.c);
     return Math.max(1, Math.floor(inward ? ((lo * lo) / hi) * 0.95 : 2 * hi));
   }
-  if (s.kind === 'mesh') return Math.max(1, Math.round(s.scale * (inward ? 0.5 : 1)));
+  if (s.kind === 'mesh') {
+    // From the mesh's geometry once it has been computed (µm), else from its scale.
+    const known = meshExtent && meshExtent.src === s.src ? meshExtent.radius * (s.scale / meshExtent.scale) : null;
+    if (known !== null) return Math.max(1, Math.ceil(known * (inward ? 0.5 : 1)));
+    return Math.max(1, Math.round(s.scale * (inward ? 0.5 : 1)));
+  }
   return 400;
 }
 
@@ -193,7 +229,14 @@ export const FIELDS: FieldSpec[] = [
     get: (c) => (c.surface.kind === 'mesh' ? (sampleName(c.surface.src) ?? '') : ''),
     set: (c, v) => (c.surface.kind === 'mesh' && v ? { ...c, surface: { ...c.surface, src: sampleUrl(String(v)) } } : c),
   },
-  field('surface.src', { label: 'Mesh file (.ply, .obj, .stl)', group: 'Surface', kind: 'mesh-file', note: UPLOAD_NOTE }),
+  field('surface.src', {
+    label: 'Mesh file (.ply, .obj, .stl)',
+    group: 'Surface',
+    kind: 'mesh-file',
+    note: `${UPLOAD_NOTE} A file replacing a sample starts at Scale 1: its coordinates are taken as µm (change Scale for other units).`,
+    // A user's file is not the sample: the sample's scale (50 µm per unit) is not carried over.
+    set: (c, v) => (c.surface.kind === 'mesh' ? { ...c, surface: { ...c.surface, src: String(v), scale: sampleName(c.surface.src) ? 1 : c.surface.scale } } : c),
+  }),
   field('surface.scale', { label: 'Scale', group: 'Surface', step: 1 }),
   field('surface.geodesic', { label: 'Compare with the geodesic (heat-method) Voronoi', group: 'Surface' }),
   field('surface.length', { label: 'Length', group: 'Surface', step: 1 }),
@@ -254,7 +297,8 @@ export const FIELDS: FieldSpec[] = [
     description: () => 'A tube\'s other surface is set either by the surface ratio s = R_outer / R_inner (the published tube model) or by a thickness in µm.',
     show: isTube,
     get: (c) => (c.sheet.surfaceRatio === null ? 'thickness' : 'ratio'),
-    set: (c, v) => ({ ...c, sheet: { ...c.sheet, surfaceRatio: v === 'ratio' ? 2 : null, thickness: v === 'ratio' ? 0 : thicknessForKind(c.surface) } }),
+    // The current wall is converted, not replaced: s = (R + t) / R outward, R / (R - t) inward.
+    set: (c, v) => ({ ...c, sheet: { ...c.sheet, ...convertWall(c, v === 'ratio' ? 'ratio' : 'thickness') } }),
   },
   field('sheet.surfaceRatio', {
     label: 'Surface ratio R_outer / R_inner',
@@ -282,4 +326,73 @@ export const FIELDS: FieldSpec[] = [
     labels: { both: 'labels and exact', labels: 'labels (pixels)', exact: 'exact (Delaunay)' },
   }),
   field('sheet.minContactLength', { label: 'Ignore contacts shorter than (empty: lab default)', group: 'Sheet', step: 0.5 }),
+  // Every schema field is reachable in the form (issue 26): the protocol with the sheet, the
+  // rest under Advanced (controls.ts).
+  field('sheet.protocol', {
+    label: 'Protocol',
+    group: 'Sheet',
+    labels: { default: 'default', lab: "lab (Gómez-Gálvez et al.: tubes with a surface ratio, outward)" },
+  }),
+  field('sheet.offset', {
+    label: 'Other surface made by',
+    group: 'Sheet',
+    labels: { normal: 'parallel surface (normal)', axes: 'semi-axes + thickness (the lab spheroid model)' },
+    show: (c) => c.surface.kind === 'sphere' || c.surface.kind === 'ellipsoid' || c.surface.kind === 'mesh',
+  }),
+  field('sheet.layerStep', { label: 'Layer step (tube: in s; else µm; empty: layers evenly spaced)', group: 'Sheet', step: 0.05 }),
+  field('sheet.validityMaxRatio', { label: 'Lab protocol: valid cells checked up to ratio', group: 'Sheet', step: 0.25 }),
+  field('sheet.minContactPixels', { label: "Labels method: ignore contacts shorter than (texel edges at 512 px around; empty: the µm rule)", group: 'Sheet', step: 1 }),
+  field('engine', { label: 'Engine', group: 'Lloyd', labels: { auto: 'auto', gpu: 'GPU (jump flood; labels and exact)', exact: 'exact (CPU; exact method only)' } }),
+  ...(['u', 'v'] as const).map(
+    (axis, k): FieldSpec => ({
+      // Panel only: one coordinate of density.center ([u, v], µm).
+      path: `density.center.${axis}`,
+      label: `Patch centre ${axis}`,
+      group: 'Density',
+      kind: 'number',
+      unit: 'µm',
+      step: 1,
+      description: () => schemaField('density.center', 'gaussian').description ?? '',
+      show: (c) => c.density.kind === 'gaussian',
+      get: (c) => (c.density.kind === 'gaussian' ? c.density.center[k] : null),
+      set: (c, v) => {
+        if (c.density.kind !== 'gaussian') return c;
+        const center = [...c.density.center] as [number, number];
+        center[k] = Number(v);
+        return { ...c, density: { ...c.density, center } };
+      },
+    }),
+  ),
 ];
+
+/** A field whose value differs between two configurations, in the page's words ("Thickness", "17 µm"). */
+export interface ChangedField {
+  path: string;
+  label: string;
+  shown: string;
+  form: string;
+}
+
+/** The form's fields (as shown for `form`) whose values differ between `shown` and `form`. */
+export function changedFields(shown: Config, form: Config): ChangedField[] {
+  const out: ChangedField[] = [];
+  const text = (spec: FieldSpec, value: unknown) => {
+    if (value === null || value === undefined) return 'default';
+    if (typeof value === 'number') return `${Number(value.toPrecision(6))}${spec.unit ? ` ${spec.unit}` : ''}`;
+    if (typeof value === 'string' && value.startsWith('data:')) return 'an image';
+    return String(value);
+  };
+  const read = (spec: FieldSpec, c: Config): unknown => {
+    if (spec.get) return spec.get(c);
+    let value: unknown = c;
+    for (const key of spec.path.split('.')) value = value && typeof value === 'object' ? (value as Record<string, unknown>)[key] : undefined;
+    return value;
+  };
+  for (const spec of FIELDS) {
+    if (spec.show && !spec.show(form) && !(spec.show(shown))) continue;
+    const a = read(spec, shown);
+    const b = read(spec, form);
+    if (JSON.stringify(a) !== JSON.stringify(b)) out.push({ path: spec.path, label: spec.label, shown: text(spec, a), form: text(spec, b) });
+  }
+  return out;
+}

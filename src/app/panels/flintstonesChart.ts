@@ -8,6 +8,7 @@
 import uPlot from 'uplot';
 import { flintstonesLaw } from '../../core/analysis/flintstones';
 import { FLINTSTONES_RATIO, type SweepFlintstonesFit } from '../../core/sweep';
+import type { ChartSeries, ChartSpec } from '../model/chartSvg';
 
 const COLORS = ['#1f5fa8', '#c0392b', '#2e8b57', '#8e44ad', '#d35400', '#16a085'];
 const CURVE_POINTS = 60;
@@ -24,8 +25,38 @@ export class FlintstonesChart {
     this.caption = root.querySelector<HTMLElement>('.flintstones-fits')!;
   }
 
+  private last: { fits: readonly SweepFlintstonesFit[]; rows: readonly Record<string, string>[] } | null = null;
+
+  /** The fits as a figure (chartSvg.ts): mean n3D per ratio, the fitted curves, the parameters in the notes. */
+  figure(): Pick<ChartSpec, 'title' | 'xLabel' | 'yLabel' | 'series' | 'notes'> | null {
+    if (!this.last || this.last.fits.length === 0) return null;
+    const { fits, rows } = this.last;
+    const ratios = [...new Set(rows.map((row) => Number(row[FLINTSTONES_RATIO])).filter(Number.isFinite))].sort((a, b) => a - b);
+    const lo = ratios[0];
+    const hi = ratios[ratios.length - 1];
+    const series: ChartSeries[] = [];
+    fits.forEach((fit, k) => {
+      const color = COLORS[k % COLORS.length];
+      const means = meanPerRatio(rows, fit);
+      series.push({ label: `Voronoi ${fit.voronoi}: mean 3D neighbours of the runs`, color, style: 'points', labels: 2, points: [...means].sort((a, b) => a[0] - b[0]).map(([x, y]) => ({ x, y })) });
+      const p = fit.parameters;
+      if (p) {
+        const curve = Array.from({ length: CURVE_POINTS }, (_, j) => lo + ((hi - lo) * j) / (CURVE_POINTS - 1)).map((x) => ({ x, y: flintstonesLaw(x, p) }));
+        series.push({ label: `Voronoi ${fit.voronoi}: fit n3D(s) = Nmax (b + e^(s/c)) / (d + e^(s/c))`, color, style: 'curve', dashed: fit.illConditioned, points: curve });
+      }
+    });
+    return {
+      title: 'Flintstones law: 3D neighbours against the surface ratio',
+      xLabel: 'surface ratio s = R_outer / R_inner',
+      yLabel: 'mean 3D neighbours n3D (cells)',
+      series,
+      notes: fits.map((fit) => fitLine(fit).textContent ?? ''),
+    };
+  }
+
   /** Draws the fits of a finished sweep (`rows`: its runs.csv rows); hides itself without any. */
   show(fits: readonly SweepFlintstonesFit[], rows: readonly Record<string, string>[]): void {
+    this.last = { fits, rows };
     this.plot?.destroy();
     this.plot = null;
     this.root.hidden = fits.length === 0;

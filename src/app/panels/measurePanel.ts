@@ -8,6 +8,9 @@
  * the problem; what is already shown stays.
  */
 import type { MeasuredResult, ModelComparison } from '../../core/measure';
+import { downloadChart } from './chartExports';
+import { download } from './exports';
+import { measuredCellCsv } from '../model/measuredCsv';
 import { MeasureClient, MeasureFileError } from '../../view/measureClient';
 import type { LayerPicture } from '../../view/measurePicture';
 import type { MeasureRequestOptions } from '../../view/measureProtocol';
@@ -35,12 +38,16 @@ const TEMPLATE = `
     <button type="button" id="measure-again" disabled>Measure again</button>
     <button type="button" id="measure-reverse" disabled title="The first file is the basal layer">Reverse layer order</button>
     <button type="button" id="measure-json" disabled title="The measured result with its comparison, as tissue-sheet measure writes it">Result JSON</button>
+    <button type="button" id="measure-cells-csv" disabled title="One row per cell: valid, scutoid, sides, areas and neighbours per layer, won, lost, transitions">Per-cell CSV</button>
+    <button type="button" id="measure-figure-svg" disabled title="The measured-vs-model polygon distributions as SVG, at the width chosen under the exports">Comparison SVG</button>
+    <button type="button" id="measure-figure-png" disabled title="The measured-vs-model polygon distributions as PNG, at the DPI and width chosen under the exports">Comparison PNG</button>
   </div>
   <p id="measure-status" class="small" role="status" aria-live="polite"></p>
   <div id="measure-alert" class="alert measure-alert" role="alert" hidden><p class="message"></p><button type="button" data-dismiss>Dismiss</button></div>
   <div id="measure-results" hidden>
     <p class="headline"><output id="measured-percent">–</output> scutoids measured;
       model <output id="model-percent">–</output> <span id="model-caption" class="small"></span></p>
+    <p id="measure-sides" role="status"></p>
     <p id="measure-info" class="small"></p>
     <div id="measure-layers" class="unrolled-row"></div>
     <div id="measure-cell" class="small"></div>
@@ -81,6 +88,8 @@ export class MeasurePanel {
     this.$('#measure-again').addEventListener('click', () => void this.measure(this.files));
     this.$('#measure-reverse').addEventListener('click', () => void this.measure([...this.files].reverse()));
     this.$('#measure-json').addEventListener('click', () => this.download());
+    for (const kind of ['svg', 'png'] as const) this.$(`#measure-figure-${kind}`).addEventListener('click', () => void this.figure(kind));
+    this.$('#measure-cells-csv').addEventListener('click', () => this.result && download('measured-cells.csv', measuredCellCsv(this.result), 'text/csv'));
     this.$('#measure-alert [data-dismiss]').addEventListener('click', () => (this.$('#measure-alert').hidden = true));
     this.bindDrop();
   }
@@ -179,9 +188,11 @@ export class MeasurePanel {
     this.result = result;
     this.comparison = null;
     this.$<HTMLButtonElement>('#measure-json').disabled = false;
+    for (const id of ['#measure-figure-svg', '#measure-figure-png', '#measure-cells-csv']) this.$<HTMLButtonElement>(id).disabled = false;
     this.$('#measure-results').hidden = false;
     renderHeadline(this.root, result, null, null);
     this.$('#measure-info').textContent = describe(result);
+    this.sides(result);
     this.layers.show(result, pictures);
     await nextTask();
     if (shown !== this.shown) return;
@@ -209,6 +220,51 @@ export class MeasurePanel {
         ? `Measured and compared: Voronoi ${comparison.bestK} matches best; at s = ${comparison.surfaceRatio.toFixed(3)} it gives ${comparison.meanPercentScutoids.toFixed(1)} ± ${comparison.sdPercentScutoids.toFixed(1)} % scutoids.`
         : `Measured; ${note ?? 'no comparison'}.`,
     );
+  }
+
+  /**
+   * Which file is taken as which side, said in words; a surface ratio below 1 (the layer taken as
+   * basal is the wider, against s = basal-to-apical widening of the model) is warned about, with
+   * the button that swaps the order: never s < 1 silently.
+   */
+  private sides(result: MeasuredResult): void {
+    const box = this.$('#measure-sides');
+    const layers = result.inputs.layers;
+    const first = layers[0];
+    const last = layers[layers.length - 1];
+    const s = result.surfaceRatio.value;
+    const taken = `Taken as basal: ${first.file}${result.inputs.files.length === 1 ? ` (page ${first.page + 1})` : ''}; as apical: ${last.file}${result.inputs.files.length === 1 ? ` (page ${last.page + 1})` : ''} (the first file is basal, in the order given; Reverse layer order swaps them).`;
+    // The file names contradict the order (a file dialog hands files over alphabetically).
+    const named = (/apical/i.test(first.file) && !/basal/i.test(first.file)) || (/basal/i.test(last.file) && !/apical/i.test(last.file));
+    const below = s < 1;
+    const warnings: string[] = [];
+    if (named) warnings.push(`the file taken as basal is named ${first.file} and the one taken as apical ${last.file}: if the names are right, press Reverse layer order.`);
+    if (below) {
+      warnings.push(
+        `the surface ratio comes out s = ${s.toFixed(3)} < 1: the layer taken as basal is the wider one. Either the files are in the wrong order (Reverse layer order), or the basal side of this tissue is the wider (as in a salivary gland), which the model's s (apical width / basal width, seeded basal) reads as s < 1.`,
+      );
+    }
+    const warn = warnings.length > 0;
+    box.textContent = warn ? `${taken} Warning: ${warnings.join(' Also, ')}` : `${taken} Surface ratio s = ${s.toFixed(3)} (from the ${result.surfaceRatio.source}).`;
+    box.className = warn ? 'by-construction measure-warning' : 'small';
+    box.dataset.warning = [named ? 'names' : '', below ? 'ratio-below-1' : ''].filter(Boolean).join(' ');
+  }
+
+  /** The measured-vs-model comparison as a figure file, with the measurement's provenance. */
+  private async figure(kind: 'svg' | 'png'): Promise<void> {
+    const result = this.result;
+    if (!result) return;
+    try {
+      await downloadChart(kind, 'tissue-sheet-measured-vs-model', this.chart.figure(), {
+        what: 'tissue-sheet measured tissue beside the Voronoi model',
+        engine: this.comparison ? 'measured: label images; model: exact CPU Voronoi (compareMeasured)' : 'measured: label images',
+        method: this.comparison ? 'measured: pixel-based adjacency; model: exact' : 'pixel-based adjacency',
+        seed: this.comparison?.seed ?? '',
+        config: { inputs: result.inputs, model: this.comparison ? { cells: this.comparison.cells, realizations: this.comparison.realizations, seed: this.comparison.seed, bestK: this.comparison.bestK, surfaceRatio: this.comparison.surfaceRatio } : null },
+      });
+    } catch (error) {
+      this.alert((error as Error).message);
+    }
   }
 
   /** The result JSON of the tissue shown, in the CLI's shape (comparison included once made). */

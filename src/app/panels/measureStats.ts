@@ -6,6 +6,7 @@
  * Every number carries its full value in `data-value`.
  */
 import uPlot from 'uplot';
+import type { ChartSeries, ChartSpec } from '../model/chartSvg';
 import 'uplot/dist/uPlot.min.css';
 import type { ScutoidSummary } from '../../core/analysis';
 import type { MeasuredResult, ModelComparison } from '../../core/measure';
@@ -86,9 +87,55 @@ const COLORS = ['#1f5fa8', '#c0392b', '#7f8c8d', '#16a085'];
 /** The polygon distribution chart: measured layers (bars at the ends), the model's basal mean (line). */
 export class MeasureChart {
   private plot: uPlot | null = null;
+  private last: { result: MeasuredResult; comparison: ModelComparison | null } | null = null;
   constructor(private readonly root: HTMLElement) {}
 
+  /**
+   * The measured-vs-model comparison as a figure (chartSvg.ts): the measured first and last
+   * layers' polygon distributions as bars, the best model's mean basal distribution as a line,
+   * the measured and model % scutoids (mean ± SD over the model's realizations) in the notes.
+   */
+  figure(): Pick<ChartSpec, 'title' | 'xLabel' | 'yLabel' | 'series' | 'notes' | 'xTicks' | 'yRange'> | null {
+    if (!this.last) return null;
+    const { result, comparison } = this.last;
+    const perSurface = result.analyses[0].summary.perSurface;
+    const last = perSurface.length - 1;
+    const series: ChartSeries[] = [0, last].map((k, j) => ({
+      label: `measured ${result.inputs.layers[k].name} (${result.inputs.layers[k].file})`,
+      color: COLORS[j],
+      style: 'bars' as const,
+      labels: 1,
+      points: perSurface[k].polygonDistribution.map((f, c) => ({ x: c + 3, y: f === null || !Number.isFinite(f) ? Number.NaN : 100 * f })),
+    }));
+    if (comparison) {
+      series.push({
+        label: `model Voronoi ${comparison.bestK}, basal, mean of ${comparison.realizations} realizations`,
+        color: '#111',
+        style: 'line',
+        dashed: true,
+        points: comparison.candidates[comparison.bestK - 1].polygonDistribution.map((f, c) => ({ x: c + 3, y: 100 * f })),
+      });
+    }
+    const s = result.analyses[0].summary;
+    const max = Math.max(...series.flatMap((x) => x.points.map((p) => p.y)).filter(Number.isFinite));
+    return {
+      title: 'Polygon distribution, measured and model',
+      xLabel: 'sides (cells with n sides)',
+      yLabel: '% of valid cells',
+      xTicks: SIDE_LABELS.map((label, k) => ({ x: k + 3, label })),
+      yRange: [0, Math.min(100, Math.ceil(max * 1.15))],
+      series,
+      notes: [
+        `Measured: ${s.percentScutoids.toFixed(1)} % scutoids (${s.scutoids} of ${s.validCells} valid cells, one tissue), surface ratio ${result.surfaceRatio.value.toFixed(3)}, pixel-based adjacency.`,
+        comparison
+          ? `Model (Voronoi ${comparison.bestK}, the best match by ${comparison.distance}; exact method): ${comparison.meanPercentScutoids.toFixed(1)} ± ${comparison.sdPercentScutoids.toFixed(1)} % scutoids (mean ± SD over n = ${comparison.realizations} realizations) at s = ${comparison.surfaceRatio.toFixed(3)}.`
+          : 'No model comparison.',
+      ],
+    };
+  }
+
   show(result: MeasuredResult, comparison: ModelComparison | null): void {
+    this.last = { result, comparison };
     const perSurface = result.analyses[0].summary.perSurface;
     const last = perSurface.length - 1;
     const x = SIDE_LABELS.map((_, k) => k + 3);

@@ -4,6 +4,7 @@
  * table. Every number carries its full value in `data-value` for tests and copy-paste.
  */
 import { describeEngine } from '../../run';
+import { describeOmitted } from '../../core/analysis/headline';
 import { cellTable } from '../model/cellRows';
 import { byConstruction, noValidCells } from '../../core/analysis/byConstruction';
 import { analysisByMethod, methodCaption, type ViewStack } from '../../view/stack';
@@ -12,13 +13,7 @@ const fmt = (value: number, digits = 2) => (Number.isFinite(value) ? value.toFix
 
 export function renderResults(root: HTMLElement, stack: ViewStack): void {
   const { result, analysis } = stack;
-  const headline = root.querySelector<HTMLElement>('#percent-scutoids');
-  if (headline) {
-    const value = analysis?.summary.percentScutoids ?? Number.NaN;
-    headline.textContent = `${fmt(value, 1)} %`;
-    headline.dataset.value = String(value);
-    headline.dataset.method = analysis?.method ?? '';
-  }
+  renderHeadline(root, stack, null);
   const caption = root.querySelector<HTMLElement>('#percent-scutoids-caption');
   if (caption) caption.textContent = `scutoids, from ${methodCaption(analysis)}`;
   const why = root.querySelector<HTMLElement>('#by-construction');
@@ -29,6 +24,14 @@ export function renderResults(root: HTMLElement, stack: ViewStack): void {
     why.textContent = empty ?? rule?.message ?? '';
     why.dataset.reason = empty ? 'no-valid-cells' : (rule?.reason ?? '');
     why.hidden = !why.textContent;
+  }
+  const omitted = root.querySelector<HTMLElement>('#methods-note');
+  if (omitted) {
+    // "both" on the exact engine gives the exact method only: said, never silent.
+    const line = describeOmitted(result.headline);
+    omitted.textContent = line ? `${line.charAt(0).toUpperCase()}${line.slice(1)}.` : '';
+    omitted.dataset.omitted = (result.headline?.omittedMethods ?? []).map((o) => o.method).join(' ');
+    omitted.hidden = !line;
   }
   const summary = root.querySelector<HTMLElement>('#summary');
   if (summary) summary.replaceChildren(summaryTable(stack));
@@ -52,6 +55,69 @@ export function renderResults(root: HTMLElement, stack: ViewStack): void {
   }
   const table = root.querySelector<HTMLElement>('#cell-table');
   if (table) table.replaceChildren(cellTableElement(stack));
+}
+
+/** Where the other realizations of the headline are: running (done of n), stopped, or failed. */
+export type RealizationsProgress = { state: 'running'; done: number; n: number } | { state: 'waiting' | 'cancelled' | 'failed'; n: number; message?: string };
+
+/**
+ * The headline: the mean % scutoids over the realizations with its 95 % CI and n once they are
+ * computed (`result.headline.realizations` > 1), else realization 1's value, said to be one
+ * realization. `#percent-scutoids` carries `data-value` (the number shown), `data-drawn` (the
+ * cells shown: realization 1), `data-realizations` (n of the number shown), `data-ci-low`,
+ * `data-ci-high` and `data-method`.
+ */
+export function renderHeadline(root: HTMLElement, stack: ViewStack, progress: RealizationsProgress | null): void {
+  const { result, analysis } = stack;
+  const headline = result.headline;
+  const drawn = analysis?.summary.percentScutoids ?? Number.NaN;
+  const n = headline?.realizations ?? 1;
+  const value = n > 1 ? (headline?.percentScutoids ?? Number.NaN) : drawn;
+  const seeds = headline?.realizationSeeds ?? [result.config.seed];
+  const number = root.querySelector<HTMLElement>('#percent-scutoids');
+  if (number) {
+    number.textContent = `${fmt(value, 1)} %`;
+    number.dataset.value = String(value);
+    number.dataset.drawn = String(drawn);
+    number.dataset.realizations = String(n);
+    number.dataset.ciLow = headline?.ci95 ? String(headline.ci95[0]) : '';
+    number.dataset.ciHigh = headline?.ci95 ? String(headline.ci95[1]) : '';
+    number.dataset.method = analysis?.method ?? '';
+  }
+  const ci = root.querySelector<HTMLElement>('#headline-ci');
+  if (ci) {
+    ci.textContent =
+      n > 1 && headline?.ci95
+        ? `(mean of n = ${n} realizations, 95 % CI ${fmt(headline.ci95[0], 1)}–${fmt(headline.ci95[1], 1)} %)`
+        : n > 1
+          ? `(mean of n = ${n} realizations)`
+          : progress?.state === 'running' || progress?.state === 'waiting'
+            ? `(realization 1 of ${progress.n}; the mean and its 95 % CI follow)`
+            : '(one realization, n = 1: no confidence interval)';
+  }
+  const words = root.querySelector<HTMLElement>('#headline-realizations');
+  if (words) {
+    const seed = result.config.seed;
+    let text: string;
+    if (n > 1) {
+      text =
+        `Mean of ${n} realizations, seeds ${seeds[0]}–${seeds[seeds.length - 1]}` +
+        `${headline?.sd !== null && headline?.sd !== undefined ? `, SD ${fmt(headline.sd, 1)} %` : ''}. ` +
+        `The cells shown are realization 1 of ${n} (seed ${seed}): ${fmt(drawn, 1)} %.`;
+    } else if (progress?.state === 'running') {
+      text = `Realization 1 of ${progress.n} (seed ${seed}) only: computing realizations ${progress.done + 1}–${progress.n} for the mean and its 95 % CI (${progress.done} of ${progress.n} done)…`;
+    } else if (progress?.state === 'waiting') {
+      text = `Realization 1 of ${progress.n} (seed ${seed}) only: the mean over ${progress.n} realizations and its 95 % CI follow once the result settles.`;
+    } else if (progress?.state === 'cancelled') {
+      text = `One realization (seed ${seed}): the other ${progress.n - 1} were stopped, so there is no mean or confidence interval yet.`;
+    } else if (progress?.state === 'failed') {
+      text = `One realization (seed ${seed}): the other realizations failed (${progress.message ?? 'unknown error'}).`;
+    } else {
+      text = `One realization (seed ${seed}): a single run has no confidence interval; raise Realizations for a mean with its 95 % CI.`;
+    }
+    words.textContent = text;
+    words.dataset.state = n > 1 ? 'complete' : (progress?.state ?? 'single');
+  }
 }
 
 /**
@@ -86,7 +152,7 @@ function summaryTable(stack: ViewStack): HTMLTableElement {
   // The headline's method first: its values are the rows' data-value.
   const order = stack.analysis?.method === 'exact' ? (['exact', 'labels'] as const) : (['labels', 'exact'] as const);
   const methods = order.map((m) => analysisByMethod(stack.result, m)).filter((a) => a !== null);
-  table.append(row(['', ...methods.map((a) => a.method)], true));
+  table.append(row([`seed ${stack.result.config.seed} (the cells shown)`, ...methods.map((a) => a.method)], true));
   const line = (key: keyof (typeof methods)[number]['summary'], label: string, digits: number) => {
     const values = methods.map((a) => a.summary[key] as number);
     table.append(row([label, ...values.map((v) => fmt(v, digits))], false, String(key), values[0]));

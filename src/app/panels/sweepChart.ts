@@ -13,6 +13,7 @@ import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
 import { meanInterval } from '../../view/pageSweep';
 import type { ReferenceCurve, ReferencePoint } from '../../core/reference';
+import type { ChartSeries, ChartSpec } from '../model/chartSvg';
 
 const COLORS: Record<string, string> = { exact: '#1f5fa8', labels: '#c0392b' };
 const REFERENCE_COLORS = ['#2e8b57', '#8e44ad', '#d35400', '#16a085', '#7f8c8d', '#b7950b', '#5d6d7e', '#a04000'];
@@ -87,6 +88,60 @@ export class SweepChart {
       for (const [method, values] of this.values.get(x)!) out.push({ x, method, ...meanInterval(values) });
     }
     return out;
+  }
+
+  /**
+   * The chart as a figure (chartSvg.ts): per method the mean % scutoids per x with its 95 % CI
+   * as a band and the means written beside the points; reference curves dashed, their points
+   * with ± SD error bars where the source gives an SD; notes with n per point and the sources.
+   */
+  figure(): Pick<ChartSpec, 'title' | 'xLabel' | 'yLabel' | 'series' | 'notes' | 'yRange'> | null {
+    const setup = this.setup;
+    if (!setup || this.values.size === 0) return null;
+    const xs = [...this.values.keys()].sort((a, b) => a - b);
+    const series: ChartSeries[] = [];
+    const ns: number[] = [];
+    for (const method of setup.methods) {
+      const points = xs.map((x) => ({ x, ...meanInterval(this.values.get(x)?.get(method) ?? []) })).filter((p) => p.n > 0);
+      if (points.length === 0) continue;
+      ns.push(...points.map((p) => p.n));
+      series.push({
+        label: `${method} method: mean % scutoids, 95 % CI band`,
+        color: COLORS[method] ?? '#555',
+        style: 'line',
+        band: true,
+        labels: 1,
+        points: points.map((p) => ({ x: p.x, y: p.mean, low: p.n > 1 ? p.low : null, high: p.n > 1 ? p.high : null })),
+      });
+    }
+    const sources: string[] = [];
+    this.reference.forEach(({ curve, sourceNumber }, k) => {
+      series.push({
+        label: `${curve.label} (${curve.kind})`,
+        color: REFERENCE_COLORS[k % REFERENCE_COLORS.length],
+        style: curve.kind === 'data' ? 'points' : 'line',
+        dashed: true,
+        points: curve.points.map((p) => ({ x: p.x, y: p.percent, low: p.sd !== null ? Math.max(0, p.percent - p.sd) : null, high: p.sd !== null ? Math.min(100, p.percent + p.sd) : null })),
+      });
+      for (const point of curve.points) {
+        const line = `[${sourceNumber(point)}] ${point.source}`;
+        if (!sources.includes(line)) sources.push(line);
+      }
+    });
+    const nLo = Math.min(...ns);
+    const nHi = Math.max(...ns);
+    const max = Math.max(...series.flatMap((s) => s.points.map((p) => p.high ?? p.y)));
+    return {
+      title: `% scutoids vs ${setup.label}`,
+      xLabel: setup.label,
+      yLabel: '% scutoids (of valid cells)',
+      yRange: [0, Math.min(100, Math.max(10, Math.ceil(max * 1.1)))],
+      series,
+      notes: [
+        `n = ${nLo === nHi ? nLo : `${nLo}–${nHi}`} realizations per point; line: the mean; band: 95 % confidence interval of the mean (Student's t), clamped to 0–100 %.`,
+        ...(this.reference.length ? ['Dashed: reference curves; their error bars are ± SD where the source gives one.', ...sources.map((line) => `Source ${line}`)] : []),
+      ],
+    };
   }
 
   private xRange(min: number, max: number): [number, number] {

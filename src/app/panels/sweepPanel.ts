@@ -14,11 +14,13 @@
  */
 import { validateConfigDraft, type ConfigDraft as Config } from '../../core/config';
 import { readCsvTable, FLINTSTONES_RATIO, sweepFlintstones } from '../../core/sweep';
-import { isAbort } from '../../view/pageRunner';
+import { computeContext, isAbort } from '../../view/pageRunner';
+import { methodsOnRenderer } from '../../core/config/analysisMethods';
 import { planSweep, sweepInPage, type SweepPlan } from '../../view/pageSweep';
 import { FlintstonesChart } from './flintstonesChart';
 import { version } from '../../version';
 import { download } from './exports';
+import { downloadChart } from './chartExports';
 import { FIELDS } from './fields';
 import { SweepChart } from './sweepChart';
 import { ReferenceOverlay } from './referenceOverlay';
@@ -71,9 +73,18 @@ export class SweepPanel {
     this.button('runs-csv').addEventListener('click', () => this.download('runs.csv', this.runsCsv, 'text/csv'));
     this.button('aggregate-csv').addEventListener('click', () => this.download('aggregate.csv', this.aggregateCsv, 'text/csv'));
     this.button('spec').addEventListener('click', () => this.download('sweep.json', this.spec ? `${JSON.stringify({ software: { name: 'tissue-sheet', version }, spec: this.spec }, null, 2)}\n` : '', 'application/json'));
+    for (const kind of ['svg', 'png'] as const) {
+      this.button(`chart-${kind}`).addEventListener('click', () => void this.figure(kind, 'chart'));
+      this.button(`fit-${kind}`).addEventListener('click', () => void this.figure(kind, 'fit'));
+    }
     this.root.querySelector<HTMLInputElement>('[name="sweep-load"]')!.addEventListener('change', (event) => void this.load(event.target as HTMLInputElement));
     this.refreshChoices();
     this.root.querySelector('.sweep-controls')?.addEventListener('focusin', () => this.refreshChoices());
+  }
+
+  /** The configuration changed (a result is shown): the fields that can be varied follow it. */
+  configChanged(): void {
+    this.refreshChoices();
   }
 
   /** The tidy runs.csv of the sweep on screen (the CLI's columns). */
@@ -93,6 +104,10 @@ export class SweepPanel {
       <button type="button" data-sweep="runs-csv" disabled>runs.csv</button>
       <button type="button" data-sweep="aggregate-csv" disabled>aggregate.csv</button>
       <button type="button" data-sweep="spec" disabled>sweep.json</button>
+      <button type="button" data-sweep="chart-svg" disabled title="The sweep chart as SVG, at the width chosen under the exports">chart SVG</button>
+      <button type="button" data-sweep="chart-png" disabled title="The sweep chart as PNG, at the DPI and width chosen under the exports">chart PNG</button>
+      <button type="button" data-sweep="fit-svg" disabled title="The Flintstones fit as SVG">fit SVG</button>
+      <button type="button" data-sweep="fit-png" disabled title="The Flintstones fit as PNG">fit PNG</button>
       <label title="A sweep.json (this page's or the CLI's) and its runs.csv, to see them and resume">load <input name="sweep-load" type="file" multiple accept=".json,.csv,application/json,text/csv" /></label>`;
     controls.insertBefore(extra, status);
   }
@@ -118,7 +133,39 @@ export class SweepPanel {
         return option;
       }),
     );
-    this.field.value = choices.some((c) => c.value === previous) ? previous : choices[1]?.value ?? VORONOI_K;
+    const announce = this.field.dataset.shown === 'true';
+    this.field.dataset.shown = 'true';
+    if (choices.some((c) => c.value === previous)) {
+      this.field.value = previous;
+      return;
+    }
+    // The field varied is not one of this configuration any more (e.g. the tube's wall is now
+    // set by thickness): its counterpart is taken, and the change is said, never silent.
+    const counterpart = previous === 'sheet.surfaceRatio' ? 'sheet.thickness' : previous === 'sheet.thickness' ? 'sheet.surfaceRatio' : null;
+    const next = counterpart && choices.some((c) => c.value === counterpart) ? counterpart : (choices[1]?.value ?? VORONOI_K);
+    this.field.value = next;
+    if (announce) {
+      const name = (value: string) => FIELDS.find((f) => f.path === value)?.label ?? (value === VORONOI_K ? 'Voronoi k' : value);
+      this.status(`vary: ${name(previous)} is not a field of this configuration now; the sweep varies ${name(next)} instead.`);
+      this.root.dataset.varyChanged = `${previous}->${next}`;
+    }
+  }
+
+  /** A loaded sweep's spec in the sweep's form: the field varied, from, to, points, realizations. */
+  private showSpecInForm(spec: unknown): void {
+    const s = spec as { vary?: Record<string, unknown[]>; realizations?: number };
+    const [path, values] = Object.entries(s.vary ?? {})[0] ?? [];
+    if (!path || !Array.isArray(values) || values.length === 0) return;
+    const voronoi = path === 'lloyd.maxIterations';
+    const numbers = values.map(Number).map((v) => (voronoi ? v + 1 : v));
+    const value = voronoi ? VORONOI_K : path;
+    if (![...this.field.options].some((o) => o.value === value)) this.field.append(new Option(FIELDS.find((f) => f.path === path)?.label ?? path, value));
+    this.field.value = value;
+    this.field.dataset.shown = 'true';
+    this.input('from').value = String(Math.min(...numbers));
+    this.input('to').value = String(Math.max(...numbers));
+    this.input('steps').value = String(numbers.length);
+    this.input('realizations').value = String(s.realizations ?? 1);
   }
 
   private button(name: string): HTMLButtonElement {
@@ -164,7 +211,11 @@ export class SweepPanel {
     const field = plan.fields[0] ?? '';
     const voronoi = field === 'lloyd.maxIterations';
     const label = voronoi ? 'Voronoi k' : (FIELDS.find((f) => f.path === field)?.label ?? field);
-    const methods = ['exact', 'labels'].filter((m) => plan.summary.includes(`${m}.percentScutoids`));
+    // Only the methods the runs report on this renderer: "both" on the exact engine (auto on a
+    // software renderer) gives the exact method alone, so no empty labels series is listed.
+    const renderer = { softwareRenderer: safeSoftwareRenderer() };
+    const reported = new Set([...plan.configs.values()].flatMap((config) => methodsOnRenderer(config, renderer)));
+    const methods = ['exact', 'labels'].filter((m) => plan.summary.includes(`${m}.percentScutoids`) && reported.has(m as 'exact' | 'labels'));
     this.chart.reset({ label, field, methods, x: (cell) => (voronoi ? Number(cell) + 1 : Number(cell)) });
     this.reference.setSweep(field, (spec as { base?: unknown }).base);
   }
@@ -265,7 +316,29 @@ export class SweepPanel {
       total = 0;
     }
     this.button('resume').disabled = busy || !this.spec || done >= total;
-    for (const name of ['runs-csv', 'aggregate-csv', 'spec']) this.button(name).disabled = busy || !this.spec;
+    for (const name of ['runs-csv', 'aggregate-csv', 'spec', 'chart-svg', 'chart-png']) this.button(name).disabled = busy || !this.spec;
+    for (const name of ['fit-svg', 'fit-png']) this.button(name).disabled = busy || !this.flintstones.figure();
+  }
+
+  /** The sweep chart or the Flintstones fit as a figure file, with the sweep's provenance. */
+  private async figure(kind: 'svg' | 'png', which: 'chart' | 'fit'): Promise<void> {
+    try {
+      const rows = readCsvTable(this.runsCsv).rows;
+      const paths = [...new Set(rows.map((row) => row.centroidPath).filter(Boolean))];
+      const engine = paths.length === 0 ? 'unknown' : paths.map((p) => (/exact engine/.test(p) ? 'exact engine' : `GPU, centroid path ${p}`)).join(', ');
+      const spec = this.spec as { base?: { seed?: number }; seed?: number } | null;
+      const figure = which === 'chart' ? this.chart.figure() : this.flintstones.figure();
+      const methods = which === 'chart' ? (figure?.series.filter((s) => s.band).map((s) => s.label.split(' ')[0]).join(', ') ?? '') : 'exact wherever the runs have it (meanNeighbours3D)';
+      await downloadChart(kind, which === 'chart' ? 'tissue-sheet-sweep-chart' : 'tissue-sheet-flintstones-fit', figure, {
+        what: which === 'chart' ? 'tissue-sheet sweep chart (% scutoids, mean and 95 % CI per point)' : 'tissue-sheet Flintstones law fit',
+        engine,
+        method: methods,
+        seed: spec?.seed ?? spec?.base?.seed ?? '',
+        config: this.spec,
+      });
+    } catch (error) {
+      this.events.onError((error as Error).message);
+    }
   }
 
   /** Loads a sweep.json (a spec, or a record with `spec`) and its runs.csv. */
@@ -294,6 +367,7 @@ export class SweepPanel {
       this.spec = spec;
       this.runsCsv = csv;
       this.aggregateCsv = '';
+      this.showSpecInForm(spec);
       this.chartFor(plan, spec);
       const rows = readCsvTable(csv).rows;
       this.chart.add(rows);
@@ -311,5 +385,14 @@ export class SweepPanel {
       return;
     }
     download(name, text, type);
+  }
+}
+
+/** Whether this page's compute context is a software renderer (false when there is none). */
+function safeSoftwareRenderer(): boolean {
+  try {
+    return computeContext().capabilities.softwareRenderer;
+  } catch {
+    return false;
   }
 }

@@ -53,9 +53,9 @@ export function renderCellInfo(container: HTMLElement, stack: ViewStack | null, 
   const lines = [
     `Cell ${s.id}: ${s.valid ? 'valid' : 'border cell (not counted)'}, ${s.scutoid ? 'scutoid' : 'not a scutoid'}.`,
     `Sides: ${s.sides.map((x) => `${x.surface} ${x.sides}`).join(', ')}.`,
-    `Won from ${first} to ${last}: ${s.won.length ? s.won.join(', ') : 'none'}; lost: ${s.lost.length ? s.lost.join(', ') : 'none'} (${s.neighbourSource} neighbours).`,
+    `Neighbours won from ${first} to ${last}: ${cells(s.won)}; lost: ${cells(s.lost)} (${s.neighbourSource} neighbours).`,
   ];
-  if (stats) lines.push(`Analysis (${stack.analysis!.method}): won ${stats.won}, lost ${stats.lost}, transitions ${stats.transitions}, 3D neighbours ${stats.neighbours3D}.`);
+  if (stats) lines.push(`Analysis (${stack.analysis!.method}): ${stats.won} won, ${stats.lost} lost, ${stats.transitions} transitions, ${stats.neighbours3D} 3D neighbours.`);
   for (const line of lines) {
     const p = document.createElement('p');
     p.textContent = line;
@@ -76,4 +76,10 @@ export function hoverText(stack: ViewStack, picked: { surface: number; cell: num
   const sides = stack.surfaces.map((s) => `${s.name} ${s.sides[id]}`).join(', ');
   const flag = stack.valid[id] !== 1 ? 'border cell (not counted)' : stack.scutoid[id] === 1 ? 'scutoid' : 'not a scutoid';
   return `Cell ${id} (on ${on}) · sides ${sides} · ${flag}`;
+}
+
+/** Neighbour ids in words that cannot be read as counts: "cell 51", "cells 7, 12 (2)", "none". */
+function cells(ids: readonly number[]): string {
+  if (ids.length === 0) return 'none';
+  return ids.length === 1 ? `cell #${ids[0]}` : `cells #${ids.join(', #')} (${ids.length})`;
 }

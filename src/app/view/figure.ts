@@ -5,7 +5,7 @@
  * surfaces cannot be unrolled: the 3D view rendered at that size with the legend under it and no
  * scale bar (a perspective view has no single scale; the Description says so).
  */
-import { provenanceLines } from '../model/cellRows';
+import { provenanceText } from '../model/cellRows';
 import { withPngDpi, withPngText } from '../model/pngText';
 import { unrolledSvg } from '../model/svg';
 import { SIDE_COLORS, SIDE_LABELS } from '../../view/sideColors';
@@ -38,21 +38,18 @@ export async function figurePng(stack: ViewStack, view: SheetView3D | null, opti
     canvas.toBlob((b) => (b ? resolve(b) : reject(new Error('the figure could not be encoded'))), 'image/png'),
   );
   const png = new Uint8Array(await blob.arrayBuffer());
-  const { result } = stack;
   const what = stack.closed
     ? `3D view of a tissue-sheet result at ${options.dpi} dpi (perspective: no scale bar)`
     : `unrolled surfaces of a tissue-sheet result at ${options.dpi} dpi, exact cells, scale bar in µm`;
-  return withPngText(withPngDpi(png, options.dpi), [
-    ['Software', `${result.software.name} ${result.software.version}`],
-    ['Description', provenanceLines(stack, what).join('\n')],
-    ['tissue-sheet:version', result.software.version],
-    ['tissue-sheet:seed', String(result.seed)],
-    ['tissue-sheet:config', JSON.stringify(result.config)],
-  ]);
+  return withPngText(withPngDpi(png, options.dpi), provenanceText(stack, what));
 }
 
 async function unrolledFigure(stack: ViewStack, options: FigureOptions): Promise<HTMLCanvasElement> {
-  const svg = unrolledSvg(stack);
+  return rasterizeSvg(unrolledSvg(stack, { widthMm: options.widthMm }), options);
+}
+
+/** An SVG drawn on a white canvas of the size `options` give (width in mm at dpi, the SVG's aspect). */
+export async function rasterizeSvg(svg: string, options: FigureOptions): Promise<HTMLCanvasElement> {
   const box = /viewBox="([^"]+)"/.exec(svg)![1].split(' ').map(Number);
   const { width, height } = figureSize(options, box[2] / box[3]);
   const url = URL.createObjectURL(new Blob([svg], { type: 'image/svg+xml' }));
@@ -71,6 +68,13 @@ async function unrolledFigure(stack: ViewStack, options: FigureOptions): Promise
   } finally {
     URL.revokeObjectURL(url);
   }
+}
+
+/** A chart's SVG as a PNG at the chosen DPI and width: pHYs records the DPI, tEXt the provenance. */
+export async function svgPng(svg: string, options: FigureOptions, text: [string, string][]): Promise<Uint8Array> {
+  const canvas = await rasterizeSvg(svg, options);
+  const blob = await new Promise<Blob>((resolve, reject) => canvas.toBlob((b) => (b ? resolve(b) : reject(new Error('the figure could not be encoded'))), 'image/png'));
+  return withPngText(withPngDpi(new Uint8Array(await blob.arrayBuffer()), options.dpi), text);
 }
 
 function closedFigure(stack: ViewStack, view: SheetView3D | null, options: FigureOptions): HTMLCanvasElement {

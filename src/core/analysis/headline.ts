@@ -5,7 +5,9 @@
  * readers take `result.headline` instead of guessing which of `analyses[]` is the headline.
  *
  * One realization: `realizations` is 1 and `ci95` null (a single run has no spread); a headline
- * over realizations carries their mean, n and 95 % confidence interval in the same fields.
+ * over realizations (realizations.ts: combineHeadlines, headlineOverRealizations) carries their
+ * mean, n, SD and 95 % confidence interval in the same fields, and every realization's % and
+ * seed, the first being the realization drawn (the configuration's own seed).
  */
 import { headlineMethod, type AdjacencyMethod } from '../config/analysisMethods';
 import type { AnyConfig } from '../config/types';
@@ -28,12 +30,48 @@ export interface Headline {
   readonly voronoiK: number;
   /** Realizations the number is over (1: this run alone). */
   readonly realizations: number;
-  /** 95 % confidence interval of the mean over realizations; null for one realization. */
+  /** 95 % confidence interval of the mean over realizations (Student's t); null for one realization. */
   readonly ci95: readonly [number, number] | null;
+  /** Standard deviation of % scutoids over the realizations; null for one realization. */
+  readonly sd: number | null;
+  /** The realizations' seeds, the first being the one drawn (the configuration's own seed). */
+  readonly realizationSeeds: readonly number[];
+  /** Each realization's % scutoids, in the order of realizationSeeds (null: no valid cell). */
+  readonly realizationValues: readonly (number | null)[];
   /** Set when the geometry fixes % scutoids at 0 whatever the sites, with why. */
   readonly byConstruction: ByConstruction | null;
   /** Set when no cell was counted (every cell touches an open end), with what to change. */
   readonly noValidCells: string | null;
+  /**
+   * Methods `sheet.adjacency` asked for that the run does not report, with why (the exact engine
+   * makes no label images: "both" on the exact engine gives the exact method only). Empty when
+   * every method asked for is in `analyses`.
+   */
+  readonly omittedMethods: readonly OmittedMethod[];
+}
+
+export interface OmittedMethod {
+  readonly method: AdjacencyMethod;
+  readonly reason: string;
+}
+
+/** The methods `config` asked for that `reported` lacks, and why (see Headline.omittedMethods). */
+export function omittedMethods(config: AnyConfig, reported: readonly AdjacencyMethod[]): OmittedMethod[] {
+  const adjacency = config.sheet.adjacency;
+  const asked: AdjacencyMethod[] = adjacency === 'both' ? ['labels', 'exact'] : [adjacency];
+  const why =
+    config.engine === 'exact'
+      ? 'engine "exact" ran Lloyd on the exact Voronoi diagram on the CPU, which makes no label images'
+      : 'engine "auto" took the exact engine (Lloyd on the exact Voronoi diagram on the CPU) because the renderer here is software, not a GPU, and that engine makes no label images';
+  return asked
+    .filter((method) => !reported.includes(method))
+    .map((method) => ({ method, reason: method === 'labels' ? `${why}; set engine "gpu" (in the page: Engine, under Advanced) for the labels method` : 'not computed by this run' }));
+}
+
+/** The omitted methods in one line ("labels method left out: ..."), or null when none was. */
+export function describeOmitted(headline: Pick<Headline, 'omittedMethods'> | null): string | null {
+  const omitted = headline?.omittedMethods ?? [];
+  return omitted.length ? omitted.map((o) => `${o.method} method left out: ${o.reason}`).join('; ') : null;
 }
 
 const finiteOrNull = (value: number): number | null => (Number.isFinite(value) ? value : null);
@@ -60,21 +98,45 @@ export function runHeadline(config: AnyConfig, analyses: readonly AnalysisRecord
     voronoiK: lloydIterations + 1,
     realizations: 1,
     ci95: null,
+    sd: null,
+    realizationSeeds: [config.seed],
+    realizationValues: [counted ? finiteOrNull(s.percentScutoids) : null],
     byConstruction: byConstruction(config),
     noValidCells: noValidCells(s.validCells, s.cells),
+    omittedMethods: omittedMethods(config, analyses.map((a) => a.method)),
   };
 }
 
-/** The headline in one line of words, for logs: "36.5 % scutoids (exact method, 180 of 200 cells counted), Voronoi 51". */
+/** % with one decimal ("–" when there is none). */
+const pct = (value: number | null | undefined): string => (typeof value === 'number' && Number.isFinite(value) ? value.toFixed(1) : '–');
+
+/**
+ * How many realizations a headline is over, in words: "one realization (seed 1)", or "mean of 5
+ * realizations (seeds 1–5), 95 % CI 91.2–94.6 %; realization 1 (seed 1, drawn): 97.8 %".
+ */
+export function describeRealizations(headline: Headline): string {
+  const seeds = headline.realizationSeeds ?? [];
+  if (headline.realizations <= 1) return seeds.length ? `one realization (seed ${seeds[0]})` : 'one realization';
+  const first = seeds[0];
+  const last = seeds[seeds.length - 1];
+  const range = seeds.length > 1 ? ` (seeds ${first}–${last})` : '';
+  const ci = headline.ci95 ? `, 95 % CI ${pct(headline.ci95[0])}–${pct(headline.ci95[1])} %` : '';
+  const drawn = seeds.length ? `; realization 1 (seed ${first}, drawn): ${pct(headline.realizationValues?.[0])} %` : '';
+  return `mean of ${headline.realizations} realizations${range}${ci}${drawn}`;
+}
+
+/**
+ * The headline in one line of words, for logs and exports:
+ * "92.9 % scutoids (exact method, 200 of 200 cells counted; mean of 10 realizations (seeds 1–10),
+ * 95 % CI 91.2–94.6 %; realization 1 (seed 1, drawn): 97.8 %), Voronoi 51".
+ */
 export function describeHeadline(headline: Headline | null): string {
   if (!headline) return 'no analysis';
-  const n = headline.realizations > 1 ? `, mean of ${headline.realizations} realizations` : ', one realization';
-  const ci = headline.ci95 ? ` (95 % CI ${headline.ci95[0].toFixed(1)}–${headline.ci95[1].toFixed(1)})` : '';
-  const value = headline.percentScutoids === null ? 'no % scutoids' : `${headline.percentScutoids.toFixed(1)} % scutoids${ci}`;
+  const value = headline.percentScutoids === null ? 'no % scutoids' : `${headline.percentScutoids.toFixed(1)} % scutoids`;
   const protocol = headline.protocol === 'lab' ? ", the lab's protocol" : '';
   const why = headline.noValidCells ?? headline.byConstruction?.message ?? null;
-  return (
-    `${value} (${headline.method} method${protocol}, ${headline.validCells} of ${headline.cells} cells counted${n}), ` +
-    `Voronoi ${headline.voronoiK}${why ? `. ${why}` : ''}`
-  );
+  const counted = headline.realizations > 1 ? `${headline.validCells} of ${headline.cells} cells counted in realization 1` : `${headline.validCells} of ${headline.cells} cells counted`;
+  const omitted = describeOmitted(headline);
+  const sentences = [why, omitted && `${omitted.charAt(0).toUpperCase()}${omitted.slice(1)}`].filter((x): x is string => Boolean(x)).map((x) => x.replace(/\.$/, ''));
+  return `${value} (${headline.method} method${protocol}, ${counted}; ${describeRealizations(headline)}), Voronoi ${headline.voronoiK}${sentences.map((x) => `. ${x}`).join('')}`;
 }

@@ -7,3 +7,4 @@ export * from './flintstones';
 export * from './record';
 export * from './headline';
 export * from './byConstruction';
+export * from './realizations';
