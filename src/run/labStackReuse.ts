@@ -13,8 +13,9 @@
  * carried prefix plus more layers starts it again from its first surface. The state is kept per
  * first surface in a WeakMap, so it lives as long as the seeded surface's layers do.
  */
+import { addDifference, differenceSize, isCanonical, mean, newDifference } from '../core/analysis/sortedSets';
 import { analyzeLabStack, invalidOnAnySurface, neighbourSet, toCsr, type ScutoidAnalysis, type SurfaceAdjacency, type SurfaceSummary } from '../core/analysis';
-import { adjacencyCount, type AdjacencyInput, type CsrAdjacency } from '../core/analysis/adjacency';
+import { adjacencyCount, type AdjacencyInput } from '../core/analysis/adjacency';
 import { summarizeSurface } from '../core/analysis/scutoids';
 
 /** Neighbour sets of one surface as CSR: each cell's ids ascending, once, without the cell. */
@@ -82,16 +83,6 @@ function setsOf(surface: SurfaceAdjacency): Sets {
   return sets;
 }
 
-/** Every list strictly ascending and without the cell itself: neighbourSet would return it as is. */
-function isCanonical(adj: CsrAdjacency): boolean {
-  const count = adj.offsets.length - 1;
-  for (let i = 0; i < count; i++) {
-    for (let k = adj.offsets[i]; k < adj.offsets[i + 1]; k++) {
-      if (adj.neighbours[k] === i || (k > adj.offsets[i] && adj.neighbours[k] <= adj.neighbours[k - 1])) return false;
-    }
-  }
-  return true;
-}
 
 function sidesOf(surface: SurfaceAdjacency, sets: Sets, count: number): Int32Array {
   const out = new Int32Array(count);
@@ -236,46 +227,6 @@ function sameBytes(a: Uint8Array, b: Uint8Array): boolean {
   return true;
 }
 
-const mean = (sum: number, n: number): number => (n > 0 ? sum / n : NaN);
 
-/** Ascending ranges a[a0, a1), b[b0, b1): |a \ b|. */
-function differenceSize(a: Int32Array, a0: number, a1: number, b: Int32Array, b0: number, b1: number): number {
-  let i = a0;
-  let j = b0;
-  let n = 0;
-  while (i < a1) {
-    if (j >= b1 || a[i] < b[j]) {
-      n++;
-      i++;
-    } else if (a[i] > b[j]) j++;
-    else {
-      i++;
-      j++;
-    }
-  }
-  return n;
-}
 
-/** Adds the elements of a \ b (ascending ranges) not yet in `into`. */
-function addDifference(a: Int32Array, a0: number, a1: number, b: Int32Array, b0: number, b1: number, into: number[]): void {
-  let j = b0;
-  for (let k = a0; k < a1; k++) {
-    const v = a[k];
-    while (j < b1 && b[j] < v) j++;
-    if (j < b1 && b[j] === v) continue;
-    if (!into.includes(v)) into.push(v);
-  }
-}
 
-/** How many elements of a \ b (ascending ranges) are not in `into` (which is not changed). */
-function newDifference(a: Int32Array, a0: number, a1: number, b: Int32Array, b0: number, b1: number, into: readonly number[]): number {
-  let j = b0;
-  let n = 0;
-  for (let k = a0; k < a1; k++) {
-    const v = a[k];
-    while (j < b1 && b[j] < v) j++;
-    if (j < b1 && b[j] === v) continue;
-    if (!into.includes(v)) n++;
-  }
-  return n;
-}

@@ -150,6 +150,8 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
   const resumed = planResume(options.resumeCsv ?? '', { header, fields, runs, filledColumns: (run) => filled.get(run.pointKey)!, textColumns: TEXT_COLUMNS });
   let csv = resumed.cleanText;
   const rows = [...resumed.rows];
+  // Each run's row by its key: a progress event names its run, whose row is already appended.
+  const rowByKey = new Map<string, Record<string, string>>();
   const started = performance.now();
   const runner: WorkerSheetRunner = acquirePipelineRunner();
   let aborted = false;
@@ -168,6 +170,7 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
         const row: Record<string, string> = {};
         header.forEach((h, k) => (row[h] = record[k]));
         rows.push(row);
+        rowByKey.set(row.key, row);
       },
       runner: async (config) => {
         const valid = validateAnyConfig(config);
@@ -185,7 +188,7 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
           skipped: p.skipped,
           elapsedMs: performance.now() - started,
           run: { key, point, realization, seed },
-          ...(p.phase === 'done' ? { row: rows[rows.length - 1] } : { error: p.error instanceof Error ? p.error.message : String(p.error) }),
+          ...(p.phase === 'done' ? { row: rowByKey.get(key) } : { error: p.error instanceof Error ? p.error.message : String(p.error) }),
         });
       },
     });

@@ -7,9 +7,10 @@
  * is the reference `surfaceFromExact(exactVoronoi(...))`, and sweeps pass the exact engine's
  * `exactSurface` (the same numbers, tested cell by cell, several times faster).
  */
+import { isCanonical } from './sortedSets';
 import { exactVoronoi } from '../exact';
 import type { Grid } from '../grid';
-import { neighbourSet, toCsr, type CsrAdjacency } from './adjacency';
+import { neighbourSet, toCsr } from './adjacency';
 import { analyzeSurfaces, surfaceFromExact, type ScutoidAnalysis, type SurfaceAdjacency } from './scutoids';
 import { invalidOnAnySurface, labLayerRatios, LAB_PROTOCOL, validityRatios, type LabProtocolSettings } from './protocol';
 
@@ -251,13 +252,3 @@ export function labTubeTable(
   }));
 }
 
-/** Every list strictly ascending and without the cell itself. */
-function isCanonical(adj: CsrAdjacency): boolean {
-  const count = adj.offsets.length - 1;
-  for (let i = 0; i < count; i++) {
-    for (let k = adj.offsets[i]; k < adj.offsets[i + 1]; k++) {
-      if (adj.neighbours[k] === i || (k > adj.offsets[i] && adj.neighbours[k] <= adj.neighbours[k - 1])) return false;
-    }
-  }
-  return true;
-}

@@ -35,6 +35,7 @@
  *   `aboavNeighbours: 'valid'`; cells without counted neighbours are skipped).
  * - With no valid cells every mean and percentage is NaN (never 0 by default).
  */
+import { differenceSize, mean, unionInto } from './sortedSets';
 import type { AdjacencyInput, CsrAdjacency } from './adjacency';
 import { adjacencyCount, filterShortContacts, neighbourSet, toCsr } from './adjacency';
 import type { ExactVoronoi } from '../exact';
@@ -137,39 +138,7 @@ export interface ScutoidAnalysis {
   summary: ScutoidSummary;
 }
 
-/** Sorted ranges a[a0, a1), b[b0, b1): |a \ b|. */
-function differenceSize(a: Int32Array, a0: number, a1: number, b: Int32Array, b0: number, b1: number): number {
-  let i = a0;
-  let j = b0;
-  let n = 0;
-  while (i < a1) {
-    if (j >= b1 || a[i] < b[j]) {
-      n++;
-      i++;
-    } else if (a[i] > b[j]) j++;
-    else {
-      i++;
-      j++;
-    }
-  }
-  return n;
-}
 
-/** Sorted, deduplicated a[0, an) and b[b0, b1): their union written to out (sorted); its size. */
-function unionInto(a: Int32Array, an: number, b: Int32Array, b0: number, b1: number, out: Int32Array): number {
-  let i = 0;
-  let j = b0;
-  let n = 0;
-  while (i < an || j < b1) {
-    if (j >= b1 || (i < an && a[i] < b[j])) out[n++] = a[i++];
-    else if (i >= an || b[j] < a[i]) out[n++] = b[j++];
-    else {
-      out[n++] = a[i++];
-      j++;
-    }
-  }
-  return n;
-}
 
 /**
  * Every cell's neighbour set (sorted, deduplicated, without the cell: neighbourSet's form) in one
@@ -212,7 +181,6 @@ export function neighbourExchange(from: AdjacencyInput, to: AdjacencyInput, i: n
   return { won: [...b].filter((x) => !sa.has(x)), lost: [...a].filter((x) => !sb.has(x)) };
 }
 
-const mean = (sum: number, n: number): number => (n > 0 ? sum / n : NaN);
 
 /** Per-cell statistics and summary of a stack of surfaces (see the module comment). */
 export function analyzeSurfaces(surfaces: SurfaceAdjacency[], options: AnalysisOptions = {}): ScutoidAnalysis {

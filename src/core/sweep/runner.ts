@@ -267,8 +267,14 @@ export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, 
           if (!pending.delete(run.key)) throw new Error(`run ${run.key}: reported twice or not in its task`);
           finished++;
           completed++;
+          // 'done' once the run's row is in the file (rows go out in run order, so a row may wait
+          // for an earlier run): a listener reading the file then finds it.
+          const done: SweepProgress<C> = { phase: 'done', run, finished, total, skipped, elapsedMs: Date.now() - t0 };
           written = settle(run, summary);
-          options.onProgress?.({ phase: 'done', run, finished, total, skipped, elapsedMs: Date.now() - t0 });
+          written.then(
+            () => options.onProgress?.(done),
+            () => {},
+          );
         });
         await written;
         if (pending.size > 0) throw new Error(`a sweep task ended without ${pending.size} of its runs`);
