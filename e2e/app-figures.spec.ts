@@ -1,9 +1,8 @@
-import { readFileSync, writeFileSync } from 'node:fs';
+import { readFileSync, writeFileSync, mkdtempSync } from 'node:fs';
 import { expect, test, type Page } from '@playwright/test';
 import { waitForRun } from './appHelpers';
 import { readPngDpi, readPngText } from '../src/app/model/pngText';
 import { parseCsv } from '../src/core/sweep/csv';
-import { mkdtempSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { png16, randomSites, rasterizeVoronoi } from '../tests/measure/images';
