@@ -65,8 +65,12 @@ for (let r = 1; r <= realizations; r++) {
 const totalMs = performance.now() - start;
 const runs = realizations * VORONOI * RATIOS.length;
 
-console.log(`exact engine, lab protocol: ${runs} runs (${realizations} realizations x Voronoi 1-${VORONOI} x ${RATIOS.length} ratios) in ${(totalMs / 1000).toFixed(2)} s = ${(runs / (totalMs / 1000)).toFixed(0)} runs/s`);
-console.log(`  Lloyd ${(lloydMs / 1000).toFixed(2)} s, layers and analysis ${(analysisMs / 1000).toFixed(2)} s, peak RSS ${(peakRss / 2 ** 20).toFixed(0)} MiB`);
+console.log(
+  `exact engine, lab protocol: ${runs} runs (${realizations} realizations x Voronoi 1-${VORONOI} x ${RATIOS.length} ratios) in ${(totalMs / 1000).toFixed(2)} s = ${(runs / (totalMs / 1000)).toFixed(0)} runs/s`,
+);
+console.log(
+  `  Lloyd ${(lloydMs / 1000).toFixed(2)} s, layers and analysis ${(analysisMs / 1000).toFixed(2)} s, peak RSS ${(peakRss / 2 ** 20).toFixed(0)} MiB`,
+);
 console.log('% scutoids (mean over realizations), rows Voronoi k, columns s:');
 console.log('  k   ' + RATIOS.map((s) => String(s).padStart(6)).join(''));
 for (let k = 0; k < VORONOI; k++) {
@@ -80,7 +84,9 @@ for (const k of [0, 4, 9]) {
     const fit = fitFlintstones(points);
     const p = fit.parameters;
     const se = fit.standardErrors;
-    console.log(`  Voronoi ${k + 1}: Nmax ${p.nMax.toFixed(3)} ± ${se.nMax.toFixed(3)}, c ${p.c.toFixed(3)} ± ${se.c.toFixed(3)}, d ${p.d.toFixed(3)} ± ${se.d.toFixed(3)}, R² ${fit.rSquared.toFixed(3)}`);
+    console.log(
+      `  Voronoi ${k + 1}: Nmax ${p.nMax.toFixed(3)} ± ${se.nMax.toFixed(3)}, c ${p.c.toFixed(3)} ± ${se.c.toFixed(3)}, d ${p.d.toFixed(3)} ± ${se.d.toFixed(3)}, R² ${fit.rSquared.toFixed(3)}`,
+    );
   } catch (error) {
     console.log(`  Voronoi ${k + 1}: ${(error as Error).message}`);
   }
@@ -93,7 +99,9 @@ if (args.includes('--scaling')) {
     const t = performance.now();
     const result = realization(tube, cells, 1, spacing, LAB_PROTOCOL, 2);
     const ms = performance.now() - t;
-    console.log(`  ${cells} cells: ${(ms / (2 * RATIOS.length)).toFixed(1)} ms per run (Lloyd iteration ${result.lloydMs.toFixed(1)} ms, 37 layers ${(result.analysisMs / 2).toFixed(1)} ms per Voronoi k), peak RSS ${(peakRss / 2 ** 20).toFixed(0)} MiB`);
+    console.log(
+      `  ${cells} cells: ${(ms / (2 * RATIOS.length)).toFixed(1)} ms per run (Lloyd iteration ${result.lloydMs.toFixed(1)} ms, 37 layers ${(result.analysisMs / 2).toFixed(1)} ms per Voronoi k), peak RSS ${(peakRss / 2 ** 20).toFixed(0)} MiB`,
+    );
   }
   for (const step of [0.25, 0.125, 0.0625]) {
     const t = performance.now();

@@ -43,7 +43,11 @@ export class FloorJumpFlood {
   private readonly pixel = new Float32Array(4);
   private current = 0;
 
-  constructor(private readonly gl: WebGL2RenderingContext, readonly width: number, readonly height: number) {
+  constructor(
+    private readonly gl: WebGL2RenderingContext,
+    readonly width: number,
+    readonly height: number,
+  ) {
     gl.getExtension('EXT_color_buffer_float');
     this.program = link(gl, vertexSource, floodSource);
     this.stepLocation = gl.getUniformLocation(this.program, 'stepSize');
@@ -110,7 +114,10 @@ export class FloorJumpFlood {
 
 function link(gl: WebGL2RenderingContext, vertex: string, fragment: string): WebGLProgram {
   const program = gl.createProgram()!;
-  for (const [type, source] of [[gl.VERTEX_SHADER, vertex], [gl.FRAGMENT_SHADER, fragment]] as const) {
+  for (const [type, source] of [
+    [gl.VERTEX_SHADER, vertex],
+    [gl.FRAGMENT_SHADER, fragment],
+  ] as const) {
     const shader = gl.createShader(type)!;
     gl.shaderSource(shader, source);
     gl.compileShader(shader);

@@ -37,11 +37,12 @@ const mesh = new THREE.Mesh(geometry, new THREE.MeshBasicMaterial({ side: THREE.
 const triangles = built.indices.length / 3;
 
 let seed = 7;
-const random = () => ((seed = (seed * 16807) % 2147483647) / 2147483647);
+const random = () => (seed = (seed * 16807) % 2147483647) / 2147483647;
 const rays: THREE.Ray[] = [];
 for (let i = 0; i < count; i++) {
   const origin = new THREE.Vector3(0, 0, 3 * radius);
-  const r = radius * Math.sqrt(random()), a = 2 * Math.PI * random();
+  const r = radius * Math.sqrt(random()),
+    a = 2 * Math.PI * random();
   rays.push(new THREE.Ray(origin, new THREE.Vector3(r * Math.cos(a), r * Math.sin(a), 0).sub(origin).normalize()));
 }
 

@@ -70,7 +70,10 @@ try {
   await bench.waitForFunction(() => document.title === 'ready');
   type Changes = { ms: number[]; median: number; longestTask: number };
   const call = <T>(name: string, input: unknown) =>
-    bench.evaluate(([name, input]) => (window as unknown as { benchInteractive: Record<string, (i: unknown) => Promise<unknown>> }).benchInteractive[name as string](input), [name, input] as const) as Promise<T>;
+    bench.evaluate(
+      ([name, input]) => (window as unknown as { benchInteractive: Record<string, (i: unknown) => Promise<unknown>> }).benchInteractive[name as string](input),
+      [name, input] as const,
+    ) as Promise<T>;
   const onPage = await call<Changes>('ratioChanges', { config: BENCH_SHEET, ratios, where: 'page' });
   const inWorker = await call<Changes>('ratioChanges', { config: BENCH_SHEET, ratios, where: 'worker' });
 
@@ -84,15 +87,23 @@ try {
   const cliSeconds = (Date.now() - cliStart) / 1000;
   const runs = spec.vary['sheet.surfaceRatio'].length * realizations;
 
-  say(`\nissue 15 interactive benchmark (headless Chromium, SwiftShader; default config: ${BENCH_SHEET.cells} cells, resolution ${BENCH_SHEET.resolution}); pipeline site: ${site}`);
+  say(
+    `\nissue 15 interactive benchmark (headless Chromium, SwiftShader; default config: ${BENCH_SHEET.cells} cells, resolution ${BENCH_SHEET.resolution}); pipeline site: ${site}`,
+  );
   say(`app cold first result (load -> first picture): ${fmt(cold)}`);
   const p50 = quantile(latencies, 0.5);
   const p95 = quantile(latencies, 0.95);
   say(`app ratio change, input -> picture, ${latencies.length} changes: median ${fmt(p50)}, p95 ${fmt(p95)}; longest main-thread task ${fmt(appLongest)}`);
-  say(`app slider step (input + change), input -> full picture (draft first, full after the 400 ms settle): median ${fmt(quantile(steps, 0.5))} of ${steps.length}; longest main-thread task ${fmt(stepLongest)}`);
-  say(`compute only, ratio change: main thread (baseline) median ${fmt(onPage.median)}, longest task ${fmt(onPage.longestTask)} | worker median ${fmt(inWorker.median)} (x${(inWorker.median / onPage.median).toFixed(2)} of baseline), longest task ${fmt(inWorker.longestTask)}`);
+  say(
+    `app slider step (input + change), input -> full picture (draft first, full after the 400 ms settle): median ${fmt(quantile(steps, 0.5))} of ${steps.length}; longest main-thread task ${fmt(stepLongest)}`,
+  );
+  say(
+    `compute only, ratio change: main thread (baseline) median ${fmt(onPage.median)}, longest task ${fmt(onPage.longestTask)} | worker median ${fmt(inWorker.median)} (x${(inWorker.median / onPage.median).toFixed(2)} of baseline), longest task ${fmt(inWorker.longestTask)}`,
+  );
   say(`app latency / worker compute median: x${(p50 / inWorker.median).toFixed(2)} (the rest is transfer and drawing)`);
-  say(`sweep of ${runs} runs: page ${(page.runs / page.seconds).toFixed(2)} runs/s (longest task ${fmt(page.longestTask)}) | CLI ${(runs / cliSeconds).toFixed(2)} runs/s incl. start-up (baseline); page/CLI x${(page.runs / page.seconds / (runs / cliSeconds)).toFixed(2)}`);
+  say(
+    `sweep of ${runs} runs: page ${(page.runs / page.seconds).toFixed(2)} runs/s (longest task ${fmt(page.longestTask)}) | CLI ${(runs / cliSeconds).toFixed(2)} runs/s incl. start-up (baseline); page/CLI x${(page.runs / page.seconds / (runs / cliSeconds)).toFixed(2)}`,
+  );
 } finally {
   await browser.close();
   await server.close();
@@ -124,7 +135,8 @@ async function stepToFullPicture(page: Page, ratio: number): Promise<number> {
     slider.value = String(ratio);
     slider.dispatchEvent(new Event('input', { bubbles: true }));
     slider.dispatchEvent(new Event('change', { bubbles: true }));
-    while (!(Number(document.body.dataset.runs) > before && document.body.dataset.state === 'done' && document.body.dataset.pictures === 'full')) await new Promise((resolve) => setTimeout(resolve, 5));
+    while (!(Number(document.body.dataset.runs) > before && document.body.dataset.state === 'done' && document.body.dataset.pictures === 'full'))
+      await new Promise((resolve) => setTimeout(resolve, 5));
     await new Promise((resolve) => requestAnimationFrame(resolve));
     return performance.now() - started;
   }, ratio);

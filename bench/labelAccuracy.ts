@@ -59,9 +59,11 @@ interface Row {
 
 /** Cells whose labels record matches the exact one (sides on every surface, won, lost), and whose scutoid flags match. */
 function agreement(labels: AnalysisRecord, exact: AnalysisRecord): { cells: number; flags: number; total: number } {
-  let same = 0, flags = 0;
+  let same = 0,
+    flags = 0;
   for (let k = 0; k < exact.cells.length; k++) {
-    const l = labels.cells[k], e = exact.cells[k];
+    const l = labels.cells[k],
+      e = exact.cells[k];
     if (l.id !== e.id) throw new Error(`cell records out of order at ${k}`);
     if (l.sides.join() === e.sides.join() && l.won === e.won && l.lost === e.lost) same++;
     if (l.scutoid === e.scutoid) flags++;
@@ -77,8 +79,16 @@ try {
   for (const name of surfaceNames) {
     for (const res of resolutions) {
       const t0 = performance.now();
-      let agreeCells = 0, agreeFlags = 0, total = 0, runs = 0, sumDelta = 0, maxDelta = 0, sumExact = 0;
-      let resolution = 0, texelUm = 0, minContactUm = 0;
+      let agreeCells = 0,
+        agreeFlags = 0,
+        total = 0,
+        runs = 0,
+        sumDelta = 0,
+        maxDelta = 0,
+        sumExact = 0;
+      let resolution = 0,
+        texelUm = 0,
+        minContactUm = 0;
       for (const seed of seeds) {
         for (const thickness of thicknesses) {
           const config = validateAnyConfig({
@@ -122,14 +132,17 @@ try {
         seconds: (performance.now() - t0) / 1000,
       };
       rows.push(row);
-      console.error(`${name} n ${resolution}${res === 'default' ? ' (default)' : ''}: ${(100 * row.cellsAgreeing).toFixed(1)} % cells agree, |Δ % scutoids| ${row.meanAbsDeltaScutoids.toFixed(2)} (max ${row.maxAbsDeltaScutoids.toFixed(2)}), ${row.seconds.toFixed(1)} s`);
+      console.error(
+        `${name} n ${resolution}${res === 'default' ? ' (default)' : ''}: ${(100 * row.cellsAgreeing).toFixed(1)} % cells agree, |Δ % scutoids| ${row.meanAbsDeltaScutoids.toFixed(2)} (max ${row.maxAbsDeltaScutoids.toFixed(2)}), ${row.seconds.toFixed(1)} s`,
+      );
     }
   }
 } finally {
   context.dispose();
 }
 
-const header = '| surface | n | texel edge µm | min contact µm | runs | cells agreeing | scutoid flags agreeing | mean abs Δ % scutoids | max abs Δ | % scutoids (exact) |';
+const header =
+  '| surface | n | texel edge µm | min contact µm | runs | cells agreeing | scutoid flags agreeing | mean abs Δ % scutoids | max abs Δ | % scutoids (exact) |';
 console.log(`${cells} cells, Lloyd ${iterations} iterations, seeds ${seeds.join(', ')}, thickness ${thicknesses.join(', ')} µm outward\n`);
 console.log(header);
 console.log(header.replace(/[^|]/g, '-').replace(/\|-/g, '|-'));

@@ -136,7 +136,11 @@ export async function measure(
 
       // Profiled run: jump flood and centroid pass timed apart.
       const profiled = new LloydRun(engine, grid, sites.slice(), {
-        maxIterations: iterations, tolerance: 0, overRelaxation: 1, warmStart: true, profile: true,
+        maxIterations: iterations,
+        tolerance: 0,
+        overRelaxation: 1,
+        warmStart: true,
+        profile: true,
       });
       while (!profiled.done) profiled.step();
       const later = profiled.iterations.slice(1);
@@ -154,7 +158,10 @@ export async function measure(
 
       // Unprofiled run: what an iteration really costs.
       const plain = new LloydRun(engine, grid, sites.slice(), {
-        maxIterations: iterations, tolerance: 0, overRelaxation: 1, warmStart: true,
+        maxIterations: iterations,
+        tolerance: 0,
+        overRelaxation: 1,
+        warmStart: true,
       });
       const stepTimes: number[] = [];
       while (!plain.done) {
@@ -214,7 +221,22 @@ export function benchCases(sizes: readonly number[], siteCounts: readonly number
 }
 
 export function formatTable(rows: readonly BenchRow[]): string {
-  const header = ['env', 'size', 'sites', 'path', 'floor JFA', 'cold JFA', 'x floor', 'warm JFA (passes)', 'centroid', 'iteration', 'iter/cold JFA', 'CPU d3 iter', 'CPU/GPU', 'warm err'];
+  const header = [
+    'env',
+    'size',
+    'sites',
+    'path',
+    'floor JFA',
+    'cold JFA',
+    'x floor',
+    'warm JFA (passes)',
+    'centroid',
+    'iteration',
+    'iter/cold JFA',
+    'CPU d3 iter',
+    'CPU/GPU',
+    'warm err',
+  ];
   const lines = [header.join(' | ')];
   const ms = (v?: number) => (v === undefined ? '-' : v < 10 ? v.toFixed(2) : v.toFixed(0));
   for (const r of rows) {
@@ -222,12 +244,24 @@ export function formatTable(rows: readonly BenchRow[]): string {
       lines.push([r.environment, `${r.size}²`, r.sites, 'skipped: ' + r.skipped].join(' | '));
       continue;
     }
-    lines.push([
-      r.environment, `${r.size}²`, r.sites, r.centroidPath, ms(r.floorJumpFloodMs), ms(r.coldJumpFloodMs),
-      r.ratios!.jumpFloodVsFloor.toFixed(2), `${ms(r.warmJumpFloodMs)} (${r.warmPasses!.toFixed(1)})`, ms(r.centroidMs),
-      ms(r.lloydIterationMs), r.ratios!.warmIterationVsColdJumpFlood.toFixed(2), ms(r.cpuDelaunayIterationMs),
-      r.ratios!.cpuVsGpuIteration.toFixed(2), r.warmMislabeled === undefined ? '-' : r.warmMislabeled.toExponential(1),
-    ].join(' | '));
+    lines.push(
+      [
+        r.environment,
+        `${r.size}²`,
+        r.sites,
+        r.centroidPath,
+        ms(r.floorJumpFloodMs),
+        ms(r.coldJumpFloodMs),
+        r.ratios!.jumpFloodVsFloor.toFixed(2),
+        `${ms(r.warmJumpFloodMs)} (${r.warmPasses!.toFixed(1)})`,
+        ms(r.centroidMs),
+        ms(r.lloydIterationMs),
+        r.ratios!.warmIterationVsColdJumpFlood.toFixed(2),
+        ms(r.cpuDelaunayIterationMs),
+        r.ratios!.cpuVsGpuIteration.toFixed(2),
+        r.warmMislabeled === undefined ? '-' : r.warmMislabeled.toExponential(1),
+      ].join(' | '),
+    );
   }
   return lines.join('\n');
 }

@@ -30,7 +30,20 @@ for (const [name, files] of forms) {
   const out = join(dir, 'r.json');
   const run = spawnSync(
     '/usr/bin/time',
-    ['-v', process.execPath, '--import', 'tsx', 'tests/measure/runMeasure.ts', 'measure', ...files.map((f) => join(dir, f)), '--out', out, '--pixel-size', '0.5', '--force'],
+    [
+      '-v',
+      process.execPath,
+      '--import',
+      'tsx',
+      'tests/measure/runMeasure.ts',
+      'measure',
+      ...files.map((f) => join(dir, f)),
+      '--out',
+      out,
+      '--pixel-size',
+      '0.5',
+      '--force',
+    ],
     { encoding: 'utf8' },
   );
   if (run.status !== 0) throw new Error(`${name}: exit ${run.status}\n${run.stderr}`);

@@ -54,7 +54,9 @@ function makeVolume(): Uint16Array {
     const warped = new Float64Array(3 * CELLS);
     const cells: number[][] = Array.from({ length: B * B * B }, () => []);
     for (let k = 0; k < CELLS; k++) {
-      const x = s[3 * k] * (1 + 0.3 * d), y = s[3 * k + 1], z = s[3 * k + 2] * (1 - 0.2 * d);
+      const x = s[3 * k] * (1 + 0.3 * d),
+        y = s[3 * k + 1],
+        z = s[3 * k + 2] * (1 - 0.2 * d);
       const r = Math.hypot(x, y, z);
       warped.set([x / r, y / r, z / r], 3 * k);
       cells[(bucket(z / r) * B + bucket(y / r)) * B + bucket(x / r)].push(k);
@@ -62,7 +64,9 @@ function makeVolume(): Uint16Array {
     return { warped, cells };
   });
   const data = new Uint16Array(W * H * D);
-  const cx = (W * voxel.x) / 2, cy = (H * voxel.y) / 2, cz = (D * voxel.z) / 2;
+  const cx = (W * voxel.x) / 2,
+    cy = (H * voxel.y) / 2,
+    cz = (D * voxel.z) / 2;
   const outer = 0.96 * Math.min(cx, cy, cz);
   const inner = 0.78 * outer;
   const reach = 3; // buckets searched either side (1/4 of the unit cube: far beyond a cell's radius)
@@ -75,8 +79,12 @@ function makeVolume(): Uint16Array {
         const r = Math.hypot(px, py, pz);
         if (r < inner || r > outer) continue;
         const { warped, cells } = grids[Math.min(levels - 1, Math.floor(((r - inner) / (outer - inner)) * levels))];
-        const ux = px / r, uy = py / r, uz = pz / r;
-        const bx = bucket(ux), by = bucket(uy), bz = bucket(uz);
+        const ux = px / r,
+          uy = py / r,
+          uz = pz / r;
+        const bx = bucket(ux),
+          by = bucket(uy),
+          bz = bucket(uz);
         let best = -2;
         let bestK = 0;
         for (let k2 = Math.max(0, bz - reach); k2 <= Math.min(B - 1, bz + reach); k2++) {
@@ -104,7 +112,14 @@ if (!existsSync(raw) || !existsSync(deflate)) {
   const data = makeVolume();
   const plane = W * H;
   const pages = (compression: 1 | 8) =>
-    Array.from({ length: D }, (_, z) => ({ width: W, height: H, bitsPerSample: 16 as const, compression, rowsPerStrip: 64, data: data.subarray(z * plane, (z + 1) * plane) }));
+    Array.from({ length: D }, (_, z) => ({
+      width: W,
+      height: H,
+      bitsPerSample: 16 as const,
+      compression,
+      rowsPerStrip: 64,
+      data: data.subarray(z * plane, (z + 1) * plane),
+    }));
   writeFileSync(raw, writeTiff(pages(1)));
   writeFileSync(deflate, writeTiff(pages(8)));
   console.log(`wrote ${raw} and ${deflate} in ${((performance.now() - t0) / 1000).toFixed(1)} s`);
@@ -118,7 +133,9 @@ function timed(name: string, file: string, args: string[]): void {
   const wall = /Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): ([\d:.]+)/.exec(run.stderr)![1];
   const seconds = wall.split(':').reduce((a, part) => 60 * a + Number(part), 0);
   const done = /done: (\d+) cells, (\d+) valid, ([\d.]+) % scutoids/.exec(run.stderr);
-  console.log(`| ${name} | ${mb(statSync(file).size)} MB | ${mb(rss)} MB | ${seconds.toFixed(1)} s | ${done ? `${done[1]} cells, ${done[2]} valid, ${done[3]} % scutoids` : ''} |`);
+  console.log(
+    `| ${name} | ${mb(statSync(file).size)} MB | ${mb(rss)} MB | ${seconds.toFixed(1)} s | ${done ? `${done[1]} cells, ${done[2]} valid, ${done[3]} % scutoids` : ''} |`,
+  );
 }
 
 const out = join(dir, 'r.json');
@@ -128,4 +145,15 @@ console.log('| --- | --- | --- | --- | --- |');
 timed('baseline: decode the uncompressed TIFF only', raw, ['bench/decodeVolume.ts', raw]);
 timed('--volume, uncompressed TIFF', raw, ['tests/measure/runMeasure.ts', 'measure', '--volume', raw, '--out', out, '--voxel-size', size, '--force']);
 timed('--volume, Deflate TIFF', deflate, ['tests/measure/runMeasure.ts', 'measure', '--volume', deflate, '--out', out, '--voxel-size', size, '--force']);
-timed('--volume --compare (10 realizations), Deflate TIFF', deflate, ['tests/measure/runMeasure.ts', 'measure', '--volume', deflate, '--out', out, '--voxel-size', size, '--compare', '--force']);
+timed('--volume --compare (10 realizations), Deflate TIFF', deflate, [
+  'tests/measure/runMeasure.ts',
+  'measure',
+  '--volume',
+  deflate,
+  '--out',
+  out,
+  '--voxel-size',
+  size,
+  '--compare',
+  '--force',
+]);

@@ -66,7 +66,10 @@ timeD3(2);
 const d3Ms = median(d3);
 const field = (pattern: RegExp) => Number(pattern.exec(run.stderr)![1]);
 const rss = field(/Maximum resident set size \(kbytes\): (\d+)/) * 1024;
-const wall = /Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): ([\d:.]+)/.exec(run.stderr)![1].split(':').reduce((a, part) => 60 * a + Number(part), 0);
+const wall = /Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): ([\d:.]+)/
+  .exec(run.stderr)![1]
+  .split(':')
+  .reduce((a, part) => 60 * a + Number(part), 0);
 const cpu = field(/User time \(seconds\): ([\d.]+)/) + field(/System time \(seconds\): ([\d.]+)/);
 
 const readStart = performance.now();
@@ -77,13 +80,19 @@ const gb = (bytes: number) => (bytes / 1e9).toFixed(2);
 const t = result.timings;
 
 console.log(`load average before/after: ${loadBefore} / ${loadavg()[0].toFixed(1)}`);
-console.log(`tissue-sheet run: ${cells} cells, periodic plane ${resolution}² texels, ${iterations} Lloyd iterations, exact engine, thickness 5, exact analysis on 2 surfaces`);
+console.log(
+  `tissue-sheet run: ${cells} cells, periodic plane ${resolution}² texels, ${iterations} Lloyd iterations, exact engine, thickness 5, exact analysis on 2 surfaces`,
+);
 console.log('| figure | value | against |');
 console.log('|---|---|---|');
-console.log(`| wall time (process) | ${wall.toFixed(1)} s | ${(wall / 60).toFixed(2)}x the 60 s target; ${(wall * 1000 / d3Ms).toFixed(0)}x d3 Delaunay + Voronoi of ${cells} points (${d3Ms.toFixed(0)} ms, same run) |`);
+console.log(
+  `| wall time (process) | ${wall.toFixed(1)} s | ${(wall / 60).toFixed(2)}x the 60 s target; ${((wall * 1000) / d3Ms).toFixed(0)}x d3 Delaunay + Voronoi of ${cells} points (${d3Ms.toFixed(0)} ms, same run) |`,
+);
 console.log(`| CPU time (user + sys) | ${cpu.toFixed(1)} s | ${((cpu * 1000) / d3Ms).toFixed(1)}x d3 (CPU against wall: the load-independent figure) |`);
 console.log(`| peak RSS | ${gb(rss)} GB | ${(rss / 4e9).toFixed(2)}x the 4 GB target |`);
-console.log(`| Lloyd, per iteration | ${(t.lloydMs / iterations / 1000).toFixed(2)} s | ${(t.lloydMs / iterations / d3Ms).toFixed(2)}x d3 Delaunay + Voronoi |`);
+console.log(
+  `| Lloyd, per iteration | ${(t.lloydMs / iterations / 1000).toFixed(2)} s | ${(t.lloydMs / iterations / d3Ms).toFixed(2)}x d3 Delaunay + Voronoi |`,
+);
 console.log(`| adjacency + analysis + cell columns | ${(t.adjacencyMs / 1000).toFixed(1)} s | |`);
 console.log(`| result JSON | ${(statSync(out).size / 1e3).toFixed(0)} kB | |`);
 console.log(`| side file | ${(sideBytes / 1e6).toFixed(0)} MB | ${(sideBytes / cells).toFixed(0)} B per cell (both surfaces and the analysis) |`);

@@ -20,8 +20,12 @@ function option(name: string, fallback: number): number {
   return k >= 0 ? Number(process.argv[k + 1]) : fallback;
 }
 
-const cells = option('cells', 1000), frequency = option('frequency', 71), rounds = Math.max(2, option('rounds', 3));
-const a = 90, b = 45, c = 45;
+const cells = option('cells', 1000),
+  frequency = option('frequency', 71),
+  rounds = Math.max(2, option('rounds', 3));
+const a = 90,
+  b = 45,
+  c = 45;
 const ico = icosphere(frequency);
 const positions = new Float64Array(ico.positions.length);
 for (let v = 0; v < positions.length; v += 3) {

@@ -46,8 +46,7 @@ if (only !== 'node') {
     await page.waitForFunction(() => document.title === 'ready');
     page.setDefaultTimeout(0);
     const browserRows = await page.evaluate(
-      ([s, b, o]) =>
-        (window as unknown as { runBenchmark(s: number[], b: number, o: BenchOptions): Promise<BenchRow[]> }).runBenchmark(s, b, o),
+      ([s, b, o]) => (window as unknown as { runBenchmark(s: number[], b: number, o: BenchOptions): Promise<BenchRow[]> }).runBenchmark(s, b, o),
       [sizes, budgetMs, benchOptions] as const,
     );
     rows.push(...browserRows);

@@ -71,7 +71,14 @@ function timed(command: string[]): Promise<Timed> {
     child.stderr.on('data', (d) => (stderr += d));
     child.on('close', (status) => {
       const peak = /PEAK_KB (\d+) CPU ([\d.]+) ([\d.]+)/.exec(stderr);
-      done({ ms: performance.now() - t, peakMiB: peak ? Number(peak[1]) / 1024 : null, cpuS: peak ? Number(peak[2]) + Number(peak[3]) : null, stdout, stderr, status });
+      done({
+        ms: performance.now() - t,
+        peakMiB: peak ? Number(peak[1]) / 1024 : null,
+        cpuS: peak ? Number(peak[2]) + Number(peak[3]) : null,
+        stdout,
+        stderr,
+        status,
+      });
     });
   });
 }
@@ -113,23 +120,31 @@ async function main() {
       `  pair ${k + 1}: NumPy/SciPy ${s(base.ms)} (computing ${inner} s${cpu(base)}${mib(base.peakMiB)}); tissue-sheet sweep --workers ${workers} ${s(cli.ms)}${cpu(cli)}${mib(cli.peakMiB)}; wall ratio ${(cli.ms / base.ms).toFixed(2)}x (load ${load()})`,
     );
   }
-  console.log(`CLI / NumPy, wall: median ${median(ratios).toFixed(2)}x over ${repeats} pairs (target <= 0.2x)${cpuRatios.length ? `; CPU time: median ${median(cpuRatios).toFixed(2)}x` : ''}`);
+  console.log(
+    `CLI / NumPy, wall: median ${median(ratios).toFixed(2)}x over ${repeats} pairs (target <= 0.2x)${cpuRatios.length ? `; CPU time: median ${median(cpuRatios).toFixed(2)}x` : ''}`,
+  );
 
   const one = join(work, 'workers1');
   const single = await sweep(one, 1);
-  console.log(`tissue-sheet sweep --workers 1: ${s(single.ms)}${cpu(single)}${mib(single.peakMiB)}; files ${same(one, last) ? 'identical to' : 'DIFFER from'} --workers ${workers}'s`);
+  console.log(
+    `tissue-sheet sweep --workers 1: ${s(single.ms)}${cpu(single)}${mib(single.peakMiB)}; files ${same(one, last) ? 'identical to' : 'DIFFER from'} --workers ${workers}'s`,
+  );
 
   if (shards > 0) {
     const t = performance.now();
     const parts = await Promise.all(Array.from({ length: shards }, (_, i) => sweep(join(work, `shard${i + 1}`), 1, ['--shard', `${i + 1}/${shards}`])));
-    console.log(`${shards} shards side by side (--workers 1 each): ${s(performance.now() - t)}${mib(Math.max(...parts.map((p) => p.peakMiB ?? 0)) || null)} per shard`);
+    console.log(
+      `${shards} shards side by side (--workers 1 each): ${s(performance.now() - t)}${mib(Math.max(...parts.map((p) => p.peakMiB ?? 0)) || null)} per shard`,
+    );
     const merged = join(work, 'merged');
     const merge = await timed([...cliCommand, 'merge', ...parts.map((_, i) => join(work, `shard${i + 1}`)), '--out', merged]);
     console.log(`merge: ${s(merge.ms)} (process included); merged files ${same(one, merged) ? 'identical to' : 'DIFFER from'} the whole sweep's`);
   }
 
   const inProcess = await timed([process.execPath, '--import', 'tsx', 'bench/exactSweep.ts', '--realizations', String(realizations)]);
-  console.log(`for reference, bench/exactSweep.ts (same grid in process, one thread, no files): ${inProcess.stdout.split('\n')[0].replace(/^exact engine, lab protocol: /, '')}`);
+  console.log(
+    `for reference, bench/exactSweep.ts (same grid in process, one thread, no files): ${inProcess.stdout.split('\n')[0].replace(/^exact engine, lab protocol: /, '')}`,
+  );
   const flintstones = readFileSync(join(one, 'flintstones.csv'), 'utf8').trim().split(/\r?\n/);
   console.log(`flintstones.csv (${flintstones.length - 1} fits):`);
   for (const line of flintstones.slice(0, 4)) console.log(`   ${line.split(',').slice(0, 12).join(',')}`);

@@ -31,5 +31,7 @@ for (const { config } of order) {
 }
 const ms = performance.now() - t;
 const cpu = process.cpuUsage(cpu0);
-console.log(`SheetRunner, one thread: ${runs.length} runs in ${(ms / 1000).toFixed(2)} s = ${(runs.length / (ms / 1000)).toFixed(0)} runs/s, CPU ${((cpu.user + cpu.system) / 1e6).toFixed(2)} s (stack and analysis ${(adjacencyMs / 1000).toFixed(2)} s)`);
+console.log(
+  `SheetRunner, one thread: ${runs.length} runs in ${(ms / 1000).toFixed(2)} s = ${(runs.length / (ms / 1000)).toFixed(0)} runs/s, CPU ${((cpu.user + cpu.system) / 1e6).toFixed(2)} s (stack and analysis ${(adjacencyMs / 1000).toFixed(2)} s)`,
+);
 context.dispose();

@@ -16,8 +16,6 @@ const eggChamber = { ...SMALL, surface: { kind: 'mesh', src: '/meshes/egg-chambe
 
 const withConfig = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
 
-
-
 async function percentScutoids(page: Page): Promise<number> {
   return Number(await page.locator('#percent-scutoids').getAttribute('data-drawn'));
 }
@@ -31,7 +29,12 @@ test('a sphere runs: concentric spheres keep every neighbour (0 % scutoids)', as
   // The cube-map label images, one strip of six faces per surface, and the note.
   await expect(page.locator('#unrolled canvas')).toHaveCount(2);
   await expect(page.locator('#unrolled-note')).toContainText('cube-map label image');
-  expect(await page.locator('#unrolled canvas').first().evaluate((c: HTMLCanvasElement) => [c.width, c.height])).toEqual([192, 32]);
+  expect(
+    await page
+      .locator('#unrolled canvas')
+      .first()
+      .evaluate((c: HTMLCanvasElement) => [c.width, c.height]),
+  ).toEqual([192, 32]);
   await expect(page.getByLabel('Radius (µm)')).toHaveValue('50');
   await expect(page.locator('#surface-toggles input')).toHaveCount(2);
 
@@ -41,13 +44,18 @@ test('a sphere runs: concentric spheres keep every neighbour (0 % scutoids)', as
     return readFileSync((await file.path())!, 'utf8');
   };
   // Provenance comment lines (# ...) first, then the table.
-  const csv = (await download('cells')).trim().split('\n').filter((line) => !line.startsWith('#'));
+  const csv = (await download('cells'))
+    .trim()
+    .split('\n')
+    .filter((line) => !line.startsWith('#'));
   expect(csv[0]).toContain('longitude_deg,latitude_deg');
   expect(csv).toHaveLength(101);
   const ply = await download('ply');
   const vertices = Number(/element vertex (\d+)/.exec(ply)?.[1]);
   expect(vertices).toBeGreaterThan(2 * 100 * 30);
-  expect(ply.trim().split('\n').length).toBe(ply.indexOf('end_header') >= 0 ? ply.slice(0, ply.indexOf('end_header')).split('\n').length + vertices + Number(/element face (\d+)/.exec(ply)?.[1]) : -1);
+  expect(ply.trim().split('\n').length).toBe(
+    ply.indexOf('end_header') >= 0 ? ply.slice(0, ply.indexOf('end_header')).split('\n').length + vertices + Number(/element face (\d+)/.exec(ply)?.[1]) : -1,
+  );
 
   // The thickness slider re-runs; concentric spheres stay free of scutoids.
   const before = await runs(page);

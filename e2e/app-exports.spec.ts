@@ -5,8 +5,6 @@ import { parseCsv } from '../src/core/sweep/csv';
 
 /** Exports parse and match the numbers on screen; the URL (and the saved session) reproduce a run. */
 
-
-
 async function downloadText(page: Page, button: string): Promise<{ name: string; text: string; bytes: Buffer }> {
   const [download] = await Promise.all([page.waitForEvent('download'), page.locator(`[data-export="${button}"]`).click()]);
   const path = await download.path();
@@ -16,7 +14,10 @@ async function downloadText(page: Page, button: string): Promise<{ name: string;
 
 function table(text: string): Record<string, string>[] {
   // Provenance comment lines ("# ...") come first in the per-cell CSV.
-  const body = text.split(/\r?\n/).filter((line) => !line.startsWith('#')).join('\r\n');
+  const body = text
+    .split(/\r?\n/)
+    .filter((line) => !line.startsWith('#'))
+    .join('\r\n');
   const [header, ...rows] = parseCsv(body).records;
   return rows.map((r) => Object.fromEntries(header.map((h, k) => [h, r[k]])));
 }
@@ -59,10 +60,19 @@ test('exports download files that parse and match the on-screen numbers', async 
   const vertices = Number(/element vertex (\d+)/.exec(header)![1]);
   const faces = Number(/element face (\d+)/.exec(header)![1]);
   expect(faces).toBe(300); // 150 cells on each of 2 surfaces
-  const body = ply.text.slice(ply.text.indexOf('end_header') + 11).trim().split('\n');
+  const body = ply.text
+    .slice(ply.text.indexOf('end_header') + 11)
+    .trim()
+    .split('\n');
   expect(body).toHaveLength(vertices + faces);
   // Per-vertex cell data: x y z cell surface sides scutoid valid.
-  const scutoidCells = new Set(body.slice(0, vertices).map((l) => l.split(' ')).filter((f) => f[6] === '1').map((f) => f[3]));
+  const scutoidCells = new Set(
+    body
+      .slice(0, vertices)
+      .map((l) => l.split(' '))
+      .filter((f) => f[6] === '1')
+      .map((f) => f[3]),
+  );
   expect(scutoidCells.size).toBe(scutoidsShown);
 
   const png = await downloadText(page, 'png');

@@ -14,7 +14,14 @@ import { png16, randomSites, rasterizeVoronoi } from '../tests/measure/images';
  * configuration, seed, engine, method) in the files' metadata.
  */
 
-const SMALL = { surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 }, resolution: 128, cells: 60, seed: 2, lloyd: { maxIterations: 3 }, sheet: { surfaceRatio: 1.5 } };
+const SMALL = {
+  surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 },
+  resolution: 128,
+  cells: 60,
+  seed: 2,
+  lloyd: { maxIterations: 3 },
+  sheet: { surfaceRatio: 1.5 },
+};
 const linkTo = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
 
 async function download(page: Page, selector: string): Promise<{ name: string; bytes: Buffer; text: string }> {
@@ -60,7 +67,9 @@ function svgSize(svg: string): { widthMm: number; heightMm: number; box: number[
   };
 }
 
-test('the cell figure: SVG printed at the chosen width, the headline on it, a legend that overlaps nothing, the border swatch as the cells are drawn', async ({ page }) => {
+test('the cell figure: SVG printed at the chosen width, the headline on it, a legend that overlaps nothing, the border swatch as the cells are drawn', async ({
+  page,
+}) => {
   await page.goto(linkTo(SMALL));
   await waitForRun(page);
   await page.waitForFunction(() => document.body.dataset.headline === 'complete', undefined, { timeout: 120_000 });
@@ -78,7 +87,12 @@ test('the cell figure: SVG printed at the chosen width, the headline on it, a le
   expect(svg).toMatch(new RegExp(`<text id="headline"[^>]*>${mean.toFixed(1)} % scutoids \\(mean of n = 5, 95 % CI`));
   expect(overlaps(await legendBoxes(page, svg))).toEqual([]);
   expect(svg).toMatch(/<rect x="[\d.-]+" y="[\d.-]+" width="[\d.]+" height="[\d.]+" fill="#282828"\/><rect class="legend-swatch"[^>]*fill-opacity="0.35"/);
-  const meta = JSON.parse(/<metadata id="tissue-sheet-provenance">([^<]*)<\/metadata>/.exec(svg)![1].replace(/&quot;/g, '"').replace(/&amp;/g, '&'));
+  const meta = JSON.parse(
+    /<metadata id="tissue-sheet-provenance">([^<]*)<\/metadata>/
+      .exec(svg)![1]
+      .replace(/&quot;/g, '"')
+      .replace(/&amp;/g, '&'),
+  );
   expect(meta.engine.name).toBe('exact');
   expect(meta.method).toBe('exact');
   expect(meta.headline.realizations).toBe(5);
@@ -106,12 +120,17 @@ test('the sweep chart and the Flintstones fit as SVG and PNG: units, n, CI, numb
   expect(chart).toContain('>Surface ratio R_outer / R_inner</text>');
   const notes = [...chart.matchAll(/<text class="note"[^>]*>([^<]*)<\/text>/g)].map((m) => m[1]).join(' ');
   expect(notes).toContain('n = 2 realizations per point');
-  expect(notes).toContain("95 % confidence interval of the mean (Student&apos;s t)");
+  expect(notes).toContain('95 % confidence interval of the mean (Student&apos;s t)');
   expect(chart).toContain('exact method: mean % scutoids, 95 % CI band');
   expect([...chart.matchAll(/<text class="value"/g)]).toHaveLength(4);
   expect(chart).toContain('class="band"');
   expect(overlaps(await legendBoxes(page, chart))).toEqual([]);
-  const meta = JSON.parse(/<metadata id="tissue-sheet-provenance">([^<]*)<\/metadata>/.exec(chart)![1].replace(/&quot;/g, '"').replace(/&amp;/g, '&'));
+  const meta = JSON.parse(
+    /<metadata id="tissue-sheet-provenance">([^<]*)<\/metadata>/
+      .exec(chart)![1]
+      .replace(/&quot;/g, '"')
+      .replace(/&amp;/g, '&'),
+  );
   expect(meta.engine).toBe('exact engine');
   expect(meta.method).toBe('exact');
   expect(meta.config.vary['sheet.surfaceRatio']).toEqual([1, 2, 3, 4]);
@@ -141,7 +160,18 @@ test('the measured-vs-model comparison as SVG and PNG: bars per layer, the model
   const sites = randomSites(60, 256, 192, 7);
   const labels = sites.map((_, i) => 5 + i);
   writeFileSync(join(dir, 'basal.png'), png16(rasterizeVoronoi(256, 192, sites, labels, true)));
-  writeFileSync(join(dir, 'apical.png'), png16(rasterizeVoronoi(512, 192, sites.map(([x, y]) => [2 * x, y]), labels, true)));
+  writeFileSync(
+    join(dir, 'apical.png'),
+    png16(
+      rasterizeVoronoi(
+        512,
+        192,
+        sites.map(([x, y]) => [2 * x, y]),
+        labels,
+        true,
+      ),
+    ),
+  );
   await page.goto(linkTo(SMALL));
   await waitForRun(page);
   await page.locator('#measure-pixel-size').fill('0.5');
@@ -172,8 +202,14 @@ test('the measured-vs-model comparison as SVG and PNG: bars per layer, the model
   const csv = (await download(page, '#measure-cells-csv')).text;
   expect(csv).toMatch(/^# tissue-sheet measured tissue, per-cell table/);
   expect(csv).toContain('# layers (the first is basal): basal: basal.png; apical: apical.png');
-  const [header, ...records] = parseCsv(csv.split(/\r?\n/).filter((l) => !l.startsWith('#')).join('\r\n')).records;
-  for (const column of ['label', 'valid', 'scutoid', 'sides_basal', 'sides_apical', 'won', 'lost', 'transitions', 'area_um2_basal', 'neighbour_labels_apical']) expect(header).toContain(column);
+  const [header, ...records] = parseCsv(
+    csv
+      .split(/\r?\n/)
+      .filter((l) => !l.startsWith('#'))
+      .join('\r\n'),
+  ).records;
+  for (const column of ['label', 'valid', 'scutoid', 'sides_basal', 'sides_apical', 'won', 'lost', 'transitions', 'area_um2_basal', 'neighbour_labels_apical'])
+    expect(header).toContain(column);
   const rows = records.filter((r) => r.length === header.length).map((r) => Object.fromEntries(r.map((v, k) => [header[k], v])));
   const valid = rows.filter((r) => r.valid === '1');
   const scutoids = valid.filter((r) => r.scutoid === '1');
@@ -184,7 +220,18 @@ test('measure: the page says which file it takes as basal and warns when s < 1 (
   const dir = mkdtempSync(join(tmpdir(), 'figures-sides-'));
   const sites = randomSites(60, 256, 192, 7);
   const labels = sites.map((_, i) => 5 + i);
-  writeFileSync(join(dir, 'basal.png'), png16(rasterizeVoronoi(512, 192, sites.map(([x, y]) => [2 * x, y]), labels, true)));
+  writeFileSync(
+    join(dir, 'basal.png'),
+    png16(
+      rasterizeVoronoi(
+        512,
+        192,
+        sites.map(([x, y]) => [2 * x, y]),
+        labels,
+        true,
+      ),
+    ),
+  );
   writeFileSync(join(dir, 'apical.png'), png16(rasterizeVoronoi(256, 192, sites, labels, true)));
   await page.goto(linkTo(SMALL));
   await waitForRun(page);

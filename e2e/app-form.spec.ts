@@ -10,7 +10,14 @@ import { runs, waitForRun } from './appHelpers';
  * person types: click, select all, keys, Enter. Runs stay tiny (60 cells).
  */
 
-const TUBE = { surface: { kind: 'tube', radius: 20, length: 256 }, resolution: 128, cells: 40, seed: 1, lloyd: { maxIterations: 2 }, sheet: { surfaceRatio: 2 } };
+const TUBE = {
+  surface: { kind: 'tube', radius: 20, length: 256 },
+  resolution: 128,
+  cells: 40,
+  seed: 1,
+  lloyd: { maxIterations: 2 },
+  sheet: { surfaceRatio: 2 },
+};
 const linkTo = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
 
 async function typeInto(page: Page, label: string, text: string): Promise<void> {
@@ -56,7 +63,10 @@ test('radius 20 -> 225 -> 20: the address, the form and the result agree at ever
   await page.goto(link);
   await waitForRun(page);
   const first = await drawn(page);
-  for (const [typed, radius] of [['225', 225], ['20', 20]] as const) {
+  for (const [typed, radius] of [
+    ['225', 225],
+    ['20', 20],
+  ] as const) {
     const before = await runs(page);
     await typeInto(page, 'Radius (µm)', typed);
     await waitForRun(page, before);
@@ -122,7 +132,12 @@ test('every slider has a number box beside it that takes any valid value (thickn
 });
 
 test('a refused inward thickness (19 µm) keeps the 17 µm result marked stale, and says what to change in µm', async ({ page }) => {
-  const inward = { ...TUBE, surface: { kind: 'tube', radius: 20, length: 512 }, resolution: null, sheet: { direction: 'inward', surfaceRatio: null, thickness: 17 } };
+  const inward = {
+    ...TUBE,
+    surface: { kind: 'tube', radius: 20, length: 512 },
+    resolution: null,
+    sheet: { direction: 'inward', surfaceRatio: null, thickness: 17 },
+  };
   await page.goto(linkTo(inward));
   await waitForRun(page);
   await expect(page.locator('body')).toHaveAttribute('data-stale', 'false');
@@ -145,7 +160,10 @@ test('a refused inward thickness (19 µm) keeps the 17 µm result marked stale, 
   expect(await drawn(page)).toBe(shown);
   expect(await runs(page)).toBe(before);
   expect(urlConfig(page).sheet.thickness).toBe(17);
-  await expect(page).toHaveScreenshot('stale-result.png', { clip: (await page.locator('section.results').boundingBox())!, mask: [page.locator('#run-info'), page.locator('#summary')] });
+  await expect(page).toHaveScreenshot('stale-result.png', {
+    clip: (await page.locator('section.results').boundingBox())!,
+    mask: [page.locator('#run-info'), page.locator('#summary')],
+  });
   // A thickness that fits runs, and the mark goes.
   await typeInto(page, 'Thickness (µm)', '16,5');
   await waitForRun(page, before);
@@ -178,11 +196,22 @@ test('smaller items: ratio <-> thickness converts the wall; the cells around a t
   await page.locator('#cell-id').fill('3');
   await page.locator('#cell-id').press('Enter');
   const info = page.locator('#cell-info');
-  await expect(info).toContainText(/Neighbours won from basal to apical: (none|cell #\d+|cells #\d+(, #\d+)* \(\d+\)); lost: (none|cell #\d+|cells #\d+(, #\d+)* \(\d+\))/);
+  await expect(info).toContainText(
+    /Neighbours won from basal to apical: (none|cell #\d+|cells #\d+(, #\d+)* \(\d+\)); lost: (none|cell #\d+|cells #\d+(, #\d+)* \(\d+\))/,
+  );
 });
 
-test('closed surfaces: a mesh thickness slider follows the mesh geometry; a typed thickness is never clamped; cells far too small are said', async ({ page }) => {
-  const MESH = { surface: { kind: 'mesh', src: '/meshes/egg-chamber.ply', scale: 1 }, resolution: 32, cells: 40, seed: 1, lloyd: { maxIterations: 1 }, sheet: { thickness: 0.1 } };
+test('closed surfaces: a mesh thickness slider follows the mesh geometry; a typed thickness is never clamped; cells far too small are said', async ({
+  page,
+}) => {
+  const MESH = {
+    surface: { kind: 'mesh', src: '/meshes/egg-chamber.ply', scale: 1 },
+    resolution: 32,
+    cells: 40,
+    seed: 1,
+    lloyd: { maxIterations: 1 },
+    sheet: { thickness: 0.1 },
+  };
   await page.goto(linkTo({ ...MESH, surface: { ...MESH.surface, scale: 50 }, sheet: { thickness: 5 } }));
   await waitForRun(page);
   // The slider's end from the mesh's size (equivalent radius of its area), not its scale (50).
@@ -221,7 +250,9 @@ test("the sweep's vary list says when a mode switch changes its field; a loaded 
   await waitForRun(page, before);
   await page.locator('[name="sweep-from"]').click();
   await expect(field).toHaveValue('sheet.thickness');
-  await expect(page.locator('[data-sweep="status"]')).toHaveText('vary: Surface ratio R_outer / R_inner is not a field of this configuration now; the sweep varies Thickness instead.');
+  await expect(page.locator('[data-sweep="status"]')).toHaveText(
+    'vary: Surface ratio R_outer / R_inner is not a field of this configuration now; the sweep varies Thickness instead.',
+  );
 
   // A sweep, its files, then a fresh page loads them: the form shows the loaded spec.
   await page.locator('[name="sweep-from"]').fill('2');
@@ -248,14 +279,30 @@ test("the sweep's vary list says when a mode switch changes its field; a loaded 
 });
 
 test('a mesh missing on the server is said to be missing, not "not a PLY"', async ({ page }) => {
-  await page.goto(linkTo({ surface: { kind: 'mesh', src: '/meshes/no-such-mesh.ply', scale: 50 }, resolution: 32, cells: 40, lloyd: { maxIterations: 1 }, sheet: { thickness: 5 } }));
+  await page.goto(
+    linkTo({
+      surface: { kind: 'mesh', src: '/meshes/no-such-mesh.ply', scale: 50 },
+      resolution: 32,
+      cells: 40,
+      lloyd: { maxIterations: 1 },
+      sheet: { thickness: 5 },
+    }),
+  );
   const alert = page.locator('#link-alert, #error');
   await expect(alert.first()).toContainText('cannot fetch "/meshes/no-such-mesh.ply" (not found', { timeout: 60_000 });
   expect(await alert.first().textContent()).not.toMatch(/not a PLY/i);
 });
 
 test("an uploaded mesh does not keep the sample's scale: its coordinates are taken as µm", async ({ page }) => {
-  await page.goto(linkTo({ surface: { kind: 'mesh', src: '/meshes/egg-chamber.ply', scale: 50 }, resolution: 32, cells: 40, lloyd: { maxIterations: 1 }, sheet: { thickness: 0.2 } }));
+  await page.goto(
+    linkTo({
+      surface: { kind: 'mesh', src: '/meshes/egg-chamber.ply', scale: 50 },
+      resolution: 32,
+      cells: 40,
+      lloyd: { maxIterations: 1 },
+      sheet: { thickness: 0.2 },
+    }),
+  );
   await waitForRun(page);
   const before = await runs(page);
   await page.locator('input[name="surface.src"]').setInputFiles('public/meshes/organoid.ply');
@@ -265,10 +312,14 @@ test("an uploaded mesh does not keep the sample's scale: its coordinates are tak
 });
 
 test('uploading the file a link asked for runs it, and the error goes', async ({ page }) => {
-  await page.goto(linkTo({ surface: { kind: 'mesh', src: 'my-organoid.ply', scale: 50 }, resolution: 32, cells: 40, lloyd: { maxIterations: 1 }, sheet: { thickness: 5 } }));
+  await page.goto(
+    linkTo({ surface: { kind: 'mesh', src: 'my-organoid.ply', scale: 50 }, resolution: 32, cells: 40, lloyd: { maxIterations: 1 }, sheet: { thickness: 5 } }),
+  );
   await expect(page.locator('#error')).toContainText('"my-organoid.ply" is a file uploaded from a computer', { timeout: 60_000 });
   const before = await runs(page);
-  await page.locator('input[name="surface.src"]').setInputFiles({ name: 'my-organoid.ply', mimeType: 'application/octet-stream', buffer: readFileSync('public/meshes/organoid.ply') });
+  await page
+    .locator('input[name="surface.src"]')
+    .setInputFiles({ name: 'my-organoid.ply', mimeType: 'application/octet-stream', buffer: readFileSync('public/meshes/organoid.ply') });
   await waitForRun(page, before);
   await expect(page.locator('#error')).toBeHidden();
   await expect(page.locator('#run-info')).toContainText('my-organoid.ply (2562 vertices');

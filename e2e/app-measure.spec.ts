@@ -31,13 +31,37 @@ function makeInputs(dir: string): Inputs {
   const sites = randomSites(70, width, height, 7);
   const labels = sites.map((_, i) => 5 + 3 * i); // not consecutive: the result reports the original labels
   const basal = Buffer.from(png16(rasterizeVoronoi(width, height, sites, labels, true)));
-  const apical = Buffer.from(png16(rasterizeVoronoi(2 * width, height, sites.map(([x, y]) => [2 * x, y]), labels, true)));
+  const apical = Buffer.from(
+    png16(
+      rasterizeVoronoi(
+        2 * width,
+        height,
+        sites.map(([x, y]) => [2 * x, y]),
+        labels,
+        true,
+      ),
+    ),
+  );
   writeFileSync(join(dir, 'basal.png'), basal);
   writeFileSync(join(dir, 'apical.png'), apical);
   const out = join(dir, 'cli.json');
   execFileSync(
     process.execPath,
-    ['--import', 'tsx', 'tests/measure/runMeasure.ts', 'measure', join(dir, 'basal.png'), join(dir, 'apical.png'), '--out', out, '--pixel-size', '0.5', '--periodic-x', '--compare', '--force'],
+    [
+      '--import',
+      'tsx',
+      'tests/measure/runMeasure.ts',
+      'measure',
+      join(dir, 'basal.png'),
+      join(dir, 'apical.png'),
+      '--out',
+      out,
+      '--pixel-size',
+      '0.5',
+      '--periodic-x',
+      '--compare',
+      '--force',
+    ],
     { stdio: 'pipe' },
   );
   return { dir, basal, apical, cli: JSON.parse(readFileSync(out, 'utf8')) as MeasuredResult };
@@ -93,7 +117,10 @@ test.describe('measure a tissue in the app', () => {
     ]);
     await expect(page.locator('#measure')).toHaveAttribute('data-state', 'compared', { timeout: 120_000 });
     const longTasks = await page.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks.splice(0));
-    expect(longTasks.filter((d) => d > 50), `long tasks ${longTasks.join(', ')} ms`).toEqual([]);
+    expect(
+      longTasks.filter((d) => d > 50),
+      `long tasks ${longTasks.join(', ')} ms`,
+    ).toEqual([]);
 
     const summary = cli.analyses[0].summary;
     expect(await dataValue(page, '#measured-percent')).toBe(summary.percentScutoids);

@@ -12,7 +12,14 @@ import { readPngText } from '../src/app/model/pngText';
  * same. Runs stay tiny (60 cells, resolution 128, 2 Lloyd iterations).
  */
 
-const SMALL = { surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 }, resolution: 128, cells: 60, seed: 3, lloyd: { maxIterations: 2 }, sheet: { surfaceRatio: 2 } };
+const SMALL = {
+  surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 },
+  resolution: 128,
+  cells: 60,
+  seed: 3,
+  lloyd: { maxIterations: 2 },
+  sheet: { surfaceRatio: 2 },
+};
 const linkTo = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
 
 async function download(page: Page, button: string): Promise<{ name: string; bytes: Buffer; text: string }> {
@@ -34,7 +41,9 @@ async function typeInto(page: Page, selector: string, text: string): Promise<voi
   await field.press('Enter');
 }
 
-test('the headline is the mean over 5 realizations with its 95 % CI and n; realization 1 is the one drawn; exports and the CLI say the same', async ({ page }) => {
+test('the headline is the mean over 5 realizations with its 95 % CI and n; realization 1 is the one drawn; exports and the CLI say the same', async ({
+  page,
+}) => {
   await page.goto(linkTo(SMALL));
   await waitForRun(page);
   const number = page.locator('#percent-scutoids');
@@ -52,7 +61,10 @@ test('the headline is the mean over 5 realizations with its 95 % CI and n; reali
   await expect(page.locator('#headline-ci')).toHaveText(`(mean of n = 5 realizations, 95 % CI ${low.toFixed(1)}–${high.toFixed(1)} %)`);
   await expect(page.locator('#headline-realizations')).toContainText('Mean of 5 realizations, seeds 3–7');
   await expect(page.locator('#headline-realizations')).toContainText(`The cells shown are realization 1 of 5 (seed 3): ${drawn.toFixed(1)} %`);
-  await expect(page).toHaveScreenshot('headline-realizations.png', { clip: (await page.locator('section.results').boundingBox())!, mask: [page.locator('#run-info'), page.locator('#summary')] });
+  await expect(page).toHaveScreenshot('headline-realizations.png', {
+    clip: (await page.locator('section.results').boundingBox())!,
+    mask: [page.locator('#run-info'), page.locator('#summary')],
+  });
 
   // The result JSON: realization 1's cells and analyses, the headline over the 5.
   const json = JSON.parse((await download(page, 'json')).text);
@@ -68,7 +80,9 @@ test('the headline is the mean over 5 realizations with its 95 % CI and n; reali
   const csv = (await download(page, 'cells')).text;
   const headlineLine = `headline: ${mean.toFixed(1)} % scutoids (exact method`;
   expect(csv).toContain(`# ${headlineLine}`);
-  expect(csv).toContain(`mean of 5 realizations (seeds 3–7), 95 % CI ${low.toFixed(1)}–${high.toFixed(1)} %; realization 1 (seed 3, drawn): ${drawn.toFixed(1)} %`);
+  expect(csv).toContain(
+    `mean of 5 realizations (seeds 3–7), 95 % CI ${low.toFixed(1)}–${high.toFixed(1)} %; realization 1 (seed 3, drawn): ${drawn.toFixed(1)} %`,
+  );
   expect(csv).toMatch(/^# engine: exact engine \(engine setting "auto": /m);
   const ply = (await download(page, 'ply')).text;
   expect(ply).toContain(`comment ${headlineLine}`);
@@ -85,7 +99,10 @@ test('the headline is the mean over 5 realizations with its 95 % CI and n; reali
   // The CLI with the same configuration and n prints the same headline.
   const dir = mkdtempSync(join(tmpdir(), 'paper-'));
   writeFileSync(join(dir, 'cfg.json'), JSON.stringify(json.config));
-  const stderr = execFileSync('node', ['bin/tissue-sheet.mjs', 'run', join(dir, 'cfg.json'), '--out', join(dir, 'out.json'), '--realizations', '5'], { stdio: 'pipe', encoding: 'utf8' });
+  const stderr = execFileSync('node', ['bin/tissue-sheet.mjs', 'run', join(dir, 'cfg.json'), '--out', join(dir, 'out.json'), '--realizations', '5'], {
+    stdio: 'pipe',
+    encoding: 'utf8',
+  });
   void stderr;
   const cli = JSON.parse(readFileSync(join(dir, 'out.json'), 'utf8'));
   expect(cli.headline.realizationValues).toEqual(json.headline.realizationValues);

@@ -9,7 +9,14 @@ import { runs, waitForRun } from './appHelpers';
  * out and why; Engine "gpu" gives both.
  */
 
-const SMALL = { surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 }, resolution: 128, cells: 60, seed: 3, lloyd: { maxIterations: 2 }, sheet: { surfaceRatio: 2 } };
+const SMALL = {
+  surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 },
+  resolution: 128,
+  cells: 60,
+  seed: 3,
+  lloyd: { maxIterations: 2 },
+  sheet: { surfaceRatio: 2 },
+};
 const linkTo = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
 
 async function download(page: Page, button: string): Promise<string> {
@@ -22,7 +29,17 @@ test('every schema field has a control: the protocol in the sheet, engine settin
   await waitForRun(page);
   await expect(page.getByLabel('Protocol', { exact: true })).toBeVisible();
   await page.locator('details.advanced summary').click();
-  for (const path of ['engine', 'sheet.layerStep', 'sheet.validityMaxRatio', 'sheet.minContactPixels', 'sheet.minContactLength', 'resolution', 'lloyd.tolerance', 'centroidPath', 'jumpFlood.variant']) {
+  for (const path of [
+    'engine',
+    'sheet.layerStep',
+    'sheet.validityMaxRatio',
+    'sheet.minContactPixels',
+    'sheet.minContactLength',
+    'resolution',
+    'lloyd.tolerance',
+    'centroidPath',
+    'jumpFlood.variant',
+  ]) {
     await expect(page.locator(`#controls [name="${path}"]`), path).toBeVisible();
   }
   // Fields of other kinds appear with their kind.

@@ -17,8 +17,6 @@ const TUBE = { resolution: 128, cells: 60, seed: 5, lloyd: { maxIterations: 3 },
 const SPHERE = { resolution: 24, cells: 60, seed: 3, lloyd: { maxIterations: 2 }, surface: { kind: 'sphere', radius: 50 }, sheet: { thickness: 10 } };
 const linkTo = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
 
-
-
 async function download(page: Page, key: string): Promise<{ name: string; bytes: Buffer; text: string }> {
   const [file] = await Promise.all([page.waitForEvent('download'), page.locator(`[data-export="${key}"]`).click()]);
   const bytes = readFileSync(await file.path());
@@ -29,7 +27,11 @@ interface Result {
   config: unknown;
   cells: { id: number; position: number[]; surface: number[] }[];
   surfaces: unknown[];
-  analyses: { method: string; cells: { sides: number[]; scutoid: boolean; valid: boolean; won: number; lost: number }[]; summary: { percentScutoids: number } }[];
+  analyses: {
+    method: string;
+    cells: { sides: number[]; scutoid: boolean; valid: boolean; won: number; lost: number }[];
+    summary: { percentScutoids: number };
+  }[];
 }
 
 async function resultOf(page: Page): Promise<Result> {
@@ -109,9 +111,16 @@ test('VTK and SVG exports parse back to the result: every cell on every surface,
 
   const svg = (await download(page, 'svg')).text;
   expect(svg).toContain('<svg xmlns="http://www.w3.org/2000/svg"');
-  const config = /<metadata id="tissue-sheet-config">([^<]*)<\/metadata>/.exec(svg)![1].replace(/&quot;/g, '"').replace(/&amp;/g, '&');
+  const config = /<metadata id="tissue-sheet-config">([^<]*)<\/metadata>/
+    .exec(svg)![1]
+    .replace(/&quot;/g, '"')
+    .replace(/&amp;/g, '&');
   expect(JSON.parse(config)).toEqual(result.config);
-  const polygons = [...svg.matchAll(/<polygon data-cell="(\d+)" data-surface="(\d+)" data-sides="(\d+)" data-scutoid="(\d)" data-valid="(\d)"( data-copy="1")? points="([^"]+)"/g)];
+  const polygons = [
+    ...svg.matchAll(
+      /<polygon data-cell="(\d+)" data-surface="(\d+)" data-sides="(\d+)" data-scutoid="(\d)" data-valid="(\d)"( data-copy="1")? points="([^"]+)"/g,
+    ),
+  ];
   const primary = polygons.filter((m) => !m[6]);
   expect(primary).toHaveLength(n * surfaces);
   for (const m of primary) {
@@ -142,16 +151,19 @@ test('figure PNG: chosen DPI in pHYs, pixel width from mm and DPI, provenance in
   expect(JSON.parse(text['tissue-sheet:config'])).toEqual(result.config);
   expect(text.Description).toContain('scale bar');
   // Not blank: the cells' colours are in it (read back in the page).
-  const colours = await page.evaluate(async (data) => {
-    const image = await createImageBitmap(new Blob([new Uint8Array(data)], { type: 'image/png' }));
-    const canvas = new OffscreenCanvas(image.width, image.height);
-    const context = canvas.getContext('2d')!;
-    context.drawImage(image, 0, 0);
-    const pixels = context.getImageData(0, 0, image.width, image.height).data;
-    const seen = new Set<string>();
-    for (let k = 0; k < pixels.length; k += 4 * 97) seen.add(`${pixels[k]},${pixels[k + 1]},${pixels[k + 2]}`);
-    return [...seen];
-  }, [...png.bytes]);
+  const colours = await page.evaluate(
+    async (data) => {
+      const image = await createImageBitmap(new Blob([new Uint8Array(data)], { type: 'image/png' }));
+      const canvas = new OffscreenCanvas(image.width, image.height);
+      const context = canvas.getContext('2d')!;
+      context.drawImage(image, 0, 0);
+      const pixels = context.getImageData(0, 0, image.width, image.height).data;
+      const seen = new Set<string>();
+      for (let k = 0; k < pixels.length; k += 4 * 97) seen.add(`${pixels[k]},${pixels[k + 1]},${pixels[k + 2]}`);
+      return [...seen];
+    },
+    [...png.bytes],
+  );
   const rgb = (hex: string) => [1, 3, 5].map((k) => parseInt(hex.slice(k, k + 2), 16)).join(',');
   expect(SIDE_COLORS.filter((c) => colours.includes(rgb(c))).length).toBeGreaterThanOrEqual(3);
 });
@@ -301,7 +313,8 @@ test('accessible: the canvas takes the focus, every control has a name, the pale
   for (const [name, m] of Object.entries(CVD)) {
     const labs = SIDE_COLORS.map((hex) => lab(simulate(hex, m)));
     let worst = Infinity;
-    for (let i = 0; i < labs.length; i++) for (let j = i + 1; j < labs.length; j++) worst = Math.min(worst, Math.hypot(...labs[i].map((v, k) => v - labs[j][k])));
+    for (let i = 0; i < labs.length; i++)
+      for (let j = i + 1; j < labs.length; j++) worst = Math.min(worst, Math.hypot(...labs[i].map((v, k) => v - labs[j][k])));
     expect(worst, `closest side colours under ${name}`).toBeGreaterThanOrEqual(15);
   }
 });
@@ -361,9 +374,21 @@ test('screenshots at a fixed seed: exact cell borders on a tube, the picked cell
 });
 
 const CVD: Record<string, number[][]> = {
-  protanopia: [[0.152286, 1.052583, -0.204868], [0.114503, 0.786281, 0.099216], [-0.003882, -0.048116, 1.051998]],
-  deuteranopia: [[0.367322, 0.860646, -0.227968], [0.280085, 0.672501, 0.047413], [-0.01182, 0.04294, 0.968881]],
-  tritanopia: [[1.255528, -0.076749, -0.178779], [-0.078411, 0.930809, 0.147602], [0.004733, 0.691367, 0.3039]],
+  protanopia: [
+    [0.152286, 1.052583, -0.204868],
+    [0.114503, 0.786281, 0.099216],
+    [-0.003882, -0.048116, 1.051998],
+  ],
+  deuteranopia: [
+    [0.367322, 0.860646, -0.227968],
+    [0.280085, 0.672501, 0.047413],
+    [-0.01182, 0.04294, 0.968881],
+  ],
+  tritanopia: [
+    [1.255528, -0.076749, -0.178779],
+    [-0.078411, 0.930809, 0.147602],
+    [0.004733, 0.691367, 0.3039],
+  ],
 };
 
 function simulate(hex: string, m: number[][]): number[] {

@@ -7,7 +7,14 @@ const csv = (rows: string[]) => ({ name: '', mimeType: 'text/csv', buffer: Buffe
 
 /** Reference curves over the sweep chart (docs/reference-curves.md). */
 test('reference curves: the shipped set after a ratio sweep, a user CSV with its source, a bad file refused', async ({ page }) => {
-  const small = { surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 }, resolution: 128, cells: 60, seed: 2, lloyd: { maxIterations: 3 }, sheet: { surfaceRatio: 1.5 } };
+  const small = {
+    surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 },
+    resolution: 128,
+    cells: 60,
+    seed: 2,
+    lloyd: { maxIterations: 3 },
+    sheet: { surfaceRatio: 1.5 },
+  };
   await page.goto(`/?config=${encodeURIComponent(JSON.stringify(small))}`);
   await waitForRun(page);
   const overlay = page.locator('#reference-curves');
@@ -32,14 +39,19 @@ test('reference curves: the shipped set after a ratio sweep, a user CSV with its
   await expect(sources.first()).toContainText('computed by tissue-sheet');
   await expect(sources.first()).toContainText('not numbers taken from the paper');
   await expect(sources.first()).toContainText('tissue-sheet, Voronoi 4 (model)');
-  await expect(notes).toContainText("1 of 26 curves drawn; not drawn: x is voronoiK, the sweep varies surfaceRatio (17); held at another voronoiK than the sweep's voronoiK = 4 (8)");
+  await expect(notes).toContainText(
+    "1 of 26 curves drawn; not drawn: x is voronoiK, the sweep varies surfaceRatio (17); held at another voronoiK than the sweep's voronoiK = 4 (8)",
+  );
   await expect(notes).toContainText('cells 200 there, 60 here');
   await expect(notes).toContainText('compare the trend, not the values');
   // The chart's own points are still the runs' three ratios.
   await expect(page.locator('#chart-sweep')).toHaveAttribute('data-points', '3');
 
   // A user's CSV: its curve is added with its source.
-  await load.setInputFiles({ ...csv([`paper,My digitised curve,data,surfaceRatio,"${USER_SOURCE}",1,0,,`, `paper,My digitised curve,data,surfaceRatio,"${USER_SOURCE}",2,55.5,4.2,20`]), name: 'digitised.csv' });
+  await load.setInputFiles({
+    ...csv([`paper,My digitised curve,data,surfaceRatio,"${USER_SOURCE}",1,0,,`, `paper,My digitised curve,data,surfaceRatio,"${USER_SOURCE}",2,55.5,4.2,20`]),
+    name: 'digitised.csv',
+  });
   await expect(overlay).toHaveAttribute('data-drawn', '2');
   await expect(page.locator('#chart-sweep .u-legend')).toContainText('My digitised curve (data)');
   await expect(sources).toHaveCount(2);

@@ -94,7 +94,9 @@ test('a scutoid drawn as a 3D solid: keyboard toggle, sides per surface, pixels 
   // The solid as PLY: a closed, consistently oriented triangle mesh of this cell.
   const [file] = await Promise.all([page.waitForEvent('download'), page.locator('#cell-solid-ply').click()]);
   expect(file.suggestedFilename()).toMatch(new RegExp(`cell${id}-solid\\.ply$`));
-  const lines = readFileSync(await file.path(), 'utf8').trim().split('\n');
+  const lines = readFileSync(await file.path(), 'utf8')
+    .trim()
+    .split('\n');
   const vertexCount = Number(lines.find((l) => l.startsWith('element vertex'))!.split(' ')[2]);
   const faceCount = Number(lines.find((l) => l.startsWith('element face'))!.split(' ')[2]);
   const body = lines.slice(lines.indexOf('end_header') + 1);

@@ -11,11 +11,16 @@ import { parseCsv } from '../src/core/sweep/csv';
  * Runs stay tiny (≤ 80 cells, resolution ≤ 256).
  */
 
-const SMALL = { surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 }, resolution: 128, cells: 60, seed: 3, lloyd: { maxIterations: 2 }, sheet: { surfaceRatio: 2 } };
+const SMALL = {
+  surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 },
+  resolution: 128,
+  cells: 60,
+  seed: 3,
+  lloyd: { maxIterations: 2 },
+  sheet: { surfaceRatio: 2 },
+};
 
 const linkTo = (config: unknown) => `/?config=${encodeURIComponent(typeof config === 'string' ? config : JSON.stringify(config))}`;
-
-
 
 const STORAGE_KEY = 'tissue-sheet:last-config';
 
@@ -69,11 +74,20 @@ test('a link over the compute budget is refused before it runs', async ({ page }
 test('a source on another origin is named and requested only after the click', async ({ page }) => {
   let foreign = 0;
   const ply = readFileSync('public/meshes/egg-chamber.ply');
-  await page.route((url) => url.hostname === 'foreign.example', (route) => {
-    foreign += 1;
-    return route.fulfill({ status: 200, body: ply, headers: { 'content-type': 'application/octet-stream', 'access-control-allow-origin': '*' } });
-  });
-  const config = { surface: { kind: 'mesh', src: 'https://foreign.example/lab/egg.ply', scale: 50 }, resolution: 24, cells: 40, lloyd: { maxIterations: 1 }, sheet: { thickness: 3 } };
+  await page.route(
+    (url) => url.hostname === 'foreign.example',
+    (route) => {
+      foreign += 1;
+      return route.fulfill({ status: 200, body: ply, headers: { 'content-type': 'application/octet-stream', 'access-control-allow-origin': '*' } });
+    },
+  );
+  const config = {
+    surface: { kind: 'mesh', src: 'https://foreign.example/lab/egg.ply', scale: 50 },
+    resolution: 24,
+    cells: 40,
+    lloyd: { maxIterations: 1 },
+    sheet: { thickness: 3 },
+  };
   await page.goto(linkTo(config));
   const question = page.locator('#source-question');
   await expect(question).toBeVisible();
@@ -149,9 +163,15 @@ test('exports carry provenance: CSV comments, PNG text, PLY comments; an empty v
   expect(comments[0]).toMatch(/tissue-sheet \d+\.\d+\.\d+/);
   const config = JSON.parse(comments.find((l) => l.includes('config'))!.replace(/^.*?config[^:]*: /, ''));
   expect(config.cells).toBe(60);
-  const records = parseCsv(csv.split('\r\n').filter((l) => !l.startsWith('#')).join('\r\n')).records;
+  const records = parseCsv(
+    csv
+      .split('\r\n')
+      .filter((l) => !l.startsWith('#'))
+      .join('\r\n'),
+  ).records;
   const header = records[0];
-  for (const column of ['area_um2_basal', 'area_um2_apical', 'sides_basal', 'sides_apical', 'label_neighbours_basal', 'scutoid', 'transitions']) expect(header).toContain(column);
+  for (const column of ['area_um2_basal', 'area_um2_apical', 'sides_basal', 'sides_apical', 'label_neighbours_basal', 'scutoid', 'transitions'])
+    expect(header).toContain(column);
   expect(records.length - 1).toBe(60);
 
   const png = await get('png');
@@ -179,9 +199,9 @@ test('help, glossary, version, citations and a tooltip on every control', async 
   await help.getByRole('button', { name: 'Close help' }).click();
   await expect(help).toBeHidden();
   await page.locator('details.advanced > summary').click();
-  const untitled = await page.locator('#controls .field:not([hidden])').evaluateAll((rows) =>
-    rows.filter((r) => !(r.querySelector('input, select') as HTMLElement | null)?.title).map((r) => (r as HTMLElement).dataset.path),
-  );
+  const untitled = await page
+    .locator('#controls .field:not([hidden])')
+    .evaluateAll((rows) => rows.filter((r) => !(r.querySelector('input, select') as HTMLElement | null)?.title).map((r) => (r as HTMLElement).dataset.path));
   expect(untitled).toEqual([]);
   // Engine internals are in the Advanced section.
   for (const path of ['resolution', 'jumpFlood.variant', 'centroidPath']) {
@@ -214,7 +234,9 @@ test('the page runs under its Content-Security-Policy, which stops an injected i
   const violations: string[] = [];
   await page.exposeFunction('reportViolation', (v: string) => violations.push(v));
   await page.addInitScript(() => {
-    document.addEventListener('securitypolicyviolation', (e) => (window as unknown as { reportViolation(v: string): void }).reportViolation(`${e.violatedDirective} ${e.blockedURI}`));
+    document.addEventListener('securitypolicyviolation', (e) =>
+      (window as unknown as { reportViolation(v: string): void }).reportViolation(`${e.violatedDirective} ${e.blockedURI}`),
+    );
   });
   await page.goto(linkTo(SMALL));
   await waitForRun(page);

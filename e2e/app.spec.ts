@@ -7,8 +7,6 @@ import { runs, waitForRun } from './appHelpers';
  * Screenshot tolerance: maxDiffPixelRatio 0.02 (playwright.config.ts); the timings are masked.
  */
 
-
-
 async function percentScutoids(page: Page): Promise<number> {
   return Number(await page.locator('#percent-scutoids').getAttribute('data-drawn'));
 }

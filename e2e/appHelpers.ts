@@ -7,11 +7,7 @@ export async function runs(page: Page): Promise<number> {
 
 /** Waits until the page has finished more than `after` runs and is idle. */
 export async function waitForRun(page: Page, after = 0): Promise<void> {
-  await page.waitForFunction(
-    (after) => document.body.dataset.state === 'done' && Number(document.body.dataset.runs ?? 0) > after,
-    after,
-    { timeout: 120_000 },
-  );
+  await page.waitForFunction((after) => document.body.dataset.state === 'done' && Number(document.body.dataset.runs ?? 0) > after, after, { timeout: 120_000 });
 }
 
 /** Runs a sweep of `field` from..to in `steps` points in the page and waits until it is done. */

@@ -23,14 +23,21 @@ test.describe('centroid paths in Chromium', () => {
     for (const { grid, count, weighted } of cases) {
       const result = await page.evaluate(
         ({ grid, count, weighted }) =>
-          (window as unknown as { tissueSheetTest: { compareCentroidPaths: (...args: unknown[]) => PathComparison } }).tissueSheetTest.compareCentroidPaths(grid, count, 3, weighted),
+          (window as unknown as { tissueSheetTest: { compareCentroidPaths: (...args: unknown[]) => PathComparison } }).tissueSheetTest.compareCentroidPaths(
+            grid,
+            count,
+            3,
+            weighted,
+          ),
         { grid, count, weighted },
       );
       expect(result.capabilities.floatBlend).toBe(true);
       expect(result.emptyCells).toBe(0);
       for (const path of ['gather', 'readback'] as const) {
         const { worstCentroid, worstEnergy } = result[path];
-        console.log(`${grid.width}x${grid.height}, ${count} sites, blend vs ${path}: worst centroid difference ${worstCentroid.toExponential(2)} texel, energy ${worstEnergy.toExponential(2)}`);
+        console.log(
+          `${grid.width}x${grid.height}, ${count} sites, blend vs ${path}: worst centroid difference ${worstCentroid.toExponential(2)} texel, energy ${worstEnergy.toExponential(2)}`,
+        );
         expect(worstCentroid).toBeLessThanOrEqual(1e-3);
         expect(worstEnergy).toBeLessThanOrEqual(1e-4);
       }

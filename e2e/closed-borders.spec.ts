@@ -48,7 +48,8 @@ test('a sphere is drawn per fragment: lit pixels are legend colours, the cell a 
 
   // Blended pixels (neither a legend colour, nor a border's dark, nor background) only where a
   // border is drawn: within a pixel of a dark one. Per-vertex colours blurred them over a texel.
-  let surface = 0, stray = 0;
+  let surface = 0,
+    stray = 0;
   for (let y = 1; y < png.height - 1; y++) {
     for (let x = 1; x < png.width - 1; x++) {
       const rgb = at(x, y);
@@ -58,7 +59,12 @@ test('a sphere is drawn per fragment: lit pixels are legend colours, the cell a 
       let nearDark = false;
       for (let dy = -1; dy <= 1 && !nearDark; dy++) for (let dx = -1; dx <= 1 && !nearDark; dx++) nearDark = isDark(at(x + dx, y + dy));
       // Shaded pixels towards the limb are legend colours times a light factor: skip the rim.
-      const rim = [[-3, 0], [3, 0], [0, -3], [0, 3]].some(([dx, dy]) => isBackground(at(x + dx, y + dy)));
+      const rim = [
+        [-3, 0],
+        [3, 0],
+        [0, -3],
+        [0, 3],
+      ].some(([dx, dy]) => isBackground(at(x + dx, y + dy)));
       if (!nearDark && !rim) stray++;
     }
   }
@@ -81,7 +87,8 @@ test('a sphere is drawn per fragment: lit pixels are legend colours, the cell a 
   expect(probes.length).toBeGreaterThan(10);
   const tip = page.locator('#cell-hover');
   for (const [k, probe] of probes.entries()) {
-    const x = box.x + probe.x + 0.5, y = box.y + probe.y + 0.5;
+    const x = box.x + probe.x + 0.5,
+      y = box.y + probe.y + 0.5;
     if (k < 4) {
       // Hover names the same cell as the click (same rule as the drawing).
       await page.mouse.move(x - 2, y - 2);

@@ -8,8 +8,22 @@ import { waitForRun } from './appHelpers';
  * sweep that fails says so and stops. Small sizes: 24-texel cube faces, 40 cells.
  */
 
-const ELLIPSOID = { surface: { kind: 'ellipsoid', a: 44, b: 27, c: 23 }, resolution: 24, cells: 40, seed: 3, lloyd: { maxIterations: 1 }, sheet: { thickness: 6 } };
-const MESH = { surface: { kind: 'mesh', src: '/meshes/organoid.ply', scale: 40 }, resolution: 24, cells: 40, seed: 3, lloyd: { maxIterations: 1 }, sheet: { thickness: 2 } };
+const ELLIPSOID = {
+  surface: { kind: 'ellipsoid', a: 44, b: 27, c: 23 },
+  resolution: 24,
+  cells: 40,
+  seed: 3,
+  lloyd: { maxIterations: 1 },
+  sheet: { thickness: 6 },
+};
+const MESH = {
+  surface: { kind: 'mesh', src: '/meshes/organoid.ply', scale: 40 },
+  resolution: 24,
+  cells: 40,
+  seed: 3,
+  lloyd: { maxIterations: 1 },
+  sheet: { thickness: 2 },
+};
 
 const withConfig = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
 
@@ -21,7 +35,9 @@ async function panelSweep(page: Page, from: number, to: number, steps: number, f
   await page.locator('[name="sweep-steps"]').fill(String(steps));
   await page.locator('[name="sweep-realizations"]').fill('1');
   await page.locator('[data-sweep="run"]').click();
-  await page.waitForFunction(() => ['done', 'error', 'cancelled'].includes(document.querySelector<HTMLElement>('#sweep')?.dataset.state ?? ''), null, { timeout: 150_000 });
+  await page.waitForFunction(() => ['done', 'error', 'cancelled'].includes(document.querySelector<HTMLElement>('#sweep')?.dataset.state ?? ''), null, {
+    timeout: 150_000,
+  });
   return (await page.locator('#sweep').getAttribute('data-state')) ?? '';
 }
 
@@ -52,7 +68,10 @@ for (const [name, config] of [
     await expect(page).toHaveTitle('ready');
     const spec = { base: config, vary: { 'sheet.thickness': [2, 5] }, realizations: 1, seed: 4 };
     const result = await page.evaluate(
-      (spec) => (window as unknown as { tissueSheetInteractive: { sweep(i: unknown): Promise<{ header: string[]; runs: Record<string, string>[] }> } }).tissueSheetInteractive.sweep({ spec }),
+      (spec) =>
+        (
+          window as unknown as { tissueSheetInteractive: { sweep(i: unknown): Promise<{ header: string[]; runs: Record<string, string>[] }> } }
+        ).tissueSheetInteractive.sweep({ spec }),
       spec,
     );
     expect(result.runs).toHaveLength(2);
@@ -68,7 +87,16 @@ for (const [name, config] of [
 
 test('a page sweep refused before its first run, or failing in a run, says so and stops', async ({ page }) => {
   // Inward past the sphere's radius: the second grid point is refused before anything runs.
-  await page.goto(withConfig({ surface: { kind: 'sphere', radius: 30 }, resolution: 24, cells: 40, seed: 3, lloyd: { maxIterations: 1 }, sheet: { thickness: 5, direction: 'inward' } }));
+  await page.goto(
+    withConfig({
+      surface: { kind: 'sphere', radius: 30 },
+      resolution: 24,
+      cells: 40,
+      seed: 3,
+      lloyd: { maxIterations: 1 },
+      sheet: { thickness: 5, direction: 'inward' },
+    }),
+  );
   await waitForRun(page);
   expect(await panelSweep(page, 5, 45, 2)).toBe('error');
   await expect(page.locator('[data-sweep="status"]')).toContainText('Sweep not run: grid point sheet.thickness=45');

@@ -29,10 +29,11 @@ test('a link, the element and the CLI run the same config with the schema defaul
   await expect(page).toHaveTitle('ready');
   const element = await page.evaluate(async () => {
     const el = document.createElement('tissue-sheet');
-    for (const [name, value] of Object.entries({ manual: '', surface: 'tube', radius: '20', length: '200', cells: '50', seed: '2', 'surface-ratio': '2' })) el.setAttribute(name, value);
+    for (const [name, value] of Object.entries({ manual: '', surface: 'tube', radius: '20', length: '200', cells: '50', seed: '2', 'surface-ratio': '2' }))
+      el.setAttribute(name, value);
     document.body.append(el);
-    const detail = new Promise<{ result: { analyses: { method: string; summary: { percentScutoids: number } }[] }; headline: { voronoiK: number } | null }>((resolve) =>
-      el.addEventListener('result', (e) => resolve((e as CustomEvent).detail), { once: true }),
+    const detail = new Promise<{ result: { analyses: { method: string; summary: { percentScutoids: number } }[] }; headline: { voronoiK: number } | null }>(
+      (resolve) => el.addEventListener('result', (e) => resolve((e as CustomEvent).detail), { once: true }),
     );
     await el.run();
     const d = await detail;
@@ -44,7 +45,10 @@ test('a link, the element and the CLI run the same config with the schema defaul
 
   const dir = mkdtempSync(join(tmpdir(), 'tissue-sheet-defaults-'));
   writeFileSync(join(dir, 'tube.json'), JSON.stringify(TUBE));
-  execFileSync('xvfb-run', ['-a', process.execPath, 'tests/cli/fromSource.mjs', 'run', join(dir, 'tube.json'), '--out', join(dir, 'out.json')], { stdio: 'pipe', timeout: 120_000 });
+  execFileSync('xvfb-run', ['-a', process.execPath, 'tests/cli/fromSource.mjs', 'run', join(dir, 'tube.json'), '--out', join(dir, 'out.json')], {
+    stdio: 'pipe',
+    timeout: 120_000,
+  });
   const cli = JSON.parse(readFileSync(join(dir, 'out.json'), 'utf8'));
   expect(cli.config).toEqual(validateAnyConfig(TUBE));
   // The same sites, the same exact analysis, whichever entry point ran them.

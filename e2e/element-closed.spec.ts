@@ -17,7 +17,15 @@ test('sphere, ellipsoid and mesh (meshFile, src) attributes; a genus-1 mesh fire
   await waitForExample(page);
   const outcome = await page.evaluate(async () => {
     const element = document.createElement('tissue-sheet');
-    for (const [name, value] of Object.entries({ manual: '', surface: 'sphere', radius: '50', resolution: '32', cells: '80', iterations: '2', thickness: '15' })) {
+    for (const [name, value] of Object.entries({
+      manual: '',
+      surface: 'sphere',
+      radius: '50',
+      resolution: '32',
+      cells: '80',
+      iterations: '2',
+      thickness: '15',
+    })) {
       element.setAttribute(name, value);
     }
     document.body.append(element);
@@ -75,7 +83,15 @@ test('cell-hover: the cell under the pointer on a sphere, null once the pointer 
   await page.evaluate(async () => {
     const element = document.createElement('tissue-sheet');
     element.id = 'hover-sphere';
-    for (const [name, value] of Object.entries({ manual: '', surface: 'sphere', radius: '50', resolution: '32', cells: '80', iterations: '2', thickness: '15' })) {
+    for (const [name, value] of Object.entries({
+      manual: '',
+      surface: 'sphere',
+      radius: '50',
+      resolution: '32',
+      cells: '80',
+      iterations: '2',
+      thickness: '15',
+    })) {
       element.setAttribute(name, value);
     }
     element.style.cssText = 'position:fixed;left:0;top:0;width:400px;height:300px;z-index:100;display:block';

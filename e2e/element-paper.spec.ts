@@ -9,7 +9,10 @@ import { expect, test } from '@playwright/test';
  */
 
 test('waiting event; the question goes with a later unrelated run', async ({ page }) => {
-  await page.route((url) => url.hostname === 'lab.example', (route) => route.abort());
+  await page.route(
+    (url) => url.hostname === 'lab.example',
+    (route) => route.abort(),
+  );
   await page.goto('/examples/element.html');
   const waiting = await page.evaluate(async () => {
     const element = document.createElement('tissue-sheet');
@@ -50,7 +53,9 @@ test('a misspelled attribute is said with a suggestion; "22,5" is 22.5; an empty
     element.setAttribute('realizations', '1');
     const warnings: unknown[] = [];
     element.addEventListener('warning', (e) => warnings.push((e as CustomEvent).detail));
-    const result = new Promise<{ radius: number }>((resolve) => element.addEventListener('result', (e) => resolve((e as CustomEvent).detail.result.config.surface), { once: true }));
+    const result = new Promise<{ radius: number }>((resolve) =>
+      element.addEventListener('result', (e) => resolve((e as CustomEvent).detail.result.config.surface), { once: true }),
+    );
     document.body.append(element);
     const surface = await result;
     return { warnings, radius: surface.radius, config: (element as unknown as { config: { surface: { radius: number } } }).config.surface.radius };
@@ -66,12 +71,18 @@ test('a misspelled attribute is said with a suggestion; "22,5" is 22.5; an empty
 
   const error = await page.evaluate(async () => {
     const element = document.getElementById('typo')!;
-    const failed = new Promise<{ message: string }>((resolve) => element.addEventListener('error', (e) => resolve((e as unknown as CustomEvent).detail), { once: true }));
+    const failed = new Promise<{ message: string }>((resolve) =>
+      element.addEventListener('error', (e) => resolve((e as unknown as CustomEvent).detail), { once: true }),
+    );
     element.setAttribute('cells', '');
     const message = (await failed).message;
     // Reading config does not throw while an attribute is invalid; configError says why.
     const el = element as unknown as { config: { surface: { radius: number } }; configError: string | null };
     return { message, radius: el.config.surface.radius, configError: el.configError };
   });
-  expect(error).toEqual({ message: 'cells: the attribute is empty; give a number or remove it', radius: 22.5, configError: 'cells: the attribute is empty; give a number or remove it' });
+  expect(error).toEqual({
+    message: 'cells: the attribute is empty; give a number or remove it',
+    radius: 22.5,
+    configError: 'cells: the attribute is empty; give a number or remove it',
+  });
 });

@@ -13,7 +13,14 @@ import { readCsvTable } from '../src/core/sweep/csv';
  * tubes, at most 60 cells.
  */
 
-const small = { surface: { kind: 'tube', radius: 128 / (2 * Math.PI), length: 256 }, resolution: 128, cells: 60, seed: 3, lloyd: { maxIterations: 4 }, sheet: { surfaceRatio: 1.5 } };
+const small = {
+  surface: { kind: 'tube', radius: 128 / (2 * Math.PI), length: 256 },
+  resolution: 128,
+  cells: 60,
+  seed: 3,
+  lloyd: { maxIterations: 4 },
+  sheet: { surfaceRatio: 1.5 },
+};
 
 async function installLongTaskObserver(page: Page): Promise<void> {
   await page.addInitScript(() => {
@@ -85,7 +92,9 @@ test.describe('the app stays responsive', () => {
     const duringSweep = await takeLongTasks(page);
     await expect(page.locator('#chart-sweep')).toHaveAttribute('data-points', '3');
 
-    console.log(`long tasks (ms): run ${JSON.stringify(duringRun)}, drag ${JSON.stringify(duringDrag)} (${pictures} pictures during the drag), sweep ${JSON.stringify(duringSweep)}`);
+    console.log(
+      `long tasks (ms): run ${JSON.stringify(duringRun)}, drag ${JSON.stringify(duringDrag)} (${pictures} pictures during the drag), sweep ${JSON.stringify(duringSweep)}`,
+    );
     expect(pictures).toBeGreaterThan(1);
     for (const tasks of [duringRun, duringDrag, duringSweep]) expect(Math.max(0, ...tasks)).toBeLessThan(50);
   });
@@ -121,13 +130,24 @@ test.describe('the app stays responsive', () => {
     expect(all.header.slice(0, 4)).toEqual(['key', 'sheet.surfaceRatio', 'realization', 'seed']);
     // Seeded reuse: realization outer, ratio inner (the CLI's order).
     const aggregate = readCsvTable(await downloadText(page, '[data-sweep="aggregate-csv"]'));
-    expect(aggregate.rows.map((r) => [r['sheet.surfaceRatio'], r.runs])).toEqual([['1', '3'], ['2.5', '3']]);
+    expect(aggregate.rows.map((r) => [r['sheet.surfaceRatio'], r.runs])).toEqual([
+      ['1', '3'],
+      ['2.5', '3'],
+    ]);
   });
 });
 
 test.describe('<tissue-sheet>.sweep()', () => {
   const spec = {
-    base: { surface: { kind: 'tube', radius: 128 / (2 * Math.PI), length: 256 }, resolution: 128, cells: 40, seed: 9, engine: 'exact', lloyd: { maxIterations: 2 }, sheet: { thickness: 0 } },
+    base: {
+      surface: { kind: 'tube', radius: 128 / (2 * Math.PI), length: 256 },
+      resolution: 128,
+      cells: 40,
+      seed: 9,
+      engine: 'exact',
+      lloyd: { maxIterations: 2 },
+      sheet: { thickness: 0 },
+    },
     vary: { 'sheet.surfaceRatio': [1.5, 2.5] },
     realizations: 2,
     seedMode: 'per-realization',
@@ -139,17 +159,25 @@ test.describe('<tissue-sheet>.sweep()', () => {
   });
 
   const sweep = (page: Page, input: unknown) =>
-    page.evaluate((input) => (window as unknown as { tissueSheetInteractive: { sweep(i: unknown): Promise<Record<string, unknown>> } }).tissueSheetInteractive.sweep(input), input);
+    page.evaluate(
+      (input) => (window as unknown as { tissueSheetInteractive: { sweep(i: unknown): Promise<Record<string, unknown>> } }).tissueSheetInteractive.sweep(input),
+      input,
+    );
 
   test('gives the runs and the aggregate of `tissue-sheet sweep` for the same spec, with a sweep-progress event per run', async ({ page }) => {
     const inPage = await sweep(page, { spec });
     const dir = mkdtempSync(join(tmpdir(), 'tissue-sheet-sweep-'));
     writeFileSync(join(dir, 'spec.json'), JSON.stringify(spec));
-    execFileSync('xvfb-run', ['-a', process.execPath, 'tests/cli/fromSource.mjs', 'sweep', join(dir, 'spec.json'), '--out', join(dir, 'out')], { stdio: 'pipe', timeout: 150_000 });
+    execFileSync('xvfb-run', ['-a', process.execPath, 'tests/cli/fromSource.mjs', 'sweep', join(dir, 'spec.json'), '--out', join(dir, 'out')], {
+      stdio: 'pipe',
+      timeout: 150_000,
+    });
     const cliRuns = readCsvTable(readFileSync(join(dir, 'out', 'runs.csv'), 'utf8'));
     const cliAggregate = readFileSync(join(dir, 'out', 'aggregate.csv'), 'utf8');
 
-    console.log(`element sweep: ${(inPage.runs as unknown[]).length} runs in ${Math.round(inPage.ms as number)} ms, long tasks ${JSON.stringify(inPage.longTasks)}`);
+    console.log(
+      `element sweep: ${(inPage.runs as unknown[]).length} runs in ${Math.round(inPage.ms as number)} ms, long tasks ${JSON.stringify(inPage.longTasks)}`,
+    );
     expect(inPage.header).toEqual(cliRuns.header);
     const byKey = (rows: Record<string, string>[]) => Object.fromEntries(rows.map((r) => [r.key, r]));
     expect(byKey(inPage.runs as Record<string, string>[])).toEqual(byKey(cliRuns.rows));
@@ -176,9 +204,17 @@ test.describe('<tissue-sheet>.sweep()', () => {
   });
 
   test("the worker's pictures are the views' own: exact cells in full, painted label images in drafts", async ({ page }) => {
-    const config = { surface: { kind: 'tube', radius: 128 / (2 * Math.PI), length: 256 }, resolution: 128, cells: 40, seed: 4, lloyd: { maxIterations: 2 }, sheet: { surfaceRatio: 2 } };
+    const config = {
+      surface: { kind: 'tube', radius: 128 / (2 * Math.PI), length: 256 },
+      resolution: 128,
+      cells: 40,
+      seed: 4,
+      lloyd: { maxIterations: 2 },
+      sheet: { surfaceRatio: 2 },
+    };
     const rows = await page.evaluate(
-      (config) => (window as unknown as { tissueSheetInteractive: { pictures(c: unknown): Promise<Record<string, unknown>[]> } }).tissueSheetInteractive.pictures(config),
+      (config) =>
+        (window as unknown as { tissueSheetInteractive: { pictures(c: unknown): Promise<Record<string, unknown>[]> } }).tissueSheetInteractive.pictures(config),
       config,
     );
     console.log(`worker pictures: ${JSON.stringify(rows)}`);

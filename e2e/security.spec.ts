@@ -11,7 +11,14 @@ import { expect, test, type Page } from '@playwright/test';
  */
 
 const linkTo = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
-const SMALL = { surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 }, resolution: 128, cells: 60, seed: 3, lloyd: { maxIterations: 2 }, sheet: { surfaceRatio: 2 } };
+const SMALL = {
+  surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 },
+  resolution: 128,
+  cells: 60,
+  seed: 3,
+  lloyd: { maxIterations: 2 },
+  sheet: { surfaceRatio: 2 },
+};
 
 /** The app's policy, read from index.html (the element's page is served with the same one). */
 function appPolicy(): string {
@@ -62,7 +69,12 @@ function png(width: number, height: number, rows?: Uint8Array): Buffer {
   ihdr[8] = 8; // bit depth
   ihdr[9] = 0; // grey
   const raw = rows ?? new Uint8Array(0);
-  return Buffer.concat([Buffer.from([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]), chunk('IHDR', ihdr), chunk('IDAT', deflateSync(raw)), chunk('IEND', new Uint8Array(0))]);
+  return Buffer.concat([
+    Buffer.from([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]),
+    chunk('IHDR', ihdr),
+    chunk('IDAT', deflateSync(raw)),
+    chunk('IEND', new Uint8Array(0)),
+  ]);
 }
 
 test('the policy has no unsafe-eval and no other origin; eval and an injected inline script do not run', async ({ page }) => {
@@ -146,10 +158,13 @@ test('an approved foreign density image is fetched by the relay frame, after the
   for (let y = 0; y < width; y++) for (let x = 0; x < width; x++) rows[y * (width + 1) + 1 + x] = x * 16;
   const image = png(width, width, rows);
   const requests: { url: string; frame: string }[] = [];
-  await page.route((url) => url.hostname === 'foreign.example', (route) => {
-    requests.push({ url: route.request().url(), frame: route.request().frame().url() });
-    return route.fulfill({ status: 200, body: image, headers: { 'content-type': 'image/png', 'access-control-allow-origin': '*' } });
-  });
+  await page.route(
+    (url) => url.hostname === 'foreign.example',
+    (route) => {
+      requests.push({ url: route.request().url(), frame: route.request().frame().url() });
+      return route.fulfill({ status: 200, body: image, headers: { 'content-type': 'image/png', 'access-control-allow-origin': '*' } });
+    },
+  );
   const violations = await watchViolations(page);
   await page.goto(linkTo({ ...SMALL, density: { kind: 'image', src: 'https://foreign.example/lab/density.png' } }));
   const question = page.locator('#source-question');

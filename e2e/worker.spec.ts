@@ -1,10 +1,22 @@
 import { expect, test } from '@playwright/test';
 
 type WorkerTest = Record<string, (input: unknown) => Promise<Record<string, unknown>>>;
-const call = (name: string, input: unknown) => async ({ page }: { page: import('@playwright/test').Page }) =>
-  page.evaluate(([name, input]) => (window as unknown as { tissueSheetWorkerTest: WorkerTest }).tissueSheetWorkerTest[name as string](input), [name, input] as const);
+const call =
+  (name: string, input: unknown) =>
+  async ({ page }: { page: import('@playwright/test').Page }) =>
+    page.evaluate(([name, input]) => (window as unknown as { tissueSheetWorkerTest: WorkerTest }).tissueSheetWorkerTest[name as string](input), [
+      name,
+      input,
+    ] as const);
 
-const tube = { surface: { kind: 'tube', radius: 40, length: 300 }, resolution: 256, cells: 60, seed: 5, lloyd: { maxIterations: 4 }, sheet: { surfaceRatio: 1.8, layers: 1 } };
+const tube = {
+  surface: { kind: 'tube', radius: 40, length: 300 },
+  resolution: 256,
+  cells: 60,
+  seed: 5,
+  lloyd: { maxIterations: 4 },
+  sheet: { surfaceRatio: 1.8, layers: 1 },
+};
 const sphere = { surface: { kind: 'sphere', radius: 40 }, resolution: 48, cells: 80, seed: 2, lloyd: { maxIterations: 3 }, sheet: { thickness: 8 } };
 
 test.describe('the pipeline in a Web Worker', () => {
@@ -13,7 +25,10 @@ test.describe('the pipeline in a Web Worker', () => {
     await expect(page).toHaveTitle('ready');
   });
 
-  for (const [name, input] of [['tube', tube], ['sphere', sphere]] as const) {
+  for (const [name, input] of [
+    ['tube', tube],
+    ['sphere', sphere],
+  ] as const) {
     test(`${name}: the worker's result equals the page's, iteration reports arrive, no long task on the page`, async ({ page }) => {
       const result = await call('compareWorkerAndPage', input)({ page });
       console.log(`${name}: computed in the ${JSON.stringify(result.site)}; page long tasks during the run: ${JSON.stringify(result.longTasks)}`);

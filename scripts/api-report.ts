@@ -52,7 +52,10 @@ function isTypeOnlyExport(symbol: ts.Symbol): boolean {
 function render(): { text: string; mainValues: number } {
   const config = ts.readConfigFile(`${root}tsconfig.json`, ts.sys.readFile).config;
   const parsed = ts.parseJsonConfigFileContent(config, ts.sys, root);
-  const program = ts.createProgram(ENTRIES.map(([, file]) => `${root}${file}`), parsed.options);
+  const program = ts.createProgram(
+    ENTRIES.map(([, file]) => `${root}${file}`),
+    parsed.options,
+  );
   const checker = program.getTypeChecker();
   const lines = [
     '# API report',
@@ -91,7 +94,9 @@ if (mode === 'write') {
     const a = committed.split('\n');
     const b = text.split('\n');
     const line = a.findIndex((l, k) => l !== b[k]);
-    console.error(`api: the public API differs from ${REPORT} at line ${line + 1}: "${b[line] ?? ''}" (report: "${a[line] ?? ''}"); run npm run api:write and commit it`);
+    console.error(
+      `api: the public API differs from ${REPORT} at line ${line + 1}: "${b[line] ?? ''}" (report: "${a[line] ?? ''}"); run npm run api:write and commit it`,
+    );
     process.exit(1);
   }
   console.log(`api: ${REPORT} matches the code (${mainValues} runtime values in the main entry)`);

@@ -38,7 +38,10 @@ export function buildIfStale() {
   });
   if (run.status !== 0) {
     rmSync(tmp, { recursive: true, force: true });
-    const lines = run.stderr.replace(/\x1b\[[0-9;]*m/g, '').split('\n').map((line) => line.trim());
+    const lines = run.stderr
+      .replace(/\x1b\[[0-9;]*m/g, '')
+      .split('\n')
+      .map((line) => line.trim());
     const why = lines.find((line) => /^\[[A-Z_]+\]/.test(line)) ?? lines.find((line) => /error/i.test(line));
     console.error(`build-if-stale: the package build failed, so dist/esm (the CLI) is stale: ${why ?? 'run npm run build:esm to see why'}`);
     return false;

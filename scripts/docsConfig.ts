@@ -18,8 +18,7 @@ import { SCHEMA_ENTRIES, type SchemaField, type SchemaUnion, type TopLevelEntry 
 export const CONFIG_DOCS_PATH = 'docs/config.md';
 export const CONFIG_TEMPLATE_PATH = 'scripts/docsConfig.template.md';
 
-const NOTICE =
-  '<!-- Generated from src/core/config/schema.ts and scripts/docsConfig.template.md by `npm run docs:write`; edit those, not this page. -->';
+const NOTICE = '<!-- Generated from src/core/config/schema.ts and scripts/docsConfig.template.md by `npm run docs:write`; edit those, not this page. -->';
 
 const TABLE_HEAD = ['| field | type | unit | range | default | meaning |', '|---|---|---|---|---|---|'];
 

@@ -19,11 +19,36 @@ const out = join(dirname(fileURLToPath(import.meta.url)), '..', 'public', 'meshe
 mkdirSync(out, { recursive: true });
 
 const meshes: Array<{ file: string; what: string; mesh: TriangleMesh; genusZero: boolean }> = [
-  { file: 'organoid.ply', what: 'organoid-like blob: unit sphere with smooth random radial bumps (6 cosine waves of wave number 1.5 to 3, seed 3), icosphere frequency 16', mesh: bumpySphere(16, 3, 0.08), genusZero: true },
-  { file: 'egg-chamber.ply', what: 'egg-chamber-like ellipsoid, semi-axes 2 : 1 : 1, icosphere frequency 14 stretched', mesh: ellipsoidMesh(2, 1, 1, 14), genusZero: true },
-  { file: 'level-set-blob.ply', what: 'level-set blob: iso-surface of 5 Gaussian metaballs (seed 7), icosphere frequency 30 shot onto it (like the seed document\'s 8896-vertex pygalmesh level set)', mesh: levelSetBlob(30, 7), genusZero: true },
-  { file: 'torus.ply', what: 'torus R = 1, r = 0.4, 48 × 24 quads split in triangles (genus 1: shows the genus message)', mesh: torusMesh(1, 0.4, 48, 24), genusZero: false },
-  { file: 'open-sphere.ply', what: 'unit sphere with a hole (faces within 0.5 rad of the north pole removed), icosphere frequency 6: for tests of the "not closed" message', mesh: openSphere(6, 0.5), genusZero: false },
+  {
+    file: 'organoid.ply',
+    what: 'organoid-like blob: unit sphere with smooth random radial bumps (6 cosine waves of wave number 1.5 to 3, seed 3), icosphere frequency 16',
+    mesh: bumpySphere(16, 3, 0.08),
+    genusZero: true,
+  },
+  {
+    file: 'egg-chamber.ply',
+    what: 'egg-chamber-like ellipsoid, semi-axes 2 : 1 : 1, icosphere frequency 14 stretched',
+    mesh: ellipsoidMesh(2, 1, 1, 14),
+    genusZero: true,
+  },
+  {
+    file: 'level-set-blob.ply',
+    what: "level-set blob: iso-surface of 5 Gaussian metaballs (seed 7), icosphere frequency 30 shot onto it (like the seed document's 8896-vertex pygalmesh level set)",
+    mesh: levelSetBlob(30, 7),
+    genusZero: true,
+  },
+  {
+    file: 'torus.ply',
+    what: 'torus R = 1, r = 0.4, 48 × 24 quads split in triangles (genus 1: shows the genus message)',
+    mesh: torusMesh(1, 0.4, 48, 24),
+    genusZero: false,
+  },
+  {
+    file: 'open-sphere.ply',
+    what: 'unit sphere with a hole (faces within 0.5 rad of the north pole removed), icosphere frequency 6: for tests of the "not closed" message',
+    mesh: openSphere(6, 0.5),
+    genusZero: false,
+  },
 ];
 
 const rows: string[] = [];

@@ -124,7 +124,8 @@ export function build(): ReferenceDocument {
       software: { name: 'tissue-sheet', version },
       script: 'scripts/reference-curves.ts',
       command: 'npx tsx scripts/reference-curves.ts',
-      model: 'Voronoi tubular model of Gómez-Gálvez et al. 2018 (Nat. Commun. 9:2960), as tissue-sheet implements it (docs/protocols.md); these numbers were computed here, none was taken from the paper',
+      model:
+        'Voronoi tubular model of Gómez-Gálvez et al. 2018 (Nat. Commun. 9:2960), as tissue-sheet implements it (docs/protocols.md); these numbers were computed here, none was taken from the paper',
       spec: sweep,
       seeds,
       method:

@@ -12,7 +12,10 @@ const median = (xs: number[]) => [...xs].sort((a, b) => a - b)[Math.floor(xs.len
 
 /** Ratio changes after one warm-up run: compute time per change and the longest page task. */
 async function ratioChanges(input: { config: ConfigInput; ratios: number[]; where: 'page' | 'worker' }) {
-  const runner = input.where === 'page' ? new SheetRunner(createCanvasContext(document.createElement('canvas'))) : new WorkerSheetRunner(() => createCanvasContext(document.createElement('canvas')));
+  const runner =
+    input.where === 'page'
+      ? new SheetRunner(createCanvasContext(document.createElement('canvas')))
+      : new WorkerSheetRunner(() => createCanvasContext(document.createElement('canvas')));
   const base = validateAnyConfig(input.config);
   await runner.run(base);
   longTasks.length = 0;

@@ -26,7 +26,8 @@ function compare(n: number, count: number) {
     engine.dispose();
   }
   const [blend, readback] = sums;
-  let worstCentroid = 0, worstEnergy = 0;
+  let worstCentroid = 0,
+    worstEnergy = 0;
   for (let i = 0; i < count; i++) {
     const o = CUBE_SUMS_STRIDE * i;
     const d = [0, 1, 2].map((c) => blend[o + c] / blend[o + 3] - readback[o + c] / readback[o + 3]);

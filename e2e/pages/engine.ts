@@ -15,7 +15,7 @@ function compareCentroidPaths(grid: Grid, count: number, seed: number, weighted:
   const sites = placeSites(grid, count, seed, 2 * grid.texelX);
   const weights = new Float32Array(grid.width * grid.height);
   for (let i = 0; i < weights.length; i++) {
-    weights[i] = weighted ? 1 + 15 * (((i % grid.width) / grid.width) > 0.5 ? 1 : 0) : 1;
+    weights[i] = weighted ? 1 + 15 * ((i % grid.width) / grid.width > 0.5 ? 1 : 0) : 1;
   }
   const sumsOf = (centroidPath: 'blend' | 'gather' | 'readback') => {
     const engine = new CcvtEngine(context, grid, count, { variant: 'jfa+2', centroidPath });

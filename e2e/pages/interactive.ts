@@ -80,13 +80,27 @@ async function pictures(config: unknown) {
   const options = (stack: ViewStack) => ({ highlightScutoids: true, selected: -1, valid: stack.valid, scutoid: stack.scutoid });
   const full = viewStack(await runInPage({ config: valid }));
   const draft = viewStack(await runInPage({ config: valid, pictures: { highlightScutoids: true, selected: -1, draft: true } }));
-  const rows: { surface: string; kind: PictureKind; grid: number[]; scale: number; full: string; fullSize: number[]; fullDiffering: number; draftSize: number[]; draftDiffering: number }[] = [];
+  const rows: {
+    surface: string;
+    kind: PictureKind;
+    grid: number[];
+    scale: number;
+    full: string;
+    fullSize: number[];
+    fullDiffering: number;
+    draftSize: number[];
+    draftDiffering: number;
+  }[] = [];
   for (const kind of ['texture', 'unrolled'] as const) {
     full.surfaces.forEach((surface, k) => {
       const picture = workerPicture(surface, kind, { highlightScutoids: true, selected: -1 });
       const layout = PICTURE_LAYOUT[kind](surface);
       const { width, height } = surface.image.grid;
-      const onPage = pixels((canvas) => drawExactCells(canvas, surface, { ...options(full), ...layout }), Math.round(width * layout.scale), Math.round(height * layout.scale));
+      const onPage = pixels(
+        (canvas) => drawExactCells(canvas, surface, { ...options(full), ...layout }),
+        Math.round(width * layout.scale),
+        Math.round(height * layout.scale),
+      );
       const draftSurface = draft.surfaces[k];
       const draftPicture = workerPicture(draftSurface, kind, { highlightScutoids: true, selected: -1 });
       const painted = paintSurface(draftSurface, options(draft));

@@ -54,7 +54,10 @@ async function cancelThenRun(input: ConfigInput) {
   const controller = new AbortController();
   const first = runner.run(validateAnyConfig({ ...input, lloyd: { maxIterations: 200, tolerance: 0 } }), { signal: controller.signal });
   setTimeout(() => controller.abort(), 20);
-  const firstError = await first.then(() => 'finished', (error: Error) => error.name);
+  const firstError = await first.then(
+    () => 'finished',
+    (error: Error) => error.name,
+  );
   const second = await runner.run(validateAnyConfig(input));
   runner.dispose();
   return { firstError, cells: second.result.cells.length };

@@ -166,7 +166,10 @@ function syncRealizationsParam(): void {
 realizationsInput.addEventListener('change', () => {
   syncRealizationsParam();
   if (!stack) return;
-  const output = { result: { ...stack.result, headline: stack.result.headline ? drawnHeadline(stack.result.headline) : null }, labelImages: stack.surfaces.map((s) => s.image) } as SheetOutput;
+  const output = {
+    result: { ...stack.result, headline: stack.result.headline ? drawnHeadline(stack.result.headline) : null },
+    labelImages: stack.surfaces.map((s) => s.image),
+  } as SheetOutput;
   void startRealizations(output);
 });
 
@@ -495,9 +498,7 @@ onComputeSite((site) => {
 });
 
 $('#run').addEventListener('click', () => void run(controls.config));
-$('#step').addEventListener('click', () =>
-  runWith((c) => ({ ...c, lloyd: { ...c.lloyd, maxIterations: c.lloyd.maxIterations + 1, tolerance: 0 } })),
-);
+$('#step').addEventListener('click', () => runWith((c) => ({ ...c, lloyd: { ...c.lloyd, maxIterations: c.lloyd.maxIterations + 1, tolerance: 0 } })));
 $('#converge').addEventListener('click', () =>
   runWith((c) => ({ ...c, lloyd: { ...c.lloyd, maxIterations: Math.max(c.lloyd.maxIterations, 500), tolerance: Math.max(c.lloyd.tolerance, 0.05) } })),
 );

@@ -59,7 +59,8 @@ export function parseArgs(args: string[], form: string, sweep = false): CliOptio
     else if (!sweep && name === '--realizations') {
       const v = value();
       const n = Number(v);
-      if (!Number.isInteger(n) || n < 1 || n > MAX_REALIZATIONS) throw new InputError(`--realizations: must be a whole number from 1 to ${MAX_REALIZATIONS} (got ${JSON.stringify(v)})`);
+      if (!Number.isInteger(n) || n < 1 || n > MAX_REALIZATIONS)
+        throw new InputError(`--realizations: must be a whole number from 1 to ${MAX_REALIZATIONS} (got ${JSON.stringify(v)})`);
       options.realizations = n;
     } else if (sweep && name === '--workers') {
       const v = value();

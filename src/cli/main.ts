@@ -44,9 +44,14 @@ Progress goes to stderr. Exit codes:
 type Command = (args: string[], signal: AbortSignal, log: (line: string) => void) => Promise<number | void>;
 
 const commands: Record<string, Command> = {
-  run: (args, signal, log) => runCommand(parseArgs(args, 'run CONFIG.json --out RESULT.json [--realizations N] [--force] [--allow-network] [--allow-large] [--cells-file]'), signal, log),
+  run: (args, signal, log) =>
+    runCommand(parseArgs(args, 'run CONFIG.json --out RESULT.json [--realizations N] [--force] [--allow-network] [--allow-large] [--cells-file]'), signal, log),
   sweep: (args, signal, log) =>
-    sweepCommand(parseArgs(args, 'sweep SWEEP.json --out DIR [--force] [--allow-network] [--allow-large] [--max-runs N] [--shard I/N|slurm] [--workers N]', true), signal, log),
+    sweepCommand(
+      parseArgs(args, 'sweep SWEEP.json --out DIR [--force] [--allow-network] [--allow-large] [--max-runs N] [--shard I/N|slurm] [--workers N]', true),
+      signal,
+      log,
+    ),
   merge: async (args, _signal, log) => (await import('./merge')).mergeCommand(args, log),
   measure: async (args, _signal, log) => (await import('./measure')).measureCommand(args, log),
 };

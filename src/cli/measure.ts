@@ -9,7 +9,16 @@
  */
 import { closeSync, lstatSync, openSync, readSync, renameSync, rmSync, writeFileSync } from 'node:fs';
 import { basename, dirname, join, resolve } from 'node:path';
-import { compareMeasured, compareVolume, MeasureInputError, measureTissue, measureVolume, parseVoxelSizeOption, type MeasuredResult, type VolumeMeasuredResult } from '../core/measure';
+import {
+  compareMeasured,
+  compareVolume,
+  MeasureInputError,
+  measureTissue,
+  measureVolume,
+  parseVoxelSizeOption,
+  type MeasuredResult,
+  type VolumeMeasuredResult,
+} from '../core/measure';
 import { labelFileFromPath } from '../node/labelImages';
 import { version } from '../version';
 
@@ -77,7 +86,8 @@ export function parseMeasureArgs(args: string[]): MeasureArgs {
       volumeOnly.push(name);
     } else if (name === '--apical') {
       const side = value();
-      if (side !== 'lumen' && side !== 'outside') throw optionError(name, `needs lumen or outside (got ${side === undefined ? 'nothing' : JSON.stringify(side)})`);
+      if (side !== 'lumen' && side !== 'outside')
+        throw optionError(name, `needs lumen or outside (got ${side === undefined ? 'nothing' : JSON.stringify(side)})`);
       parsed.apical = side;
       volumeOnly.push(name);
     } else if (name === '--lumen-label') {
@@ -89,19 +99,16 @@ export function parseMeasureArgs(args: string[]): MeasureArgs {
     } else if (name === '--pixel-size') {
       parsed.pixelSize = positiveNumber(name, value());
       layersOnly.push(name);
-    }
-    else if (name === '--min-contact') parsed.minContact = positiveNumber(name, value(), true);
+    } else if (name === '--min-contact') parsed.minContact = positiveNumber(name, value(), true);
     else if (name === '--ratio') {
       parsed.ratio = positiveNumber(name, value());
       layersOnly.push(name);
-    }
-    else if (name === '--realizations') parsed.realizations = integer(name, value(), 1, 1000);
+    } else if (name === '--realizations') parsed.realizations = integer(name, value(), 1, 1000);
     else if (name === '--seed') parsed.seed = integer(name, value(), 0, 2 ** 31 - 1);
     else if (name === '--periodic-x') {
       parsed.periodicX = true;
       layersOnly.push(name);
-    }
-    else if (name === '--compare') parsed.compare = true;
+    } else if (name === '--compare') parsed.compare = true;
     else if (name === '--force') parsed.force = true;
     else if (arg.startsWith('-')) throw optionError(arg, 'unknown option');
     else parsed.files.push(arg);
@@ -144,7 +151,8 @@ function checkOut(out: string, force: boolean): void {
   }
   if (stat.isSymbolicLink()) throw new MeasureInputError(`--out ${out}`, 'is a symbolic link, which is never followed; give the path of a regular file');
   if (stat.isDirectory()) throw new MeasureInputError(`--out ${out}`, 'is a directory; give a file path');
-  if (!force && !isOurResult(out)) throw new MeasureInputError(`--out ${out}`, 'exists and is not a tissue-sheet result; pass --force to overwrite it, or give another path');
+  if (!force && !isOurResult(out))
+    throw new MeasureInputError(`--out ${out}`, 'exists and is not a tissue-sheet result; pass --force to overwrite it, or give another path');
 }
 
 /** Through a temporary file and a rename: a reader never sees half a result. */

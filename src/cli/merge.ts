@@ -59,7 +59,9 @@ interface SweepRecord {
 
 /** Object keys sorted at every level: two specs are the same when these texts are. */
 function canonical(value: unknown): string {
-  return JSON.stringify(value, (_key, v) => (v && typeof v === 'object' && !Array.isArray(v) ? Object.fromEntries(Object.entries(v).sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0))) : v));
+  return JSON.stringify(value, (_key, v) =>
+    v && typeof v === 'object' && !Array.isArray(v) ? Object.fromEntries(Object.entries(v).sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0))) : v,
+  );
 }
 
 function readRecord(dir: string): SweepRecord {
@@ -73,7 +75,13 @@ function readRecord(dir: string): SweepRecord {
   const path = join(dir, 'sweep.json');
   if (!existsSync(path)) throw new InputError(`${dir}: has no sweep.json; is it a tissue-sheet sweep directory?`);
   const record = readJsonFile(path, 'sweep record') as SweepRecord;
-  if (typeof record !== 'object' || record === null || record.software?.name !== 'tissue-sheet' || typeof record.software.version !== 'string' || record.spec === undefined) {
+  if (
+    typeof record !== 'object' ||
+    record === null ||
+    record.software?.name !== 'tissue-sheet' ||
+    typeof record.software.version !== 'string' ||
+    record.spec === undefined
+  ) {
     throw new InputError(`${path}: not a tissue-sheet sweep record (no software name, version and spec)`);
   }
   return record;
@@ -90,7 +98,9 @@ export async function mergeCommand(args: string[], log: (line: string) => void):
   const first = records[0];
   for (const { dir, record } of records.slice(1)) {
     if (record.software!.version !== first.record.software!.version) {
-      throw new InputError(`${join(dir, 'sweep.json')}: written by tissue-sheet ${String(record.software!.version)}, ${join(first.dir, 'sweep.json')} by ${String(first.record.software!.version)}; merge only shards of one version`);
+      throw new InputError(
+        `${join(dir, 'sweep.json')}: written by tissue-sheet ${String(record.software!.version)}, ${join(first.dir, 'sweep.json')} by ${String(first.record.software!.version)}; merge only shards of one version`,
+      );
     }
     if (canonical(record.spec) !== canonical(first.record.spec)) {
       throw new InputError(`${join(dir, 'sweep.json')}: another spec than ${join(first.dir, 'sweep.json')}; merge only shards of one sweep spec`);
@@ -103,7 +113,11 @@ export async function mergeCommand(args: string[], log: (line: string) => void):
     throw new InputError(`${join(first.dir, 'sweep.json')}: its spec is not valid for tissue-sheet ${version} (${(error as Error).message})`);
   }
   const layout = sweepLayout(spec);
-  checkOutDir(options.out, options.dirs.map((d) => join(d, 'runs.csv')), options.force);
+  checkOutDir(
+    options.out,
+    options.dirs.map((d) => join(d, 'runs.csv')),
+    options.force,
+  );
 
   const t0 = performance.now();
   const kept = new Map<string, { row: Record<string, string>; dir: string; text: string }>();
@@ -139,7 +153,10 @@ export async function mergeCommand(args: string[], log: (line: string) => void):
       }
     }
   }
-  const rows = sortRowsByRuns([...kept.values()].map((k) => k.row), layout.ordered);
+  const rows = sortRowsByRuns(
+    [...kept.values()].map((k) => k.row),
+    layout.ordered,
+  );
   const missing = layout.runs.filter((run) => !kept.has(run.key));
 
   mkdirSync(options.out, { recursive: true });
@@ -168,7 +185,11 @@ export async function mergeCommand(args: string[], log: (line: string) => void):
     release();
   }
   if (missing.length > 0) {
-    log(`warning: ${missing.length} of ${layout.runs.length} runs are in none of the directories (e.g. ${missing[0].key}); the aggregate covers the ${rows.length} present. Run the missing shards and merge again, or run \`tissue-sheet sweep SPEC --out ${options.out}\` to compute them`);
+    log(
+      `warning: ${missing.length} of ${layout.runs.length} runs are in none of the directories (e.g. ${missing[0].key}); the aggregate covers the ${rows.length} present. Run the missing shards and merge again, or run \`tissue-sheet sweep SPEC --out ${options.out}\` to compute them`,
+    );
   }
-  log(`merge: ${rows.length} runs from ${options.dirs.length} directories (${repeated} repeated, ${rejected} bad rows left out) in ${((performance.now() - t0) / 1000).toFixed(2)} s -> ${options.out}`);
+  log(
+    `merge: ${rows.length} runs from ${options.dirs.length} directories (${repeated} repeated, ${rejected} bad rows left out) in ${((performance.now() - t0) / 1000).toFixed(2)} s -> ${options.out}`,
+  );
 }

@@ -40,7 +40,8 @@ export function checkOutFile(out: string, inputs: readonly string[], force: bool
   try {
     stat = lstatSync(out);
   } catch {
-    if (!existsSync(dirname(resolve(out)))) throw new InputError(`--out ${out}: the directory ${dirname(resolve(out))} does not exist; create it or give another path`);
+    if (!existsSync(dirname(resolve(out))))
+      throw new InputError(`--out ${out}: the directory ${dirname(resolve(out))} does not exist; create it or give another path`);
     return; // a new file
   }
   if (stat.isSymbolicLink()) throw new InputError(`--out ${out}: is a symbolic link, which is never followed; give the path of a regular file`);

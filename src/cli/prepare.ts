@@ -6,14 +6,7 @@
  */
 import { readFileSync, statSync } from 'node:fs';
 import { totalmem } from 'node:os';
-import {
-  checkClosedFeasible,
-  checkFeasible,
-  isClosedConfig,
-  makeGrid,
-  type AnyConfig,
-  type Config,
-} from '../core/config';
+import { checkClosedFeasible, checkFeasible, isClosedConfig, makeGrid, type AnyConfig, type Config } from '../core/config';
 import { checkLimits, DEFAULT_MAX_WORK, type ComputeBudget, type RunEstimate } from '../core/config/limits';
 import type { GrayImage } from '../core/density';
 import type { MeshFile } from '../run/index';
@@ -33,7 +26,9 @@ export function readJsonFile(path: string, what: string): unknown {
   } catch (error) {
     if (error instanceof InputError) throw error;
     const code = (error as NodeJS.ErrnoException).code;
-    throw new InputError(`${path}: cannot read the ${what} (${code === 'ENOENT' ? 'no such file' : code === 'EACCES' ? 'permission denied' : (error as Error).message})`);
+    throw new InputError(
+      `${path}: cannot read the ${what} (${code === 'ENOENT' ? 'no such file' : code === 'EACCES' ? 'permission denied' : (error as Error).message})`,
+    );
   }
   // Editors on Windows save UTF-8 with a byte-order mark, which JSON.parse rejects.
   if (text.charCodeAt(0) === 0xfeff) text = text.slice(1);

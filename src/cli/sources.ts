@@ -19,7 +19,6 @@ import { loadMeshFile } from '../node/meshFile';
 import type { MeshFile } from '../run/index';
 import { InputError } from './errors';
 
-
 export const isUrl = (src: string): boolean => /^https?:\/\//i.test(src);
 
 export interface SourceOptions {
@@ -135,11 +134,17 @@ function checkPlyCounts(file: MeshFile, name: string): void {
   const end = text.indexOf('end_header');
   if (end < 0) return;
   const elements = [...text.slice(0, end).matchAll(/^element\s+(\w+)\s+(\d+)/gm)].map((m) => ({ name: m[1], count: Number(m[2]) }));
-  const body = text.slice(end).split(/\r?\n/).slice(1).filter((line) => line.trim() !== '');
+  const body = text
+    .slice(end)
+    .split(/\r?\n/)
+    .slice(1)
+    .filter((line) => line.trim() !== '');
   const declared = elements.reduce((a, e) => a + e.count, 0);
   if (declared !== body.length) {
     const list = elements.map((e) => `${e.count} ${e.name}`).join(' + ');
-    throw new InputError(`surface.src: ${name}: the PLY header declares ${list} = ${declared} lines but the body has ${body.length}; correct the element counts in the header`);
+    throw new InputError(
+      `surface.src: ${name}: the PLY header declares ${list} = ${declared} lines but the body has ${body.length}; correct the element counts in the header`,
+    );
   }
 }
 

@@ -82,7 +82,9 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
       throw error;
     }
     for (const bad of plan.rejected.slice(0, 20)) {
-      log(`warning: ${csvPath}:${bad.line}: ${bad.reason}; ${bad.reason.startsWith('duplicate') ? 'dropped (the first row is kept)' : 'dropped, the run is computed again'}`);
+      log(
+        `warning: ${csvPath}:${bad.line}: ${bad.reason}; ${bad.reason.startsWith('duplicate') ? 'dropped (the first row is kept)' : 'dropped, the run is computed again'}`,
+      );
     }
     if (plan.rejected.length > 20) log(`warning: ${csvPath}: ${plan.rejected.length - 20} more bad rows dropped`);
     if (plan.rejected.length > 0) {
@@ -106,7 +108,8 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
       if (!config) valid.set(run.pointKey, (config = validateAnyConfig(run.config)));
       return config;
     };
-    const onThreads = (run: Run) => chooseEngine(configOf(run), isClosedConfig(configOf(run)) ? 'cube map' : 'planar grid', context.capabilities).name === 'exact';
+    const onThreads = (run: Run) =>
+      chooseEngine(configOf(run), isClosedConfig(configOf(run)) ? 'cube map' : 'planar grid', context.capabilities).name === 'exact';
     const chains = new Map<string, string>();
     const chainOf = (run: Run): string => {
       const id = `${run.pointKey}#${run.seed}`;
@@ -131,7 +134,8 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
     const runHere = (task: Run[], done: (run: Run, summary: Record<string, unknown>) => void): Promise<void> => {
       const next = mainThread.then(async () => {
         const order = [...task].sort((a, b) => iterationsOf(a) - iterationsOf(b));
-        for (const run of order) done(run, sweepSummary((await runner.run(validateAnyConfig(run.config), { ...inputs.get(run.pointKey), signal, views: false })).result));
+        for (const run of order)
+          done(run, sweepSummary((await runner.run(validateAnyConfig(run.config), { ...inputs.get(run.pointKey), signal, views: false })).result));
       });
       mainThread = next.catch(() => {});
       return next;
@@ -144,7 +148,8 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
         summaryColumns: summary,
         existingCsv: plan.cleanText,
         append: (text) => appendFileSync(csvPath, text),
-        runner: async (config, run) => sweepSummary((await runner.run(validateAnyConfig(config), { ...inputs.get(run.pointKey), signal, views: false })).result),
+        runner: async (config, run) =>
+          sweepSummary((await runner.run(validateAnyConfig(config), { ...inputs.get(run.pointKey), signal, views: false })).result),
         tasks: {
           key: layout.reuseGroup,
           before: (a, b) => firstOfChain.get(chainOf(a))! - firstOfChain.get(chainOf(b))! || iterationsOf(a) - iterationsOf(b),
@@ -166,7 +171,10 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
               // the task's other runs, the same numbers.
               if (!(error instanceof SweepThreadLost) || signal.aborted) throw error;
               log(`warning: ${error.message}; its runs are computed on the main thread`);
-              await runHere(task.filter((run) => !reported.has(run.key)), done);
+              await runHere(
+                task.filter((run) => !reported.has(run.key)),
+                done,
+              );
             }
           },
         },
@@ -189,7 +197,9 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
     writeAggregates(options.out, result.rows, layout, log);
     record({ runs: runs.length, ended: new Date().toISOString(), computed: result.completed, resumed: result.skipped });
     if (result.aborted) throw new InterruptedError(`interrupted after ${result.completed} runs; rerun the same command to resume`);
-    log(`sweep: ${result.completed} runs computed, ${result.skipped} resumed${shard ? ` (shard ${shard.index}/${shard.count}: ${runs.length} of ${layout.runs.length} runs)` : ''} -> ${options.out}`);
+    log(
+      `sweep: ${result.completed} runs computed, ${result.skipped} resumed${shard ? ` (shard ${shard.index}/${shard.count}: ${runs.length} of ${layout.runs.length} runs)` : ''} -> ${options.out}`,
+    );
   } finally {
     release();
     context.dispose();

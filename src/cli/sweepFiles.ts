@@ -83,20 +83,35 @@ export function sweepLayout(spec: ValidSweepSpec, pointConfig: (run: Run) => Any
  * fitted, flintstones.csv. Rows are taken in write order first, so the aggregate does not depend
  * on the order runs finished or shards were merged in.
  */
-export function writeAggregates(out: string, rows: readonly Record<string, string>[], layout: SweepLayout, log: (line: string) => void): { flintstones: number } {
+export function writeAggregates(
+  out: string,
+  rows: readonly Record<string, string>[],
+  layout: SweepLayout,
+  log: (line: string) => void,
+): { flintstones: number } {
   const sorted = sortRowsByRuns(rows, layout.ordered);
   const numeric = layout.summary.filter((c) => !TEXT_COLUMNS.has(c));
   const aggregate = aggregateRows(sorted, layout.fields, numeric);
   for (const point of aggregate.points) {
     const partial = Object.entries(point.stats).filter(([, s]) => s.n > 0 && s.missing > 0);
     for (const [column, s] of partial.slice(0, 3)) {
-      log(`warning: ${Object.entries(point.point).map(([f, v]) => `${f}=${v}`).join(' ') || 'all runs'}: ${column} has ${s.missing} of ${point.runs} values that are not finite numbers (not counted: n = ${s.n})`);
+      log(
+        `warning: ${
+          Object.entries(point.point)
+            .map(([f, v]) => `${f}=${v}`)
+            .join(' ') || 'all runs'
+        }: ${column} has ${s.missing} of ${point.runs} values that are not finite numbers (not counted: n = ${s.n})`,
+      );
     }
   }
   const fits = sweepFlintstones(sorted, layout.runs, layout.fields);
   const fitted = fits.filter((f) => f.parameters !== null);
   for (const fit of fits.filter((f) => f.illConditioned).slice(0, 3)) {
-    log(`warning: Flintstones law, Voronoi ${fit.voronoi}${Object.entries(fit.group).map(([f, v]) => ` ${f}=${v}`).join('')}: ${fit.parameters ? 'ill-conditioned' : 'not fitted'} (${fit.note})`);
+    log(
+      `warning: Flintstones law, Voronoi ${fit.voronoi}${Object.entries(fit.group)
+        .map(([f, v]) => ` ${f}=${v}`)
+        .join('')}: ${fit.parameters ? 'ill-conditioned' : 'not fitted'} (${fit.note})`,
+    );
   }
   writeFileAtomic(join(out, 'aggregate.csv'), aggregateToCsv(aggregate));
   writeFileAtomic(join(out, 'aggregate.json'), JSON.stringify({ points: aggregateToJson(aggregate), flintstones: fits }, null, 2) + '\n');
@@ -107,7 +122,14 @@ export function writeAggregates(out: string, rows: readonly Record<string, strin
 /** The git commit of the checkout the CLI runs from, when it is one. */
 export function gitCommit(): string | null {
   try {
-    return execFileSync('git', ['rev-parse', 'HEAD'], { cwd: dirname(fileURLToPath(import.meta.url)), encoding: 'utf8', timeout: 2000, stdio: ['ignore', 'pipe', 'ignore'] }).trim() || null;
+    return (
+      execFileSync('git', ['rev-parse', 'HEAD'], {
+        cwd: dirname(fileURLToPath(import.meta.url)),
+        encoding: 'utf8',
+        timeout: 2000,
+        stdio: ['ignore', 'pipe', 'ignore'],
+      }).trim() || null
+    );
   } catch {
     return null;
   }

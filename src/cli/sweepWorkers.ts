@@ -98,7 +98,9 @@ export class SweepWorkers {
       const worker = newWorker(setup);
       const slot: Slot = { worker, affinity: null, reserved: false, layouts: new Map(), current: null };
       worker.on('message', (message: FromWorker) => this.receive(slot, message));
-      worker.on('error', (error) => this.lost(slot, new SweepThreadLost(`a sweep worker thread failed: ${error instanceof Error ? error.message : String(error)}`)));
+      worker.on('error', (error) =>
+        this.lost(slot, new SweepThreadLost(`a sweep worker thread failed: ${error instanceof Error ? error.message : String(error)}`)),
+      );
       worker.on('exit', (code) => {
         if (!this.closed) this.lost(slot, new SweepThreadLost(`a sweep worker thread exited (code ${code})`));
       });

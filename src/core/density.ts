@@ -133,7 +133,9 @@ function assertPositiveFinite(values: Float32Array, kind: string): void {
   for (let k = 0; k < values.length; k++) {
     const v = values[k];
     if (!(v > 0 && Number.isFinite(v))) {
-      throw new Error(`density "${kind}": value ${v} at texel ${k} is not positive and finite; densities must be > 0 (check low/high/from/to/peak and the image's luminance)`);
+      throw new Error(
+        `density "${kind}": value ${v} at texel ${k} is not positive and finite; densities must be > 0 (check low/high/from/to/peak and the image's luminance)`,
+      );
     }
   }
 }

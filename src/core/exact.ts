@@ -82,7 +82,6 @@ export interface ExactVoronoi {
   readonly touchesBorder: Uint8Array;
 }
 
-
 /** Exact Voronoi diagram of `sites` (interleaved x, y in texel units) on `grid`. */
 export function exactVoronoi(grid: Grid, sites: Float32Array | Float64Array | ArrayLike<number>): ExactVoronoi {
   const copies = periodicCopies(grid, sites);
@@ -183,10 +182,17 @@ function cellRing(raw: ArrayLike<ArrayLike<number>> | null): Ring | null {
 /** A site that has no cell (a later duplicate): empty polygon, area 0, centroid at the site. */
 function emptyCell(grid: Grid, i: number, xi: number, yi: number): ExactCell {
   return {
-    id: i, polygon: new Float64Array(0), area: 0,
-    centroidX: xi / grid.texelX, centroidY: yi / grid.texelY,
-    neighbours: new Int32Array(0), lengths: new Float64Array(0),
-    selfContact: 0, edgeCount: 0, borderSides: 0, touchesBorder: false,
+    id: i,
+    polygon: new Float64Array(0),
+    area: 0,
+    centroidX: xi / grid.texelX,
+    centroidY: yi / grid.texelY,
+    neighbours: new Int32Array(0),
+    lengths: new Float64Array(0),
+    selfContact: 0,
+    edgeCount: 0,
+    borderSides: 0,
+    touchesBorder: false,
   };
 }
 

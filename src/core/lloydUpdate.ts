@@ -19,14 +19,7 @@ export interface LloydMove {
  * open axes clamp (a centroid of a convex cell is inside the domain; over-relaxation may not be).
  * Writes into `sites` in place and allocates nothing.
  */
-export function moveSitesToCentroids(
-  grid: Grid,
-  sites: Float32Array,
-  sums: ArrayLike<number>,
-  count: number,
-  omega: number,
-  move: LloydMove,
-): LloydMove {
+export function moveSitesToCentroids(grid: Grid, sites: Float32Array, sums: ArrayLike<number>, count: number, omega: number, move: LloydMove): LloydMove {
   let energy = 0;
   let maxDisplacementSquared = 0;
   let maxTexels = 0;

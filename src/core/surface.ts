@@ -9,13 +9,7 @@ export type Vec3 = [number, number, number];
  * runs around the axis (angle 2πx/width), y along it (z), radius + offset from the axis; the
  * normal points outward, away from the axis.
  */
-export function embed(
-  surface: SurfaceConfig,
-  grid: Grid,
-  x: number,
-  y: number,
-  offset = 0,
-): { position: Vec3; normal: Vec3 } {
+export function embed(surface: SurfaceConfig, grid: Grid, x: number, y: number, offset = 0): { position: Vec3; normal: Vec3 } {
   if (surface.kind === 'plane') {
     return { position: [x * grid.texelX, y * grid.texelY, offset], normal: [0, 0, 1] };
   }
@@ -30,7 +24,14 @@ export function embed(
  * embed's positions and surfaceCoordinates of many points at once (interleaved x, y texel units),
  * into columns: (x, y, z) at 3i, (u, v) at 2i; the same arithmetic, no object per point.
  */
-export function embedAll(surface: SurfaceConfig, grid: Grid, points: ArrayLike<number>, offset: number, position: Float64Array, coordinates: Float64Array): void {
+export function embedAll(
+  surface: SurfaceConfig,
+  grid: Grid,
+  points: ArrayLike<number>,
+  offset: number,
+  position: Float64Array,
+  coordinates: Float64Array,
+): void {
   const n = Math.floor(points.length / 2);
   for (let i = 0; i < n; i++) {
     const x = points[2 * i];

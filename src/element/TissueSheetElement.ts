@@ -155,7 +155,6 @@ export class TissueSheetElement extends HTMLElement {
     this.realizationsRun?.abort();
   }
 
-
   /** Warnings in words (unknown attributes, a fallback to the page), shown under every status. */
   private warnings: string[] = [];
   private fellBack = false;
@@ -163,7 +162,8 @@ export class TissueSheetElement extends HTMLElement {
   /** Attributes the element does not know are said, never ignored silently. */
   private checkAttributes(): void {
     const known = new Set([...Object.keys(ATTRIBUTES), ...OTHER_ATTRIBUTES]);
-    const global = /^(id|class|style|title|slot|hidden|lang|dir|tabindex|part|role|is|draggable|translate|inert|autofocus|contenteditable|spellcheck|nonce|exportparts|popover|accesskey|enterkeyhint|inputmode|(data|aria)-.+|on[a-z]+)$/;
+    const global =
+      /^(id|class|style|title|slot|hidden|lang|dir|tabindex|part|role|is|draggable|translate|inert|autofocus|contenteditable|spellcheck|nonce|exportparts|popover|accesskey|enterkeyhint|inputmode|(data|aria)-.+|on[a-z]+)$/;
     this.warnings = this.warnings.filter((w) => !w.startsWith('unknown attribute'));
     for (const name of this.getAttributeNames()) {
       if (known.has(name) || global.test(name)) continue;
@@ -228,7 +228,12 @@ export class TissueSheetElement extends HTMLElement {
         meshFile: config.surface.kind === 'mesh' ? this.mesh : null,
         onIteration: (record, maxIterations) => {
           this.status(`Lloyd iteration ${record.iteration} / ${maxIterations}`);
-          this.emit<TissueSheetProgressDetail>('progress', { iteration: record.iteration, maxIterations, energy: record.energy, maxDisplacement: record.maxDisplacement });
+          this.emit<TissueSheetProgressDetail>('progress', {
+            iteration: record.iteration,
+            maxIterations,
+            energy: record.energy,
+            maxDisplacement: record.maxDisplacement,
+          });
         },
       });
       this.noteFallback();
@@ -322,7 +327,11 @@ export class TissueSheetElement extends HTMLElement {
     return this.view.toBlob(options.type);
   }
 
-  override addEventListener<K extends keyof TissueSheetEventMap>(type: K, listener: (this: TissueSheetElement, event: TissueSheetEventMap[K]) => unknown, options?: boolean | AddEventListenerOptions): void;
+  override addEventListener<K extends keyof TissueSheetEventMap>(
+    type: K,
+    listener: (this: TissueSheetElement, event: TissueSheetEventMap[K]) => unknown,
+    options?: boolean | AddEventListenerOptions,
+  ): void;
   override addEventListener(type: string, listener: EventListenerOrEventListenerObject, options?: boolean | AddEventListenerOptions): void;
   override addEventListener(type: string, listener: EventListenerOrEventListenerObject, options?: boolean | AddEventListenerOptions): void {
     super.addEventListener(type, listener, options);

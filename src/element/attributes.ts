@@ -8,7 +8,16 @@
  * Which config fields are attributes is listed here; how each one parses (number, nullable
  * number, string, boolean) and which surface kinds take it are read from the config schema.
  */
-import { ConfigError, configSchema, isClosedConfig, isClosedKind, validateAnyConfig, type AnyConfig, type ConfigInput, type SurfaceConfig } from '../core/config';
+import {
+  ConfigError,
+  configSchema,
+  isClosedConfig,
+  isClosedKind,
+  validateAnyConfig,
+  type AnyConfig,
+  type ConfigInput,
+  type SurfaceConfig,
+} from '../core/config';
 
 /** The schema's default surface (the published tube). */
 const DEFAULT_SURFACE = configSchema.properties.surface.default as SurfaceConfig;
@@ -114,7 +123,9 @@ export function configFromAttributes(element: Element, base: ConfigInput | null,
   const baseKind = (input.surface as { kind?: string }).kind ?? '';
   if (surfaceKind !== null && surfaceKind !== baseKind) {
     // A different kind starts from that kind's required fields (an empty plane/tube is invalid).
-    input.surface = isClosedKind(surfaceKind) ? surfaceOfKind({ kind: 'tube', radius: 1, length: 1 }, surfaceKind) : surfaceOfKind(DEFAULT_SURFACE, surfaceKind);
+    input.surface = isClosedKind(surfaceKind)
+      ? surfaceOfKind({ kind: 'tube', radius: 1, length: 1 }, surfaceKind)
+      : surfaceOfKind(DEFAULT_SURFACE, surfaceKind);
     // A resolution means texels along the longer side on a plane or tube, per cube-face edge on
     // a closed surface: without its attribute, the default of the new layout.
     if (isClosedKind(surfaceKind) !== isClosedKind(baseKind) && !element.hasAttribute('resolution')) input.resolution = null;

@@ -8,7 +8,15 @@ import { TissueSheetElement } from './TissueSheetElement';
 
 export { TissueSheetElement } from './TissueSheetElement';
 export { ATTRIBUTES } from './attributes';
-export type { TissueSheetCellHoverDetail, TissueSheetErrorDetail, TissueSheetEventMap, TissueSheetProgressDetail, TissueSheetResultDetail, TissueSheetWaitingDetail, TissueSheetWarningDetail } from './events';
+export type {
+  TissueSheetCellHoverDetail,
+  TissueSheetErrorDetail,
+  TissueSheetEventMap,
+  TissueSheetProgressDetail,
+  TissueSheetResultDetail,
+  TissueSheetWaitingDetail,
+  TissueSheetWarningDetail,
+} from './events';
 export type { AnyConfig as Config, Config as PlanarConfig, ClosedConfig, ConfigInput } from '../core/config';
 export type { MeshFile } from '../run/closedMesh';
 export type { GrayImage } from '../core/density';

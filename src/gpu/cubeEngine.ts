@@ -88,10 +88,7 @@ export class CubeCcvtEngine {
     this.siteTexture = createFloatDataTexture(this.siteData, this.siteTextureWidth, this.siteTextureHeight, THREE.RGBAFormat);
     this.geometryData = new Float32Array(this.width * this.height * 4);
     this.geometryTexture = createFloatDataTexture(this.geometryData, this.width, this.height, THREE.RGBAFormat);
-    this.labelTargets = [
-      createFloatTarget(this.width, this.height, THREE.RedFormat),
-      createFloatTarget(this.width, this.height, THREE.RedFormat),
-    ];
+    this.labelTargets = [createFloatTarget(this.width, this.height, THREE.RedFormat), createFloatTarget(this.width, this.height, THREE.RedFormat)];
     this.sums = new Float64Array(siteCount * CUBE_SUMS_STRIDE);
     this.sumsStaging = new Float32Array(this.siteTextureWidth * this.siteTextureHeight * 4);
     this.labelBuffer = new Int32Array(this.width * this.height);

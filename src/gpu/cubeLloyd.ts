@@ -55,7 +55,9 @@ export class ClosedLloydRun extends LloydLoop {
       const y = engine.siteCoordinate(i, 1) + (omega * sums[o + 1]) / w;
       const z = engine.siteCoordinate(i, 2) + (omega * sums[o + 2]) / w;
       this.projector.project(x, y, z, buffer, 0);
-      const dx = buffer[0] - sites.positions[3 * i], dy = buffer[1] - sites.positions[3 * i + 1], dz = buffer[2] - sites.positions[3 * i + 2];
+      const dx = buffer[0] - sites.positions[3 * i],
+        dy = buffer[1] - sites.positions[3 * i + 1],
+        dz = buffer[2] - sites.positions[3 * i + 2];
       const d2 = dx * dx + dy * dy + dz * dz;
       if (d2 > maxSquared) maxSquared = d2;
       storeProjection(sites, i, buffer, 0, engine.n);

@@ -76,8 +76,7 @@ export class CcvtEngine {
     const { maxTextureSize } = context.capabilities;
     if (grid.width > maxTextureSize || grid.height > maxTextureSize) {
       throw new GpuCapabilityError(
-        `resolution: the grid is ${grid.width} x ${grid.height} texels but this GPU allows at most ` +
-          `${maxTextureSize} per side; lower resolution`,
+        `resolution: the grid is ${grid.width} x ${grid.height} texels but this GPU allows at most ` + `${maxTextureSize} per side; lower resolution`,
       );
     }
     this.centroidPath = chooseCentroidPath('planar grid', options.centroidPath, context.capabilities).path;
@@ -90,19 +89,11 @@ export class CcvtEngine {
     }
     this.siteData = new Float32Array(this.siteTextureWidth * this.siteTextureHeight * 4);
     this.siteTexture = createFloatDataTexture(this.siteData, this.siteTextureWidth, this.siteTextureHeight, THREE.RGBAFormat);
-    this.weightTexture = createFloatDataTexture(
-      new Float32Array(grid.width * grid.height).fill(1),
-      grid.width,
-      grid.height,
-      THREE.RedFormat,
-    );
+    this.weightTexture = createFloatDataTexture(new Float32Array(grid.width * grid.height).fill(1), grid.width, grid.height, THREE.RedFormat);
     // Labels: the nearest site's position (RG32F) per texel, flooded; the id map: each site's
     // id at the texel it is splatted to. A texel's site id is its position's entry in the id map
     // (read by the centroid passes and the packed readback; never resolved into a texture).
-    this.labelTargets = [
-      createFloatTarget(grid.width, grid.height, THREE.RGFormat),
-      createFloatTarget(grid.width, grid.height, THREE.RGFormat),
-    ];
+    this.labelTargets = [createFloatTarget(grid.width, grid.height, THREE.RGFormat), createFloatTarget(grid.width, grid.height, THREE.RGFormat)];
     this.idMapTarget = createFloatTarget(grid.width, grid.height, THREE.RedFormat);
     this.sumsTarget = createFloatTarget(this.siteTextureWidth, this.siteTextureHeight, THREE.RGBAFormat);
     this.sums = new Float32Array(this.siteTextureWidth * this.siteTextureHeight * 4);
@@ -130,14 +121,17 @@ export class CcvtEngine {
       false,
       defines,
     );
-    this.centroidPass = this.centroidPath !== 'blend' ? null : new ShaderPass(
-      'points',
-      centroidScatterVert,
-      centroidScatterFrag,
-      { ...metric, labels, idMap, weights, sumsSize: { value: new THREE.Vector2(this.siteTextureWidth, this.siteTextureHeight) } },
-      true,
-      defines,
-    );
+    this.centroidPass =
+      this.centroidPath !== 'blend'
+        ? null
+        : new ShaderPass(
+            'points',
+            centroidScatterVert,
+            centroidScatterFrag,
+            { ...metric, labels, idMap, weights, sumsSize: { value: new THREE.Vector2(this.siteTextureWidth, this.siteTextureHeight) } },
+            true,
+            defines,
+          );
     this.gather =
       this.centroidPath === 'gather'
         ? new GatherCentroids(this.renderer, grid, siteCount, this.siteTextureWidth, this.siteTextureHeight, { ...metric, labels, idMap, weights }, defines)

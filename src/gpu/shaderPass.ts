@@ -39,8 +39,7 @@ export class ShaderPass {
     } else {
       this.material.blending = THREE.NoBlending;
     }
-    const object =
-      kind === 'points' ? new THREE.Points(this.geometry, this.material) : new THREE.Mesh(this.geometry, this.material);
+    const object = kind === 'points' ? new THREE.Points(this.geometry, this.material) : new THREE.Mesh(this.geometry, this.material);
     object.frustumCulled = false;
     this.geometry.setDrawRange(0, 3);
     this.scene.add(object);

@@ -46,7 +46,8 @@ export function readPngHeader(bytes: Uint8Array, name = 'image', maxPixels = MAX
     throw new ImageError(`density image ${name}: truncated or corrupt PNG (no IHDR header); re-export it`);
   }
   const header = { width: view.getUint32(16), height: view.getUint32(20), bitDepth: bytes[24], colorType: bytes[25] };
-  if (header.width === 0 || header.height === 0) throw new ImageError(`density image ${name}: declares ${header.width} x ${header.height} pixels; re-export it`);
+  if (header.width === 0 || header.height === 0)
+    throw new ImageError(`density image ${name}: declares ${header.width} x ${header.height} pixels; re-export it`);
   if (!VALID_DEPTHS[header.colorType]?.includes(header.bitDepth)) {
     throw new ImageError(`density image ${name}: invalid PNG (colour type ${header.colorType} with bit depth ${header.bitDepth}); re-export it`);
   }

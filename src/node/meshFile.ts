@@ -19,12 +19,16 @@ export function loadMeshFile(src: string, baseDir = '.'): MeshFile {
   const candidates = [resolve(baseDir, src), resolve(src), join('public', 'meshes', basename(src))];
   const path = candidates.find((p) => existsSync(p));
   if (!path) {
-    throw new ConfigError('surface.src', `surface.src: cannot find "${src}" (looked next to the config, in the working directory and in public/meshes/); give the path of an .obj, .ply or .stl file`);
+    throw new ConfigError(
+      'surface.src',
+      `surface.src: cannot find "${src}" (looked next to the config, in the working directory and in public/meshes/); give the path of an .obj, .ply or .stl file`,
+    );
   }
   const stat = statSync(path);
   if (stat.isDirectory()) throw new ConfigError('surface.src', `surface.src: ${path} is a directory; give the path of an .obj, .ply or .stl file`);
   if (stat.size === 0) throw new ConfigError('surface.src', `surface.src: ${path} is empty; give an .obj, .ply or .stl file`);
-  if (stat.size > MAX_MESH_BYTES) throw new ConfigError('surface.src', `surface.src: ${path} is ${stat.size} bytes, more than the ${MAX_MESH_BYTES} allowed; simplify the mesh`);
+  if (stat.size > MAX_MESH_BYTES)
+    throw new ConfigError('surface.src', `surface.src: ${path} is ${stat.size} bytes, more than the ${MAX_MESH_BYTES} allowed; simplify the mesh`);
   const bytes = readFileSync(path);
   return { data: bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength) as ArrayBuffer, name: path };
 }

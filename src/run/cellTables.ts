@@ -128,7 +128,8 @@ export function cellTable(
     touchesBorder,
     neighbourOffsets: offsets.length === n + 1 ? offsets : Int32Array.from(offsets.subarray(0, n + 1)),
     neighbourIds: neighbours.length === total ? neighbours : Int32Array.from(neighbours.subarray(0, total)),
-    neighbourLengths: lengths instanceof Float64Array && lengths.length === total ? lengths : lengths ? Float64Array.from(lengths.subarray(0, total)) : new Float64Array(total),
+    neighbourLengths:
+      lengths instanceof Float64Array && lengths.length === total ? lengths : lengths ? Float64Array.from(lengths.subarray(0, total)) : new Float64Array(total),
   };
 }
 
@@ -244,11 +245,21 @@ export function decodeCellsFile(record: CellsFileRecord, bytes: Uint8Array): Res
     const c = table.columns[name];
     if (!c) throw new Error(`${record.path}: ${table.of} has no column ${name}`);
     const size = c.type === 'float64' ? 8 : c.type === 'int32' ? 4 : 1;
-    if (!(Number.isInteger(c.offset) && Number.isInteger(c.length) && c.offset >= HEADER_BYTES && c.offset % size === 0 && c.offset + c.length * size <= data.byteLength)) {
+    if (!(
+      Number.isInteger(c.offset) &&
+      Number.isInteger(c.length) &&
+      c.offset >= HEADER_BYTES &&
+      c.offset % size === 0 &&
+      c.offset + c.length * size <= data.byteLength
+    )) {
       throw new Error(`${record.path}: ${table.of}.${name} lies outside the file`);
     }
     const at = data.byteOffset + c.offset;
-    return c.type === 'float64' ? new Float64Array(data.buffer, at, c.length) : c.type === 'int32' ? new Int32Array(data.buffer, at, c.length) : new Uint8Array(data.buffer, at, c.length);
+    return c.type === 'float64'
+      ? new Float64Array(data.buffer, at, c.length)
+      : c.type === 'int32'
+        ? new Int32Array(data.buffer, at, c.length)
+        : new Uint8Array(data.buffer, at, c.length);
   };
   const find = (of: string) => {
     const table = record.tables.find((t) => t.of === of);

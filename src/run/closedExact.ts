@@ -17,7 +17,14 @@ const bases = new WeakMap<ClosedSurface, RestrictedSurface>();
  * the GPU labels them: the parallel surface with the sites moved along their normals ("normal"),
  * or the ellipsoid with grown semi-axes and the sites' closest points on it ("axes").
  */
-export function closedExactAdjacency(config: ClosedConfig, surface: ClosedSurface, sites: ClosedSites, offset: number, mode: OffsetMode, label: string): SurfaceAdjacency {
+export function closedExactAdjacency(
+  config: ClosedConfig,
+  surface: ClosedSurface,
+  sites: ClosedSites,
+  offset: number,
+  mode: OffsetMode,
+  label: string,
+): SurfaceAdjacency {
   const base = baseSurface(config, surface);
   const layer = offset === 0 ? { surface: base, sites: sites.positions } : offsetClosedSurface(base, sites.positions, sites.normals, sites.count, offset, mode);
   const rvd = restrictedVoronoi(layer.surface, layer.sites, sites.count);
@@ -32,7 +39,12 @@ function baseSurface(config: ClosedConfig, surface: ClosedSurface): RestrictedSu
     else if (kind.kind === 'ellipsoid') base = { kind: 'ellipsoid', a: kind.a, b: kind.b, c: kind.c };
     else {
       const mesh = surface.mesh!.mesh;
-      base = { kind: 'mesh', positions: mesh.positions, indices: mesh.indices, triangleNeighbours: triangleNeighbours(mesh.indices, mesh.positions.length / 3) };
+      base = {
+        kind: 'mesh',
+        positions: mesh.positions,
+        indices: mesh.indices,
+        triangleNeighbours: triangleNeighbours(mesh.indices, mesh.positions.length / 3),
+      };
     }
     bases.set(surface, base);
   }

@@ -32,13 +32,19 @@ export async function fetchMeshFile(src: string): Promise<MeshFile> {
   try {
     response = await fetch(src);
   } catch (error) {
-    throw new ConfigError('surface.src', `surface.src: cannot fetch "${src}" (${(error as Error).message}); give a reachable URL of an .obj, .ply or .stl file`);
+    throw new ConfigError(
+      'surface.src',
+      `surface.src: cannot fetch "${src}" (${(error as Error).message}); give a reachable URL of an .obj, .ply or .stl file`,
+    );
   }
-  if (!response.ok) throw new ConfigError('surface.src', `surface.src: fetching "${src}" gave HTTP ${response.status}; give a reachable URL of an .obj, .ply or .stl file`);
+  if (!response.ok)
+    throw new ConfigError('surface.src', `surface.src: fetching "${src}" gave HTTP ${response.status}; give a reachable URL of an .obj, .ply or .stl file`);
   const declared = Number(response.headers.get('content-length') ?? 0);
-  if (declared > MAX_MESH_BYTES) throw new ConfigError('surface.src', `surface.src: "${src}" is ${declared} bytes, more than the ${MAX_MESH_BYTES} allowed; simplify the mesh`);
+  if (declared > MAX_MESH_BYTES)
+    throw new ConfigError('surface.src', `surface.src: "${src}" is ${declared} bytes, more than the ${MAX_MESH_BYTES} allowed; simplify the mesh`);
   const data = await response.arrayBuffer();
-  if (data.byteLength > MAX_MESH_BYTES) throw new ConfigError('surface.src', `surface.src: "${src}" is ${data.byteLength} bytes, more than the ${MAX_MESH_BYTES} allowed; simplify the mesh`);
+  if (data.byteLength > MAX_MESH_BYTES)
+    throw new ConfigError('surface.src', `surface.src: "${src}" is ${data.byteLength} bytes, more than the ${MAX_MESH_BYTES} allowed; simplify the mesh`);
   return { data, name: src };
 }
 
@@ -71,7 +77,10 @@ export function prepareMesh(file: MeshFile, surface: MeshSurface, n: number): Pr
   const parameterization = sphericalParameterization(mesh);
   const parameterizationMs = performance.now() - start;
   if (parameterization.flipped > 0) {
-    throw new ConfigError('surface.src', `surface.src: ${name}: the spherical parameterization folded ${parameterization.flipped} triangles over; remesh the surface more evenly`);
+    throw new ConfigError(
+      'surface.src',
+      `surface.src: ${name}: the spherical parameterization folded ${parameterization.flipped} triangles over; remesh the surface more evenly`,
+    );
   }
   const sampleStart = performance.now();
   const image = sampleSurface({ kind: 'mesh', mesh, sphere: parameterization.sphere }, n);

@@ -49,11 +49,7 @@ const finiteOrNull = (x: number): number | null => (Number.isFinite(x) ? x : nul
  * the mesh vertices, timed, against the GPU Voronoi of the same sites (a cold flood, timed):
  * the GPU label of a vertex is the label of the texel its parameter direction falls in.
  */
-function compareGeodesic(
-  geometry: CubeMapGeometry,
-  sites: ClosedSites,
-  labeller: Labeller<CubeMapLayer, CubeMapProjected>,
-): ClosedSurfaceRecord['geodesic'] {
+function compareGeodesic(geometry: CubeMapGeometry, sites: ClosedSites, labeller: Labeller<CubeMapLayer, CubeMapProjected>): ClosedSurfaceRecord['geodesic'] {
   const prepared = geometry.mesh!;
   const mesh = prepared.mesh;
   const nv = mesh.positions.length / 3;
@@ -69,7 +65,12 @@ function compareGeodesic(
 
   const gpuStart = performance.now();
   const { image } = prepared;
-  const seededLayer: CubeMapLayer = { name: 'seeded', role: 'seeded', offset: 0, sample: { n: image.n, position: image.position, area: image.area, totalArea: image.totalArea } };
+  const seededLayer: CubeMapLayer = {
+    name: 'seeded',
+    role: 'seeded',
+    offset: 0,
+    sample: { n: image.n, position: image.position, area: image.area, totalArea: image.totalArea },
+  };
   const gpuLabels = labeller.label(seededLayer, { positions: sites.positions, texels: sites.texels });
   const gpuVoronoiMs = performance.now() - gpuStart;
   const s = prepared.parameterization.sphere;

@@ -54,4 +54,3 @@ export function checkOffsets(config: ClosedConfig, surface: ClosedSurface): void
     );
   }
 }
-

@@ -57,7 +57,14 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
     try {
       engine.setGeometry(image.position, image.area);
       const run = new ClosedLloydRun(engine, projector, sites, config.lloyd, minTexelSpacing(geometry));
-      return { sites, relaxation: relaxation(run, () => engine.readLabels(), () => engine.dispose()) };
+      return {
+        sites,
+        relaxation: relaxation(
+          run,
+          () => engine.readLabels(),
+          () => engine.dispose(),
+        ),
+      };
     } catch (error) {
       engine.dispose();
       throw error;
@@ -112,8 +119,8 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
     positions: layer.sample.position,
   }),
 
-  labelAdjacency: (_config, geometry, layer, labels, count) => surfaceFromLabels(cubeLabelAdjacency(layer.sample, labels, count, geometry.neighbours), layer.name),
-
+  labelAdjacency: (_config, geometry, layer, labels, count) =>
+    surfaceFromLabels(cubeLabelAdjacency(layer.sample, labels, count, geometry.neighbours), layer.name),
 
   minContactLengths(config, geometry, layers) {
     const { totalArea } = geometry.image;
@@ -130,7 +137,9 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
 
   cellPlacement(_config, _layer, sites, projected, id) {
     const deg = 180 / Math.PI;
-    const dx = sites.directions[3 * id], dy = sites.directions[3 * id + 1], dz = sites.directions[3 * id + 2];
+    const dx = sites.directions[3 * id],
+      dy = sites.directions[3 * id + 1],
+      dz = sites.directions[3 * id + 2];
     return {
       position: [projected.positions[3 * id], projected.positions[3 * id + 1], projected.positions[3 * id + 2]],
       // [longitude, latitude] (degrees) of the site's parameter direction.

@@ -118,6 +118,10 @@ export interface SurfaceFamily<C extends AnyConfig, Geometry, Sites, Layer exten
   /** The texel grid of the seeded surface, as the result reports it. */
   gridRecord(geometry: Geometry): GridRecord;
   /** What this family adds to the result (the `closed` section), computed last. */
-  resultSection(config: C, geometry: Geometry, seeded: { sites: Sites; engine: EngineChoice }, labeller: Labeller<Layer, Projected>): { closed?: ClosedSurfaceRecord };
+  resultSection(
+    config: C,
+    geometry: Geometry,
+    seeded: { sites: Sites; engine: EngineChoice },
+    labeller: Labeller<Layer, Projected>,
+  ): { closed?: ClosedSurfaceRecord };
 }
-

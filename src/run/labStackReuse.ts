@@ -54,7 +54,8 @@ export function analyzeLabStackReusing(stack: SurfaceAdjacency[], invalid: Uint8
   // The prefix every stack of the sweep shares: all surfaces but the last (its outer surface).
   const prefix = stack.length - 1;
   let state = carried.get(stack[0].adjacency);
-  const matches = state !== undefined && state.count === count && state.layers.length <= prefix && state.layers.every((layer, k) => layer === stack[k].adjacency);
+  const matches =
+    state !== undefined && state.count === count && state.layers.length <= prefix && state.layers.every((layer, k) => layer === stack[k].adjacency);
   if (!state || !matches) {
     state = start(stack[0], count);
     carried.set(stack[0].adjacency, state);
@@ -82,7 +83,6 @@ function setsOf(surface: SurfaceAdjacency): Sets {
   canonical.set(surface.adjacency, sets);
   return sets;
 }
-
 
 function sidesOf(surface: SurfaceAdjacency, sets: Sets, count: number): Int32Array {
   const out = new Int32Array(count);
@@ -184,8 +184,12 @@ function finish(state: Carried, stack: SurfaceAdjacency[], invalid: Uint8Array):
   }
 
   // Carried side counts, except where a surface brings its own (`sides`).
-  const sides = stack.map((surface, k) => (k === stack.length - 1 ? sidesOf(outer, last, count) : surface.sides ? sidesOf(surface, setsOf(surface), count) : state.sides[k]));
-  const perSurface = stack.map((surface, k) => surfaceSummary(state, surface, k === stack.length - 1 ? last : k === 0 ? first : setsOf(surface), sides[k], excluded, valid, validCells));
+  const sides = stack.map((surface, k) =>
+    k === stack.length - 1 ? sidesOf(outer, last, count) : surface.sides ? sidesOf(surface, setsOf(surface), count) : state.sides[k],
+  );
+  const perSurface = stack.map((surface, k) =>
+    surfaceSummary(state, surface, k === stack.length - 1 ? last : k === 0 ? first : setsOf(surface), sides[k], excluded, valid, validCells),
+  );
   return {
     cells: { valid, sides, won, lost, transitions, neighbours3D, changed, scutoid },
     summary: {
@@ -211,7 +215,15 @@ function finish(state: Carried, stack: SurfaceAdjacency[], invalid: Uint8Array):
  * under another label (a ratio's outer surface is a layer of the larger ratios' stacks) gets
  * the same numbers with its own label.
  */
-function surfaceSummary(state: Carried, surface: SurfaceAdjacency, sets: Sets, sides: Int32Array, excluded: Uint8Array, valid: Uint8Array, validCells: number): SurfaceSummary {
+function surfaceSummary(
+  state: Carried,
+  surface: SurfaceAdjacency,
+  sets: Sets,
+  sides: Int32Array,
+  excluded: Uint8Array,
+  valid: Uint8Array,
+  validCells: number,
+): SurfaceSummary {
   const kept = state.summaries.get(surface.adjacency);
   if (kept && kept.areas === surface.areas && kept.sides === surface.sides && sameBytes(kept.excluded, excluded)) {
     return kept.summary.label === surface.label ? kept.summary : { ...kept.summary, label: surface.label };
@@ -226,7 +238,3 @@ function sameBytes(a: Uint8Array, b: Uint8Array): boolean {
   for (let i = 0; i < a.length; i++) if (a[i] !== b[i]) return false;
   return true;
 }
-
-
-
-

@@ -1,4 +1,12 @@
-import { invalidOnAnySurface, LAB_PROTOCOL, labelContactThresholdTexels, labMinBoundaryLength, surfaceFromLabels, type LabProtocolSettings, type SurfaceAdjacency } from '../core/analysis';
+import {
+  invalidOnAnySurface,
+  LAB_PROTOCOL,
+  labelContactThresholdTexels,
+  labMinBoundaryLength,
+  surfaceFromLabels,
+  type LabProtocolSettings,
+  type SurfaceAdjacency,
+} from '../core/analysis';
 import { checkFeasible, checkSheet, layerStepOf, makeGrid, minContactPixelsOf, type Config } from '../core/config';
 import { densityField, type GrayImage } from '../core/density';
 import { exactVoronoi } from '../core/exact';
@@ -62,7 +70,15 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
       const run = new LloydRun(engine, grid, sites, config.lloyd);
       // Label the final sites with a cold flood, as every other surface of the stack is
       // labelled: identical surfaces then get identical labels (no warm-start residue at s = 1).
-      return { sites, relaxation: relaxation(run, () => engine.readLabels(), () => engine.dispose(), () => engine.floodLabels()) };
+      return {
+        sites,
+        relaxation: relaxation(
+          run,
+          () => engine.readLabels(),
+          () => engine.dispose(),
+          () => engine.floodLabels(),
+        ),
+      };
     } catch (error) {
       engine.dispose();
       throw error;
@@ -87,7 +103,6 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
     const pixelRule = minContactPixelsOf(config.sheet) !== null;
     return surfaceFromLabels(pixelRule ? { ...adjacency, lengths: adjacency.staircaseLengths } : adjacency, layer.name);
   },
-
 
   // A pixel rule (texel edges, e.g. the lab's 6 px around a 512 px tube) or a length in µm;
   // by default the lab's threshold scaled to this sheet's mean cell size. Texels are square
@@ -131,7 +146,8 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
     return { position: embed(config.surface, layer.grid, x, y, layer.offset).position, surface: surfaceCoordinates(layer.grid, x, y) };
   },
 
-  cellPlacements: (config, layer, _sites, projected, position, coordinates) => embedAll(config.surface, layer.grid, projected, layer.offset, position, coordinates),
+  cellPlacements: (config, layer, _sites, projected, position, coordinates) =>
+    embedAll(config.surface, layer.grid, projected, layer.offset, position, coordinates),
 
   layerRatio: (_geometry, layer) => layer.ratio,
 

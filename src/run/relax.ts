@@ -76,12 +76,7 @@ export interface LloydDriver {
  * sums, `beforeFinish` runs before them (the planar GPU family re-labels the final sites with a
  * cold flood there), `dispose` frees the engine.
  */
-export function relaxation(
-  run: LloydDriver,
-  labels: () => Int32Array,
-  dispose: () => void = () => {},
-  beforeFinish: () => void = () => {},
-): Relaxation {
+export function relaxation(run: LloydDriver, labels: () => Int32Array, dispose: () => void = () => {}, beforeFinish: () => void = () => {}): Relaxation {
   return {
     get done() {
       return run.done;

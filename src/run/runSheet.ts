@@ -60,7 +60,8 @@ export class SheetRunner {
     if (this.cached?.key !== key) {
       this.cached = {
         key,
-        seeded: engine.name === 'exact' ? this.fromChain(family, config, engine, callbacks) : relaxSeededSurface(family, config, this.context, engine, callbacks),
+        seeded:
+          engine.name === 'exact' ? this.fromChain(family, config, engine, callbacks) : relaxSeededSurface(family, config, this.context, engine, callbacks),
       };
     }
     let seeded: SeededSurface<G, S>;

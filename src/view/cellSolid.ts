@@ -167,8 +167,7 @@ function planarSections(stack: ViewStack, id: number): Section[] | null {
       polygon[v] = wrapDelta(exact.polygon[v] - sx, grid.width, grid.periodicX) * grid.texelX;
       polygon[v + 1] = wrapDelta(exact.polygon[v + 1] - sy, grid.height, grid.periodicY) * grid.texelY;
     }
-    const toSpace = (x: number, y: number): Vec3 =>
-      embed(config.surface as never, grid, sx + x / grid.texelX, sy + y / grid.texelY, surface.offset).position;
+    const toSpace = (x: number, y: number): Vec3 => embed(config.surface as never, grid, sx + x / grid.texelX, sy + y / grid.texelY, surface.offset).position;
     sections.push({ polygon, centre: toSpace(0, 0), toSpace });
   }
   return sections;

@@ -131,11 +131,7 @@ function smallestEigenvector(m: number[]): Vec3 {
   const b = [trace - m[0], -m[1], -m[2], trace - m[3], -m[4], trace - m[5]];
   let v: Vec3 = [0.577, 0.578, 0.576];
   for (let it = 0; it < 64; it++) {
-    const w: Vec3 = [
-      b[0] * v[0] + b[1] * v[1] + b[2] * v[2],
-      b[1] * v[0] + b[3] * v[1] + b[4] * v[2],
-      b[2] * v[0] + b[4] * v[1] + b[5] * v[2],
-    ];
+    const w: Vec3 = [b[0] * v[0] + b[1] * v[1] + b[2] * v[2], b[1] * v[0] + b[3] * v[1] + b[4] * v[2], b[2] * v[0] + b[4] * v[1] + b[5] * v[2]];
     const length = Math.hypot(...w);
     if (length === 0) break;
     v = scale(w, 1 / length);

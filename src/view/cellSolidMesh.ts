@@ -32,10 +32,7 @@ export function cellSolidObject(solid: CellSolid): THREE.Group {
   mesh.renderOrder = SOLID_ORDER;
   // Drawn over the surfaces: the depth of what was drawn before is forgotten.
   mesh.onBeforeRender = (renderer) => renderer.clearDepth();
-  const edges = new THREE.LineSegments(
-    new THREE.EdgesGeometry(geometry, 25),
-    new THREE.LineBasicMaterial({ color: 0x222222 }),
-  );
+  const edges = new THREE.LineSegments(new THREE.EdgesGeometry(geometry, 25), new THREE.LineBasicMaterial({ color: 0x222222 }));
   edges.name = 'cell solid creases';
   edges.renderOrder = SOLID_ORDER + 1;
   const group = new THREE.Group();

@@ -30,12 +30,7 @@ const WINDOW = 2 * REACH * (REACH + 1) + 1;
  * first, nearest site first (so the vertex's own cell leads), then the farther ones.
  * `neighbours`: 4 texel neighbours per texel (atlasTopology); `sites`: xyz per cell.
  */
-export function vertexCandidates(
-  positions: ArrayLike<number>,
-  labels: ArrayLike<number>,
-  neighbours: Int32Array,
-  sites: ArrayLike<number>,
-): Float32Array {
+export function vertexCandidates(positions: ArrayLike<number>, labels: ArrayLike<number>, neighbours: Int32Array, sites: ArrayLike<number>): Float32Array {
   const count = labels.length;
   const out = new Float32Array(CANDIDATES * count).fill(-1);
   // Scratch, reused for every vertex: the window (breadth first), a stamp per texel (the last
@@ -75,7 +70,9 @@ export function vertexCandidates(
       if (!seen) found[distinct++] = id;
     }
     if (near >= size) nearDistinct = distinct;
-    const x = positions[3 * v], y = positions[3 * v + 1], z = positions[3 * v + 2];
+    const x = positions[3 * v],
+      y = positions[3 * v + 1],
+      z = positions[3 * v + 2];
     for (let k = 0; k < distinct; k++) {
       const s = 3 * found[k];
       distance[k] = (x - sites[s]) ** 2 + (y - sites[s + 1]) ** 2 + (z - sites[s + 2]) ** 2;
@@ -92,7 +89,8 @@ export function vertexCandidates(
 /** Insertion sort of ids[from..to) by distance (a handful of entries). */
 function sortByDistance(ids: Int32Array, distance: Float64Array, from: number, to: number): void {
   for (let k = from + 1; k < to; k++) {
-    const id = ids[k], d = distance[k];
+    const id = ids[k],
+      d = distance[k];
     let j = k - 1;
     for (; j >= from && distance[j] > d; j--) {
       ids[j + 1] = ids[j];
@@ -107,14 +105,7 @@ function sortByDistance(ids: Int32Array, distance: Float64Array, from: number, t
  * The cell of point (x, y, z) on a triangle whose provoking vertex is `vertex`: the candidate
  * whose site is nearest (what the fragment shader draws there); -1 when the vertex has none.
  */
-export function nearestCandidate(
-  candidates: Float32Array,
-  vertex: number,
-  sites: ArrayLike<number>,
-  x: number,
-  y: number,
-  z: number,
-): number {
+export function nearestCandidate(candidates: Float32Array, vertex: number, sites: ArrayLike<number>, x: number, y: number, z: number): number {
   let best = -1;
   let bestDistance = Infinity;
   for (let k = 0; k < CANDIDATES; k++) {

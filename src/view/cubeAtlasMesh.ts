@@ -84,8 +84,10 @@ function faceGrids(n: number, out: number[]): void {
   for (let f = 0; f < 6; f++) {
     for (let j = 0; j + 1 < n; j++) {
       for (let i = 0; i + 1 < n; i++) {
-        const a = texelIndex(f, i, j, n), b = texelIndex(f, i + 1, j, n);
-        const c = texelIndex(f, i, j + 1, n), d = texelIndex(f, i + 1, j + 1, n);
+        const a = texelIndex(f, i, j, n),
+          b = texelIndex(f, i + 1, j, n);
+        const c = texelIndex(f, i, j + 1, n),
+          d = texelIndex(f, i + 1, j + 1, n);
         out.push(a, b, d, a, d, c);
       }
     }
@@ -111,7 +113,10 @@ function edgeStrips(n: number, out: number[]): void {
       };
       const forward = edge === CUBE_EDGE.MinusS || edge === CUBE_EDGE.PlusT;
       for (let k = 0; k + 1 < n; k++) {
-        const a0 = at(k, inside), a1 = at(k + 1, inside), b0 = at(k, outside), b1 = at(k + 1, outside);
+        const a0 = at(k, inside),
+          a1 = at(k + 1, inside),
+          b0 = at(k, outside),
+          b1 = at(k + 1, outside);
         if (forward) out.push(a0, a1, b1, a0, b1, b0);
         else out.push(a1, a0, b0, a1, b0, b1);
       }
@@ -126,7 +131,8 @@ function cornerTriangles(n: number, out: number[]): void {
     const { normal, s, t } = CUBE_FACES[f];
     for (const su of [-1, 1]) {
       for (const sv of [-1, 1]) {
-        const i = su < 0 ? 0 : n - 1, j = sv < 0 ? 0 : n - 1;
+        const i = su < 0 ? 0 : n - 1,
+          j = sv < 0 ? 0 : n - 1;
         const corner = [0, 1, 2].map((k) => normal[k] + su * s[k] + sv * t[k]);
         const key = corner.join(',');
         const centre = [0, 1, 2].map((k) => normal[k] + su * (1 - 1 / n) * s[k] + sv * (1 - 1 / n) * t[k]);
@@ -153,7 +159,12 @@ function texelNeighbours(n: number): Int32Array {
     for (let j = 0; j < n; j++) {
       for (let i = 0; i < n; i++) {
         const o = 4 * texelIndex(f, i, j, n);
-        [[i + 1, j], [i - 1, j], [i, j + 1], [i, j - 1]].forEach(([x, y], k) => {
+        [
+          [i + 1, j],
+          [i - 1, j],
+          [i, j + 1],
+          [i, j - 1],
+        ].forEach(([x, y], k) => {
           const t = wrapTexel(f, x, y, n);
           out[o + k] = texelIndex(t.face, t.i, t.j, n);
         });
@@ -168,11 +179,19 @@ function texelNormals(positions: Float32Array, neighbours: Int32Array): Float32A
   const normals = new Float32Array(positions.length);
   const count = positions.length / 3;
   for (let v = 0; v < count; v++) {
-    const sp = 3 * neighbours[4 * v], sm = 3 * neighbours[4 * v + 1];
-    const tp = 3 * neighbours[4 * v + 2], tm = 3 * neighbours[4 * v + 3];
-    const ax = positions[sp] - positions[sm], ay = positions[sp + 1] - positions[sm + 1], az = positions[sp + 2] - positions[sm + 2];
-    const bx = positions[tp] - positions[tm], by = positions[tp + 1] - positions[tm + 1], bz = positions[tp + 2] - positions[tm + 2];
-    const nx = ay * bz - az * by, ny = az * bx - ax * bz, nz = ax * by - ay * bx;
+    const sp = 3 * neighbours[4 * v],
+      sm = 3 * neighbours[4 * v + 1];
+    const tp = 3 * neighbours[4 * v + 2],
+      tm = 3 * neighbours[4 * v + 3];
+    const ax = positions[sp] - positions[sm],
+      ay = positions[sp + 1] - positions[sm + 1],
+      az = positions[sp + 2] - positions[sm + 2];
+    const bx = positions[tp] - positions[tm],
+      by = positions[tp + 1] - positions[tm + 1],
+      bz = positions[tp + 2] - positions[tm + 2];
+    const nx = ay * bz - az * by,
+      ny = az * bx - ax * bz,
+      nz = ax * by - ay * bx;
     const l = Math.hypot(nx, ny, nz) || 1;
     normals[3 * v] = nx / l;
     normals[3 * v + 1] = ny / l;
@@ -196,7 +215,8 @@ function cellBoundaries(cells: Int32Array, indices: Uint32Array): Uint8Array {
   const boundary = new Uint8Array(cells.length);
   for (let f = 0; f < indices.length; f += 3) {
     for (let k = 0; k < 3; k++) {
-      const i = indices[f + k], j = indices[f + ((k + 1) % 3)];
+      const i = indices[f + k],
+        j = indices[f + ((k + 1) % 3)];
       if (cells[i] < cells[j]) boundary[i] = 1;
       else if (cells[j] < cells[i]) boundary[j] = 1;
     }

@@ -18,7 +18,11 @@ export function exactScale(surface: ViewSurface, target = 4): number {
   return Math.max(1, Math.min(target, MAX_SIDE / Math.max(width, height)));
 }
 
-export function drawExactCells(canvas: HTMLCanvasElement | OffscreenCanvas, surface: ViewSurface, options: PaintOptions & { scale: number; flipY?: boolean }): void {
+export function drawExactCells(
+  canvas: HTMLCanvasElement | OffscreenCanvas,
+  surface: ViewSurface,
+  options: PaintOptions & { scale: number; flipY?: boolean },
+): void {
   const { grid } = surface.image;
   const { scale } = options;
   canvas.width = Math.round(grid.width * scale);

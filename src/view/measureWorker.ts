@@ -34,7 +34,10 @@ self.onmessage = (event: MessageEvent<ToMeasureWorker>) => {
       name: result.inputs.layers[k].name,
       rgba: paintLayer(layer, k, cells, options.periodicX),
     }));
-    post({ type: 'measured', id, result, pictures }, pictures.flatMap((p) => [p.rgba.buffer, p.labels.buffer]));
+    post(
+      { type: 'measured', id, result, pictures },
+      pictures.flatMap((p) => [p.rgba.buffer, p.labels.buffer]),
+    );
     if (options.realizations > 0) {
       const { comparison, note } = compareMeasured(result, {
         realizations: options.realizations,

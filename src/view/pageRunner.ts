@@ -107,7 +107,10 @@ async function densityImageFor(config: AnyConfig, given?: GrayImage): Promise<Gr
 }
 
 /** The inputs a run needs besides its config: the decoded density image and the mesh file. */
-export async function runInputs(config: AnyConfig, request: Pick<RunRequest, 'densityImage' | 'meshFile'> = {}): Promise<{ densityImage?: GrayImage; meshFile?: MeshFile }> {
+export async function runInputs(
+  config: AnyConfig,
+  request: Pick<RunRequest, 'densityImage' | 'meshFile'> = {},
+): Promise<{ densityImage?: GrayImage; meshFile?: MeshFile }> {
   const meshFile = await meshFileFor(config, request.meshFile);
   const densityImage = await densityImageFor(config, request.densityImage);
   return { ...(densityImage ? { densityImage } : {}), ...(meshFile ? { meshFile } : {}) };

@@ -200,7 +200,11 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
   } finally {
     releasePipelineRunner(runner);
   }
-  const aggregate = aggregateRows(rows, fields, summary.filter((c) => !TEXT_COLUMNS.has(c)));
+  const aggregate = aggregateRows(
+    rows,
+    fields,
+    summary.filter((c) => !TEXT_COLUMNS.has(c)),
+  );
   return {
     spec,
     fields,

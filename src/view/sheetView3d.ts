@@ -61,7 +61,10 @@ export class SheetView3D {
   private readonly solid: CellSolidDisplay;
 
   /** Throws when the canvas cannot give a WebGL context (the caller says so in the page). */
-  constructor(readonly canvas: HTMLCanvasElement, options: SheetViewOptions = {}) {
+  constructor(
+    readonly canvas: HTMLCanvasElement,
+    options: SheetViewOptions = {},
+  ) {
     this.renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
     this.renderer.setPixelRatio(1);
     this.renderer.localClippingEnabled = true;
@@ -119,7 +122,10 @@ export class SheetView3D {
     const box = this.canvas.getBoundingClientRect();
     const ndc = new THREE.Vector2(((clientX - box.left) / box.width) * 2 - 1, -((clientY - box.top) / box.height) * 2 + 1);
     this.raycaster.setFromCamera(ndc, this.camera);
-    const hits = this.raycaster.intersectObjects(this.meshes.filter((m) => m.visible), false);
+    const hits = this.raycaster.intersectObjects(
+      this.meshes.filter((m) => m.visible),
+      false,
+    );
     for (const hit of hits) {
       // The cut removes what lies on the far side of its plane: skip those hits.
       if (this.cutFraction > 0 && this.clip.distanceToPoint(hit.point) < 0) continue;
@@ -234,9 +240,7 @@ export class SheetView3D {
 
   toBlob(type = 'image/png'): Promise<Blob> {
     this.renderNow();
-    return new Promise((resolve, reject) =>
-      this.canvas.toBlob((blob) => (blob ? resolve(blob) : reject(new Error('the view could not be encoded'))), type),
-    );
+    return new Promise((resolve, reject) => this.canvas.toBlob((blob) => (blob ? resolve(blob) : reject(new Error('the view could not be encoded'))), type));
   }
 
   /**
@@ -324,7 +328,11 @@ export class SheetView3D {
     this.inner.position.copy(centre).negate();
     this.group.rotation.set(0, config.surface.kind === 'tube' ? Math.PI / 2 : 0, 0);
     this.radius = Math.max(1, box.getBoundingSphere(new THREE.Sphere()).radius);
-    this.bounds = sheetBounds(this.meshes.map((mesh) => mesh.geometry), box, config.surface.kind === 'tube');
+    this.bounds = sheetBounds(
+      this.meshes.map((mesh) => mesh.geometry),
+      box,
+      config.surface.kind === 'tube',
+    );
     this.updateClip();
   }
 

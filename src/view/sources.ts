@@ -95,7 +95,10 @@ export const MAX_SOURCE_BYTES = Math.max(MAX_MESH_BYTES, MAX_PNG_BYTES);
 export async function fetchSourceBytes(field: SourceField, src: string, pageHref = location.href): Promise<ArrayBuffer> {
   const foreign = foreignSource(field, src, pageHref);
   if (foreign && !approved.has(foreign.href)) {
-    throw new ConfigError(field, `${field}: ${foreign.path} from ${foreign.host} needs your approval before it is loaded; click the button that offers to load it`);
+    throw new ConfigError(
+      field,
+      `${field}: ${foreign.path} from ${foreign.host} needs your approval before it is loaded; click the button that offers to load it`,
+    );
   }
   let data: ArrayBuffer;
   try {

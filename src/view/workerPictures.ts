@@ -104,7 +104,11 @@ function matching(surface: ViewSurface, options: { highlightScutoids?: boolean; 
  * cells (an ImageBitmap), or in a draft its painted label image (ImageData; the unrolled one
  * flipped, y = 0 at the bottom).
  */
-export function workerPicture(surface: ViewSurface, kind: PictureKind, options: { highlightScutoids?: boolean; selected?: number }): ImageBitmap | ImageData | null {
+export function workerPicture(
+  surface: ViewSurface,
+  kind: PictureKind,
+  options: { highlightScutoids?: boolean; selected?: number },
+): ImageBitmap | ImageData | null {
   const known = matching(surface, options);
   const bitmap = known?.[kind] ?? null;
   if (bitmap && bitmap.width > 0) return bitmap;

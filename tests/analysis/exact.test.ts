@@ -4,8 +4,14 @@ import { BORDER_X_END as BORDER_X1, BORDER_X_START as BORDER_X0, BORDER_Y_END as
 import { cellContains, exactVoronoi } from '../../src/core/exact';
 import { bruteForceLabels, randomSites } from './helpers';
 
-const grid = (width: number, height: number, periodicX: boolean, periodicY: boolean, texelX = 1, texelY = 1): Grid =>
-  ({ width, height, texelX, texelY, periodicX, periodicY });
+const grid = (width: number, height: number, periodicX: boolean, periodicY: boolean, texelX = 1, texelY = 1): Grid => ({
+  width,
+  height,
+  texelX,
+  texelY,
+  periodicX,
+  periodicY,
+});
 
 const cases: [string, Grid][] = [
   ['plane', grid(64, 48, false, false, 0.5, 0.75)],
@@ -71,7 +77,9 @@ describe('exactVoronoi', () => {
       expect(err / (g.width * g.height * g.texelX * g.texelY)).toBeLessThan(0.05);
       // neighbours through a long shared edge are pixel neighbours (4-connectivity), and vice versa mostly
       const pixelPairs = new Set<string>();
-      const add = (a: number, b: number) => { if (a !== b) pixelPairs.add(a < b ? `${a},${b}` : `${b},${a}`); };
+      const add = (a: number, b: number) => {
+        if (a !== b) pixelPairs.add(a < b ? `${a},${b}` : `${b},${a}`);
+      };
       for (let j = 0; j < g.height; j++) {
         for (let i = 0; i < g.width; i++) {
           const a = labels[j * g.width + i];

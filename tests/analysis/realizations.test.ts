@@ -85,7 +85,13 @@ describe('headline over realizations', () => {
   it('runs the other seeds in order and reports progress', async () => {
     const asked: number[] = [];
     const progress: number[] = [];
-    const h = await headlineOverRealizations(10, 4, one(40, 10), async (seed) => (asked.push(seed), one(seed * 4, seed)), (done) => progress.push(done));
+    const h = await headlineOverRealizations(
+      10,
+      4,
+      one(40, 10),
+      async (seed) => (asked.push(seed), one(seed * 4, seed)),
+      (done) => progress.push(done),
+    );
     expect(asked).toEqual([11, 12, 13]);
     expect(progress).toEqual([1, 2, 3, 4]);
     expect(h!.realizationValues).toEqual([40, 44, 48, 52]);

@@ -27,7 +27,16 @@ function fromEdges(count: number, edges: [number, number][]): number[][] {
 }
 
 // Hand-built stack of 6 cells: S0 (seeded), S1 (one layer), S2 (other surface).
-const base: [number, number][] = [[0, 1], [0, 2], [0, 3], [1, 2], [2, 3], [2, 4], [3, 5], [4, 5]];
+const base: [number, number][] = [
+  [0, 1],
+  [0, 2],
+  [0, 3],
+  [1, 2],
+  [2, 3],
+  [2, 4],
+  [3, 5],
+  [4, 5],
+];
 const areas = Float64Array.from([1, 2, 3, 4, 5, 6]);
 const surf = (edges: [number, number][], border: number[], label: string): SurfaceAdjacency => ({
   count: 6,

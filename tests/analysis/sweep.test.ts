@@ -94,7 +94,10 @@ describe('CSV', () => {
     const parsed = parseCsv(text);
     expect(parsed.records).toEqual([fields, ['1', '2', '3', '4', '5', '6']]);
     expect(parsed.truncated).toBe(false);
-    expect(parseCsv('a,b\nc,d\n').records).toEqual([['a', 'b'], ['c', 'd']]);
+    expect(parseCsv('a,b\nc,d\n').records).toEqual([
+      ['a', 'b'],
+      ['c', 'd'],
+    ]);
   });
   it('reports a truncated last record and drops malformed ones', () => {
     const text = 'k,v\r\na,1\r\nb,2,3\r\nc,0.12';
@@ -106,7 +109,11 @@ describe('CSV', () => {
   });
   it('flattens nested summaries into dotted columns', () => {
     expect(flattenSummary({ a: 1, b: { c: [2, 3], d: 'x' }, e: Float64Array.from([4]) })).toEqual({
-      a: 1, 'b.c.0': 2, 'b.c.1': 3, 'b.d': 'x', 'e.0': 4,
+      a: 1,
+      'b.c.0': 2,
+      'b.c.1': 3,
+      'b.d': 'x',
+      'e.0': 4,
     });
   });
 });
@@ -145,7 +152,15 @@ describe('runSweep', () => {
   it('writes a header and one row per run, appended as runs complete', async () => {
     let file = '';
     const progress: string[] = [];
-    const res = await runSweep({ runs, fields, runner, append: (t) => { file += t; }, onProgress: (p) => progress.push(`${p.phase}:${p.finished}/${p.total}`) });
+    const res = await runSweep({
+      runs,
+      fields,
+      runner,
+      append: (t) => {
+        file += t;
+      },
+      onProgress: (p) => progress.push(`${p.phase}:${p.finished}/${p.total}`),
+    });
     expect(res.completed).toBe(12);
     const table = readCsvTable(file);
     expect(table.header).toEqual(['key', 's', 'label', 'realization', 'seed', 'pct', 'nested.seedMod']);
@@ -167,7 +182,16 @@ describe('runSweep', () => {
       if (++calls === 6) throw new Error('interrupted');
       return runner(config);
     };
-    await expect(runSweep({ runs, fields, runner: failing, append: (t) => { file += t; } })).rejects.toThrow('interrupted');
+    await expect(
+      runSweep({
+        runs,
+        fields,
+        runner: failing,
+        append: (t) => {
+          file += t;
+        },
+      }),
+    ).rejects.toThrow('interrupted');
     expect(readCsvTable(file).rows.length).toBe(5);
     // a write cut off mid-row
     file += 'garbage-partial,1';
@@ -176,10 +200,19 @@ describe('runSweep', () => {
     await expect(runSweep({ runs, fields, runner, existingCsv: file, append: () => {} })).rejects.toThrow(/incomplete/);
     const seen: string[] = [];
     const res = await runSweep({
-      runs, fields, existingCsv: file,
-      runner: async (c, run) => { seen.push(run.key); return runner(c); },
-      truncate: (n) => { file = file.slice(0, n); },
-      append: (t) => { file += t; },
+      runs,
+      fields,
+      existingCsv: file,
+      runner: async (c, run) => {
+        seen.push(run.key);
+        return runner(c);
+      },
+      truncate: (n) => {
+        file = file.slice(0, n);
+      },
+      append: (t) => {
+        file += t;
+      },
     });
     expect(res.skipped).toBe(5);
     expect(seen).toEqual(state.remaining.map((r) => r.key));
@@ -189,16 +222,33 @@ describe('runSweep', () => {
     expect(table.rows.map((r) => r.key).sort()).toEqual(runs.map((r) => r.key).sort());
     expect(res.rows.length).toBe(12);
     // nothing left: a rerun runs nothing
-    const again = await runSweep({ runs, fields, existingCsv: file, runner: async () => { throw new Error('no'); }, append: () => {} });
+    const again = await runSweep({
+      runs,
+      fields,
+      existingCsv: file,
+      runner: async () => {
+        throw new Error('no');
+      },
+      append: () => {},
+    });
     expect(again.completed).toBe(0);
   });
 
   it('skips failures when asked, runs concurrently, and refuses a changed spec', async () => {
     let file = '';
     const res = await runSweep({
-      runs, fields, concurrency: 3, onError: 'skip',
-      runner: async (c) => { await new Promise((r) => setTimeout(r, 1)); if (c.s === 2) throw new Error('bad'); return runner(c); },
-      append: (t) => { file += t; },
+      runs,
+      fields,
+      concurrency: 3,
+      onError: 'skip',
+      runner: async (c) => {
+        await new Promise((r) => setTimeout(r, 1));
+        if (c.s === 2) throw new Error('bad');
+        return runner(c);
+      },
+      append: (t) => {
+        file += t;
+      },
     });
     expect(res.failed.length).toBe(4);
     expect(readCsvTable(file).rows.length).toBe(8);
@@ -333,7 +383,12 @@ describe('Flintstones law in the sweep aggregate', () => {
   it('fits each combination of the other varied fields apart, and uses labels where there is no exact value', () => {
     const { runs, rows, fields } = syntheticSweep(RATIOS, 0.05, 'labels.meanNeighbours3D', { cells: [100, 200] });
     const fits = sweepFlintstones(rows, runs, fields);
-    expect(fits.map((f) => [f.group.cells, f.voronoi])).toEqual([['100', 1], ['100', 5], ['200', 1], ['200', 5]]);
+    expect(fits.map((f) => [f.group.cells, f.voronoi])).toEqual([
+      ['100', 1],
+      ['100', 5],
+      ['200', 1],
+      ['200', 5],
+    ]);
     for (const fit of fits) expect(fit.metric).toBe('labels.meanNeighbours3D');
     const csv = readCsvTable(flintstonesToCsv(fits, fields));
     expect(csv.header.slice(0, 3)).toEqual(['cells', 'voronoi', 'metric']);

@@ -74,7 +74,7 @@ describe('tissue-sheet run --cells-file', () => {
     expect(readResultFile(plain).tables).toBeNull();
   });
 
-  it('a plane\'s two surfaces share their adjacency: those columns are written once', () => {
+  it("a plane's two surfaces share their adjacency: those columns are written once", () => {
     const out = join(dir, 'plane.json');
     expect(cli(['run', writeJson('plane-config.json', plane), '--out', out, '--cells-file']).status).toBe(0);
     const record = JSON.parse(readFileSync(out, 'utf8')).cellsFile as CellsFileRecord;
@@ -104,11 +104,11 @@ describe('tissue-sheet run --cells-file', () => {
 
   it('never writes over a file that is not a side file of ours', () => {
     const out = join(dir, 'taken.json');
-    writeFileSync(cellsFilePath(out), 'someone else\'s data');
+    writeFileSync(cellsFilePath(out), "someone else's data");
     const run = cli(['run', writeJson('tube2.json', tube), '--out', out, '--cells-file']);
     expect(run.status).toBe(2);
     expect(run.stderr).toMatch(/taken\.cells\.bin/);
-    expect(readFileSync(cellsFilePath(out), 'utf8')).toBe('someone else\'s data');
+    expect(readFileSync(cellsFilePath(out), 'utf8')).toBe("someone else's data");
   });
 });
 

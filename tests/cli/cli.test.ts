@@ -74,22 +74,62 @@ describe('tissue-sheet run', () => {
     ['unknown field', { ...small, cels: 3 }, /^tissue-sheet: cels: unknown field/],
     ['negative size', { ...small, surface: { kind: 'tube', radius: -3, length: 10 } }, /surface\.radius: must be > 0 µm \(got -3\)/],
     ['too many cells', { ...small, cells: 100000 }, /^tissue-sheet: cells: .* lower cells or raise resolution/],
-    ['resolution above the largest texture side (16384)', { ...small, surface: { kind: 'tube', radius: 40, length: 400000 }, resolution: 16384 * 2 }, /resolution: must be an integer from 16 to 16384/],
+    [
+      'resolution above the largest texture side (16384)',
+      { ...small, surface: { kind: 'tube', radius: 40, length: 400000 }, resolution: 16384 * 2 },
+      /resolution: must be an integer from 16 to 16384/,
+    ],
     ['s < 1', { ...small, sheet: { surfaceRatio: 0.5 } }, /sheet\.surfaceRatio: must be >= 1 or null \(got 0\.5\)/],
     ['thickness beyond the radius', { ...small, sheet: { direction: 'inward', thickness: 50 } }, /sheet\.thickness: 50 µm inward reaches the tube's axis/],
     ['negative layers', { ...small, sheet: { layers: -1 } }, /sheet\.layers: must be an integer/],
     ['not JSON', '{"cells": 3,', /not valid JSON/],
-    ['a plane 1e20 µm wide', { ...small, surface: { kind: 'plane', width: 1e20, height: 1e20 }, sheet: {} }, /^tissue-sheet: surface\.width: 100000000000000000000 µm is outside/],
-    ['a plane 1e-20 µm wide', { ...small, surface: { kind: 'plane', width: 1e-20, height: 1e-20 }, sheet: {} }, /^tissue-sheet: surface\.width: 1e-20 µm is outside/],
-    ['one texel around a tube', { ...small, surface: { kind: 'tube', radius: 0.1, length: 4000 }, resolution: 1024, sheet: {} }, /^tissue-sheet: resolution: the grid is 1 x 1024 texels/],
+    [
+      'a plane 1e20 µm wide',
+      { ...small, surface: { kind: 'plane', width: 1e20, height: 1e20 }, sheet: {} },
+      /^tissue-sheet: surface\.width: 100000000000000000000 µm is outside/,
+    ],
+    [
+      'a plane 1e-20 µm wide',
+      { ...small, surface: { kind: 'plane', width: 1e-20, height: 1e-20 }, sheet: {} },
+      /^tissue-sheet: surface\.width: 1e-20 µm is outside/,
+    ],
+    [
+      'one texel around a tube',
+      { ...small, surface: { kind: 'tube', radius: 0.1, length: 4000 }, resolution: 1024, sheet: {} },
+      /^tissue-sheet: resolution: the grid is 1 x 1024 texels/,
+    ],
     ['a huge surface ratio', { ...small, sheet: { surfaceRatio: 1e6 } }, /^tissue-sheet: sheet\.surfaceRatio: .* lower sheet\.surfaceRatio/],
-    ['a ratio beyond the texture limit', { ...small, resolution: 64, sheet: { surfaceRatio: 600 } }, /^tissue-sheet: sheet\.surfaceRatio: the other surface would be \d+ x \d+ texels .* this GPU allows/],
-    ['a mesh with a NaN vertex', { ...small, surface: { kind: 'mesh', src: 'nan.ply' }, sheet: {} }, /^tissue-sheet: surface\.src: .*nan\.ply: .*vertex 3 .*NaN/],
-    ['a PLY with a wrong vertex count', { ...small, surface: { kind: 'mesh', src: 'count.ply' }, sheet: {} }, /^tissue-sheet: surface\.src: .*count\.ply: the PLY header declares 5 vertex \+ 4 face = 9 lines but the body has 8/],
-    ['an http mesh', { ...small, surface: { kind: 'mesh', src: 'http://127.0.0.1:9/a.ply' }, sheet: {} }, /^tissue-sheet: surface\.src: "http:\/\/127\.0\.0\.1:9\/a\.ply" is a network address; .*--allow-network/],
-    ['an empty density image', { ...small, density: { kind: 'image', src: 'empty.png' } }, /^tissue-sheet: density\.src: density image .*empty\.png: the file is empty/],
+    [
+      'a ratio beyond the texture limit',
+      { ...small, resolution: 64, sheet: { surfaceRatio: 600 } },
+      /^tissue-sheet: sheet\.surfaceRatio: the other surface would be \d+ x \d+ texels .* this GPU allows/,
+    ],
+    [
+      'a mesh with a NaN vertex',
+      { ...small, surface: { kind: 'mesh', src: 'nan.ply' }, sheet: {} },
+      /^tissue-sheet: surface\.src: .*nan\.ply: .*vertex 3 .*NaN/,
+    ],
+    [
+      'a PLY with a wrong vertex count',
+      { ...small, surface: { kind: 'mesh', src: 'count.ply' }, sheet: {} },
+      /^tissue-sheet: surface\.src: .*count\.ply: the PLY header declares 5 vertex \+ 4 face = 9 lines but the body has 8/,
+    ],
+    [
+      'an http mesh',
+      { ...small, surface: { kind: 'mesh', src: 'http://127.0.0.1:9/a.ply' }, sheet: {} },
+      /^tissue-sheet: surface\.src: "http:\/\/127\.0\.0\.1:9\/a\.ply" is a network address; .*--allow-network/,
+    ],
+    [
+      'an empty density image',
+      { ...small, density: { kind: 'image', src: 'empty.png' } },
+      /^tissue-sheet: density\.src: density image .*empty\.png: the file is empty/,
+    ],
     ['a __proto__ key', '{"cells": 20, "sheet": {"__proto__": {"layers": 3}}}', /^tissue-sheet: .*sheet\.__proto__: not allowed as a key/],
-    ['a directory as density image', { ...small, density: { kind: 'image', src: 'folder.png' } }, /^tissue-sheet: density\.src: density image .*folder\.png: is a directory/],
+    [
+      'a directory as density image',
+      { ...small, density: { kind: 'image', src: 'folder.png' } },
+      /^tissue-sheet: density\.src: density image .*folder\.png: is a directory/,
+    ],
   ];
   const tetra = (vertices: number, last: string) =>
     `ply\nformat ascii 1.0\nelement vertex ${vertices}\nproperty float x\nproperty float y\nproperty float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n` +
@@ -200,7 +240,8 @@ describe('tissue-sheet sweep', () => {
       for (const column of ['iterations', 'finalEnergy', 'centroidPath']) expect(row[column]).not.toBe('');
       const methods = ['labels', 'exact'].filter((m) => row[`${m}.percentScutoids`] !== '');
       expect(methods.length).toBeGreaterThan(0);
-      for (const m of methods) for (const column of [...possible].filter((c) => c.startsWith(`${m}.`))) expect(row[column], `${row.key} ${column}`).not.toBe('');
+      for (const m of methods)
+        for (const column of [...possible].filter((c) => c.startsWith(`${m}.`))) expect(row[column], `${row.key} ${column}`).not.toBe('');
     }
     const aggregate = readCsvTable(readFileSync(join(out, 'aggregate.csv'), 'utf8'));
     const labelsOnly = aggregate.rows.find((r) => r['sheet.adjacency'] === 'labels')!;
@@ -227,9 +268,33 @@ describe('tissue-sheet sweep', () => {
     ['realizations 1e9', { base: small, realizations: 1e9 }, /^tissue-sheet: realizations: must be an integer from 1 to/],
     ['unknown field in base', { base: { ...small, cels: 3 } }, /^tissue-sheet: base\.cels: unknown field/],
     ['a prototype path', { base: small, vary: { '__proto__.polluted': [1] } }, /^tissue-sheet: vary\["__proto__\.polluted"\]: "__proto__" is not allowed/],
-    ['5.4 million runs', { base: small, vary: { cells: Array.from({ length: 300 }, (_, k) => k + 1), seed: undefined, 'lloyd.maxIterations': Array.from({ length: 300 }, (_, k) => k) }, realizations: 60 }, /5400000 runs .* --max-runs/],
-    ['a grid point beyond the texture limit', { base: { ...small, resolution: 64, sheet: {} }, vary: { 'sheet.surfaceRatio': [1, 800] } }, /^tissue-sheet: grid point sheet\.surfaceRatio=800: sheet\.surfaceRatio: .*this GPU allows/],
-    ['a grid point with a broken mesh', { base: { ...small, sheet: {} }, vary: { surface: [{ kind: 'sphere', radius: 30 }, { kind: 'mesh', src: 'nan.ply' }] } }, /^tissue-sheet: grid point surface=.*nan\.ply.*NaN/],
+    [
+      '5.4 million runs',
+      {
+        base: small,
+        vary: { cells: Array.from({ length: 300 }, (_, k) => k + 1), seed: undefined, 'lloyd.maxIterations': Array.from({ length: 300 }, (_, k) => k) },
+        realizations: 60,
+      },
+      /5400000 runs .* --max-runs/,
+    ],
+    [
+      'a grid point beyond the texture limit',
+      { base: { ...small, resolution: 64, sheet: {} }, vary: { 'sheet.surfaceRatio': [1, 800] } },
+      /^tissue-sheet: grid point sheet\.surfaceRatio=800: sheet\.surfaceRatio: .*this GPU allows/,
+    ],
+    [
+      'a grid point with a broken mesh',
+      {
+        base: { ...small, sheet: {} },
+        vary: {
+          surface: [
+            { kind: 'sphere', radius: 30 },
+            { kind: 'mesh', src: 'nan.ply' },
+          ],
+        },
+      },
+      /^tissue-sheet: grid point surface=.*nan\.ply.*NaN/,
+    ],
   ];
   for (const [name, spec, message] of badSpecs) {
     it(`bad sweep spec (${name}): exit 2 in seconds, one line, nothing written`, () => {

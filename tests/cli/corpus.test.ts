@@ -65,7 +65,11 @@ describe('bad input corpus: configs', () => {
     ['over-relaxation past 2', { ...tube, lloyd: { overRelaxation: 2.5 } }, /lloyd\.overRelaxation/],
     ['a surface ratio below 1', { ...tube, sheet: { surfaceRatio: 0.5 } }, /sheet\.surfaceRatio/],
     ['an unknown protocol', { ...tube, sheet: { protocol: 'mine' } }, /sheet\.protocol/],
-    ['the lab protocol on a plane', { surface: { kind: 'plane', width: 300, height: 300 }, resolution: 128, cells: 24, sheet: { protocol: 'lab', thickness: 5 } }, /sheet\.protocol/],
+    [
+      'the lab protocol on a plane',
+      { surface: { kind: 'plane', width: 300, height: 300 }, resolution: 128, cells: 24, sheet: { protocol: 'lab', thickness: 5 } },
+      /sheet\.protocol/,
+    ],
     ['the exact engine on a sphere', { surface: { kind: 'sphere', radius: 50 }, cells: 24, engine: 'exact' }, /engine/],
     ['layers and a layer step together', { ...tube, sheet: { surfaceRatio: 2, layers: 2, layerStep: 0.25 } }, /sheet\.layer/],
     ['a plane 1e20 µm wide', { surface: { kind: 'plane', width: 1e20, height: 300 }, cells: 24 }, /surface\.width/],
@@ -108,7 +112,12 @@ describe('bad input corpus: sweep specs', () => {
 });
 
 describe('bad input corpus: runs.csv rows', () => {
-  const spec = validateSweepSpec({ base: { ...tube, engine: 'exact' }, vary: { 'sheet.layers': [0, 1], 'sheet.surfaceRatio': [1, 2] }, realizations: 2, seed: 1 }) as ValidSweepSpec;
+  const spec = validateSweepSpec({
+    base: { ...tube, engine: 'exact' },
+    vary: { 'sheet.layers': [0, 1], 'sheet.surfaceRatio': [1, 2] },
+    realizations: 2,
+    seed: 1,
+  }) as ValidSweepSpec;
   const layout = sweepLayout(spec);
   const good = (run = layout.runs[0]) =>
     layout.header.map((h) => {
@@ -170,7 +179,12 @@ describe('bad input corpus: meshes and images', () => {
     ['an OBJ with a NaN vertex', 'nan.obj', 'v 0 0 0\nv 1 0 0\nv NaN 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n', /nan\.obj/],
     ['an open OBJ (one triangle)', 'open.obj', 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n', /open\.obj/],
     ['an OBJ face past its vertices', 'index.obj', 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n', /index\.obj/],
-    ['a PLY with a wrong vertex count', 'count.ply', 'ply\nformat ascii 1.0\nelement vertex 9\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n', /count\.ply/],
+    [
+      'a PLY with a wrong vertex count',
+      'count.ply',
+      'ply\nformat ascii 1.0\nelement vertex 9\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n',
+      /count\.ply/,
+    ],
     ['text named .stl', 'text.stl', 'hello', /text\.stl/],
     ['an unknown extension', 'shape.dae', '<xml/>', /shape\.dae|surface\.src/],
   ];
@@ -198,7 +212,10 @@ describe('bad input corpus: meshes and images', () => {
     });
   }
   it('refuses an http(s) density image without --allow-network', async () => {
-    await expectRefused(() => loadInputs(validateAnyConfig({ ...tube, density: { kind: 'image', src: 'https://example.org/d.png' } }), sources), /density\.src|--allow-network/);
+    await expectRefused(
+      () => loadInputs(validateAnyConfig({ ...tube, density: { kind: 'image', src: 'https://example.org/d.png' } }), sources),
+      /density\.src|--allow-network/,
+    );
   });
 });
 
@@ -217,7 +234,11 @@ describe('bad input corpus: command-line arguments, shards and merge', () => {
     ['--shard 1/0', () => parseShard('1/0'), /--shard: the number of shards/],
     ['--shard -1/4', () => parseShard('-1/4'), /--shard: "-1\/4" is not I\/N/],
     ['--shard 1.5/4', () => parseShard('1.5/4'), /is not I\/N/],
-    ['--shard slurm with a stepped array', () => parseShard('slurm', { SLURM_ARRAY_TASK_ID: '5', SLURM_ARRAY_TASK_MIN: '1', SLURM_ARRAY_TASK_COUNT: '3' }), /not one of 3 consecutive tasks/],
+    [
+      '--shard slurm with a stepped array',
+      () => parseShard('slurm', { SLURM_ARRAY_TASK_ID: '5', SLURM_ARRAY_TASK_MIN: '1', SLURM_ARRAY_TASK_COUNT: '3' }),
+      /not one of 3 consecutive tasks/,
+    ],
     ['--shard slurm with no count', () => parseShard('slurm', { SLURM_ARRAY_TASK_ID: '1', SLURM_ARRAY_TASK_MIN: '1' }), /SLURM_ARRAY_TASK_COUNT is not set/],
     ['merge without --out', () => parseMergeArgs(['a', 'b']), /missing --out/],
     ['merge without directories', () => parseMergeArgs(['--out', 'm']), /missing sweep directories/],

@@ -35,7 +35,15 @@ const runner = async (config: Record<string, unknown>) => ({ pct: (config.s as n
 
 async function completeFile(): Promise<string> {
   let file = '';
-  await runSweep({ runs, fields, runner, summaryColumns: header.slice(baseColumns(fields).length), append: (t) => { file += t; } });
+  await runSweep({
+    runs,
+    fields,
+    runner,
+    summaryColumns: header.slice(baseColumns(fields).length),
+    append: (t) => {
+      file += t;
+    },
+  });
   return file;
 }
 
@@ -58,20 +66,30 @@ describe('resuming from a runs file', () => {
       cells[header.indexOf(column)] = value;
       return formatCsvRow(cells).slice(0, -2);
     };
-    const corrupted = [
-      head,
-      rows[0],
-      rows[0], // line 3: duplicate
-      edit(rows[1], 'pct', 'abc'), // line 4: not a number
-      rows[2] + ',1', // line 5: one field too many
-      edit(rows[3], 'seed', '12345'), // line 6: wrong seed
-      edit(rows[4], 'key', 's=9&label="c"#r0'), // line 7: not a run of this spec
-      edit(rows[5], 'extra', ''), // line 8: an expected column emptied
-      edit(rows[0].replace('#r0', '#r1'), 'extra', '5'), // line 9: a column this run does not fill
-    ].join('\r\n') + '\r\n' + rows[6].slice(0, 10); // line 10: cut off
+    const corrupted =
+      [
+        head,
+        rows[0],
+        rows[0], // line 3: duplicate
+        edit(rows[1], 'pct', 'abc'), // line 4: not a number
+        rows[2] + ',1', // line 5: one field too many
+        edit(rows[3], 'seed', '12345'), // line 6: wrong seed
+        edit(rows[4], 'key', 's=9&label="c"#r0'), // line 7: not a run of this spec
+        edit(rows[5], 'extra', ''), // line 8: an expected column emptied
+        edit(rows[0].replace('#r0', '#r1'), 'extra', '5'), // line 9: a column this run does not fill
+      ].join('\r\n') +
+      '\r\n' +
+      rows[6].slice(0, 10); // line 10: cut off
     const plan = planResume(corrupted, spec);
     expect(plan.rejected.map((r) => [r.line, r.reason.split(' ')[0]])).toEqual([
-      [3, 'duplicate'], [4, 'pct:'], [5, '9'], [6, 'seed'], [7, 'key'], [8, 'extra'], [9, 'realization'], [10, 'incomplete'],
+      [3, 'duplicate'],
+      [4, 'pct:'],
+      [5, '9'],
+      [6, 'seed'],
+      [7, 'key'],
+      [8, 'extra'],
+      [9, 'realization'],
+      [10, 'incomplete'],
     ]);
     expect(plan.rows.map((r) => r.key)).toEqual([runs[0].key]);
     expect(plan.rewrite).toBe(true);
@@ -79,11 +97,25 @@ describe('resuming from a runs file', () => {
     const seen: string[] = [];
     let file = plan.cleanText;
     const res = await runSweep({
-      runs, fields, existingCsv: plan.cleanText, summaryColumns: header.slice(5),
-      runner: async (c, run) => { seen.push(run.key); return runner(c); }, append: (t) => { file += t; },
+      runs,
+      fields,
+      existingCsv: plan.cleanText,
+      summaryColumns: header.slice(5),
+      runner: async (c, run) => {
+        seen.push(run.key);
+        return runner(c);
+      },
+      append: (t) => {
+        file += t;
+      },
     });
     expect(res.skipped).toBe(1);
-    expect(seen.sort()).toEqual(runs.slice(1).map((r) => r.key).sort());
+    expect(seen.sort()).toEqual(
+      runs
+        .slice(1)
+        .map((r) => r.key)
+        .sort(),
+    );
     expect(planResume(file, spec).rejected).toEqual([]);
     expect(readCsvTable(file).rows).toHaveLength(8);
   });
@@ -91,7 +123,9 @@ describe('resuming from a runs file', () => {
   it('refuses a file written with another header, naming the column', async () => {
     const file = (await completeFile()).replace('pct', 'percent');
     expect(() => planResume(file, spec, 'out/runs.csv')).toThrow(ResumeError);
-    expect(() => planResume(file, spec, 'out/runs.csv')).toThrow(/^out\/runs\.csv: written for another spec or version \(column 6 is "percent", this spec writes "pct"\)/);
+    expect(() => planResume(file, spec, 'out/runs.csv')).toThrow(
+      /^out\/runs\.csv: written for another spec or version \(column 6 is "percent", this spec writes "pct"\)/,
+    );
   });
 });
 

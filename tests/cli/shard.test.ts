@@ -8,7 +8,8 @@ import { readCsvTable } from '../../src/core/sweep';
 // The CLI from its sources (same main() as bin/tissue-sheet.mjs).
 const bin = join(__dirname, 'fromSource.mjs');
 const dir = mkdtempSync(join(tmpdir(), 'tissue-sheet-shard-'));
-const cli = (args: string[], env: Record<string, string> = {}) => spawnSync(process.execPath, [bin, ...args], { encoding: 'utf8', env: { ...process.env, ...env } });
+const cli = (args: string[], env: Record<string, string> = {}) =>
+  spawnSync(process.execPath, [bin, ...args], { encoding: 'utf8', env: { ...process.env, ...env } });
 
 // Tiny, on the exact engine: 2 Voronoi k x 4 ratios x 2 realizations = 16 runs in 4 seeded-surface groups.
 const spec = {
@@ -30,7 +31,10 @@ describe('sweep --shard and merge', () => {
     const keys: string[] = [];
     shards.forEach((out, i) => {
       // shard 2 through the SLURM array variables (task ids 10..12)
-      const run = i === 1 ? cli(['sweep', specPath, '--out', out, '--shard', 'slurm'], { SLURM_ARRAY_TASK_ID: '11', SLURM_ARRAY_TASK_MIN: '10', SLURM_ARRAY_TASK_COUNT: '3' }) : cli(['sweep', specPath, '--out', out, `--shard=${i + 1}/3`]);
+      const run =
+        i === 1
+          ? cli(['sweep', specPath, '--out', out, '--shard', 'slurm'], { SLURM_ARRAY_TASK_ID: '11', SLURM_ARRAY_TASK_MIN: '10', SLURM_ARRAY_TASK_COUNT: '3' })
+          : cli(['sweep', specPath, '--out', out, `--shard=${i + 1}/3`]);
       expect(run.status, run.stderr).toBe(0);
       expect(JSON.parse(read(out, 'sweep.json')).shard).toEqual({ index: i + 1, count: 3, of: 16 });
       keys.push(...readCsvTable(read(out, 'runs.csv')).rows.map((r) => r.key));

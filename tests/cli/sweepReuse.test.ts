@@ -30,7 +30,9 @@ const config = (maxIterations: number, surfaceRatio: number, extra: Record<strin
 /** The result without wall-clock timings (the only fields that may differ between two computations). */
 function comparable(result: SheetResult): unknown {
   const { timings: _timings, ...rest } = result;
-  return JSON.parse(JSON.stringify({ ...rest, lloyd: { ...rest.lloyd, iterations: rest.lloyd.iterations.map(({ jumpFloodMs: _j, centroidMs: _c, ...r }) => r) } }));
+  return JSON.parse(
+    JSON.stringify({ ...rest, lloyd: { ...rest.lloyd, iterations: rest.lloyd.iterations.map(({ jumpFloodMs: _j, centroidMs: _c, ...r }) => r) } }),
+  );
 }
 
 async function alone(c: AnyConfig): Promise<SheetResult> {
@@ -98,7 +100,10 @@ describe('analyzeLabStackReusing', () => {
     order.forEach((k, n) => {
       const stack = stackTo(k, n % 2 === 0);
       const reused = analyzeLabStackReusing(stack, invalid);
-      const fresh = analyzeLabStack(stack.map((s) => ({ ...s })), invalid);
+      const fresh = analyzeLabStack(
+        stack.map((s) => ({ ...s })),
+        invalid,
+      );
       expect(reused, `stack to s = ${ratios[k]} (call ${n})`).toEqual(fresh);
       expect(JSON.stringify(reused.summary)).toBe(JSON.stringify(fresh.summary));
     });

@@ -1,14 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { analysisMethods, validateAnyConfig } from '../../src/core/config';
-import {
-  expandSweep,
-  runMethods,
-  setPath,
-  summaryColumns,
-  sweepColumns,
-  SweepSpecError,
-  validateSweepSpec,
-} from '../../src/core/sweep';
+import { expandSweep, runMethods, setPath, summaryColumns, sweepColumns, SweepSpecError, validateSweepSpec } from '../../src/core/sweep';
 
 const base = { surface: { kind: 'tube', radius: 16, length: 200 }, resolution: 64, cells: 20, lloyd: { maxIterations: 1 } };
 
@@ -34,10 +26,20 @@ describe('sweep spec validation', () => {
     ['no base', { vary: {} }, 'base', /^base: required/],
     ['unknown field in base', { base: { ...base, cels: 3 } }, 'base.cels', /^base\.cels: unknown field/],
     ['bad value in base', { base: { ...base, cells: -1 } }, 'base.cells', /^base\.cells: must be an integer >= 1/],
-    ['varied path that does not exist', { base, vary: { 'sheet.layer': [1] } }, 'vary["sheet.layer"]', /"layer" is not a field of "sheet"; fields there: .*layers/],
+    [
+      'varied path that does not exist',
+      { base, vary: { 'sheet.layer': [1] } },
+      'vary["sheet.layer"]',
+      /"layer" is not a field of "sheet"; fields there: .*layers/,
+    ],
     ['varied path under a leaf', { base, vary: { 'cells.x': [1] } }, 'vary["cells.x"]', /"cells" has no fields inside/],
     ['varied seed', { base, vary: { seed: [1, 2] } }, 'vary["seed"]', /derived per run/],
-    ['varied value of the wrong type', { base, vary: { 'sheet.layers': [1, 'two'] } }, 'vary["sheet.layers"][1]', /must be an integer from 0 to 64 \(got "two"\)/],
+    [
+      'varied value of the wrong type',
+      { base, vary: { 'sheet.layers': [1, 'two'] } },
+      'vary["sheet.layers"][1]',
+      /must be an integer from 0 to 64 \(got "two"\)/,
+    ],
     ['varied value out of range', { base, vary: { resolution: [64, 99999] } }, 'vary["resolution"][1]', /from 16 to 16384/],
     ['empty value list', { base, vary: { cells: [] } }, 'vary["cells"]', /at least one value/],
     ['value list not an array', { base, vary: { cells: 5 } }, 'vary["cells"]', /array/],
@@ -54,7 +56,11 @@ describe('sweep spec validation', () => {
   }
 
   it('caps the number of runs before expanding anything, saying how to raise it', () => {
-    const huge = { base, vary: { cells: Array.from({ length: 300 }, (_, k) => k + 1), 'lloyd.maxIterations': Array.from({ length: 300 }, (_, k) => k) }, realizations: 60 };
+    const huge = {
+      base,
+      vary: { cells: Array.from({ length: 300 }, (_, k) => k + 1), 'lloyd.maxIterations': Array.from({ length: 300 }, (_, k) => k) },
+      realizations: 60,
+    };
     const start = performance.now();
     const error = specError(huge);
     expect(performance.now() - start).toBeLessThan(500);
@@ -96,7 +102,10 @@ describe('seeds', () => {
 
 describe('runs.csv columns', () => {
   it('are the union over the grid, fixed before any run, whatever the first grid point produces', () => {
-    const spec = validateSweepSpec({ base: { ...base, sheet: { surfaceRatio: 1.5 } }, vary: { 'sheet.adjacency': ['labels', 'exact', 'both'], 'sheet.layers': [0, 2] } });
+    const spec = validateSweepSpec({
+      base: { ...base, sheet: { surfaceRatio: 1.5 } },
+      vary: { 'sheet.adjacency': ['labels', 'exact', 'both'], 'sheet.layers': [0, 2] },
+    });
     const configs = expandSweep(spec).map((r) => validateAnyConfig(r.config));
     const columns = sweepColumns(configs);
     const first = summaryColumns(configs[0]); // labels only, no layers
@@ -119,8 +128,14 @@ describe('runs.csv columns', () => {
       for (const adjacency of ['labels', 'exact', 'both'] as const) {
         const config = validateAnyConfig({ ...base, surface, sheet: { adjacency, thickness: 2 } });
         const columns = summaryColumns(config);
-        expect(columns.some((c) => c.startsWith('exact.')), `${surface.kind} ${adjacency}`).toBe(adjacency !== 'labels');
-        expect(columns.some((c) => c.startsWith('labels.')), `${surface.kind} ${adjacency}`).toBe(adjacency !== 'exact');
+        expect(
+          columns.some((c) => c.startsWith('exact.')),
+          `${surface.kind} ${adjacency}`,
+        ).toBe(adjacency !== 'labels');
+        expect(
+          columns.some((c) => c.startsWith('labels.')),
+          `${surface.kind} ${adjacency}`,
+        ).toBe(adjacency !== 'exact');
         // the columns are the methods the pipeline computes (core/config/analysisMethods.ts)
         expect(runMethods(config)).toEqual(analysisMethods(config, 'gpu'));
       }

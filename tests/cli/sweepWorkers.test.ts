@@ -94,7 +94,9 @@ describe('sweep --workers N', () => {
 });
 
 describe('runSweep with tasks finishing in any order', () => {
-  const runs = expandSweep({ base: { seed: 1, s: 1 }, vary: { k: [0, 1, 2], s: [1, 2, 3, 4] }, realizations: 3 }) as SweepRun<Record<string, unknown> & { seed: number }>[];
+  const runs = expandSweep({ base: { seed: 1, s: 1 }, vary: { k: [0, 1, 2], s: [1, 2, 3, 4] }, realizations: 3 }) as SweepRun<
+    Record<string, unknown> & { seed: number }
+  >[];
   const fields = ['k', 's'];
   const summary = (run: SweepRun) => ({ value: Number(run.config.k) * 100 + Number(run.config.s) * 10 + run.realization });
 
@@ -131,7 +133,7 @@ describe('runSweep with tasks finishing in any order', () => {
 
   it('writes rows in run order whatever the concurrency and the finishing order', async () => {
     let seed = 1;
-    const random = () => ((seed = (seed * 1103515245 + 12345) % 2147483648) % 97);
+    const random = () => (seed = (seed * 1103515245 + 12345) % 2147483648) % 97;
     const reference = await sweep(1, (k) => k);
     expect(readCsvTable(reference).rows.map((r) => r.key)).toEqual(runs.map((r) => r.key));
     for (const concurrency of [2, 3, 8]) expect(await sweep(concurrency, random), `concurrency ${concurrency}`).toBe(reference);

@@ -36,7 +36,9 @@ describe('closed surface config', () => {
     expect(feasibility({ surface: { kind: 'sphere', radius: 50 }, resolution: 32, cells: 385 })?.message).toBe(
       'cells: 385 cells need at least 6160 texels (16 per cell) but the cube map has 6144 (6 x 32²); lower cells or raise resolution',
     );
-    expect(feasibility({ surface: { kind: 'sphere', radius: 50 }, resolution: 32, cells: 10, density: { kind: 'linear', axis: 'x', from: 1, to: 2 } })?.field).toBe('density.kind');
+    expect(
+      feasibility({ surface: { kind: 'sphere', radius: 50 }, resolution: 32, cells: 10, density: { kind: 'linear', axis: 'x', from: 1, to: 2 } })?.field,
+    ).toBe('density.kind');
     // The restricted Voronoi diagram is exact on every closed surface.
     expect(feasibility({ surface: { kind: 'ellipsoid', a: 2, b: 1, c: 1 }, resolution: 32, cells: 10, sheet: { adjacency: 'exact' } })).toBeNull();
     expect(feasibility({ surface: { kind: 'ellipsoid', a: 20, b: 10, c: 10 }, resolution: 32, cells: 10, engine: 'exact' })?.field).toBe('engine');
@@ -57,7 +59,14 @@ describe('directionTexel (allocation-free) matches directionToTexel', () => {
     const { directionTexelReference } = await import('../oracles/cubeMap');
     const { createRandom } = await import('../../src/core/random');
     const random = createRandom(9);
-    const dirs: number[][] = [[1, 1, 1], [-1, 1, 0], [0, -1, -1], [1, 0, 0], [0, 0, -1], [-1, -1, -1]];
+    const dirs: number[][] = [
+      [1, 1, 1],
+      [-1, 1, 0],
+      [0, -1, -1],
+      [1, 0, 0],
+      [0, 0, -1],
+      [-1, -1, -1],
+    ];
     for (let k = 0; k < 2000; k++) dirs.push([random.next() - 0.5, random.next() - 0.5, random.next() - 0.5]);
     for (const [x, y, z] of dirs) for (const n of [7, 64]) expect(directionTexel(x, y, z, n)).toBe(directionTexelReference(x, y, z, n));
   });
@@ -66,7 +75,10 @@ describe('directionTexel (allocation-free) matches directionToTexel', () => {
 describe('one default resolution for closed surfaces', () => {
   it('validation fills it in from the cells and the minimum contact length: a texel edge at most half the shortest counted contact', () => {
     for (const cells of [50, 200, 1000]) {
-      for (const surface of [{ kind: 'sphere', radius: 60 }, { kind: 'ellipsoid', a: 90, b: 45, c: 45 }] as const) {
+      for (const surface of [
+        { kind: 'sphere', radius: 60 },
+        { kind: 'ellipsoid', a: 90, b: 45, c: 45 },
+      ] as const) {
         const config = validateAnyConfig({ surface, cells });
         const area = surface.kind === 'sphere' ? 4 * Math.PI * surface.radius ** 2 : ellipsoidArea(surface.a, surface.b, surface.c);
         const contact = (6 / 102.4) * Math.sqrt(area / cells);

@@ -44,7 +44,9 @@ describe('ellipsoid 2:1:1, 200 cells', () => {
       expect(result.analyses[0].summary.validCells).toBe(200);
       percents.push(result.analyses[0].summary.percentScutoids);
     }
-    console.log(`ellipsoid 2:1:1 (a = 100 µm), cells ~17 µm across: % scutoids at thickness 8, 30, 90 µm outward: ${percents.map((p) => p.toFixed(1)).join(', ')}`);
+    console.log(
+      `ellipsoid 2:1:1 (a = 100 µm), cells ~17 µm across: % scutoids at thickness 8, 30, 90 µm outward: ${percents.map((p) => p.toFixed(1)).join(', ')}`,
+    );
     expect(percents[0]).toBeGreaterThan(0);
     expect(percents[1]).toBeGreaterThan(percents[0]);
     expect(percents[2]).toBeGreaterThan(percents[1]);
@@ -71,6 +73,14 @@ describe('offsets beyond the smallest radius of curvature are refused', () => {
   it('ellipsoid 2:1:1: inward beyond b²/a', async () => {
     const e = await error({ surface: { kind: 'ellipsoid', a: 100, b: 50, c: 50 }, resolution: 32, cells: 20, sheet: { direction: 'inward', thickness: 30 } });
     expect(e?.message).toContain('smallest radius of curvature of the ellipsoid (25 µm)');
-    expect(await error({ surface: { kind: 'ellipsoid', a: 100, b: 50, c: 50 }, resolution: 32, cells: 20, lloyd: { maxIterations: 1 }, sheet: { direction: 'inward', thickness: 20 } })).toBeNull();
+    expect(
+      await error({
+        surface: { kind: 'ellipsoid', a: 100, b: 50, c: 50 },
+        resolution: 32,
+        cells: 20,
+        lloyd: { maxIterations: 1 },
+        sheet: { direction: 'inward', thickness: 20 },
+      }),
+    ).toBeNull();
   });
 });

@@ -25,7 +25,11 @@ function measure(surface: EllipsoidSurface, n: number, seed: number) {
   const sites = randomSequentialSites(surface, count, 0.5 * diameter, seed).positions;
   const exact = restrictedVoronoi(surface, sites, count).adjacency as { offsets: Int32Array; neighbours: Int32Array; lengths: Float64Array };
   const image = sampleSurface({ kind: 'ellipsoid', a, b, c }, n);
-  const labels = cubeLabelAdjacency({ n, position: image.position, area: image.area, totalArea: image.totalArea }, cubeBruteForceLabels(image.position, sites, count), count);
+  const labels = cubeLabelAdjacency(
+    { n, position: image.position, area: image.area, totalArea: image.totalArea },
+    cubeBruteForceLabels(image.position, sites, count),
+    count,
+  );
   const texel = Math.sqrt(exactArea / (6 * n * n));
   const minLength = labMinBoundaryLength(exactArea, count);
   return {
@@ -49,10 +53,14 @@ describe('cubeLabelAdjacency contact lengths against the restricted Voronoi diag
       for (const n of [32, 64, 128, 256]) {
         const runs = (n <= 128 ? [1, 2] : [1]).map((seed) => measure(surface, n, seed));
         const mean = (f: (r: (typeof runs)[number]) => number) => runs.reduce((s, r) => s + f(r), 0) / runs.length;
-        const ratio = mean((r) => r.unbiased.meanRatio), total = mean((r) => r.unbiased.totalRatio);
+        const ratio = mean((r) => r.unbiased.meanRatio),
+          total = mean((r) => r.unbiased.totalRatio);
         const oldRatio = mean((r) => r.staircase.meanRatio);
-        const agree = mean((r) => r.unbiased.cellAgreement), oldAgree = mean((r) => r.staircase.cellAgreement);
-        rows.push(`n ${n}, texel ${runs[0].texel.toFixed(2)} µm (threshold ${runs[0].minLength.toFixed(2)} µm): ratio ${ratio.toFixed(3)} (Σ ${total.toFixed(3)}; staircase ${oldRatio.toFixed(3)}), cells agreeing ${(100 * agree).toFixed(1)} % (staircase ${(100 * oldAgree).toFixed(1)} %)`);
+        const agree = mean((r) => r.unbiased.cellAgreement),
+          oldAgree = mean((r) => r.staircase.cellAgreement);
+        rows.push(
+          `n ${n}, texel ${runs[0].texel.toFixed(2)} µm (threshold ${runs[0].minLength.toFixed(2)} µm): ratio ${ratio.toFixed(3)} (Σ ${total.toFixed(3)}; staircase ${oldRatio.toFixed(3)}), cells agreeing ${(100 * agree).toFixed(1)} % (staircase ${(100 * oldAgree).toFixed(1)} %)`,
+        );
         // Within 3 % from n 64 up (one texel edge at each end of a contact of >= 3 texels: 5 %
         // at n 32, where the staircase's ends weigh most).
         const tolerance = n >= 64 ? 0.03 : 0.05;
@@ -76,13 +84,18 @@ describe('cubeLabelAdjacency contact lengths against the restricted Voronoi diag
   // Per face the length is the chord of the contact's piece there: a contact that crosses a
   // whole face (two cells) comes out at 2 sqrt(2) / π = 0.90 of a great circle, kept and long.
   it('keeps a contact that goes all round the surface: two cells on a sphere share the equator', () => {
-    const R = 30, n = 48;
+    const R = 30,
+      n = 48;
     const image = sampleSurface({ kind: 'sphere', radius: R }, n);
     const sites = Float64Array.from([0, 0, R, 0.3, 0.2, -R]); // near the poles
     const norm = (k: number) => Math.hypot(sites[3 * k], sites[3 * k + 1], sites[3 * k + 2]);
     for (const k of [0, 1]) for (let c = 0; c < 3; c++) sites[3 * k + c] *= R / norm(k);
     const exact = restrictedVoronoi(sphereSurface(R), sites, 2).adjacency.lengths![0];
-    const labels = cubeLabelAdjacency({ n, position: image.position, area: image.area, totalArea: image.totalArea }, cubeBruteForceLabels(image.position, sites, 2), 2);
+    const labels = cubeLabelAdjacency(
+      { n, position: image.position, area: image.area, totalArea: image.totalArea },
+      cubeBruteForceLabels(image.position, sites, 2),
+      2,
+    );
     console.log(`two cells: exact ${exact.toFixed(2)} µm, labels ${labels.lengths[0].toFixed(2)} µm, staircase ${labels.staircaseLengths[0].toFixed(2)} µm`);
     expect(labels.lengths[0] / exact).toBeGreaterThan(0.95 * ((2 * Math.SQRT2) / Math.PI));
     expect(labels.lengths[0] / exact).toBeLessThan(1.02);

@@ -25,9 +25,11 @@ describe('a mesh of a sphere vs the analytic sphere', () => {
         meshFile: { data: ico, name: 'icosphere16.ply' },
       })
     ).result;
-    const a = sphere.analyses[0].summary, b = mesh.analyses[0].summary;
+    const a = sphere.analyses[0].summary,
+      b = mesh.analyses[0].summary;
     const cells = 300;
-    const hexA = a.perSurface[0].polygonDistribution[3], hexB = b.perSurface[0].polygonDistribution[3];
+    const hexA = a.perSurface[0].polygonDistribution[3],
+      hexB = b.perSurface[0].polygonDistribution[3];
     // Two independent samples of a proportion: SE of the difference sqrt(2 p (1 - p) / N).
     const se = Math.sqrt((2 * hexA * (1 - hexA)) / cells);
     console.log(
@@ -49,14 +51,23 @@ describe('a mesh of a sphere vs the analytic sphere', () => {
 
 describe('cells of a mesh are uniform in mesh area', () => {
   it('egg-chamber.ply (parameterization area ratio 0.19..1.83): cell areas on the mesh', async () => {
-    const config = closed({ surface: { kind: 'mesh', src: join(MESH_DIR, 'egg-chamber.ply'), scale: 40 }, resolution: 96, cells: 200, minSpacing: 5, lloyd: { maxIterations: 40, overRelaxation: 1.9 }, sheet: { thickness: 0 } });
+    const config = closed({
+      surface: { kind: 'mesh', src: join(MESH_DIR, 'egg-chamber.ply'), scale: 40 },
+      resolution: 96,
+      cells: 200,
+      minSpacing: 5,
+      lloyd: { maxIterations: 40, overRelaxation: 1.9 },
+      sheet: { thickness: 0 },
+    });
     const { result } = await runSheet(config, context, meshInputs(config));
     const areas = result.cells.map((c) => c.area);
     const mean = areas.reduce((x, y) => x + y) / areas.length;
     const sd = Math.sqrt(areas.reduce((s, x) => s + (x / mean - 1) ** 2, 0) / areas.length);
     const sorted = areas.map((x) => x / mean).sort((x, y) => x - y);
     const total = areas.reduce((x, y) => x + y);
-    console.log(`egg-chamber mesh, 200 cells: cell area SD ${sd.toFixed(4)} of the mean, IQR/2 ${((sorted[149] - sorted[49]) / 2).toFixed(4)}, min ${sorted[0].toFixed(3)}, max ${sorted[199].toFixed(3)}; distortion of the map ${JSON.stringify(result.closed?.mesh?.areaDistortion)}`);
+    console.log(
+      `egg-chamber mesh, 200 cells: cell area SD ${sd.toFixed(4)} of the mean, IQR/2 ${((sorted[149] - sorted[49]) / 2).toFixed(4)}, min ${sorted[0].toFixed(3)}, max ${sorted[199].toFixed(3)}; distortion of the map ${JSON.stringify(result.closed?.mesh?.areaDistortion)}`,
+    );
     expect(total / result.closed!.area).toBeCloseTo(1, 6);
     expect(sd).toBeLessThanOrEqual(0.1);
     expect((sorted[149] - sorted[49]) / 2).toBeLessThanOrEqual(0.06);
@@ -87,7 +98,9 @@ describe('malformed meshes get their message through the pipeline', () => {
     expect(e.message).toContain('tissue-sheet needs a closed surface without holes (genus 0)');
   });
   it('a file that is not a mesh, and a missing file', async () => {
-    const bad = await runSheet(closed({ surface: { kind: 'mesh', src: 'x.ply' }, resolution: 32, cells: 10 }), context, { meshFile: { data: 'ply\nformat ascii 1.0\nelement vertex 2\n', name: 'x.ply' } }).catch((e: unknown) => e as ConfigError);
+    const bad = await runSheet(closed({ surface: { kind: 'mesh', src: 'x.ply' }, resolution: 32, cells: 10 }), context, {
+      meshFile: { data: 'ply\nformat ascii 1.0\nelement vertex 2\n', name: 'x.ply' },
+    }).catch((e: unknown) => e as ConfigError);
     expect((bad as ConfigError).field).toBe('surface.src');
     expect((bad as ConfigError).message).toMatch(/^surface\.src: x\.ply: /);
     const missing = await messageOf({ surface: { kind: 'mesh', src: 'no-such-mesh.ply' }, resolution: 32, cells: 10 });
@@ -95,7 +108,9 @@ describe('malformed meshes get their message through the pipeline', () => {
     expect(() => loadMeshFile(MESH_DIR)).toThrow(/is a directory/);
   });
   it('the pipeline reads no file: a mesh config without its loaded file is refused, naming what to do', async () => {
-    const e = (await runSheet(closed({ surface: { kind: 'mesh', src: join(MESH_DIR, 'organoid.ply') }, resolution: 32, cells: 10 }), context).catch((x: unknown) => x)) as ConfigError;
+    const e = (await runSheet(closed({ surface: { kind: 'mesh', src: join(MESH_DIR, 'organoid.ply') }, resolution: 32, cells: 10 }), context).catch(
+      (x: unknown) => x,
+    )) as ConfigError;
     expect(e).toBeInstanceOf(ConfigError);
     expect(e.field).toBe('surface.src');
     expect(e.message).toMatch(/is not loaded: the pipeline reads no files; load the mesh first/);
@@ -105,9 +120,17 @@ describe('malformed meshes get their message through the pipeline', () => {
     const t = flipped.indices;
     for (let f = 0; f < t.length; f += 3) [t[f + 1], t[f + 2]] = [t[f + 2], t[f + 1]];
     const data = writePlyAscii(flipped);
-    const ok: SheetResult = (await runSheet(closed({ surface: { kind: 'mesh', src: 'in.ply', scale: 20 }, resolution: 32, cells: 20, lloyd: { maxIterations: 2 } }), context, { meshFile: { data, name: 'in.ply' } })).result;
+    const ok: SheetResult = (
+      await runSheet(closed({ surface: { kind: 'mesh', src: 'in.ply', scale: 20 }, resolution: 32, cells: 20, lloyd: { maxIterations: 2 } }), context, {
+        meshFile: { data, name: 'in.ply' },
+      })
+    ).result;
     expect(ok.closed!.area).toBeCloseTo(surfaceArea(flipped) * 400, -1);
-    const e = await runSheet(closed({ surface: { kind: 'mesh', src: 'in.ply', scale: 20 }, resolution: 32, cells: 20, sheet: { direction: 'inward', thickness: 25 } }), context, { meshFile: { data, name: 'in.ply' } }).catch((x: unknown) => x as ConfigError);
+    const e = await runSheet(
+      closed({ surface: { kind: 'mesh', src: 'in.ply', scale: 20 }, resolution: 32, cells: 20, sheet: { direction: 'inward', thickness: 25 } }),
+      context,
+      { meshFile: { data, name: 'in.ply' } },
+    ).catch((x: unknown) => x as ConfigError);
     expect((e as ConfigError).field).toBe('sheet.thickness');
     expect((e as ConfigError).message).toContain('mesh (estimated from its vertex normals)');
   });

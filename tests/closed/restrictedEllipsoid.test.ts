@@ -32,11 +32,17 @@ describe('restricted Voronoi on the analytic ellipsoid', () => {
       const lists = neighbourLists(ref, 1e-6);
       const cmp = compareNeighbourSets(rvd.adjacency, lists);
       // Lengths of the contacts both found; and every RVD contact lies within the cutoff.
-      let maxLength = 0, pairs = 0, shortest = Infinity;
+      let maxLength = 0,
+        pairs = 0,
+        shortest = Infinity;
       for (let i = 0; i < count; i++) {
         for (let k = rvd.adjacency.offsets[i]; k < rvd.adjacency.offsets[i + 1]; k++) {
           const j = rvd.adjacency.neighbours[k];
-          const d = Math.hypot(seeded.positions[3 * j] - seeded.positions[3 * i], seeded.positions[3 * j + 1] - seeded.positions[3 * i + 1], seeded.positions[3 * j + 2] - seeded.positions[3 * i + 2]);
+          const d = Math.hypot(
+            seeded.positions[3 * j] - seeded.positions[3 * i],
+            seeded.positions[3 * j + 1] - seeded.positions[3 * i + 1],
+            seeded.positions[3 * j + 2] - seeded.positions[3 * i + 2],
+          );
           expect(d).toBeLessThan(cutoff);
           shortest = Math.min(shortest, rvd.adjacency.lengths[k]);
           const other = ref.lengths.get(Math.min(i, j) * count + Math.max(i, j));
@@ -61,10 +67,15 @@ describe('restricted Voronoi on the analytic ellipsoid', () => {
   it('a triangulated ellipsoid (mesh RVD) converges to the analytic one', () => {
     // Same sites, analytic vs an icosphere stretched onto the ellipsoid: the neighbour sets
     // agree and lengths differ by the chord error only.
-    const a = 60, b = 40, c = 30, count = 150;
+    const a = 60,
+      b = 40,
+      c = 30,
+      count = 150;
     const seeded = randomSequentialSites({ kind: 'ellipsoid', a, b, c }, count, 4, 3);
     const analytic = restrictedVoronoi({ kind: 'ellipsoid', a, b, c }, seeded.positions, count);
-    const lists = Array.from({ length: count }, (_, i) => Array.from(analytic.adjacency.neighbours.subarray(analytic.adjacency.offsets[i], analytic.adjacency.offsets[i + 1])));
+    const lists = Array.from({ length: count }, (_, i) =>
+      Array.from(analytic.adjacency.neighbours.subarray(analytic.adjacency.offsets[i], analytic.adjacency.offsets[i + 1])),
+    );
     // Vertices exactly on the ellipsoid: icosphere directions mapped by diag(a, b, c).
     const f = 48;
     const ico = icosphere(f);
@@ -79,7 +90,9 @@ describe('restricted Voronoi on the analytic ellipsoid', () => {
     const cmp = compareNeighbourSets(mesh.adjacency, lists);
     let worst = 0;
     for (let i = 0; i < count; i++) worst = Math.max(worst, Math.abs(mesh.areas[i] / analytic.areas[i] - 1));
-    console.log(`ellipsoid ${a}:${b}:${c} as ${ico.indices.length / 3} triangles: ${cmp.same}/${count} neighbour sets equal the analytic RVD; worst relative cell-area difference ${worst.toExponential(2)}`);
+    console.log(
+      `ellipsoid ${a}:${b}:${c} as ${ico.indices.length / 3} triangles: ${cmp.same}/${count} neighbour sets equal the analytic RVD; worst relative cell-area difference ${worst.toExponential(2)}`,
+    );
     expect(cmp.fraction).toBeGreaterThanOrEqual(0.98);
     expect(worst).toBeLessThan(0.01);
   });

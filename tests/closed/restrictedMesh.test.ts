@@ -18,7 +18,8 @@ function check(name: string, surface: MeshSurface, sites: Float64Array, count: n
   const rvd = restrictedVoronoi(surface, sites, count);
   const ref = meshContactsReference(surface.positions, surface.indices, sites, count);
   const cmp = compareNeighbourSets(rvd.adjacency, neighbourLists(ref, 1e-6));
-  let maxLength = 0, pairs = 0;
+  let maxLength = 0,
+    pairs = 0;
   for (let i = 0; i < count; i++) {
     for (let k = rvd.adjacency.offsets[i]; k < rvd.adjacency.offsets[i + 1]; k++) {
       const j = rvd.adjacency.neighbours[k];

@@ -14,7 +14,11 @@ const dist = (p: ArrayLike<number>, q: ArrayLike<number>, i = 0, j = 0) => Math.
 
 describe('offset surfaces of the stack', () => {
   it('"axes": sites lie on the ellipsoid (a + t, b + t, c + t) and are the closest points to the basal sites', () => {
-    const a = 90, b = 45, c = 45, t = 12, count = 150;
+    const a = 90,
+      b = 45,
+      c = 45,
+      t = 12,
+      count = 150;
     const basal = randomSequentialSites({ kind: 'ellipsoid', a, b, c }, count, 5, 4);
     const outer = offsetClosedSurface({ kind: 'ellipsoid', a, b, c }, basal.positions, basal.normals, count, t, 'axes');
     expect(outer.surface).toEqual({ kind: 'ellipsoid', a: a + t, b: b + t, c: c + t });
@@ -22,10 +26,14 @@ describe('offset surfaces of the stack', () => {
     const random = createRandom(1);
     const samples: number[] = [];
     for (let k = 0; k < 200000; k++) {
-      const z = 2 * random.next() - 1, l = 2 * Math.PI * random.next(), r = Math.sqrt(1 - z * z);
+      const z = 2 * random.next() - 1,
+        l = 2 * Math.PI * random.next(),
+        r = Math.sqrt(1 - z * z);
       samples.push((a + t) * r * Math.cos(l), (b + t) * r * Math.sin(l), (c + t) * z);
     }
-    let worstOn = 0, worstGap = Infinity, worstNormal = 0;
+    let worstOn = 0,
+      worstGap = Infinity,
+      worstNormal = 0;
     for (let i = 0; i < count; i++) {
       const [x, y, z] = [outer.sites[3 * i], outer.sites[3 * i + 1], outer.sites[3 * i + 2]];
       worstOn = Math.max(worstOn, Math.abs(Math.hypot(x / (a + t), y / (b + t), z / (c + t)) - 1));
@@ -39,9 +47,13 @@ describe('offset surfaces of the stack', () => {
       const v = [basal.positions[3 * i] - x, basal.positions[3 * i + 1] - y, basal.positions[3 * i + 2] - z];
       const cross = Math.hypot(v[1] * n[2] - v[2] * n[1], v[2] * n[0] - v[0] * n[2], v[0] * n[1] - v[1] * n[0]) / nl;
       worstNormal = Math.max(worstNormal, cross);
-      expect(Math.abs(outer.normals[3 * i] - n[0] / nl) + Math.abs(outer.normals[3 * i + 1] - n[1] / nl) + Math.abs(outer.normals[3 * i + 2] - n[2] / nl)).toBeLessThan(1e-9);
+      expect(
+        Math.abs(outer.normals[3 * i] - n[0] / nl) + Math.abs(outer.normals[3 * i + 1] - n[1] / nl) + Math.abs(outer.normals[3 * i + 2] - n[2] / nl),
+      ).toBeLessThan(1e-9);
     }
-    console.log(`axes offset +${t} µm: sites off the outer ellipsoid ≤ ${worstOn.toExponential(2)} (relative), sampled points at least ${worstGap.toExponential(2)} µm farther, tangential part of (basal - moved) ≤ ${worstNormal.toExponential(2)} µm`);
+    console.log(
+      `axes offset +${t} µm: sites off the outer ellipsoid ≤ ${worstOn.toExponential(2)} (relative), sampled points at least ${worstGap.toExponential(2)} µm farther, tangential part of (basal - moved) ≤ ${worstNormal.toExponential(2)} µm`,
+    );
     expect(worstOn).toBeLessThan(1e-12);
     expect(worstGap).toBeGreaterThanOrEqual(-1e-9);
     expect(worstNormal).toBeLessThan(1e-8);
@@ -60,19 +72,27 @@ describe('offset surfaces of the stack', () => {
     let worst = 0;
     for (let k = 0; k < mesh.positions.length; k++) worst = Math.max(worst, Math.abs(moved.positions[k] - (mesh.positions[k] + 0.1 * normals[k])));
     expect(worst).toBeLessThan(1e-6);
-    expect(() => offsetClosedSurface({ kind: 'mesh', positions: mesh.positions, indices: mesh.indices }, [], [], 0, 1, 'axes')).toThrow(/^sheet\.offset: "axes"/);
+    expect(() => offsetClosedSurface({ kind: 'mesh', positions: mesh.positions, indices: mesh.indices }, [], [], 0, 1, 'axes')).toThrow(
+      /^sheet\.offset: "axes"/,
+    );
   });
 
   it('"normal" on an ellipsoid: a triangulated parallel surface within its stated deviation, sites on the exact one', () => {
-    const a = 60, b = 40, c = 30, t = 8, count = 100;
+    const a = 60,
+      b = 40,
+      c = 30,
+      t = 8,
+      count = 100;
     const basal = randomSequentialSites({ kind: 'ellipsoid', a, b, c }, count, 4, 6);
     const outer = offsetClosedSurface({ kind: 'ellipsoid', a, b, c }, basal.positions, basal.normals, count, t, 'normal', { maxDeviation: 0.01 });
     expect(outer.representation).toBe('triangulated');
     const m = outer.surface as MeshSurface;
     // Distance to the base ellipsoid is t at the vertices (exact) and within t ± deviation at
     // the triangles' centroids and edge midpoints.
-    let worstVertex = 0, worstInside = 0;
-    const P = m.positions, T = m.indices;
+    let worstVertex = 0,
+      worstInside = 0;
+    const P = m.positions,
+      T = m.indices;
     for (let v = 0; v < P.length; v += 3) {
       const q = closestPointOnEllipsoid([P[v], P[v + 1], P[v + 2]], a, b, c);
       worstVertex = Math.max(worstVertex, Math.abs(dist(P, q, v) - t));
@@ -86,14 +106,18 @@ describe('offset surfaces of the stack', () => {
       const q = closestPointOnEllipsoid([outer.sites[3 * i], outer.sites[3 * i + 1], outer.sites[3 * i + 2]], a, b, c);
       worstSite = Math.max(worstSite, Math.abs(dist(outer.sites, q, 3 * i) - t));
     }
-    console.log(`parallel ellipsoid ${a}:${b}:${c} +${t} µm: ${T.length / 3} triangles, stated deviation ${outer.deviation.toExponential(2)} µm; vertices off by ≤ ${worstVertex.toExponential(2)}, centroids ≤ ${worstInside.toExponential(2)}, sites ≤ ${worstSite.toExponential(2)} µm`);
+    console.log(
+      `parallel ellipsoid ${a}:${b}:${c} +${t} µm: ${T.length / 3} triangles, stated deviation ${outer.deviation.toExponential(2)} µm; vertices off by ≤ ${worstVertex.toExponential(2)}, centroids ≤ ${worstInside.toExponential(2)}, sites ≤ ${worstSite.toExponential(2)} µm`,
+    );
     expect(worstVertex).toBeLessThan(1e-9);
     expect(worstSite).toBeLessThan(1e-9);
     expect(worstInside).toBeLessThanOrEqual(outer.deviation + 1e-9);
     expect(outer.deviation).toBeLessThanOrEqual(0.01);
     const rvd = restrictedVoronoi(outer.surface, outer.sites, count);
     expect(Array.from(rvd.areas).every((v) => v > 0)).toBe(true);
-    expect(() => offsetClosedSurface({ kind: 'ellipsoid', a, b, c }, basal.positions, basal.normals, count, -20, 'normal')).toThrow(/^sheet\.thickness: .*smallest radius of curvature/);
+    expect(() => offsetClosedSurface({ kind: 'ellipsoid', a, b, c }, basal.positions, basal.normals, count, -20, 'normal')).toThrow(
+      /^sheet\.thickness: .*smallest radius of curvature/,
+    );
   });
 });
 
@@ -117,7 +141,11 @@ describe('the diagrams of a stack feed the analysis', () => {
 
 describe('random sequential addition (the lab seeding)', () => {
   it('keeps the minimum distance, is reproducible, and is uniform in area on an ellipsoid', () => {
-    const a = 80, b = 40, c = 40, count = 400, d = 4;
+    const a = 80,
+      b = 40,
+      c = 40,
+      count = 400,
+      d = 4;
     const s1 = randomSequentialSites({ kind: 'ellipsoid', a, b, c }, count, d, 42);
     const s2 = randomSequentialSites({ kind: 'ellipsoid', a, b, c }, count, d, 42);
     expect(Array.from(s1.positions)).toEqual(Array.from(s2.positions));
@@ -127,17 +155,25 @@ describe('random sequential addition (the lab seeding)', () => {
     // Uniform in area: the share of sites with |x| < a/2 matches that band's share of the area
     // (computed from the prolate area formula of zones: area of |x| < h on a spheroid), 4 SE.
     const e = Math.sqrt(1 - (b * b) / (a * a));
-    const zone = (h: number) => { const u = (e * h) / a; return 2 * Math.PI * b * (a / e) * (u * Math.sqrt(1 - u * u) + Math.asin(u)); }; // ∫_{-h}^{h}
+    const zone = (h: number) => {
+      const u = (e * h) / a;
+      return 2 * Math.PI * b * (a / e) * (u * Math.sqrt(1 - u * u) + Math.asin(u));
+    }; // ∫_{-h}^{h}
     const share = zone(a / 2) / zone(a);
     const inBand = Array.from({ length: count }, (_, i) => Math.abs(s1.positions[3 * i]) < a / 2).filter(Boolean).length / count;
-    console.log(`RSA: ${count} sites ≥ ${d} µm apart (closest ${closest.toFixed(3)}), share in |x| < a/2: ${inBand.toFixed(3)} vs area share ${share.toFixed(3)}`);
+    console.log(
+      `RSA: ${count} sites ≥ ${d} µm apart (closest ${closest.toFixed(3)}), share in |x| < a/2: ${inBand.toFixed(3)} vs area share ${share.toFixed(3)}`,
+    );
     expect(Math.abs(inBand - share)).toBeLessThan(4 * Math.sqrt((share * (1 - share)) / count));
-    for (let i = 0; i < count; i++) expect(Math.abs(Math.hypot(s1.positions[3 * i] / a, s1.positions[3 * i + 1] / b, s1.positions[3 * i + 2] / c) - 1)).toBeLessThan(1e-12);
+    for (let i = 0; i < count; i++)
+      expect(Math.abs(Math.hypot(s1.positions[3 * i] / a, s1.positions[3 * i + 1] / b, s1.positions[3 * i + 2] / c) - 1)).toBeLessThan(1e-12);
   });
 
   it('stops with a message naming minSpacing when the spacing cannot be reached', () => {
     // 200 discs of 20 µm on a sphere of radius 30 µm (area 11,310 µm²) would cover 5.6 times the surface.
-    expect(() => randomSequentialSites({ kind: 'ellipsoid', a: 30, b: 30, c: 30 }, 200, 20, 1, { maxFailures: 2000 })).toThrow(/^minSpacing: placed only \d+ of 200 sites at least 20 µm apart.*fit up to about/);
+    expect(() => randomSequentialSites({ kind: 'ellipsoid', a: 30, b: 30, c: 30 }, 200, 20, 1, { maxFailures: 2000 })).toThrow(
+      /^minSpacing: placed only \d+ of 200 sites at least 20 µm apart.*fit up to about/,
+    );
   });
 
   it('places sites on a mesh, on its triangles', () => {

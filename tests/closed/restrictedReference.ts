@@ -52,7 +52,13 @@ function measureCurves(
   }
   const labels = label(pts, sites, count);
   // Runs: consecutive samples (in u) of one curve labelled i or j.
-  interface Run { c: number; lo: number; hi: number; loOut: number; hiOut: number }
+  interface Run {
+    c: number;
+    lo: number;
+    hi: number;
+    loOut: number;
+    hiOut: number;
+  }
   const runs: Run[] = [];
   const step = 1 / samples;
   for (let k = 0; k < owner.length; k++) {
@@ -68,9 +74,12 @@ function measureCurves(
   // contact and > 0 elsewhere; at every local minimum of G between samples (G > 0 there) a
   // golden-section search looks for a point where G reaches 0 (a short contact).
   const G = (k: number) => {
-    const { i, j } = curves[owner[k]], n = labels[k];
+    const { i, j } = curves[owner[k]],
+      n = labels[k];
     if (n === i || n === j) return 0;
-    const x = pts[3 * k], y = pts[3 * k + 1], z = pts[3 * k + 2];
+    const x = pts[3 * k],
+      y = pts[3 * k + 1],
+      z = pts[3 * k + 2];
     return Math.hypot(x - sites[3 * i], y - sites[3 * i + 1], z - sites[3 * i + 2]) - Math.hypot(x - sites[3 * n], y - sites[3 * n + 1], z - sites[3 * n + 2]);
   };
   const seeds: { c: number; lo: number; hi: number }[] = [];
@@ -82,7 +91,8 @@ function measureCurves(
   }
   if (seeds.length > 0) {
     const ratio = (Math.sqrt(5) - 1) / 2;
-    const lo = seeds.map((q) => q.lo), hi = seeds.map((q) => q.hi);
+    const lo = seeds.map((q) => q.lo),
+      hi = seeds.map((q) => q.hi);
     const best = seeds.map(() => -1);
     for (let round = 0; round < 60; round++) {
       const q: number[] = [];
@@ -95,13 +105,20 @@ function measureCurves(
       const l = label(q, sites, count);
       for (let s = 0; s < seeds.length; s++) {
         const { i, j } = curves[seeds[s].c];
-        const u1 = hi[s] - ratio * (hi[s] - lo[s]), u2 = lo[s] + ratio * (hi[s] - lo[s]);
+        const u1 = hi[s] - ratio * (hi[s] - lo[s]),
+          u2 = lo[s] + ratio * (hi[s] - lo[s]);
         const g = (m: number) => {
-          const x = q[3 * m], y = q[3 * m + 1], z = q[3 * m + 2], n = l[m];
+          const x = q[3 * m],
+            y = q[3 * m + 1],
+            z = q[3 * m + 2],
+            n = l[m];
           if (n === i || n === j) return 0;
-          return Math.hypot(x - sites[3 * i], y - sites[3 * i + 1], z - sites[3 * i + 2]) - Math.hypot(x - sites[3 * n], y - sites[3 * n + 1], z - sites[3 * n + 2]);
+          return (
+            Math.hypot(x - sites[3 * i], y - sites[3 * i + 1], z - sites[3 * i + 2]) - Math.hypot(x - sites[3 * n], y - sites[3 * n + 1], z - sites[3 * n + 2])
+          );
         };
-        const g1 = g(2 * s), g2 = g(2 * s + 1);
+        const g1 = g(2 * s),
+          g2 = g(2 * s + 1);
         if (best[s] < 0 && g1 === 0) best[s] = u1;
         else if (best[s] < 0 && g2 === 0) best[s] = u2;
         if (g1 <= g2) hi[s] = u2;
@@ -114,9 +131,11 @@ function measureCurves(
     }
   }
   // Bisection of both ends of every run at once: 40 rounds.
-  const loIn = runs.map((r) => r.lo), loOut = runs.map((r) => Math.max(0, r.loOut));
+  const loIn = runs.map((r) => r.lo),
+    loOut = runs.map((r) => Math.max(0, r.loOut));
   // (A short contact found by the search keeps its neighbouring samples as outside points.)
-  const hiIn = runs.map((r) => r.hi), hiOut = runs.map((r) => Math.min(1, r.hiOut));
+  const hiIn = runs.map((r) => r.hi),
+    hiOut = runs.map((r) => Math.min(1, r.hiOut));
   for (let round = 0; round < 40; round++) {
     const q: number[] = [];
     for (let r = 0; r < runs.length; r++) {
@@ -128,7 +147,8 @@ function measureCurves(
     const l = label(q, sites, count);
     for (let r = 0; r < runs.length; r++) {
       const { i, j } = curves[runs[r].c];
-      const a = 0.5 * (loIn[r] + loOut[r]), b = 0.5 * (hiIn[r] + hiOut[r]);
+      const a = 0.5 * (loIn[r] + loOut[r]),
+        b = 0.5 * (hiIn[r] + hiOut[r]);
       if (l[2 * r] === i || l[2 * r] === j) loIn[r] = a;
       else loOut[r] = a;
       if (l[2 * r + 1] === i || l[2 * r + 1] === j) hiIn[r] = b;
@@ -139,7 +159,8 @@ function measureCurves(
   const prev = [0, 0, 0];
   for (let r = 0; r < runs.length; r++) {
     const { i, j, at } = curves[runs[r].c];
-    const a = 0.5 * (loIn[r] + loOut[r]), b = 0.5 * (hiIn[r] + hiOut[r]);
+    const a = 0.5 * (loIn[r] + loOut[r]),
+      b = 0.5 * (hiIn[r] + hiOut[r]);
     const pieces = Math.max(16, Math.ceil(((b - a) / step) * 8));
     let len = 0;
     at(a, prev);
@@ -159,7 +180,8 @@ function measureCurves(
 /** Plane n·p = o ∩ ellipsoid (a, b, c) as c(u) = centre + cos(2πu) A1 + sin(2πu) A2 (3D), or null. */
 function planeEllipsoidConic(n: number[], o: number, a: number, b: number, c: number) {
   const nl = Math.hypot(n[0], n[1], n[2]);
-  const N = n.map((v) => v / nl), off = o / nl;
+  const N = n.map((v) => v / nl),
+    off = o / nl;
   const p0 = N.map((v) => v * off);
   // Orthonormal basis e1, e2 of the plane.
   const t = Math.abs(N[0]) < 0.6 ? [1, 0, 0] : [0, 1, 0];
@@ -170,25 +192,35 @@ function planeEllipsoidConic(n: number[], o: number, a: number, b: number, c: nu
   const D = [1 / (a * a), 1 / (b * b), 1 / (c * c)];
   const dot = (u: number[], v: number[]) => u[0] * v[0] * D[0] + u[1] * v[1] * D[1] + u[2] * v[2] * D[2];
   // (p0 + X e1 + Y e2)ᵀ D (…) = 1: Q = [[q11, q12], [q12, q22]], linear L, constant k.
-  const q11 = dot(e1, e1), q12 = dot(e1, e2), q22 = dot(e2, e2);
-  const L1 = dot(p0, e1), L2 = dot(p0, e2), k = dot(p0, p0) - 1;
+  const q11 = dot(e1, e1),
+    q12 = dot(e1, e2),
+    q22 = dot(e2, e2);
+  const L1 = dot(p0, e1),
+    L2 = dot(p0, e2),
+    k = dot(p0, p0) - 1;
   const det = q11 * q22 - q12 * q12;
-  const X0 = -(q22 * L1 - q12 * L2) / det, Y0 = -(-q12 * L1 + q11 * L2) / det;
+  const X0 = -(q22 * L1 - q12 * L2) / det,
+    Y0 = -(-q12 * L1 + q11 * L2) / det;
   const g = -(k + L1 * X0 + L2 * Y0);
   if (!(g > 0)) return null;
   // Eigen-decomposition of Q.
-  const tr = q11 + q22, disc = Math.sqrt(Math.max(0, (q11 - q22) ** 2 / 4 + q12 * q12));
-  const lam1 = tr / 2 + disc, lam2 = tr / 2 - disc;
+  const tr = q11 + q22,
+    disc = Math.sqrt(Math.max(0, (q11 - q22) ** 2 / 4 + q12 * q12));
+  const lam1 = tr / 2 + disc,
+    lam2 = tr / 2 - disc;
   let v1 = Math.abs(q12) > 1e-300 ? [lam1 - q22, q12] : q11 >= q22 ? [1, 0] : [0, 1];
   const vl = Math.hypot(v1[0], v1[1]);
   v1 = [v1[0] / vl, v1[1] / vl];
   const v2 = [-v1[1], v1[0]];
-  const r1 = Math.sqrt(g / lam1), r2 = Math.sqrt(g / lam2);
+  const r1 = Math.sqrt(g / lam1),
+    r2 = Math.sqrt(g / lam2);
   const centre = [0, 1, 2].map((m) => p0[m] + X0 * e1[m] + Y0 * e2[m]);
   const A1 = [0, 1, 2].map((m) => r1 * (v1[0] * e1[m] + v1[1] * e2[m]));
   const A2 = [0, 1, 2].map((m) => r2 * (v2[0] * e1[m] + v2[1] * e2[m]));
   return (u: number, out: number[]) => {
-    const th = 2 * Math.PI * u, co = Math.cos(th), si = Math.sin(th);
+    const th = 2 * Math.PI * u,
+      co = Math.cos(th),
+      si = Math.sin(th);
     for (let m = 0; m < 3; m++) out[m] = centre[m] + co * A1[m] + si * A2[m];
   };
 }
@@ -205,7 +237,8 @@ export function ellipsoidContactsReference(
   const curves: Parameters<typeof measureCurves>[0] = [];
   for (let i = 0; i < count; i++) {
     for (let j = i + 1; j < count; j++) {
-      const si = [sites[3 * i], sites[3 * i + 1], sites[3 * i + 2]], sj = [sites[3 * j], sites[3 * j + 1], sites[3 * j + 2]];
+      const si = [sites[3 * i], sites[3 * i + 1], sites[3 * i + 2]],
+        sj = [sites[3 * j], sites[3 * j + 1], sites[3 * j + 2]];
       if (Math.hypot(sj[0] - si[0], sj[1] - si[1], sj[2] - si[2]) > cutoff) continue;
       const n = [sj[0] - si[0], sj[1] - si[1], sj[2] - si[2]];
       const o = 0.5 * (sj[0] ** 2 + sj[1] ** 2 + sj[2] ** 2 - si[0] ** 2 - si[1] ** 2 - si[2] ** 2);
@@ -220,7 +253,13 @@ export function ellipsoidContactsReference(
 }
 
 /** measureCurves over chunks of curves (bounded memory), results summed per pair. */
-function measureInChunks(curves: Parameters<typeof measureCurves>[0], sites: ArrayLike<number>, count: number, samples: number, chunk = 64): Map<number, number> {
+function measureInChunks(
+  curves: Parameters<typeof measureCurves>[0],
+  sites: ArrayLike<number>,
+  count: number,
+  samples: number,
+  chunk = 64,
+): Map<number, number> {
   const out = new Map<number, number>();
   for (let k = 0; k < curves.length; k += chunk) {
     for (const [key, len] of measureCurves(curves.slice(k, k + chunk), sites, count, samples)) out.set(key, (out.get(key) ?? 0) + len);
@@ -228,15 +267,26 @@ function measureInChunks(curves: Parameters<typeof measureCurves>[0], sites: Arr
   return out;
 }
 
-export function meshContactsReference(positions: ArrayLike<number>, indices: ArrayLike<number>, sites: ArrayLike<number>, count: number, grid = 6, samples = 48): PairLengths {
+export function meshContactsReference(
+  positions: ArrayLike<number>,
+  indices: ArrayLike<number>,
+  sites: ArrayLike<number>,
+  count: number,
+  grid = 6,
+  samples = 48,
+): PairLengths {
   const nf = indices.length / 3;
   const pts: number[] = [];
   const tri: number[] = [];
   for (let f = 0; f < nf; f++) {
-    const A = 3 * indices[3 * f], B = 3 * indices[3 * f + 1], C = 3 * indices[3 * f + 2];
+    const A = 3 * indices[3 * f],
+      B = 3 * indices[3 * f + 1],
+      C = 3 * indices[3 * f + 2];
     for (let u = 0; u <= grid; u++) {
       for (let v = 0; v <= grid - u; v++) {
-        const wa = 1 - (u + v) / grid, wb = u / grid, wc = v / grid;
+        const wa = 1 - (u + v) / grid,
+          wb = u / grid,
+          wc = v / grid;
         for (let m = 0; m < 3; m++) pts.push(wa * positions[A + m] + wb * positions[B + m] + wc * positions[C + m]);
         tri.push(f);
       }
@@ -263,7 +313,8 @@ export function meshContactsReference(positions: ArrayLike<number>, indices: Arr
     const V = [0, 1, 2].map((e) => [0, 1, 2].map((m) => positions[3 * indices[3 * f + e] + m]));
     for (let x = 0; x < own.length; x++) {
       for (let y = x + 1; y < own.length; y++) {
-        const i = own[x], j = own[y];
+        const i = own[x],
+          j = own[y];
         const n = [0, 1, 2].map((m) => sites[3 * j + m] - sites[3 * i + m]);
         const mid = [0, 1, 2].map((m) => 0.5 * (sites[3 * j + m] + sites[3 * i + m]));
         const d = V.map((P) => (P[0] - mid[0]) * n[0] + (P[1] - mid[1]) * n[1] + (P[2] - mid[2]) * n[2]);
@@ -278,7 +329,13 @@ export function meshContactsReference(positions: ArrayLike<number>, indices: Arr
         }
         if (cross.length !== 2) continue;
         const [P, Q] = cross;
-        curves.push({ i, j, at: (u, out) => { for (let m = 0; m < 3; m++) out[m] = P[m] + u * (Q[m] - P[m]); } });
+        curves.push({
+          i,
+          j,
+          at: (u, out) => {
+            for (let m = 0; m < 3; m++) out[m] = P[m] + u * (Q[m] - P[m]);
+          },
+        });
       }
     }
   }
@@ -290,7 +347,8 @@ export function neighbourLists(ref: PairLengths, tolerance: number): number[][] 
   const lists: number[][] = Array.from({ length: ref.count }, () => []);
   for (const [key, len] of ref.lengths) {
     if (!(len > tolerance)) continue;
-    const i = Math.floor(key / ref.count), j = key % ref.count;
+    const i = Math.floor(key / ref.count),
+      j = key % ref.count;
     lists[i].push(j);
     lists[j].push(i);
   }
@@ -299,7 +357,10 @@ export function neighbourLists(ref: PairLengths, tolerance: number): number[][] 
 }
 
 /** Fraction of cells whose CSR neighbour set equals the reference list, and the cells that differ. */
-export function compareNeighbourSets(adj: { offsets: Int32Array; neighbours: Int32Array }, lists: number[][]): { same: number; fraction: number; differ: number[] } {
+export function compareNeighbourSets(
+  adj: { offsets: Int32Array; neighbours: Int32Array },
+  lists: number[][],
+): { same: number; fraction: number; differ: number[] } {
   const differ: number[] = [];
   for (let i = 0; i < lists.length; i++) {
     const mine = Array.from(adj.neighbours.subarray(adj.offsets[i], adj.offsets[i + 1])).sort((x, y) => x - y);

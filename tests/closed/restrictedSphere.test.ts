@@ -11,9 +11,13 @@ import { compareNeighbourSets } from './restrictedReference';
 function compareWithHull(R: number, positions: Float64Array, count: number) {
   const hull = sphericalVoronoi(positions, count, R);
   const rvd = restrictedVoronoi(sphereSurface(R), positions, count);
-  const lists = Array.from({ length: count }, (_, i) => Array.from(hull.adjacency.neighbours.subarray(hull.adjacency.offsets[i], hull.adjacency.offsets[i + 1])).sort((x, y) => x - y));
+  const lists = Array.from({ length: count }, (_, i) =>
+    Array.from(hull.adjacency.neighbours.subarray(hull.adjacency.offsets[i], hull.adjacency.offsets[i + 1])).sort((x, y) => x - y),
+  );
   const cmp = compareNeighbourSets(rvd.adjacency, lists);
-  let maxLength = 0, maxArea = 0, sum = 0;
+  let maxLength = 0,
+    maxArea = 0,
+    sum = 0;
   for (let i = 0; i < count; i++) {
     for (let k = hull.adjacency.offsets[i]; k < hull.adjacency.offsets[i + 1]; k++) {
       const j = hull.adjacency.neighbours[k];
@@ -29,10 +33,13 @@ function compareWithHull(R: number, positions: Float64Array, count: number) {
 
 describe('restricted Voronoi on the analytic sphere', () => {
   it('equals the convex hull (spherical Voronoi) for RSA sites: every neighbour set, lengths within 1e-4 µm', () => {
-    const R = 50, count = 300;
+    const R = 50,
+      count = 300;
     const seeded = randomSequentialSites(sphereSurface(R), count, 3, 11);
     const { rvd, cmp, maxLength, maxArea, sum } = compareWithHull(R, seeded.positions, count);
-    console.log(`sphere R=${R}, ${count} RSA cells: ${cmp.same}/${count} neighbour sets equal the hull's, max |Δlength| ${maxLength.toExponential(2)} µm, max relative |Δarea| ${maxArea.toExponential(2)}, ${rvd.stats.ms.toFixed(0)} ms`);
+    console.log(
+      `sphere R=${R}, ${count} RSA cells: ${cmp.same}/${count} neighbour sets equal the hull's, max |Δlength| ${maxLength.toExponential(2)} µm, max relative |Δarea| ${maxArea.toExponential(2)}, ${rvd.stats.ms.toFixed(0)} ms`,
+    );
     expect(cmp.differ).toEqual([]);
     expect(maxLength).toBeLessThan(1e-4);
     expect(maxArea).toBeLessThan(1e-8);
@@ -42,11 +49,14 @@ describe('restricted Voronoi on the analytic sphere', () => {
   });
 
   it('equals the hull for uniformly random (Poisson) sites, whose cells are irregular', () => {
-    const R = 100, count = 1000;
+    const R = 100,
+      count = 1000;
     const random = createRandom(3);
     const positions = new Float64Array(3 * count);
     for (let i = 0; i < count; i++) {
-      const z = 2 * random.next() - 1, l = 2 * Math.PI * random.next(), r = Math.sqrt(1 - z * z);
+      const z = 2 * random.next() - 1,
+        l = 2 * Math.PI * random.next(),
+        r = Math.sqrt(1 - z * z);
       positions[3 * i] = R * r * Math.cos(l);
       positions[3 * i + 1] = R * r * Math.sin(l);
       positions[3 * i + 2] = R * z;

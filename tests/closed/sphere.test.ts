@@ -17,7 +17,10 @@ function pairs(result: SheetResult): Set<string> {
 
 describe('concentric spheres', () => {
   it('no cell changes neighbours, whatever the thickness (labels and exact)', async () => {
-    for (const [direction, thickness] of [['outward', 40], ['inward', 25]] as const) {
+    for (const [direction, thickness] of [
+      ['outward', 40],
+      ['inward', 25],
+    ] as const) {
       const config = closed({
         surface: { kind: 'sphere', radius: 50 },
         resolution: 64,
@@ -87,9 +90,12 @@ describe('sphere CCVT, uniform density, 1000 cells, n = 128 (~98 texels per cell
     const hexMean = hex.reduce((a, b) => a + b) / hex.length;
     const hexSd = Math.sqrt(hex.reduce((s, a) => s + (a / hexMean - 1) ** 2, 0) / hex.length);
     const mad = exact.reduce((s, a) => s + Math.abs(a / exactMean - 1), 0) / exact.length;
-    const q1 = sorted[249], q3 = sorted[749];
+    const q1 = sorted[249],
+      q3 = sorted[749];
     console.log(`hexagons ${hex.length} SD ${hexSd.toFixed(4)}, mean abs dev ${mad.toFixed(4)}, IQR/2 ${((q3 - q1) / 2).toFixed(4)}`);
-    console.log(`areas: labels SD ${sd.toFixed(4)}, exact SD ${exactSd.toFixed(4)}, exact 5th..95th percentile ${sorted[50].toFixed(3)}..${sorted[949].toFixed(3)}, min ${sorted[0].toFixed(3)}, max ${sorted[999].toFixed(3)}`);
+    console.log(
+      `areas: labels SD ${sd.toFixed(4)}, exact SD ${exactSd.toFixed(4)}, exact 5th..95th percentile ${sorted[50].toFixed(3)}..${sorted[949].toFixed(3)}, min ${sorted[0].toFixed(3)}, max ${sorted[999].toFixed(3)}`,
+    );
     expect(hexSd).toBeLessThanOrEqual(0.05);
     expect((q3 - q1) / 2).toBeLessThanOrEqual(0.05);
     expect(exactSd).toBeLessThanOrEqual(0.08);
@@ -103,7 +109,9 @@ describe('sphere CCVT, uniform density, 1000 cells, n = 128 (~98 texels per cell
     result.cells.forEach((c, i) => c.position.forEach((v, k) => (directions[3 * i + k] = v / 100)));
     const v = sphericalVoronoi(directions, result.cells.length, 100);
     const hull = new Set<string>();
-    for (let i = 0; i < v.count; i++) for (let k = v.adjacency.offsets[i]; k < v.adjacency.offsets[i + 1]; k++) if (i < v.adjacency.neighbours[k]) hull.add(`${i}-${v.adjacency.neighbours[k]}`);
+    for (let i = 0; i < v.count; i++)
+      for (let k = v.adjacency.offsets[i]; k < v.adjacency.offsets[i + 1]; k++)
+        if (i < v.adjacency.neighbours[k]) hull.add(`${i}-${v.adjacency.neighbours[k]}`);
     let both = 0;
     for (const p of labels) if (hull.has(p)) both++;
     const agreement = both / (labels.size + hull.size - both);

@@ -1,16 +1,7 @@
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
-import {
-  ConfigError,
-  DEFAULT_TUBE_RADIUS,
-  checkFeasible,
-  configSchema,
-  makeGrid,
-  unrolledDomain,
-  validateConfig,
-  type Config,
-} from '../../src/core/config';
+import { ConfigError, DEFAULT_TUBE_RADIUS, checkFeasible, configSchema, makeGrid, unrolledDomain, validateConfig, type Config } from '../../src/core/config';
 
 /** Runs validateConfig and returns the ConfigError it throws (fails the test if none). */
 function errorOf(input: unknown): ConfigError {
@@ -157,12 +148,8 @@ describe('validateConfig: errors name the exact field', () => {
   it('wrong types, enums, strings and arrays', () => {
     expect(errorOf({ cells: '200' }).message).toBe('cells: must be an integer >= 1 (got "200")');
     expect(errorOf({ cells: 2.5 }).field).toBe('cells');
-    expect(errorOf({ surface: { kind: 'plane', width: 1, height: 1, periodicX: 'yes' } }).message).toBe(
-      'surface.periodicX: must be true or false (got "yes")',
-    );
-    expect(errorOf({ jumpFlood: { variant: 'jfa+1' } }).message).toBe(
-      'jumpFlood.variant: must be one of "jfa+2", "1+jfa", "jfa" (got "jfa+1")',
-    );
+    expect(errorOf({ surface: { kind: 'plane', width: 1, height: 1, periodicX: 'yes' } }).message).toBe('surface.periodicX: must be true or false (got "yes")');
+    expect(errorOf({ jumpFlood: { variant: 'jfa+1' } }).message).toBe('jumpFlood.variant: must be one of "jfa+2", "1+jfa", "jfa" (got "jfa+1")');
     expect(errorOf({ centroidPath: 'fast' }).field).toBe('centroidPath');
     expect(errorOf({ density: { kind: 'linear', axis: 'z', from: 1, to: 2 } }).field).toBe('density.axis');
     expect(errorOf({ density: { kind: 'image', src: '' } }).field).toBe('density.src');
@@ -245,9 +232,7 @@ describe('checkFeasible', () => {
   it('needs 16 texels per cell', () => {
     const e = feasibilityError({ surface: { kind: 'plane', width: 100, height: 100 }, resolution: 256, cells: 5000 });
     expect(e?.field).toBe('cells');
-    expect(e?.message).toBe(
-      'cells: 5000 cells need at least 80000 texels (16 per cell) but the grid has 65536; lower cells or raise resolution',
-    );
+    expect(e?.message).toBe('cells: 5000 cells need at least 80000 texels (16 per cell) but the grid has 65536; lower cells or raise resolution');
     expect(feasibilityError({ surface: { kind: 'plane', width: 100, height: 100 }, resolution: 256, cells: 4096 })).toBeNull();
   });
 

@@ -33,7 +33,10 @@ describe('prototype keys in a config', () => {
   it.each(cases)('%s is refused naming %s', (json, field) => {
     const error = refusal(json);
     expect(error.field).toBe(field);
-    const key = field.split(/[.[\]]/).filter(Boolean).pop()!;
+    const key = field
+      .split(/[.[\]]/)
+      .filter(Boolean)
+      .pop()!;
     expect(error.message).toBe(`${field}: "${key}" is not allowed as a key (it would reach an object prototype); remove it`);
     expect(error.message).not.toContain('\n');
     for (const name of POLLUTED) expect(Object.prototype.hasOwnProperty.call(Object.prototype, name), name).toBe(false);

@@ -35,7 +35,12 @@ describe('densityField presets match their formulas', () => {
     ] as const) {
       const field = densityField(spec, plane);
       expectAllPositiveFinite(field, plane);
-      for (const [i, j] of [[0, 0], [39, 29], [7, 13], [20, 3]]) {
+      for (const [i, j] of [
+        [0, 0],
+        [39, 29],
+        [7, 13],
+        [20, 3],
+      ]) {
         const [u, v] = centre(plane, i, j);
         const t = spec.axis === 'x' ? u / lengthX : v / lengthY;
         expect(field[j * plane.width + i]).toBeCloseTo(spec.from + (spec.to - spec.from) * t, 5);

@@ -46,10 +46,7 @@ describe('renderConfigDocs', () => {
   it('gives every field of the schema one table row', () => {
     const rendered = renderConfigDocs(template);
     const rows = rendered.split('\n').filter((line) => /^\| `[^`]+` \|/.test(line)).length;
-    const fields = SCHEMA_ENTRIES.reduce(
-      (n, e) => n + (e.union ? e.union.branches.reduce((m, b) => m + b.fields.length, 0) : e.field.children.length || 1),
-      0,
-    );
+    const fields = SCHEMA_ENTRIES.reduce((n, e) => n + (e.union ? e.union.branches.reduce((m, b) => m + b.fields.length, 0) : e.field.children.length || 1), 0);
     expect(rows).toBe(fields);
   });
 
@@ -65,7 +62,10 @@ describe('renderConfigDocs', () => {
       type: 'object',
       additionalProperties: false,
       required: ['kind', 'side'],
-      properties: { kind: { type: 'string', const: 'cube', description: 'A kind that only this test has.' }, side: { type: 'number', exclusiveMinimum: 0, unit: 'µm', description: 'Side of the test cube.' } },
+      properties: {
+        kind: { type: 'string', const: 'cube', description: 'A kind that only this test has.' },
+        side: { type: 'number', exclusiveMinimum: 0, unit: 'µm', description: 'Side of the test cube.' },
+      },
     });
     const rendered = renderConfigDocs(template, readSchemaEntries(variant));
     expect(rowsOf(rendered, 'cells')).toEqual(['| `cells` | integer |  | 1..9999 | `321` | Number of cells (sites). |']);

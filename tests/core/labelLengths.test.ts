@@ -20,7 +20,8 @@ function sitesUm(count: number, lengthX: number, lengthY: number, spacing: numbe
   const out = new Float64Array(2 * count);
   let placed = 0;
   while (placed < count) {
-    const x = random.next() * lengthX, y = random.next() * lengthY;
+    const x = random.next() * lengthX,
+      y = random.next() * lengthY;
     let ok = true;
     for (let k = 0; k < placed && ok; k++) {
       let dx = Math.abs(out[2 * k] - x);
@@ -35,7 +36,9 @@ function sitesUm(count: number, lengthX: number, lengthY: number, spacing: numbe
   return out;
 }
 
-const lengthX = 240, lengthY = 360, count = 150;
+const lengthX = 240,
+  lengthY = 360,
+  count = 150;
 const spacing = 0.5 * Math.sqrt((lengthX * lengthY) / count);
 
 function measure(periodicX: boolean, width: number, seed: number) {
@@ -63,11 +66,15 @@ describe('labelAdjacency contact lengths against the exact Voronoi diagram', () 
       for (const width of [60, 120, 240, 480]) {
         const runs = [1, 2].map((seed) => measure(periodicX, width, seed + (periodicX ? 10 : 0)));
         const mean = (f: (r: (typeof runs)[number]) => number) => runs.reduce((s, r) => s + f(r), 0) / runs.length;
-        const ratio = mean((r) => r.unbiased.meanRatio), total = mean((r) => r.unbiased.totalRatio);
+        const ratio = mean((r) => r.unbiased.meanRatio),
+          total = mean((r) => r.unbiased.totalRatio);
         const oldRatio = mean((r) => r.staircase.meanRatio);
-        const agree = mean((r) => r.unbiased.cellAgreement), oldAgree = mean((r) => r.staircase.cellAgreement);
+        const agree = mean((r) => r.unbiased.cellAgreement),
+          oldAgree = mean((r) => r.staircase.cellAgreement);
         const { grid, minLength } = runs[0];
-        rows.push(`${width}x${grid.height} texel ${grid.texelX.toFixed(2)} µm (threshold ${minLength.toFixed(2)} µm): ratio ${ratio.toFixed(3)} (Σ ${total.toFixed(3)}; staircase ${oldRatio.toFixed(3)}), cells agreeing ${(100 * agree).toFixed(1)} % (staircase ${(100 * oldAgree).toFixed(1)} %)`);
+        rows.push(
+          `${width}x${grid.height} texel ${grid.texelX.toFixed(2)} µm (threshold ${minLength.toFixed(2)} µm): ratio ${ratio.toFixed(3)} (Σ ${total.toFixed(3)}; staircase ${oldRatio.toFixed(3)}), cells agreeing ${(100 * agree).toFixed(1)} % (staircase ${(100 * oldAgree).toFixed(1)} %)`,
+        );
         expect(Math.abs(ratio - 1), `mean ratio at ${width}`).toBeLessThan(0.03);
         expect(Math.abs(total - 1), `total ratio at ${width}`).toBeLessThan(0.03);
         expect(oldRatio, 'the staircase is biased (the comparison can tell)').toBeGreaterThan(1.15);
@@ -89,8 +96,11 @@ describe('labelAdjacency contact lengths against the exact Voronoi diagram', () 
     const grid: Grid = { width: 200, height: 150, texelX: 0.5, texelY: 0.8, periodicX: false, periodicY: false };
     for (const angle of [0, 0.2, 0.5, Math.PI / 4, 1.1, 1.5]) {
       // Two sites mirrored about a line through the centre: their bisector is that line.
-      const cx = 100, cy = 75, d = 10;
-      const nx = Math.cos(angle), ny = Math.sin(angle); // unit normal of the boundary in µm
+      const cx = 100,
+        cy = 75,
+        d = 10;
+      const nx = Math.cos(angle),
+        ny = Math.sin(angle); // unit normal of the boundary in µm
       const sites = Float32Array.from([(cx * 0.5 - d * nx) / 0.5, (cy * 0.8 - d * ny) / 0.8, (cx * 0.5 + d * nx) / 0.5, (cy * 0.8 + d * ny) / 0.8]);
       const labels = labelAdjacency(grid, bruteForceLabels(grid, sites), 2);
       const exact = exactVoronoi(grid, sites).cells[0].lengths[0];

@@ -1,14 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { distanceSquared, wrapDelta, type Grid } from '../../src/core/grid';
-import {
-  accumulateCentroidRows,
-  BORDER_X_END,
-  BORDER_X_START,
-  BORDER_Y_END,
-  BORDER_Y_START,
-  labelAdjacency,
-  type LabelAdjacency,
-} from '../../src/core/labels';
+import { accumulateCentroidRows, BORDER_X_END, BORDER_X_START, BORDER_Y_END, BORDER_Y_START, labelAdjacency, type LabelAdjacency } from '../../src/core/labels';
 import { bruteForceLabels, centroidSites, cvtEnergy, reduceCentroids, sharedLength } from '../oracles/labels';
 import { Random } from '../../src/core/random';
 
@@ -171,7 +163,14 @@ describe('reduceCentroids and the Lloyd move', () => {
     const { sites: moved, move } = centroidSites(grid, sites, sums);
     expect([moved[4], moved[5]]).toEqual([sites[4], sites[5]]);
     expect(move.emptyCells).toBe(1);
-    expect(() => reduceCentroids(grid, Int32Array.from({ length: 40 }, () => 3), sites, null)).toThrow(/label 3/);
+    expect(() =>
+      reduceCentroids(
+        grid,
+        Int32Array.from({ length: 40 }, () => 3),
+        sites,
+        null,
+      ),
+    ).toThrow(/label 3/);
   });
 
   it('computes the CVT energy as Σ w·d²·texel area, and Lloyd does not increase it', () => {

@@ -54,7 +54,9 @@ describe('the app panel and the element follow the schema', () => {
   /** One validated config per surface kind and per density kind. */
   const base = validateAnyConfig(APP_START);
   const configs: AnyConfig[] = [
-    ...['plane', 'tube', 'sphere', 'ellipsoid', 'mesh'].map((kind) => validateAnyConfig({ ...base, surface: surfaceOfKind(base.surface, kind), sheet: { ...base.sheet, surfaceRatio: null } })),
+    ...['plane', 'tube', 'sphere', 'ellipsoid', 'mesh'].map((kind) =>
+      validateAnyConfig({ ...base, surface: surfaceOfKind(base.surface, kind), sheet: { ...base.sheet, surfaceRatio: null } }),
+    ),
     ...['uniform', 'linear', 'gaussian', 'stripes', 'image'].map((kind) => ({ ...base, density: densityPreset(kind, base) }) as AnyConfig),
   ];
 

@@ -17,7 +17,17 @@ import { renderValidators } from '../../scripts/validatorsCode';
 
 type Validator = ((data: unknown) => boolean) & { errors?: unknown[] | null };
 type Json = null | boolean | number | string | Json[] | { [key: string]: Json };
-type SchemaNode = { type?: unknown; properties?: Record<string, SchemaNode>; oneOf?: SchemaNode[]; required?: string[]; minimum?: number; exclusiveMinimum?: number; minItems?: number; enum?: unknown[]; const?: unknown };
+type SchemaNode = {
+  type?: unknown;
+  properties?: Record<string, SchemaNode>;
+  oneOf?: SchemaNode[];
+  required?: string[];
+  minimum?: number;
+  exclusiveMinimum?: number;
+  minItems?: number;
+  enum?: unknown[];
+  const?: unknown;
+};
 
 const root = fileURLToPath(new URL('../../', import.meta.url));
 

@@ -26,7 +26,11 @@ function engineCentroids(grid: Grid, sites: Float32Array, density?: ExactDensity
 }
 
 describe('exact Lloyd energy', () => {
-  for (const [name, grid] of [['tube', tube], ['plane', plane], ['torus', torus]] as const) {
+  for (const [name, grid] of [
+    ['tube', tube],
+    ['plane', plane],
+    ['torus', torus],
+  ] as const) {
     it(`${name}: never rises under plain Lloyd and falls overall`, () => {
       const sites = placeSites(grid, 150, 5, 1.5);
       const run = new ExactLloydRun(grid, sites, plain);
@@ -109,7 +113,11 @@ describe('fixed points and centroids', () => {
     expect(c[1]).toBeCloseTo(plane.height / 2, 9);
   });
 
-  for (const [name, grid] of [['tube', tube], ['plane', plane], ['torus', torus]] as const) {
+  for (const [name, grid] of [
+    ['tube', tube],
+    ['plane', plane],
+    ['torus', torus],
+  ] as const) {
     it(`${name}: every centroid equals exactVoronoi's polygon centroid`, () => {
       const sites = placeSites(grid, 120, 9, 1);
       const mine = engineCentroids(grid, sites);
@@ -189,7 +197,11 @@ describe('density integration', () => {
 });
 
 describe('exactSurface against exactVoronoi', () => {
-  for (const [name, grid] of [['tube', tube], ['plane', plane], ['torus', torus]] as const) {
+  for (const [name, grid] of [
+    ['tube', tube],
+    ['plane', plane],
+    ['torus', torus],
+  ] as const) {
     it(`${name}: identical neighbours, lengths, areas and open-end contacts`, () => {
       for (const seed of [1, 2, 3]) {
         const sites = placeSites(grid, 150, seed, 1);

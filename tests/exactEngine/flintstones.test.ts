@@ -53,7 +53,12 @@ describe('Flintstones law fit', () => {
     const fit = fitFlintstones(synthetic(truth, 0, 1, 1));
     expect(fit.parameters.nMax).toBeCloseTo(8, 4);
     expect(fit.parameters.c).toBeCloseTo(2.5, 3);
-    expect(() => fitFlintstones([{ s: 1, n: 6 }, { s: 2, n: 6.5 }])).toThrow(/points/);
+    expect(() =>
+      fitFlintstones([
+        { s: 1, n: 6 },
+        { s: 2, n: 6.5 },
+      ]),
+    ).toThrow(/points/);
     expect(() => fitFlintstones([...synthetic(truth, 0, 1, 1), { s: Number.NaN, n: 6 }])).toThrow(/finite/);
   });
 });

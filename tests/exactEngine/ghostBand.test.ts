@@ -22,9 +22,15 @@ function randomPoints(n: number, seed: number, scale = 100): Float64Array {
 }
 
 describe('Triangulation (Delaunator port into kept buffers)', () => {
-  it('gives Delaunator\'s triangles and half-edges, for growing and shrinking point counts in one object', () => {
+  it("gives Delaunator's triangles and half-edges, for growing and shrinking point counts in one object", () => {
     const t = new Triangulation();
-    for (const [n, seed] of [[500, 1], [2000, 2], [37, 3], [1200, 4], [3, 5]] as const) {
+    for (const [n, seed] of [
+      [500, 1],
+      [2000, 2],
+      [37, 3],
+      [1200, 4],
+      [3, 5],
+    ] as const) {
       const points = randomPoints(n, seed);
       // A longer buffer: only the first n points count.
       const buffer = new Float64Array(2 * n + 40).fill(7);
@@ -57,12 +63,16 @@ describe('ghost band of periodic copies', () => {
     expect(Array.from(adj.offsets)).toEqual(Array.from(ref.adjacency.offsets));
     expect(Array.from(adj.neighbours)).toEqual(Array.from(ref.adjacency.neighbours));
     expect(Array.from(mine.touchesBorder)).toEqual(Array.from(ref.touchesBorder));
-    for (let k = 0; k < adj.lengths.length; k++) expect(Math.abs(adj.lengths[k] - ref.adjacency.lengths![k])).toBeLessThanOrEqual(1e-9 * ref.adjacency.lengths![k]);
+    for (let k = 0; k < adj.lengths.length; k++)
+      expect(Math.abs(adj.lengths[k] - ref.adjacency.lengths![k])).toBeLessThanOrEqual(1e-9 * ref.adjacency.lengths![k]);
     for (let i = 0; i < ref.count; i++) expect(Math.abs(mine.areas[i] - ref.areas[i])).toBeLessThanOrEqual(1e-9 * ref.areas[i]);
   }
 
   it('triangulates a few per cent more points than sites, not 9 (torus) or 3 (tube) times as many', () => {
-    for (const [grid, copies] of [[torus, 9], [tube, 3]] as const) {
+    for (const [grid, copies] of [
+      [torus, 9],
+      [tube, 3],
+    ] as const) {
       const sites = placeSites(grid, 3000, 5, 1);
       const v = new PlanarVoronoi(grid, 3000).build(sites);
       expect(v.pointCount).toBeLessThan(1.5 * 3000);

@@ -17,7 +17,10 @@ const tube: Grid = { width: 512, height: 4096, texelX: 1, texelY: 1, periodicX: 
 const plane: Grid = { width: 1024, height: 1024, texelX: 1, texelY: 1, periodicX: false, periodicY: false };
 
 describe('GPU and exact engines from the same initial sites', () => {
-  for (const [name, grid, count] of [['tube', tube, 200], ['plane', plane, 100]] as const) {
+  for (const [name, grid, count] of [
+    ['tube', tube, 200],
+    ['plane', plane, 100],
+  ] as const) {
     it(`${name}: after 5 iterations, sites within 0.5 texel RMS and identical neighbour sets on >= 99 % of cells`, () => {
       const options = { maxIterations: 5, tolerance: 0, overRelaxation: 1, warmStart: true };
       const initial = placeSites(grid, count, 17, 5);
@@ -32,7 +35,9 @@ describe('GPU and exact engines from the same initial sites', () => {
       const exactSites = initial.slice();
       const exact = new ExactLloydRun(grid, exactSites, options);
       while (!exact.done) exact.step();
-      expect(exact.iterations.map((r) => Object.keys(r).sort())).toEqual(exact.iterations.map(() => ['centroidMs', 'energy', 'iteration', 'jumpFloodMs', 'jumpFloodPasses', 'maxDisplacement']));
+      expect(exact.iterations.map((r) => Object.keys(r).sort())).toEqual(
+        exact.iterations.map(() => ['centroidMs', 'energy', 'iteration', 'jumpFloodMs', 'jumpFloodPasses', 'maxDisplacement']),
+      );
 
       let squared = 0;
       for (let i = 0; i < count; i++) {

@@ -27,34 +27,37 @@ describe('centroid pass against a CPU reduction of the same labels', () => {
   // The blend path (the default on a GPU) needs EXT_float_blend: headless-gl has none (it runs
   // in e2e/centroidPaths.spec.ts on Chromium), a machine whose GL driver has it runs it here.
   for (const centroidPath of ['blend', 'gather', 'readback'] as const)
-  for (const [name, grid, count] of cases) {
-    for (const weighted of [false, true]) {
-      it.skipIf(centroidPath === 'blend' && !context.capabilities.floatBlend)(`${centroidPath}, ${name}, ${weighted ? 'Gaussian density' : 'uniform density'}: centroids within 1e-3 texel`, () => {
-        const sites = placeSites(grid, count, 5, 2);
-        const engine = new CcvtEngine(context, grid, count, { variant: 'jfa+2', centroidPath });
-        try {
-          const weights = weighted ? gaussianWeights(grid) : null;
-          if (weights) engine.setWeights(weights);
-          engine.setSites(sites);
-          engine.floodLabels();
-          const gpu = engine.computeSums();
-          const cpu = reduceCentroids(grid, engine.readLabels(), sites, weights);
-          let worst = 0;
-          for (let i = 0; i < count; i++) {
-            expect(gpu[4 * i + 2]).toBeGreaterThan(0);
-            const dx = gpu[4 * i] / gpu[4 * i + 2] - cpu[4 * i] / cpu[4 * i + 2];
-            const dy = gpu[4 * i + 1] / gpu[4 * i + 2] - cpu[4 * i + 1] / cpu[4 * i + 2];
-            worst = Math.max(worst, Math.hypot(dx, dy));
-            // The cell's energy (w * d² summed) agrees to float32 summation accuracy.
-            expect(Math.abs(gpu[4 * i + 3] - cpu[4 * i + 3])).toBeLessThanOrEqual(1e-4 * cpu[4 * i + 3] + 1e-6);
-          }
-          expect(worst).toBeLessThanOrEqual(1e-3);
-        } finally {
-          engine.dispose();
-        }
-      });
+    for (const [name, grid, count] of cases) {
+      for (const weighted of [false, true]) {
+        it.skipIf(centroidPath === 'blend' && !context.capabilities.floatBlend)(
+          `${centroidPath}, ${name}, ${weighted ? 'Gaussian density' : 'uniform density'}: centroids within 1e-3 texel`,
+          () => {
+            const sites = placeSites(grid, count, 5, 2);
+            const engine = new CcvtEngine(context, grid, count, { variant: 'jfa+2', centroidPath });
+            try {
+              const weights = weighted ? gaussianWeights(grid) : null;
+              if (weights) engine.setWeights(weights);
+              engine.setSites(sites);
+              engine.floodLabels();
+              const gpu = engine.computeSums();
+              const cpu = reduceCentroids(grid, engine.readLabels(), sites, weights);
+              let worst = 0;
+              for (let i = 0; i < count; i++) {
+                expect(gpu[4 * i + 2]).toBeGreaterThan(0);
+                const dx = gpu[4 * i] / gpu[4 * i + 2] - cpu[4 * i] / cpu[4 * i + 2];
+                const dy = gpu[4 * i + 1] / gpu[4 * i + 2] - cpu[4 * i + 1] / cpu[4 * i + 2];
+                worst = Math.max(worst, Math.hypot(dx, dy));
+                // The cell's energy (w * d² summed) agrees to float32 summation accuracy.
+                expect(Math.abs(gpu[4 * i + 3] - cpu[4 * i + 3])).toBeLessThanOrEqual(1e-4 * cpu[4 * i + 3] + 1e-6);
+              }
+              expect(worst).toBeLessThanOrEqual(1e-3);
+            } finally {
+              engine.dispose();
+            }
+          },
+        );
+      }
     }
-  }
 
   it('readback reads a grid in several bands: labels match brute force, sums match the CPU and gather', () => {
     // 1100 x 1000 texels: two readback bands of 953 and 47 rows (bands hold 2^20 texels).

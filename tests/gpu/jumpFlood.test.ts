@@ -18,7 +18,11 @@ const tube: Grid = { width: 128, height: 256, texelX: 0.98, texelY: 1, periodicX
 const minSpacingTexels = 1.5;
 
 describe('jump flood against brute-force nearest site', () => {
-  for (const [name, grid] of [['plane', plane], ['periodic plane', torus], ['tube', tube]] as const) {
+  for (const [name, grid] of [
+    ['plane', plane],
+    ['periodic plane', torus],
+    ['tube', tube],
+  ] as const) {
     for (const count of [1, 2, 7, 60, 500, 2000]) {
       it(`${name}, ${count} sites: at most 1e-4 of texels mislabeled (jfa+2)`, () => {
         const sites = placeSites(grid, count, 1000 + count, minSpacingTexels * grid.texelX);
@@ -38,7 +42,11 @@ describe('jump flood against brute-force nearest site', () => {
   // Warm floods over whole Lloyd runs (12 iterations, sites moving tens of texels at first and
   // a fraction of a texel at the end), each iteration compared with brute force and with a cold
   // jfa+2 flood of the same sites.
-  for (const [name, grid, count] of [['tube', tube, 400], ['periodic plane', torus, 2000], ['plane', plane, 150]] as const) {
+  for (const [name, grid, count] of [
+    ['tube', tube, 400],
+    ['periodic plane', torus, 2000],
+    ['plane', plane, 150],
+  ] as const) {
     it(`${name}, ${count} sites: warm starts stay within the cold flood's error bound`, () => {
       const sites = placeSites(grid, count, 7, minSpacingTexels * grid.texelX);
       const engine = new CcvtEngine(context, grid, count, { variant: 'jfa+2', centroidPath: 'auto' });

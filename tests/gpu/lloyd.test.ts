@@ -13,7 +13,10 @@ const plane: Grid = { width: 256, height: 200, texelX: 1, texelY: 1, periodicX: 
 const tube: Grid = { width: 128, height: 320, texelX: 1.01, texelY: 1, periodicX: true, periodicY: false };
 
 describe('one Lloyd step against exact Voronoi centroids (d3-delaunay)', () => {
-  for (const [name, grid, count] of [['plane', plane, 120], ['tube (tripled sites)', tube, 80]] as const) {
+  for (const [name, grid, count] of [
+    ['plane', plane, 120],
+    ['tube (tripled sites)', tube, 80],
+  ] as const) {
     it(`${name}: mean centroid error <= 0.25 texel`, () => {
       const sites = placeSites(grid, count, 11, 2);
       const exact = exactVoronoi(grid, sites);
@@ -23,7 +26,10 @@ describe('one Lloyd step against exact Voronoi centroids (d3-delaunay)', () => {
         engine.floodLabels();
         const moved = sites.slice();
         moveSitesToCentroids(grid, moved, engine.computeSums(), count, 1, {
-          energy: 0, maxDisplacement: 0, maxDisplacementTexels: 0, emptyCells: 0,
+          energy: 0,
+          maxDisplacement: 0,
+          maxDisplacementTexels: 0,
+          emptyCells: 0,
         });
         let total = 0;
         for (let i = 0; i < count; i++) {

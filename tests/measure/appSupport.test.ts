@@ -10,11 +10,17 @@ const height = 64;
 const sites = randomSites(20, width, height, 3);
 const labels = sites.map((_, i) => 2 * i + 1);
 const basal = rasterizeVoronoi(width, height, sites, labels, true);
-const apical = rasterizeVoronoi(2 * width, height, sites.map(([x, y]) => [2 * x, y]), labels, true);
+const apical = rasterizeVoronoi(
+  2 * width,
+  height,
+  sites.map(([x, y]) => [2 * x, y]),
+  labels,
+  true,
+);
 const files = () => [memoryFile('basal.png', png16(basal)), memoryFile('apical.png', png16(apical))];
 
 describe('what the app needs of measureTissue', () => {
-  it('hands each decoded layer to onLayerPixels, basal first, with the file\'s pixels', () => {
+  it("hands each decoded layer to onLayerPixels, basal first, with the file's pixels", () => {
     const seen: [number, LabelPixels][] = [];
     const r = measureTissue(files(), { pixelSize: 1, periodicX: true, version, onLayerPixels: (k, p) => seen.push([k, p]) });
     expect(seen.map(([k]) => k)).toEqual([0, 1]);
@@ -25,7 +31,7 @@ describe('what the app needs of measureTissue', () => {
     expect({ ...r, timings: null }).toEqual({ ...plain, timings: null });
   });
 
-  it('compareMeasured passes the CLI\'s arguments to compareWithModel', () => {
+  it("compareMeasured passes the CLI's arguments to compareWithModel", () => {
     const r = measureTissue(files(), { pixelSize: 0.5, periodicX: true, version });
     const { comparison } = compareMeasured(r, { realizations: 2, seed: 4 });
     const direct = compareWithModel({

@@ -10,7 +10,13 @@ import { writeTiff } from './tiffWriter';
 
 let dir: string;
 const hex = hexLattice(6, 5, 20);
-const image = rasterizeVoronoi(hex.width, hex.height, hex.sites, hex.sites.map((_, i) => i + 1), true);
+const image = rasterizeVoronoi(
+  hex.width,
+  hex.height,
+  hex.sites,
+  hex.sites.map((_, i) => i + 1),
+  true,
+);
 const page = { width: image.width, height: image.height, bitsPerSample: 16 as const, data: image.data };
 
 beforeAll(() => {
@@ -77,7 +83,11 @@ describe('tissue-sheet measure', () => {
   });
 
   const bad: [string, string[], RegExp][] = [
-    ['layers of different heights', ['basal.png', 'short.png'], new RegExp(`short\\.png: height ${image.height - 1} differs from the first layer's ${image.height} .*same height`)],
+    [
+      'layers of different heights',
+      ['basal.png', 'short.png'],
+      new RegExp(`short\\.png: height ${image.height - 1} differs from the first layer's ${image.height} .*same height`),
+    ],
     ['an image without labels', ['basal.png', 'zeros.png'], /zeros\.png: no labels \(every pixel is 0\)$/],
     ['a file that is not an image', ['notes.txt', 'basal.png'], /notes\.txt: not a PNG or TIFF image/],
     ['a float TIFF', ['basal.png', 'float.tif'], /float\.tif: unsupported pixel type: 32-bit floating point/],
@@ -107,7 +117,10 @@ describe('tissue-sheet measure', () => {
       [[f('basal.png'), f('apical.png'), '--pixel-size', '1'], /^tissue-sheet: --out: missing/],
       [[f('basal.png'), f('apical.png'), '--out', f('x.json'), '--bogus'], /--bogus: unknown option/],
       [[f('basal.png'), f('apical.png'), '--out', f('apical.png'), '--pixel-size', '1'], /apical\.png: is also --out/],
-      [[f('basal.png'), f('apical.png'), '--out', f('notes.txt'), '--pixel-size', '1'], /--out .*notes\.txt: exists and is not a tissue-sheet result; pass --force/],
+      [
+        [f('basal.png'), f('apical.png'), '--out', f('notes.txt'), '--pixel-size', '1'],
+        /--out .*notes\.txt: exists and is not a tissue-sheet result; pass --force/,
+      ],
     ];
     for (const [args, message] of cases) {
       const { code, errors } = await run(args);
@@ -119,17 +132,24 @@ describe('tissue-sheet measure', () => {
 
   it('runs as a process through the CLI entry point (exit code and one stderr line)', () => {
     const script = join(dir, 'cli.mjs');
-    writeFileSync(script, `import { main } from ${JSON.stringify(join(process.cwd(), 'src/cli/main.ts'))};\nprocess.exitCode = await main(process.argv.slice(2));\n`);
+    writeFileSync(
+      script,
+      `import { main } from ${JSON.stringify(join(process.cwd(), 'src/cli/main.ts'))};\nprocess.exitCode = await main(process.argv.slice(2));\n`,
+    );
     const bad = spawnSync(process.execPath, ['--import', 'tsx', script, 'measure', f('basal.png'), f('short.png'), '--out', f('p.json'), '--pixel-size', '1'], {
       encoding: 'utf8',
       cwd: process.cwd(),
     });
     expect(bad.status).toBe(2);
     expect(bad.stderr.trim().split('\n')).toEqual([expect.stringMatching(/^tissue-sheet: .*short\.png: height \d+ differs/)]);
-    const good = spawnSync(process.execPath, ['--import', 'tsx', script, 'measure', f('basal.png'), f('apical.png'), '--out', f('p.json'), '--pixel-size', '1'], {
-      encoding: 'utf8',
-      cwd: process.cwd(),
-    });
+    const good = spawnSync(
+      process.execPath,
+      ['--import', 'tsx', script, 'measure', f('basal.png'), f('apical.png'), '--out', f('p.json'), '--pixel-size', '1'],
+      {
+        encoding: 'utf8',
+        cwd: process.cwd(),
+      },
+    );
     expect(good.status).toBe(0);
     expect(JSON.parse(readFileSync(f('p.json'), 'utf8')).analyses[0].summary.cells).toBe(30);
   }, 60_000);

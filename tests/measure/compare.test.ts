@@ -17,7 +17,13 @@ function measuredFromModel(k: number) {
   const sites = Array.from({ length: n }, (_, i) => [s[2 * i], s[2 * i + 1]]);
   const labels = sites.map((_, i) => i + 1);
   const basal = rasterizeVoronoi(W, H, sites, labels, true);
-  const apical = rasterizeVoronoi(2 * W, H, sites.map(([x, y]) => [2 * x, y]), labels, true);
+  const apical = rasterizeVoronoi(
+    2 * W,
+    H,
+    sites.map(([x, y]) => [2 * x, y]),
+    labels,
+    true,
+  );
   return measureTissue([memoryFile('basal.png', png16(basal)), memoryFile('apical.png', png16(apical))], { pixelSize: 1, periodicX: true, version: 'test' });
 }
 

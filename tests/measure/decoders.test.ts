@@ -65,7 +65,18 @@ describe('TIFF decoding through the tiff package', () => {
 
 describe('PNG headers', () => {
   it('accepts 8-bit palette images (the index is the label) and refuses grey + alpha and 1-bit masks', () => {
-    const palette = encode({ width: 2, height: 2, data: Uint8Array.from([0, 1, 1, 2]), depth: 8, channels: 1, palette: [[0, 0, 0], [255, 0, 0], [0, 255, 0]] });
+    const palette = encode({
+      width: 2,
+      height: 2,
+      data: Uint8Array.from([0, 1, 1, 2]),
+      depth: 8,
+      channels: 1,
+      palette: [
+        [0, 0, 0],
+        [255, 0, 0],
+        [0, 255, 0],
+      ],
+    });
     expect(inspectLabelFile(palette, 'p.png').pages[0]).toEqual({ width: 2, height: 2, bitsPerSample: 8 });
     expect(Array.from(decodePngLabels(palette, 'p.png').data)).toEqual([0, 1, 1, 2]);
     const greyAlpha = encode({ width: 2, height: 2, data: new Uint8Array(8), depth: 8, channels: 2 });
@@ -106,7 +117,13 @@ describe('pixel size metadata', () => {
 
   it('uses a resolution per inch with a warning, and refuses layers whose metadata disagree', () => {
     const hex = hexLattice(4, 4, 16);
-    const image = rasterizeVoronoi(hex.width, hex.height, hex.sites, hex.sites.map((_, i) => i + 1), true);
+    const image = rasterizeVoronoi(
+      hex.width,
+      hex.height,
+      hex.sites,
+      hex.sites.map((_, i) => i + 1),
+      true,
+    );
     const page = { width: image.width, height: image.height, bitsPerSample: 16 as const, data: image.data };
     const inch = writeTiff([{ ...page, xResolution: 25400, yResolution: 25400, resolutionUnit: 2 }]);
     const r = measureTissue([memoryFile('a.tif', inch), memoryFile('b.tif', inch)], { periodicX: true, version: 'test' });
@@ -118,6 +135,8 @@ describe('pixel size metadata', () => {
     );
     // A hyperstack with channels is refused.
     const channels = writeTiff([{ ...page, description: 'ImageJ=1.54f\nimages=2\nchannels=2\n' }, page]);
-    expect(problemOf(() => measureTissue([memoryFile('c.tif', channels)], { pixelSize: 1, version: 'test' }))).toMatch(/^c\.tif: an ImageJ hyperstack with 2 channels/);
+    expect(problemOf(() => measureTissue([memoryFile('c.tif', channels)], { pixelSize: 1, version: 'test' }))).toMatch(
+      /^c\.tif: an ImageJ hyperstack with 2 channels/,
+    );
   });
 });

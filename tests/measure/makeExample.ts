@@ -21,4 +21,15 @@ const sites = Array.from({ length: n }, (_, i) => [s[2 * i], s[2 * i + 1]]);
 const labels = sites.map((_, i) => 1001 + 3 * i);
 mkdirSync('examples/measure', { recursive: true });
 writeFileSync('examples/measure/basal.png', png16(rasterizeVoronoi(W, H, sites, labels, true)));
-writeFileSync('examples/measure/apical.png', png16(rasterizeVoronoi(2 * W, H, sites.map(([x, y]) => [2 * x, y]), labels, true)));
+writeFileSync(
+  'examples/measure/apical.png',
+  png16(
+    rasterizeVoronoi(
+      2 * W,
+      H,
+      sites.map(([x, y]) => [2 * x, y]),
+      labels,
+      true,
+    ),
+  ),
+);

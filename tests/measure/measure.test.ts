@@ -109,9 +109,18 @@ describe('measureTissue', () => {
     const layers: LabelImage[] = [0, 1, 2].map((k) => {
       const f = 1 + ((s - 1) * k) / 2;
       const w = Math.round(width * f);
-      return rasterizeVoronoi(w, height, sites.map(([x, y]) => [x * (w / width), y]), labels, true);
+      return rasterizeVoronoi(
+        w,
+        height,
+        sites.map(([x, y]) => [x * (w / width), y]),
+        labels,
+        true,
+      );
     });
-    const r = measureTissue(layers.map((l, k) => memoryFile(`l${k}.png`, png16(l))), { pixelSize: 0.8, periodicX: true, minContact: 2.5, version });
+    const r = measureTissue(
+      layers.map((l, k) => memoryFile(`l${k}.png`, png16(l))),
+      { pixelSize: 0.8, periodicX: true, minContact: 2.5, version },
+    );
     const reference: SurfaceAdjacency[] = layers.map((l) => {
       const dense = Int32Array.from(l.data, (v) => (v - 500) / 2);
       const a = labelAdjacency({ width: l.width, height, texelX: 0.8, texelY: 0.8, periodicX: true, periodicY: false }, dense, sites.length);
@@ -152,7 +161,15 @@ describe('measureTissue', () => {
   });
 
   it('takes the pixel size from XResolution per centimetre, and lets --pixel-size override it with a warning', () => {
-    const page = { width: hexImage.width, height: hexImage.height, bitsPerSample: 16 as const, data: hexImage.data, xResolution: 5000, yResolution: 5000, resolutionUnit: 3 as const };
+    const page = {
+      width: hexImage.width,
+      height: hexImage.height,
+      bitsPerSample: 16 as const,
+      data: hexImage.data,
+      xResolution: 5000,
+      yResolution: 5000,
+      resolutionUnit: 3 as const,
+    };
     const files = () => [memoryFile('a.tif', writeTiff([page])), memoryFile('b.tif', writeTiff([page]))];
     const fromMetadata = measureTissue(files(), { periodicX: true, version });
     expect(fromMetadata.inputs.pixelSize).toMatchObject({ value: 2, source: 'tiff-resolution', file: 'a.tif' });

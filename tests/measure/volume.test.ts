@@ -30,7 +30,13 @@ interface Agreement {
  * Per valid cell and layer, the measured neighbours against the exact ones. `layerOf` says
  * which exact surface (outer or inner) each layer is.
  */
-function agreement(result: VolumeMeasuredResult, volume: SyntheticVolume, labels: number[], margin: number, layerOf: ('outer' | 'inner')[] = ['outer', 'inner']): Agreement {
+function agreement(
+  result: VolumeMeasuredResult,
+  volume: SyntheticVolume,
+  labels: number[],
+  margin: number,
+  layerOf: ('outer' | 'inner')[] = ['outer', 'inner'],
+): Agreement {
   const n = volume.sites;
   const siteOf = new Map(labels.map((l, k) => [l, k]));
   const out: Agreement = { checked: 0, ambiguous: 0, wrong: [], staircaseWrong: 0 };
@@ -57,7 +63,10 @@ function agreement(result: VolumeMeasuredResult, volume: SyntheticVolume, labels
         }
         out.checked++;
         const has = measured.has(labels[j]);
-        if (sure !== has) out.wrong.push(`cell ${cell.label} layer ${k}: ${labels[j]} exact ${e0.toFixed(2)}..${e1.toFixed(2)} µm, threshold ${threshold.toFixed(2)}, measured ${has}`);
+        if (sure !== has)
+          out.wrong.push(
+            `cell ${cell.label} layer ${k}: ${labels[j]} exact ${e0.toFixed(2)}..${e1.toFixed(2)} µm, threshold ${threshold.toFixed(2)}, measured ${has}`,
+          );
         if (sure !== (staircase.get(labels[j]) ?? 0) >= threshold) out.staircaseWrong++;
       }
     }
@@ -261,12 +270,18 @@ describe('measure --volume: a closed ellipsoidal shell (cyst)', () => {
       for (const j of [i + 1, i + W, i + W * H]) if (j < data.length && data[i] && data[j] && data[i] !== data[j]) lined[i] = 0;
     }
     // Lines all round: the lumen joins the outside through them.
-    expect(() => measureVolume(input(writeTiff(volumePages(shell, lined, 16) as never)), { voxelSize: shell.voxel, version: 'test' })).toThrow(/no lumen: .*lines of 0 between cells/);
+    expect(() => measureVolume(input(writeTiff(volumePages(shell, lined, 16) as never)), { voxelSize: shell.voxel, version: 'test' })).toThrow(
+      /no lumen: .*lines of 0 between cells/,
+    );
     // Lines that stop short of the lumen: measured, with a warning.
     const plane = W * H;
     for (let i = 0; i < data.length; i++) {
       const [x, y, z] = [i % W, Math.floor(i / W) % H, Math.floor(i / plane)];
-      const p = [(x + 0.5) * shell.voxel.x - (W * shell.voxel.x) / 2, (y + 0.5) * shell.voxel.y - (H * shell.voxel.y) / 2, (z + 0.5) * shell.voxel.z - (shell.depth * shell.voxel.z) / 2];
+      const p = [
+        (x + 0.5) * shell.voxel.x - (W * shell.voxel.x) / 2,
+        (y + 0.5) * shell.voxel.y - (H * shell.voxel.y) / 2,
+        (z + 0.5) * shell.voxel.z - (shell.depth * shell.voxel.z) / 2,
+      ];
       // Keep the labels within 1.5 µm of the inner ellipsoid (the lumen side stays sealed).
       if (Math.hypot(p[0] / (SHELL.a + 1.5), p[1] / (SHELL.b + 1.5), p[2] / (SHELL.c + 1.5)) < 1) lined[i] = data[i];
     }
@@ -312,7 +327,8 @@ describe('measure --volume: a closed ellipsoidal shell (cyst)', () => {
     }
     // What remains exchanged is confirmed; scutoids only among quartet members.
     for (const cell of r.cells) {
-      for (const l of cell.neighbours[0]) if (!cell.neighbours[1].includes(l)) expect(confirmed.has(`${Math.min(cell.label, l)}-${Math.max(cell.label, l)}`)).toBe(true);
+      for (const l of cell.neighbours[0])
+        if (!cell.neighbours[1].includes(l)) expect(confirmed.has(`${Math.min(cell.label, l)}-${Math.max(cell.label, l)}`)).toBe(true);
       if (cell.scutoid) expect(q.quartets.some((x) => x.includes(cell.label))).toBe(true);
     }
     expect(r.analyses[0].summary.scutoids).toBeLessThanOrEqual(shellResult.analyses[0].summary.scutoids);

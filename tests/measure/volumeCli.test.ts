@@ -60,7 +60,8 @@ function headerOnlyTiff(pages: { width: number; height: number; tile?: number }[
   return bytes;
 }
 
-const IMAGEJ = (pages: number, unit = 'micron', spacing = '0.75') => `ImageJ=1.54f\nimages=${pages}\nslices=${pages}\nunit=${unit}\n${spacing ? `spacing=${spacing}\n` : ''}loop=false\n`;
+const IMAGEJ = (pages: number, unit = 'micron', spacing = '0.75') =>
+  `ImageJ=1.54f\nimages=${pages}\nslices=${pages}\nunit=${unit}\n${spacing ? `spacing=${spacing}\n` : ''}loop=false\n`;
 const OME = (pages: number, extra = '') =>
   `<?xml version="1.0" encoding="UTF-8"?><OME xmlns="http://www.openmicroscopy.org/Schemas/OME/2016-06"><Image ID="Image:0"><Pixels ID="Pixels:0" DimensionOrder="XYZCT" Type="uint16" SizeX="1" SizeY="1" SizeZ="${pages}" SizeC="1" SizeT="1" PhysicalSizeX="0.5" PhysicalSizeXUnit="µm" PhysicalSizeY="500" PhysicalSizeYUnit="nm" PhysicalSizeZ="0.75" ${extra}><TiffData/></Pixels></Image></OME>`;
 
@@ -86,8 +87,20 @@ beforeAll(() => {
   put('signed.tif', writeTiff(pages().map((p) => ({ ...p, sampleFormat: 2 as const }))));
   put('rgb.tif', writeTiff(pages().map((p) => ({ ...p, bitsPerSample: 8 as const, samplesPerPixel: 3, data: new Uint8Array(p.width * p.height * 3) }))));
   put('mixed.tif', writeTiff([...pages().slice(0, 2), { ...pages()[2], width: shell.width - 1, data: new Uint16Array((shell.width - 1) * shell.height) }]));
-  put('huge.tif', headerOnlyTiff([{ width: 32768, height: 32768 }, { width: 32768, height: 32768 }]));
-  put('huge-tiles.tif', headerOnlyTiff([{ width: 64, height: 64, tile: 60000 }, { width: 64, height: 64, tile: 60000 }]));
+  put(
+    'huge.tif',
+    headerOnlyTiff([
+      { width: 32768, height: 32768 },
+      { width: 32768, height: 32768 },
+    ]),
+  );
+  put(
+    'huge-tiles.tif',
+    headerOnlyTiff([
+      { width: 64, height: 64, tile: 60000 },
+      { width: 64, height: 64, tile: 60000 },
+    ]),
+  );
   put('big.tif', new Uint8Array([0x49, 0x49, 43, 0, 8, 0, 0, 0, 16, 0, 0, 0, 0, 0, 0, 0]));
   const plane = shell.width * shell.height;
   const slices = Array.from({ length: shell.depth }, (_, z) => data.subarray(z * plane, (z + 1) * plane));
@@ -102,7 +115,20 @@ beforeAll(() => {
   shell.site.forEach((s, i) => (solid[i] = s === -2 ? 0 : s === -1 ? 1 : s + 10));
   put('no-lumen.tif', writeTiff(pages({}, 16, solid)));
   const tube = tubeVolume({ width: 60, height: 60, depth: 40, voxel: { x: 0.5, y: 0.5, z: 1 }, inner: 7, outer: 13, sites: 24, seed: 8 });
-  put('tube.tif', writeTiff(volumePages(tube, labelData(tube, Array.from({ length: tube.sites }, (_, k) => k + 1), 16), 16) as TiffPage[]));
+  put(
+    'tube.tif',
+    writeTiff(
+      volumePages(
+        tube,
+        labelData(
+          tube,
+          Array.from({ length: tube.sites }, (_, k) => k + 1),
+          16,
+        ),
+        16,
+      ) as TiffPage[],
+    ),
+  );
   mkdirSync(f('folder'));
 }, 60_000);
 afterAll(() => rmSync(dir, { recursive: true, force: true }));
@@ -199,19 +225,47 @@ describe('tissue-sheet measure --volume', () => {
   });
 
   it('takes a labelled lumen with --lumen-label, and --apical outside, --quartet-filter, --min-contact', async () => {
-    const { code } = await run(['--volume', f('lumen.tif'), '--out', f('lumen.json'), '--voxel-size', '0.5,0.5,0.75', '--lumen-label', '999', '--apical', 'outside', '--quartet-filter', '--min-contact', '0.8']);
+    const { code } = await run([
+      '--volume',
+      f('lumen.tif'),
+      '--out',
+      f('lumen.json'),
+      '--voxel-size',
+      '0.5,0.5,0.75',
+      '--lumen-label',
+      '999',
+      '--apical',
+      'outside',
+      '--quartet-filter',
+      '--min-contact',
+      '0.8',
+    ]);
     expect(code).toBe(0);
     const r = read('lumen.json');
     expect(r.inputs.options).toEqual({ apical: 'outside', lumenLabel: 999, minContact: 0.8, minContactSource: 'option', quartetFilter: true });
     expect(r.inputs.layers.map((l: { faces: string }) => l.faces)).toEqual(['lumen', 'outside']);
     expect(r.quartetFilter).not.toBeNull();
     expect(r.cells.map((c: { label: number }) => c.label)).not.toContain(999);
-    expect((await run(['--volume', f('lumen.tif'), '--out', f('lumen2.json'), '--voxel-size', '0.5,0.5,0.75', '--lumen-label', '999', '--quartets'])).code).toBe(0);
+    expect(
+      (await run(['--volume', f('lumen.tif'), '--out', f('lumen2.json'), '--voxel-size', '0.5,0.5,0.75', '--lumen-label', '999', '--quartets'])).code,
+    ).toBe(0);
     expect(read('lumen2.json').inputs.options.quartetFilter).toBe(true);
   });
 
   it('--compare on an open tube: the model of the fitted tube beside the measurement', async () => {
-    const { code, errors, log } = await run(['--volume', f('tube.tif'), '--out', f('tube.json'), '--voxel-size', '0.5,0.5,1', '--compare', '--realizations', '3', '--seed', '5']);
+    const { code, errors, log } = await run([
+      '--volume',
+      f('tube.tif'),
+      '--out',
+      f('tube.json'),
+      '--voxel-size',
+      '0.5,0.5,1',
+      '--compare',
+      '--realizations',
+      '3',
+      '--seed',
+      '5',
+    ]);
     expect(errors).toEqual([]);
     expect(code).toBe(0);
     const r = read('tube.json');
@@ -222,7 +276,17 @@ describe('tissue-sheet measure --volume', () => {
   });
 
   it('--compare on a closed shell: the model on its own surface meshes', async () => {
-    const { code, errors, log } = await run(['--volume', f('plain.tif'), '--out', f('compare.json'), '--voxel-size', '0.5,0.5,0.75', '--compare', '--realizations', '2']);
+    const { code, errors, log } = await run([
+      '--volume',
+      f('plain.tif'),
+      '--out',
+      f('compare.json'),
+      '--voxel-size',
+      '0.5,0.5,0.75',
+      '--compare',
+      '--realizations',
+      '2',
+    ]);
     expect(errors).toEqual([]);
     expect(code).toBe(0);
     const r = read('compare.json');
@@ -238,7 +302,11 @@ describe('tissue-sheet measure --volume', () => {
     ['signed samples', ['signed.tif'], /signed\.tif: page 1 of \d+: 16-bit signed samples/],
     ['RGB pages', ['rgb.tif'], /rgb\.tif: page 1 of \d+: 3 samples per pixel/],
     ['pages of different sizes', ['mixed.tif'], /mixed\.tif: page 3 of 3: \d+ x \d+ pixels, page 1 has \d+ x \d+; every slice must have the same size/],
-    ['a header declaring more than 2^30 voxels', ['huge.tif'], /huge\.tif: the header declares 32768 x 32768 pixels per page and at least 2 pages, over the limit of 1073741824 voxels/],
+    [
+      'a header declaring more than 2^30 voxels',
+      ['huge.tif'],
+      /huge\.tif: the header declares 32768 x 32768 pixels per page and at least 2 pages, over the limit of 1073741824 voxels/,
+    ],
     ['tiles declared far larger than the page', ['huge-tiles.tif'], /huge-tiles\.tif: page 1 of 2: tiles of 60000 x 60000 pixels, larger than the page/],
     ['a BigTIFF cut short', ['big.tif'], /big\.tif: corrupt TIFF \(page 1 starts outside the file\)/],
     ['a truncated file', ['truncated.tif'], /truncated\.tif: .*corrupt TIFF/],
@@ -283,7 +351,10 @@ describe('tissue-sheet measure --volume', () => {
 
   it('runs as a process: exit 2 with one last stderr line, the only one starting tissue-sheet:', () => {
     const script = join(dir, 'cli.mjs');
-    writeFileSync(script, `import { main } from ${JSON.stringify(join(process.cwd(), 'src/cli/main.ts'))};\nprocess.exitCode = await main(process.argv.slice(2));\n`);
+    writeFileSync(
+      script,
+      `import { main } from ${JSON.stringify(join(process.cwd(), 'src/cli/main.ts'))};\nprocess.exitCode = await main(process.argv.slice(2));\n`,
+    );
     const bad = spawnSync(process.execPath, ['--import', 'tsx', script, 'measure', '--volume', f('huge.tif'), '--out', f('p.json'), '--voxel-size', '1,1,1'], {
       encoding: 'utf8',
       cwd: process.cwd(),
@@ -292,7 +363,10 @@ describe('tissue-sheet measure --volume', () => {
     const lines = bad.stderr.trim().split('\n');
     expect(lines.at(-1)).toMatch(/^tissue-sheet: .*huge\.tif: the header declares/);
     expect(lines.filter((l) => l.startsWith('tissue-sheet:'))).toHaveLength(1);
-    const good = spawnSync(process.execPath, ['--import', 'tsx', script, 'measure', '--volume', f('imagej.tif'), '--out', f('p.json')], { encoding: 'utf8', cwd: process.cwd() });
+    const good = spawnSync(process.execPath, ['--import', 'tsx', script, 'measure', '--volume', f('imagej.tif'), '--out', f('p.json')], {
+      encoding: 'utf8',
+      cwd: process.cwd(),
+    });
     expect(good.status).toBe(0);
     expect(JSON.parse(readFileSync(f('p.json'), 'utf8')).inputs.voxelSize.source).toBe('imagej');
   }, 60_000);

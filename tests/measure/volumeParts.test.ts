@@ -1,7 +1,20 @@
 /** The volume measurement's parts on inputs whose answers are known by hand. */
 import { deflateSync } from 'node:zlib';
 import { describe, expect, it } from 'vitest';
-import { carryAlongNormals, curveLength, decodeVolumeTiff, inspectVolumeTiff, lzwDecodeInto, maskSurfaceMesh, meshArea, parseVoxelSizeOption, prepareMesh, quartetFilter, randomSitesOnMesh, signedVolume } from '../../src/core/measure';
+import {
+  carryAlongNormals,
+  curveLength,
+  decodeVolumeTiff,
+  inspectVolumeTiff,
+  lzwDecodeInto,
+  maskSurfaceMesh,
+  meshArea,
+  parseVoxelSizeOption,
+  prepareMesh,
+  quartetFilter,
+  randomSitesOnMesh,
+  signedVolume,
+} from '../../src/core/measure';
 import { createRandom } from '../../src/core/random';
 import { lzwEncode } from './tiffWriter';
 
@@ -88,7 +101,12 @@ describe('contact curve length', () => {
     const shifted = a.v1.map((v) => v + 500);
     const v0 = [...a.v0, ...a.v0.map((v) => v + 500)];
     const v1 = [...a.v1, ...shifted];
-    const c = curveLength(v0, v1, v0.map((_, k) => k), a.position);
+    const c = curveLength(
+      v0,
+      v1,
+      v0.map((_, k) => k),
+      a.position,
+    );
     expect(c.pieces).toBe(2);
     expect(c.length / (2 * a.euclid)).toBeCloseTo(1, 1);
   });
@@ -159,7 +177,8 @@ function tiledTiff(width: number, height: number, pages: Uint16Array[], options:
     for (let ty = 0; ty < down; ty++) {
       for (let tx = 0; tx < across; tx++) {
         const tile = new Uint16Array(T * T);
-        for (let y = 0; y < T; y++) for (let x = 0; x < T; x++) if (ty * T + y < height && tx * T + x < width) tile[y * T + x] = page[(ty * T + y) * width + tx * T + x];
+        for (let y = 0; y < T; y++)
+          for (let x = 0; x < T; x++) if (ty * T + y < height && tx * T + x < width) tile[y * T + x] = page[(ty * T + y) * width + tx * T + x];
         if (options.predictor) for (let y = 0; y < T; y++) for (let x = T - 1; x > 0; x--) tile[y * T + x] = (tile[y * T + x] - tile[y * T + x - 1]) & 0xffff;
         const raw = new Uint8Array(2 * T * T);
         const view = new DataView(raw.buffer);
@@ -313,7 +332,12 @@ describe('contact curve length of a closed loop', () => {
         out[o + 1] = Math.floor(v / 1000) - 100;
         out[o + 2] = 0;
       };
-      const c = curveLength(v0, v1, v0.map((_, k) => k), position);
+      const c = curveLength(
+        v0,
+        v1,
+        v0.map((_, k) => k),
+        position,
+      );
       expect(c.pieces).toBe(1);
       expect(Math.abs(c.length / (2 * Math.PI * R) - 1)).toBeLessThan(R < 5 ? 0.12 : 0.03);
       expect(c.staircase / (2 * Math.PI * R)).toBeGreaterThan(1.15);

@@ -207,7 +207,9 @@ export function shellVolume(spec: ShellSpec): SyntheticVolume {
         if (t < 0) site[i] = -1;
         else if (t > h) site[i] = -2;
         else {
-          const fx = (a + t) / a, fy = (b + t) / b, fz = (c + t) / c;
+          const fx = (a + t) / a,
+            fy = (b + t) / b,
+            fz = (c + t) / c;
           let best = Infinity;
           let bestId = -1;
           for (let k = 0; k < n; k++) {
@@ -264,7 +266,12 @@ export function labelData(volume: SyntheticVolume, labels: number[], bits: 8 | 1
 }
 
 /** Pages of a volume for writeTiff (one page per z-slice). */
-export function volumePages(volume: { width: number; height: number; depth: number }, data: ArrayLike<number> & { subarray(a: number, b: number): ArrayLike<number> }, bits: 8 | 16 | 32, first: Record<string, unknown> = {}) {
+export function volumePages(
+  volume: { width: number; height: number; depth: number },
+  data: ArrayLike<number> & { subarray(a: number, b: number): ArrayLike<number> },
+  bits: 8 | 16 | 32,
+  first: Record<string, unknown> = {},
+) {
   const plane = volume.width * volume.height;
   return Array.from({ length: volume.depth }, (_, z) => ({
     width: volume.width,

@@ -26,7 +26,8 @@ describe('checkMesh', () => {
     expect(m).toMatch(/first joins vertices \d+ \(.+\) and \d+ \(.+\)/);
     // Two holes.
     const two = openSphere(6, 0.5);
-    const p = two.positions, t = two.indices;
+    const p = two.positions,
+      t = two.indices;
     const cut = selectFaces(two, (f) => p[3 * t[3 * f] + 2] > -0.9); // a second hole at the south pole
     expect(message(cut, 'open')).toMatch(/forming 2 holes/);
   });
@@ -84,14 +85,19 @@ describe('checkMesh', () => {
     const torus = loadShipped('torus.ply');
     const p = checkMesh(torus);
     expect(p.map((x) => x.kind)).toEqual(['genus']);
-    expect(p[0].message).toMatch(/^genus 1: this mesh has a hole through it \(V - E \+ F = \d+ - \d+ \+ \d+ = 0\); tissue-sheet needs a closed surface without holes \(genus 0\)$/);
+    expect(p[0].message).toMatch(
+      /^genus 1: this mesh has a hole through it \(V - E \+ F = \d+ - \d+ \+ \d+ = 0\); tissue-sheet needs a closed surface without holes \(genus 0\)$/,
+    );
     // Genus 2 from two tori joined? Two components instead: genus is not reported then.
     const two = mergeMeshes(torusMesh(1, 0.3, 12, 8), icosphere(2));
     expect(kinds(two)).toEqual(['components']);
   });
 
   it('two components: says how many and their sizes', () => {
-    const m = mergeMeshes(icosphere(4), mapVertices(icosphere(2), ([x, y, z]) => [x + 5, y, z]));
+    const m = mergeMeshes(
+      icosphere(4),
+      mapVertices(icosphere(2), ([x, y, z]) => [x + 5, y, z]),
+    );
     expect(message(m, 'components')).toMatch(/2 separate connected components \(faces per component: 320, 80\)/);
     expect(() => assertGenusZero(m)).toThrow(/2 separate connected components/);
   });

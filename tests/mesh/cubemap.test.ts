@@ -19,7 +19,12 @@ describe('cube-map frames (OpenGL convention)', () => {
   it('each face frame is orthonormal and the six normals are the ±axes', () => {
     const normals = new Set<string>();
     for (const F of CUBE_FACES) {
-      for (const [u, v] of [[F.normal, F.s], [F.normal, F.t], [F.s, F.t]] as const) expect(u[0] * v[0] + u[1] * v[1] + u[2] * v[2]).toBe(0);
+      for (const [u, v] of [
+        [F.normal, F.s],
+        [F.normal, F.t],
+        [F.s, F.t],
+      ] as const)
+        expect(u[0] * v[0] + u[1] * v[1] + u[2] * v[2]).toBe(0);
       // s × t points inward for every face (GL cube maps are "seen from inside"): consistent handedness.
       const c = cross(F.s, F.t);
       expect(c[0] * F.normal[0] + c[1] * F.normal[1] + c[2] * F.normal[2]).toBe(-1);
@@ -59,7 +64,8 @@ describe('cube-map frames (OpenGL convention)', () => {
     const n = 512;
     expect(texelSolidAngle(0, 0, n) / texelSolidAngle(n / 2, n / 2, n)).toBeCloseTo(1 / (3 * Math.sqrt(3)), 2);
     // A single texel is close to its projected-area estimate dA cos / r², (2/n)² / (1+u²+v²)^{3/2}.
-    const u = (2 * (10 + 0.5)) / 64 - 1, v = (2 * (40 + 0.5)) / 64 - 1;
+    const u = (2 * (10 + 0.5)) / 64 - 1,
+      v = (2 * (40 + 0.5)) / 64 - 1;
     expect(texelSolidAngle(10, 40, 64) / ((2 / 64) ** 2 / (1 + u * u + v * v) ** 1.5)).toBeCloseTo(1, 3);
   });
 });
@@ -84,7 +90,12 @@ describe('crossing face edges', () => {
     const n = 32;
     for (let f = 0; f < 6; f++) {
       for (let k = 0; k < n; k++) {
-        for (const [i, j] of [[-1, k], [n, k], [k, -1], [k, n]]) {
+        for (const [i, j] of [
+          [-1, k],
+          [n, k],
+          [k, -1],
+          [k, n],
+        ]) {
           const w = wrapTexel(f, i, j, n);
           // The texel it lands on contains the direction of the extended face-plane point.
           const d = texelDirection(f, i, j, n);
@@ -101,13 +112,19 @@ describe('crossing face edges', () => {
       for (let k = 0; k < n; k++) {
         for (let step = 1; step <= n; step++) {
           // Start on an edge row/column and step outward by `step` in each of the 4 directions.
-          for (const [i0, j0, di, dj] of [[n - 1, k, 1, 0], [0, k, -1, 0], [k, n - 1, 0, 1], [k, 0, 0, -1]]) {
+          for (const [i0, j0, di, dj] of [
+            [n - 1, k, 1, 0],
+            [0, k, -1, 0],
+            [k, n - 1, 0, 1],
+            [k, 0, 0, -1],
+          ]) {
             const out = wrapTexel(f, i0 + di * step, j0 + dj * step, n);
             expect(out.face).not.toBe(f);
             // The step direction in the neighbour's frame: rotate (di, dj) by the edge transform.
             const e = di > 0 ? 1 : di < 0 ? 0 : dj > 0 ? 3 : 2;
             const T = CUBE_EDGES[f][e];
-            const bi = -(T.a * di + T.b * dj), bj = -(T.d * di + T.e * dj);
+            const bi = -(T.a * di + T.b * dj),
+              bj = -(T.d * di + T.e * dj);
             const back = wrapTexel(out.face, out.i + bi * step, out.j + bj * step, n);
             expect(back).toEqual({ face: f, i: i0, j: j0 });
           }
@@ -152,8 +169,10 @@ describe('crossing face edges', () => {
         const T = CUBE_EDGES[f][e];
         const o = (f * 4 + e) * 7;
         const [i, j] = e === 0 ? [-1, 3] : e === 1 ? [n, 3] : e === 2 ? [3, -1] : [3, n];
-        const u = ((i + 0.5) * 2) / n - 1, v = ((j + 0.5) * 2) / n - 1;
-        const u2 = T.a * u + T.b * v + T.c, v2 = T.d * u + T.e * v + T.f;
+        const u = ((i + 0.5) * 2) / n - 1,
+          v = ((j + 0.5) * 2) / n - 1;
+        const u2 = T.a * u + T.b * v + T.c,
+          v2 = T.d * u + T.e * v + T.f;
         expect(table[o]).toBe(T.face);
         expect(table[o + 1] * i + table[o + 2] * j + table[o + 3]).toBeCloseTo(((u2 + 1) / 2) * n - 0.5, 10);
         expect(table[o + 4] * i + table[o + 5] * j + table[o + 6]).toBeCloseTo(((v2 + 1) / 2) * n - 0.5, 10);

@@ -52,7 +52,9 @@ describe('heat method geodesics', () => {
     for (let i = 0; i < p.length / 3; i++) if (p[3 * i + 2] > p[3 * src + 2]) src = i;
     const d = geodesicDistances(mesh, [src]);
     const h = meanEdgeLength(mesh);
-    let rel = 0, count = 0, maxAbs = 0;
+    let rel = 0,
+      count = 0,
+      maxAbs = 0;
     for (let i = 0; i < d.length; i++) {
       const g = greatCircle(p, src, i);
       maxAbs = Math.max(maxAbs, Math.abs(d[i] - g));
@@ -68,7 +70,8 @@ describe('heat method geodesics', () => {
   it('two sources give the minimum of the two single-source fields (approximately)', () => {
     const mesh = icosphere(10);
     const solver = new HeatGeodesics(mesh);
-    const a = solver.distance([0]), b = solver.distance([100]);
+    const a = solver.distance([0]),
+      b = solver.distance([100]);
     const ab = solver.distance([0, 100]);
     let err = 0;
     for (let i = 0; i < ab.length; i++) err += Math.abs(ab[i] - Math.min(a[i], b[i]));

@@ -9,13 +9,16 @@ import { loadShipped } from './helpers';
 /** Ellipsoid area by a fine midpoint rule in (θ, φ) over p = (a sinθ cosφ, b sinθ sinφ, c cosθ). */
 function ellipsoidAreaNumerical(a: number, b: number, c: number, nt = 1500, np = 3000): number {
   let s = 0;
-  const dt = Math.PI / nt, dp = (2 * Math.PI) / np;
+  const dt = Math.PI / nt,
+    dp = (2 * Math.PI) / np;
   for (let i = 0; i < nt; i++) {
     const th = (i + 0.5) * dt;
-    const st = Math.sin(th), ct = Math.cos(th);
+    const st = Math.sin(th),
+      ct = Math.cos(th);
     for (let j = 0; j < np; j++) {
       const ph = (j + 0.5) * dp;
-      const cp = Math.cos(ph), sp = Math.sin(ph);
+      const cp = Math.cos(ph),
+        sp = Math.sin(ph);
       s += st * Math.sqrt(b * b * c * c * st * st * cp * cp + a * a * c * c * st * st * sp * sp + a * a * b * b * ct * ct);
     }
   }
@@ -91,7 +94,11 @@ describe('sampleSurface area elements sum to the surface area (n = 128)', () => 
 describe('closest-point projectors', () => {
   it('closestPointOnEllipsoid: on the surface, p - x along the normal, no surface point closer', () => {
     const rnd = mulberry32(1);
-    const axes: Vec3[] = [[2, 1, 1], [3, 2, 1], [1, 1.5, 2]];
+    const axes: Vec3[] = [
+      [2, 1, 1],
+      [3, 2, 1],
+      [1, 1.5, 2],
+    ];
     for (const [a, b, c] of axes) {
       for (let s = 0; s < 40; s++) {
         const p: Vec3 = [4 * (rnd() - 0.5) * a, 4 * (rnd() - 0.5) * b, 4 * (rnd() - 0.5) * c];

@@ -1,12 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { flipOrientation, icosphere, torusMesh } from '../../src/core/mesh/generate';
-import {
-  applyMobius,
-  countFlipped,
-  sphereCenterOfMass,
-  sphericalParameterization,
-  sphericalTriangleArea,
-} from '../../src/core/mesh/spherical';
+import { applyMobius, countFlipped, sphereCenterOfMass, sphericalParameterization, sphericalTriangleArea } from '../../src/core/mesh/spherical';
 import { faceAreas } from '../../src/core/mesh/types';
 import { GENUS_ZERO_SHIPPED, loadShipped } from './helpers';
 
@@ -83,7 +77,8 @@ describe('Möbius map of Baden et al.', () => {
   });
 
   it('is conformal: corner angles of ever smaller triangles change ever less (first order in size)', () => {
-    const coarse = worstAngleChange(6), fine = worstAngleChange(24);
+    const coarse = worstAngleChange(6),
+      fine = worstAngleChange(24);
     expect(fine).toBeLessThan(coarse / 2.5);
     expect(fine).toBeLessThan(0.05);
   });

@@ -38,7 +38,11 @@ export function neighbourSet(adj: Lengths, i: number, minLength: number): number
 }
 
 export function contactAgreement(labels: Lengths, exact: Lengths, count: number, texelEdge: number, minLength: number, minTexels = 3): ContactAgreement {
-  let contacts = 0, ratioSum = 0, labelSum = 0, exactSum = 0, same = 0;
+  let contacts = 0,
+    ratioSum = 0,
+    labelSum = 0,
+    exactSum = 0,
+    same = 0;
   for (let i = 0; i < count; i++) {
     for (let q = exact.offsets[i]; q < exact.offsets[i + 1]; q++) {
       const j = exact.neighbours[q];

@@ -14,10 +14,11 @@ export function cubeBruteForceLabels(position: ArrayLike<number>, sites: ArrayLi
   const out = new Int32Array(texels);
   let lo = [Infinity, Infinity, Infinity];
   const hi = [-Infinity, -Infinity, -Infinity];
-  for (let i = 0; i < count; i++) for (let c = 0; c < 3; c++) {
-    lo[c] = Math.min(lo[c], sites[3 * i + c]);
-    hi[c] = Math.max(hi[c], sites[3 * i + c]);
-  }
+  for (let i = 0; i < count; i++)
+    for (let c = 0; c < 3; c++) {
+      lo[c] = Math.min(lo[c], sites[3 * i + c]);
+      hi[c] = Math.max(hi[c], sites[3 * i + c]);
+    }
   lo = lo.map((v) => v - 1e-9);
   const extent = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-9);
   const side = Math.max(1, Math.round(Math.cbrt(count / 2) * 2));
@@ -26,9 +27,14 @@ export function cubeBruteForceLabels(position: ArrayLike<number>, sites: ArrayLi
   const lists: number[][] = Array.from({ length: side ** 3 }, () => []);
   for (let i = 0; i < count; i++) lists[(bucket(sites[3 * i], 0) * side + bucket(sites[3 * i + 1], 1)) * side + bucket(sites[3 * i + 2], 2)].push(i);
   for (let k = 0; k < texels; k++) {
-    const x = position[3 * k], y = position[3 * k + 1], z = position[3 * k + 2];
-    const bx = bucket(x, 0), by = bucket(y, 1), bz = bucket(z, 2);
-    let best = -1, bestD = Infinity;
+    const x = position[3 * k],
+      y = position[3 * k + 1],
+      z = position[3 * k + 2];
+    const bx = bucket(x, 0),
+      by = bucket(y, 1),
+      bz = bucket(z, 2);
+    let best = -1,
+      bestD = Infinity;
     for (let ring = 0; ring <= side; ring++) {
       // A site in ring r+1 or beyond is at least (r + distance to the bucket wall) away; stop
       // once the best distance is below r · size (conservative).
@@ -39,7 +45,9 @@ export function cubeBruteForceLabels(position: ArrayLike<number>, sites: ArrayLi
             if (Math.max(Math.abs(a - bx), Math.abs(b - by), Math.abs(c - bz)) !== ring) continue;
             if (a < 0 || b < 0 || c < 0 || a >= side || b >= side || c >= side) continue;
             for (const i of lists[(a * side + b) * side + c]) {
-              const dx = sites[3 * i] - x, dy = sites[3 * i + 1] - y, dz = sites[3 * i + 2] - z;
+              const dx = sites[3 * i] - x,
+                dy = sites[3 * i + 1] - y,
+                dz = sites[3 * i + 2] - z;
               const d = dx * dx + dy * dy + dz * dz;
               if (d < bestD || (d === bestD && i < best)) {
                 bestD = d;

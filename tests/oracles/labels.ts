@@ -134,13 +134,7 @@ function bucketSites(sites: Float32Array, count: number, nx: number, ny: number,
  * offsets relative to the site stay small and unwrap a cell that straddles a periodic seam.
  * `weight` (per texel, e.g. density) may be null for 1. Texels labelled -1 are skipped.
  */
-export function reduceCentroids(
-  grid: Grid,
-  labels: ArrayLike<number>,
-  sites: Float32Array,
-  weight: Float32Array | null,
-  out?: Float64Array,
-): Float64Array {
+export function reduceCentroids(grid: Grid, labels: ArrayLike<number>, sites: Float32Array, weight: Float32Array | null, out?: Float64Array): Float64Array {
   const { width, height } = grid;
   const count = Math.floor(sites.length / 2);
   const sums = out ?? new Float64Array(4 * count);

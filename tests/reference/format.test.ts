@@ -12,7 +12,14 @@ import {
 
 const SOURCE = 'digitised from a figure, for the test';
 const point = (x: number, percent: number, extra: Record<string, unknown> = {}) => ({ x, percent, source: SOURCE, ...extra });
-const curve = (extra: Record<string, unknown> = {}) => ({ id: 'c1', label: 'A curve', kind: 'data', quantity: 'surfaceRatio', points: [point(1, 0), point(2, 50, { sd: 3, n: 5 })], ...extra });
+const curve = (extra: Record<string, unknown> = {}) => ({
+  id: 'c1',
+  label: 'A curve',
+  kind: 'data',
+  quantity: 'surfaceRatio',
+  points: [point(1, 0), point(2, 50, { sd: 3, n: 5 })],
+  ...extra,
+});
 const docOf = (extra: Record<string, unknown> = {}) => ({ format: 'tissue-sheet-reference-curves', version: 1, curves: [curve()], ...extra });
 const json = (value: unknown) => JSON.stringify(value);
 
@@ -33,7 +40,15 @@ const CSV_HEADER = 'curve,label,kind,quantity,source,x,percent,sd,n';
 
 describe('reference curves, JSON', () => {
   it('reads a good document: points sorted by x, sd and n optional, fixed kept', () => {
-    const doc = parseReferenceJson(json(docOf({ title: 'T', provenance: { by: 'hand', list: [1, { a: 2 }] }, curves: [curve({ fixed: { voronoiK: 3 }, points: [point(3, 90), point(1, 0, { sd: null })] })] })));
+    const doc = parseReferenceJson(
+      json(
+        docOf({
+          title: 'T',
+          provenance: { by: 'hand', list: [1, { a: 2 }] },
+          curves: [curve({ fixed: { voronoiK: 3 }, points: [point(3, 90), point(1, 0, { sd: null })] })],
+        }),
+      ),
+    );
     expect(doc.title).toBe('T');
     const [c] = doc.curves;
     expect(c.points.map((p) => p.x)).toEqual([1, 3]);
@@ -72,9 +87,13 @@ describe('reference curves, JSON', () => {
 
   it('refuses __proto__, constructor and prototype keys anywhere, and never touches a prototype', () => {
     for (const key of ['__proto__', 'constructor', 'prototype']) {
-      expect(errorOf(() => parseReferenceJson(`{"format":"tissue-sheet-reference-curves","version":1,"${key}":{"x":1},"curves":[]}`))).toMatch(new RegExp(`^document: the key "${key}" is not allowed`));
+      expect(errorOf(() => parseReferenceJson(`{"format":"tissue-sheet-reference-curves","version":1,"${key}":{"x":1},"curves":[]}`))).toMatch(
+        new RegExp(`^document: the key "${key}" is not allowed`),
+      );
       expect(errorOf(() => parseReferenceJson(json(docOf()).replace('"id":"c1"', `"${key}":{"polluted":1},"id":"c1"`)))).toMatch(/^curves\[0\]: the key/);
-      expect(errorOf(() => parseReferenceJson(json(docOf({ provenance: { a: [{ b: 1 }] } })).replace('"b":1', `"${key}":1`)))).toMatch(/^provenance\.a\[0\]: the key/);
+      expect(errorOf(() => parseReferenceJson(json(docOf({ provenance: { a: [{ b: 1 }] } })).replace('"b":1', `"${key}":1`)))).toMatch(
+        /^provenance\.a\[0\]: the key/,
+      );
       expect(errorOf(() => parseReferenceJson(json(docOf({ curves: [curve({ fixed: {} })] })).replace('"fixed":{}', `"fixed":{"${key}":1}`)))).toMatch(/fixed/);
     }
     expect(({} as Record<string, unknown>).polluted).toBeUndefined();
@@ -126,7 +145,11 @@ describe('reference curves, CSV', () => {
     ['a missing source', `${CSV_HEADER}\na,A,data,surfaceRatio,,1,5,,\n`, /^line 2, column source: every point needs a source/],
     ['a bad kind', `${CSV_HEADER}\na,A,fit,surfaceRatio,s,1,5,,\n`, /^line 2, column kind: must be "model" or "data"/],
     ['a bad n', `${CSV_HEADER}\na,A,data,surfaceRatio,s,1,5,,0\n`, /^line 2, column n: 0 is not a whole number/],
-    ['a label that changes within a curve', `${CSV_HEADER}\na,A,data,surfaceRatio,s,1,5,,\na,B,data,surfaceRatio,s,2,6,,\n`, /^line 3, column label: curve "a" has label "A" on line 2/],
+    [
+      'a label that changes within a curve',
+      `${CSV_HEADER}\na,A,data,surfaceRatio,s,1,5,,\na,B,data,surfaceRatio,s,2,6,,\n`,
+      /^line 3, column label: curve "a" has label "A" on line 2/,
+    ],
     ['a repeated x', `${CSV_HEADER}\na,A,data,surfaceRatio,s,1,5,,\na,A,data,surfaceRatio,s,1,6,,\n`, /^curve "a": x = 1 appears twice/],
     ['an unclosed quote', `${CSV_HEADER}\na,A,data,surfaceRatio,"s,1,5,,\n`, /a quoted cell is not closed/],
     ['a prototype quantity', `${CSV_HEADER}\na,A,data,constructor,s,1,5,,\n`, /^line 2, column quantity: "constructor" is not allowed/],
@@ -144,13 +167,27 @@ describe('reference curves, CSV', () => {
   it('readReferenceFile picks JSON or CSV by name or content and names the file in errors', () => {
     expect(readReferenceFile('a.json', json(docOf())).curves).toHaveLength(1);
     expect(readReferenceFile('digitised', `${CSV_HEADER}\na,A,data,surfaceRatio,s,1,5,,\n`).curves).toHaveLength(1);
-    expect(errorOf(() => readReferenceFile('fig2.csv', `${CSV_HEADER}\na,A,data,surfaceRatio,s,1,500,,\n`))).toMatch(/^fig2\.csv: line 2, column percent: 500 is outside/);
+    expect(errorOf(() => readReferenceFile('fig2.csv', `${CSV_HEADER}\na,A,data,surfaceRatio,s,1,500,,\n`))).toMatch(
+      /^fig2\.csv: line 2, column percent: 500 is outside/,
+    );
   });
 });
 
 describe('matching curves to a sweep', () => {
-  const c = (id: string, quantity: string, fixed: Record<string, number> = {}): ReferenceCurve => ({ id, label: id, kind: 'model', quantity, fixed, points: [{ x: 1, percent: 0, sd: null, n: null, source: 's' }] });
-  const curves = [c('k1', 'surfaceRatio', { voronoiK: 1 }), c('k4', 'surfaceRatio', { voronoiK: 4 }), c('s2', 'voronoiK', { surfaceRatio: 2 }), c('free', 'surfaceRatio')];
+  const c = (id: string, quantity: string, fixed: Record<string, number> = {}): ReferenceCurve => ({
+    id,
+    label: id,
+    kind: 'model',
+    quantity,
+    fixed,
+    points: [{ x: 1, percent: 0, sd: null, n: null, source: 's' }],
+  });
+  const curves = [
+    c('k1', 'surfaceRatio', { voronoiK: 1 }),
+    c('k4', 'surfaceRatio', { voronoiK: 4 }),
+    c('s2', 'voronoiK', { surfaceRatio: 2 }),
+    c('free', 'surfaceRatio'),
+  ];
 
   it('draws only curves whose x is the swept field, says why the others are not drawn', () => {
     const overlay = overlayFor(curves, 'sheet.thickness', {});
@@ -160,16 +197,23 @@ describe('matching curves to a sweep', () => {
     expect(byK.drawn.map((x) => x.id)).toEqual(['s2']);
   });
 
-  it('keeps the curves at the sweep\'s own fixed values when some match, all of them otherwise', () => {
+  it("keeps the curves at the sweep's own fixed values when some match, all of them otherwise", () => {
     const at4 = overlayFor(curves, 'sheet.surfaceRatio', { lloyd: { maxIterations: 3 } });
     expect(at4.drawn.map((x) => x.id)).toEqual(['k4']);
     expect(at4.skipped.find((s) => s.curve.id === 'k1')!.reason).toBe("held at another voronoiK than the sweep's voronoiK = 4");
     expect(overlayFor(curves, 'sheet.surfaceRatio', { lloyd: { maxIterations: 49 } }).drawn.map((x) => x.id)).toEqual(['k1', 'k4', 'free']);
   });
 
-  it('lists where a sweep\'s configuration differs from the one a set records', () => {
-    const doc = { ...parseReferenceJson(json(docOf())), provenance: { spec: { base: { cells: 200, sheet: { protocol: 'lab' }, surface: { kind: 'tube', radius: 81.48733086305042 } } } } };
+  it("lists where a sweep's configuration differs from the one a set records", () => {
+    const doc = {
+      ...parseReferenceJson(json(docOf())),
+      provenance: { spec: { base: { cells: 200, sheet: { protocol: 'lab' }, surface: { kind: 'tube', radius: 81.48733086305042 } } } },
+    };
     expect(configDifferences(doc, { cells: 200, sheet: { protocol: 'lab' }, surface: { kind: 'tube', radius: 81.487330863 } })).toEqual([]);
-    expect(configDifferences(doc, { cells: 60, sheet: { protocol: 'default' }, surface: { kind: 'tube', radius: 40 } }).map((d) => d.field)).toEqual(['surface.radius', 'cells', 'sheet.protocol']);
+    expect(configDifferences(doc, { cells: 60, sheet: { protocol: 'default' }, surface: { kind: 'tube', radius: 40 } }).map((d) => d.field)).toEqual([
+      'surface.radius',
+      'cells',
+      'sheet.protocol',
+    ]);
   });
 });

@@ -47,14 +47,18 @@ describe('the shipped reference set', () => {
     }
     expect(seeds.length).toBeGreaterThanOrEqual(10);
     // The seeds are the sweep's own for its spec.
-    expect(expandSweep(spec).slice(0, seeds.length).map((r) => r.seed)).toEqual(seeds);
+    expect(
+      expandSweep(spec)
+        .slice(0, seeds.length)
+        .map((r) => r.seed),
+    ).toEqual(seeds);
     // Both axes hold the same numbers: Voronoi 4 at s = 2 is s = 2 at Voronoi 4.
     expect({ ...point('surfaceRatio', 4, 2), x: 0 }).toEqual({ ...point('voronoiK', 2, 4), x: 0 });
     // 0 % at s = 1 under the lab protocol.
     for (const k of [1, 4, 10]) expect(point('surfaceRatio', k, 1).percent).toBe(0);
   });
 
-  it('Voronoi 4 at s = 2: the pipeline (SheetRunner) over the spec\'s runs gives the file\'s mean and SD', async () => {
+  it("Voronoi 4 at s = 2: the pipeline (SheetRunner) over the spec's runs gives the file's mean and SD", async () => {
     const runs = expandSweep(spec).filter((r) => r.point['lloyd.maxIterations'] === 3 && r.point['sheet.surfaceRatio'] === 2);
     expect(runs).toHaveLength(seeds.length);
     const runner = new SheetRunner(context);
@@ -70,7 +74,7 @@ describe('the shipped reference set', () => {
     expect(shippedPoint.sd!).toBeCloseTo(sd, 5);
   }, 120_000);
 
-  it('Voronoi 1 at s = 1.5 and Voronoi 10 at s = 1.25: the reference per-ratio analysis gives the file\'s means', () => {
+  it("Voronoi 1 at s = 1.5 and Voronoi 10 at s = 1.25: the reference per-ratio analysis gives the file's means", () => {
     const config = validateConfig({ ...(spec.base as ConfigInput), seed: seeds[0] });
     const grid = makeGrid(config);
     for (const [k, s] of [

@@ -12,11 +12,39 @@ import { useHeadlessContext } from '../gpu/context';
 const context = useHeadlessContext();
 
 const configs = {
-  'exact tube with a layer': { surface: { kind: 'tube', radius: 40, length: 300 }, resolution: 128, cells: 50, engine: 'exact', lloyd: { maxIterations: 3 }, sheet: { surfaceRatio: 2, layers: 1 } },
-  'exact torus': { surface: { kind: 'plane', width: 200, height: 150, periodicX: true, periodicY: true }, resolution: 128, cells: 60, engine: 'exact', lloyd: { maxIterations: 3 }, sheet: { thickness: 4 } },
-  'GPU tube, both methods': { surface: { kind: 'tube', radius: 40, length: 300 }, resolution: 128, cells: 40, engine: 'gpu', lloyd: { maxIterations: 2 }, sheet: { surfaceRatio: 1.5, adjacency: 'both' } },
+  'exact tube with a layer': {
+    surface: { kind: 'tube', radius: 40, length: 300 },
+    resolution: 128,
+    cells: 50,
+    engine: 'exact',
+    lloyd: { maxIterations: 3 },
+    sheet: { surfaceRatio: 2, layers: 1 },
+  },
+  'exact torus': {
+    surface: { kind: 'plane', width: 200, height: 150, periodicX: true, periodicY: true },
+    resolution: 128,
+    cells: 60,
+    engine: 'exact',
+    lloyd: { maxIterations: 3 },
+    sheet: { thickness: 4 },
+  },
+  'GPU tube, both methods': {
+    surface: { kind: 'tube', radius: 40, length: 300 },
+    resolution: 128,
+    cells: 40,
+    engine: 'gpu',
+    lloyd: { maxIterations: 2 },
+    sheet: { surfaceRatio: 1.5, adjacency: 'both' },
+  },
   'GPU sphere (cube map)': { surface: { kind: 'sphere', radius: 30 }, resolution: 32, cells: 30, lloyd: { maxIterations: 1 }, sheet: { thickness: 3 } },
-  'exact tube, lab protocol': { surface: { kind: 'tube', radius: 40, length: 300 }, resolution: 128, cells: 50, engine: 'exact', lloyd: { maxIterations: 2 }, sheet: { surfaceRatio: 2, protocol: 'lab' } },
+  'exact tube, lab protocol': {
+    surface: { kind: 'tube', radius: 40, length: 300 },
+    resolution: 128,
+    cells: 50,
+    engine: 'exact',
+    lloyd: { maxIterations: 2 },
+    sheet: { surfaceRatio: 2, protocol: 'lab' },
+  },
 };
 
 describe('runSheet(..., {cellTables: true})', () => {
@@ -36,7 +64,7 @@ describe('runSheet(..., {cellTables: true})', () => {
     });
   }
 
-  it('a plane\'s other surface shares the seeded surface\'s exact adjacency (computed once)', async () => {
+  it("a plane's other surface shares the seeded surface's exact adjacency (computed once)", async () => {
     const config = validateAnyConfig(configs['exact torus']);
     const { tables } = await new SheetRunner(context).run(config, { cellTables: true });
     const [seeded, other] = [tables!.cells, tables!.surfaces[0]];

@@ -12,7 +12,15 @@ const hardware = { renderer: 'NVIDIA H100', maxTextureSize: 16384, floatBlend: t
 
 /** A small published-like tube: 200 cells on a 512 x 1024 µm strip. */
 const tube = (extra: ConfigInput = {}) =>
-  validateConfig({ surface: { kind: 'tube', radius: 512 / (2 * Math.PI), length: 1024 }, resolution: 256, cells: 120, minSpacing: 5, seed: 11, ...extra, sheet: { ...extra.sheet } });
+  validateConfig({
+    surface: { kind: 'tube', radius: 512 / (2 * Math.PI), length: 1024 },
+    resolution: 256,
+    cells: 120,
+    minSpacing: 5,
+    seed: 11,
+    ...extra,
+    sheet: { ...extra.sheet },
+  });
 
 describe('the engine policy', () => {
   it('auto: exact on a software renderer for planes and tubes, GPU on hardware, GPU where labels are asked for', () => {
@@ -102,7 +110,12 @@ describe('the lab protocol through the pipeline', () => {
       // Layers at s = 1.25, 1.5, ... and the other surface (also at s = 1 itself).
       expect(result.surfaces).toHaveLength(Math.max(1, Math.round((s - 1) / 0.25)));
       const exact = result.analyses[0];
-      valid.push(exact.cells.filter((c) => c.valid).map((c) => c.id).join());
+      valid.push(
+        exact.cells
+          .filter((c) => c.valid)
+          .map((c) => c.id)
+          .join(),
+      );
       if (s === 1) expect(exact.summary.percentScutoids).toBe(0);
       expect(exact.summary.percentScutoids).toBeGreaterThanOrEqual(previous);
       previous = exact.summary.percentScutoids;

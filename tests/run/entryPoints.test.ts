@@ -42,7 +42,7 @@ function cliRun(config: ConfigInput, name: string): { config: unknown; headline:
 }
 
 describe('one set of defaults, whatever the entry point', () => {
-  it('the schema is the only place Lloyd iterations and resolution default: 50 and the surface\'s default', () => {
+  it("the schema is the only place Lloyd iterations and resolution default: 50 and the surface's default", () => {
     const library = validateAnyConfig(ELLIPSOID);
     expect(library.lloyd.maxIterations).toBe(configSchema.properties.lloyd.properties.maxIterations.default);
     expect(library.resolution).toBe(defaultResolution(library));
@@ -70,7 +70,7 @@ describe('one set of defaults, whatever the entry point', () => {
     });
   }
 
-  it('an element with no attributes runs the schema\'s default sheet, as an empty config file does', () => {
+  it("an element with no attributes runs the schema's default sheet, as an empty config file does", () => {
     expect(configFromAttributes(elementWith({}), null)).toEqual(validateAnyConfig({}));
   });
 

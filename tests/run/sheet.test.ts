@@ -14,8 +14,7 @@ import { useHeadlessContext } from '../gpu/context';
 const context = useHeadlessContext();
 
 /** The published tube (512 x 4096 µm strip, 200 cells, spacing 5) at the default resolution. */
-const tube = (extra: ConfigInput = {}) =>
-  validateConfig({ cells: 200, minSpacing: 5, ...extra, sheet: { seeded: 'apical', ...extra.sheet } });
+const tube = (extra: ConfigInput = {}) => validateConfig({ cells: 200, minSpacing: 5, ...extra, sheet: { seeded: 'apical', ...extra.sheet } });
 
 function pairSet(offsets: Int32Array, neighbours: Int32Array): Set<number> {
   const pairs = new Set<number>();
@@ -93,9 +92,16 @@ describe('a hand-built exchange: rhombi of four sites whose shared edge flips wh
     engine.setSites(sites);
     engine.floodLabels();
     const seeded: SeededSurface<PlanarGeometry, Float32Array> = {
-      geometry: { grid, density: new Float32Array(width * height).fill(1) }, sites, labels: engine.readLabels(),
-      engine: chooseEngine(config, 'planar grid', context.capabilities), iterations: [], converged: false,
-      finalEnergy: 0, emptyCells: 0, setupMs: 0, lloydMs: 0,
+      geometry: { grid, density: new Float32Array(width * height).fill(1) },
+      sites,
+      labels: engine.readLabels(),
+      engine: chooseEngine(config, 'planar grid', context.capabilities),
+      iterations: [],
+      converged: false,
+      finalEnergy: 0,
+      emptyCells: 0,
+      setupMs: 0,
+      lloydMs: 0,
     };
     engine.dispose();
     return analyzeStack(planarFamily, config, seeded, context);

@@ -125,7 +125,10 @@ describe('camera poses', () => {
       const camera = new THREE.PerspectiveCamera(45, aspect, 0.1, 1000);
       const square: THREE.Vector3[] = [];
       for (let i = 0; i <= 10; i++) for (let k = 0; k <= 10; k++) square.push(new THREE.Vector3(-50 + 10 * i, -50 + 10 * k, 0));
-      const plane = projection(cameraAt(sheetPose(camera, 'plane', false, { halfSize: new THREE.Vector3(50, 50, 0), radius: Math.SQRT2 * 50 }), aspect), square);
+      const plane = projection(
+        cameraAt(sheetPose(camera, 'plane', false, { halfSize: new THREE.Vector3(50, 50, 0), radius: Math.SQRT2 * 50 }), aspect),
+        square,
+      );
       expect(plane.inside).toBe(true);
       expect(Math.max(plane.width, plane.height)).toBeGreaterThan(0.6);
 

@@ -31,7 +31,9 @@ function sphereAtlas(n: number, count: number, radius: number, seed: number): { 
   const random = () => rng.next();
   const sites = new Float32Array(3 * count);
   for (let i = 0; i < count; i++) {
-    const z = 2 * random() - 1, phi = 2 * Math.PI * random(), r = Math.sqrt(1 - z * z);
+    const z = 2 * random() - 1,
+      phi = 2 * Math.PI * random(),
+      r = Math.sqrt(1 - z * z);
     sites.set([radius * r * Math.cos(phi), radius * r * Math.sin(phi), radius * z], 3 * i);
   }
   const labels = new Int32Array(6 * n * n);
@@ -70,7 +72,8 @@ function disagreement(image: LabelImage, sites: Float32Array, samples: number, s
   let wrong = 0;
   for (let s = 0; s < samples; s++) {
     const f = 3 * Math.floor(random() * (indices.length / 3));
-    let u = random(), v = random();
+    let u = random(),
+      v = random();
     if (u + v > 1) [u, v] = [1 - u, 1 - v];
     const [a, b, c] = [indices[f], indices[f + 1], indices[f + 2]].map((k) => 3 * k);
     const point = [0, 1, 2].map((k) => positions[a + k] + u * (positions[b + k] - positions[a + k]) + v * (positions[c + k] - positions[a + k]));

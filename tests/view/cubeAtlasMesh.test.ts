@@ -51,7 +51,11 @@ describe('the cube-map atlas as a triangle mesh', () => {
 
   it('on a sphere: outward triangles and normals, vertices at the texel positions, labels as given', () => {
     const R = 7;
-    const image = atlasImage(12, (d) => d.map((x) => R * x), (d) => (d[2] > 0 ? 1 : 0) + (d[0] > 0 ? 2 : 0));
+    const image = atlasImage(
+      12,
+      (d) => d.map((x) => R * x),
+      (d) => (d[2] > 0 ? 1 : 0) + (d[0] > 0 ? 2 : 0),
+    );
     const mesh = closedSurfaceMesh(image);
     expect(mesh.positions).toBe(image.positions);
     expect(mesh.cells).toBe(image.labels);
@@ -59,7 +63,9 @@ describe('the cube-map atlas as a triangle mesh', () => {
     const p = mesh.positions;
     for (let f = 0; f < mesh.indices.length; f += 3) {
       const [a, b, c] = [0, 1, 2].map((k) => 3 * mesh.indices[f + k]);
-      volume += (p[a] * (p[b + 1] * p[c + 2] - p[b + 2] * p[c + 1]) - p[a + 1] * (p[b] * p[c + 2] - p[b + 2] * p[c]) + p[a + 2] * (p[b] * p[c + 1] - p[b + 1] * p[c])) / 6;
+      volume +=
+        (p[a] * (p[b + 1] * p[c + 2] - p[b + 2] * p[c + 1]) - p[a + 1] * (p[b] * p[c + 2] - p[b + 2] * p[c]) + p[a + 2] * (p[b] * p[c + 1] - p[b + 1] * p[c])) /
+        6;
     }
     // An inscribed polyhedron: a little less than the ball's volume.
     expect(volume).toBeGreaterThan(0.95 * (4 / 3) * Math.PI * R ** 3);
@@ -73,7 +79,8 @@ describe('the cube-map atlas as a triangle mesh', () => {
     for (let f = 0; f < mesh.indices.length; f += 3) {
       for (let k = 0; k < 3; k++) {
         for (let l = 0; l < 3; l++) {
-          const i = mesh.indices[f + k], j = mesh.indices[f + l];
+          const i = mesh.indices[f + k],
+            j = mesh.indices[f + l];
           if (mesh.cells[j] > mesh.cells[i]) lower[i] = 1;
         }
       }
@@ -84,7 +91,11 @@ describe('the cube-map atlas as a triangle mesh', () => {
   });
 
   it('a surface mapped mirror-wise still faces outward', () => {
-    const image = atlasImage(6, (d) => [-3 * d[0], 2 * d[1], d[2]], () => 0);
+    const image = atlasImage(
+      6,
+      (d) => [-3 * d[0], 2 * d[1], d[2]],
+      () => 0,
+    );
     const mesh = closedSurfaceMesh(image);
     const p = mesh.positions;
     for (let v = 0; v < p.length / 3; v++) {
@@ -95,7 +106,11 @@ describe('the cube-map atlas as a triangle mesh', () => {
   });
 
   it('names the label image that has no geometry image', () => {
-    const { name, grid, labels } = atlasImage(4, (d) => d, () => 0);
+    const { name, grid, labels } = atlasImage(
+      4,
+      (d) => d,
+      () => 0,
+    );
     expect(() => closedSurfaceMesh({ name: 'apical', grid, labels })).toThrow(/"apical".*positions/);
     expect(() => closedSurfaceMesh({ name: 'flat', grid: { ...grid, height: 5 }, labels })).toThrow(/"flat".*n x 6n/);
     expect(name).toBe('test');

@@ -96,10 +96,14 @@ export function chartSvg(spec: ChartSpec): string {
   const xTicks = spec.xTicks ?? niceTicks(Math.min(...xs), Math.max(...xs)).map((x) => ({ x, label: String(x) }));
   for (const t of xTicks) {
     grid.push(`<line x1="${num(X(t.x))}" x2="${num(X(t.x))}" y1="${num(top + plotH)}" y2="${num(top + plotH + 4)}" stroke="#333" stroke-width="0.8"/>`);
-    grid.push(`<text x="${num(X(t.x))}" y="${num(top + plotH + FONT * 1.3)}" font-size="${num(FONT * 0.85)}" text-anchor="middle">${escapeXml(t.label)}</text>`);
+    grid.push(
+      `<text x="${num(X(t.x))}" y="${num(top + plotH + FONT * 1.3)}" font-size="${num(FONT * 0.85)}" text-anchor="middle">${escapeXml(t.label)}</text>`,
+    );
   }
   out.push(`<g id="grid">${grid.join('')}</g>`);
-  out.push(`<text id="x-label" x="${num(left + plotW / 2)}" y="${num(top + plotH + FONT * 2.7)}" font-size="${num(FONT)}" text-anchor="middle">${escapeXml(spec.xLabel)}</text>`);
+  out.push(
+    `<text id="x-label" x="${num(left + plotW / 2)}" y="${num(top + plotH + FONT * 2.7)}" font-size="${num(FONT)}" text-anchor="middle">${escapeXml(spec.xLabel)}</text>`,
+  );
   out.push(
     `<text id="y-label" transform="translate(${num(FONT * 1.1)} ${num(top + plotH / 2)}) rotate(-90)" font-size="${num(FONT)}" text-anchor="middle">${escapeXml(spec.yLabel)}</text>`,
   );
@@ -112,7 +116,10 @@ export function chartSvg(spec: ChartSpec): string {
     const pts = s.points.filter((p) => Number.isFinite(p.y));
     if (s.band && pts.some((p) => p.low != null && p.high != null)) {
       const withCi = pts.filter((p) => p.low != null && p.high != null);
-      const d = `M${withCi.map((p) => `${num(X(p.x))} ${num(Y(p.high!))}`).join('L')}L${[...withCi].reverse().map((p) => `${num(X(p.x))} ${num(Y(p.low!))}`).join('L')}Z`;
+      const d = `M${withCi.map((p) => `${num(X(p.x))} ${num(Y(p.high!))}`).join('L')}L${[...withCi]
+        .reverse()
+        .map((p) => `${num(X(p.x))} ${num(Y(p.low!))}`)
+        .join('L')}Z`;
       g.push(`<path class="band" d="${d}" fill="${s.color}" fill-opacity="0.18" stroke="none"/>`);
     }
     if (s.style === 'bars') {
@@ -123,19 +130,25 @@ export function chartSvg(spec: ChartSpec): string {
       }
     }
     if (s.style === 'line' || s.style === 'curve') {
-      g.push(`<polyline points="${pts.map((p) => `${num(X(p.x))},${num(Y(p.y))}`).join(' ')}" fill="none" stroke="${s.color}" stroke-width="${s.style === 'curve' ? 1.6 : 1.4}"${dash}/>`);
+      g.push(
+        `<polyline points="${pts.map((p) => `${num(X(p.x))},${num(Y(p.y))}`).join(' ')}" fill="none" stroke="${s.color}" stroke-width="${s.style === 'curve' ? 1.6 : 1.4}"${dash}/>`,
+      );
     }
     if (s.style === 'line' || s.style === 'points') {
       for (const p of pts) {
         if (!s.band && p.low != null && p.high != null) {
-          g.push(`<path class="error-bar" d="M${num(X(p.x))} ${num(Y(p.low))}V${num(Y(p.high))}M${num(X(p.x) - 3)} ${num(Y(p.low))}h6M${num(X(p.x) - 3)} ${num(Y(p.high))}h6" stroke="${s.color}" stroke-width="0.9" fill="none"/>`);
+          g.push(
+            `<path class="error-bar" d="M${num(X(p.x))} ${num(Y(p.low))}V${num(Y(p.high))}M${num(X(p.x) - 3)} ${num(Y(p.low))}h6M${num(X(p.x) - 3)} ${num(Y(p.high))}h6" stroke="${s.color}" stroke-width="0.9" fill="none"/>`,
+          );
         }
         g.push(`<circle cx="${num(X(p.x))}" cy="${num(Y(p.y))}" r="2.6" fill="${s.color}"/>`);
       }
     }
     if (s.labels !== undefined) {
       for (const p of pts) {
-        g.push(`<text class="value" x="${num(X(p.x) + 4)}" y="${num(Y(p.y) - 4)}" font-size="${num(FONT * 0.7)}" fill="${s.color}">${p.y.toFixed(s.labels)}</text>`);
+        g.push(
+          `<text class="value" x="${num(X(p.x) + 4)}" y="${num(Y(p.y) - 4)}" font-size="${num(FONT * 0.7)}" fill="${s.color}">${p.y.toFixed(s.labels)}</text>`,
+        );
       }
     }
     out.push(`<g class="series" data-series="${k}" data-label="${escapeXml(s.label)}">${g.join('')}</g>`);

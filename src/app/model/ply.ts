@@ -50,12 +50,19 @@ function closedCellsPly(stack: ViewStack): string {
     for (let v = 0; v < mesh.cells.length; v++) {
       const id = mesh.cells[v];
       const p = [mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]];
-      vertices.push(`${p.map((x) => x.toFixed(4)).join(' ')} ${id} ${surface.index} ${surface.sides[id] ?? 0} ${stack.scutoid[id] ?? 0} ${stack.valid[id] ?? 0}`);
+      vertices.push(
+        `${p.map((x) => x.toFixed(4)).join(' ')} ${id} ${surface.index} ${surface.sides[id] ?? 0} ${stack.scutoid[id] ?? 0} ${stack.valid[id] ?? 0}`,
+      );
     }
     const t = mesh.indices;
     for (let f = 0; f < t.length; f += 3) faces.push(`3 ${first + t[f]} ${first + t[f + 1]} ${first + t[f + 2]}`);
   }
-  return plyDocument(stack, 'closed surfaces (0 = seeded) as triangle meshes, a vertex per texel of the cube-map geometry image labelled with its cell, µm', vertices, faces);
+  return plyDocument(
+    stack,
+    'closed surfaces (0 = seeded) as triangle meshes, a vertex per texel of the cube-map geometry image labelled with its cell, µm',
+    vertices,
+    faces,
+  );
 }
 
 /**

@@ -115,7 +115,7 @@ export function withPngDpi(png: Uint8Array, dpi: number): Uint8Array {
 export function readPngDpi(png: Uint8Array): number | null {
   checkSignature(png);
   const view = new DataView(png.buffer, png.byteOffset, png.byteLength);
-  for (let at = 8; at + 12 <= png.length; ) {
+  for (let at = 8; at + 12 <= png.length;) {
     const length = view.getUint32(at);
     const type = String.fromCharCode(...png.subarray(at + 4, at + 8));
     if (type === 'pHYs' && png[at + 8 + 8] === 1) return view.getUint32(at + 8) * 0.0254;

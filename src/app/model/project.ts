@@ -91,7 +91,8 @@ export function openFile(text: string, name: string): OpenedFile {
   }
   if (!isObject(data)) throw new Error(`${name}: not a tissue-sheet file (a JSON object was expected).`);
   if (data.format === PROJECT_FORMAT) {
-    if (data.formatVersion !== PROJECT_FORMAT_VERSION) throw new Error(`${name}: formatVersion ${String(data.formatVersion)}: this page reads project files of version ${PROJECT_FORMAT_VERSION}.`);
+    if (data.formatVersion !== PROJECT_FORMAT_VERSION)
+      throw new Error(`${name}: formatVersion ${String(data.formatVersion)}: this page reads project files of version ${PROJECT_FORMAT_VERSION}.`);
     const result = checkResult(data.result, `${name}: result`);
     if (!Array.isArray(data.labelImages) || data.labelImages.length !== result.surfaces.length + 1) {
       throw new Error(`${name}: labelImages: expected ${result.surfaces.length + 1} images, one per surface of the result.`);
@@ -133,7 +134,8 @@ function checkResult(value: unknown, where: string): SheetResult {
   if (!Array.isArray(value.surfaces) || !Array.isArray(value.analyses)) throw new Error(`${where}: surfaces and analyses: expected lists.`);
   const n = value.cells.length;
   value.cells.forEach((cell, i) => {
-    if (!isObject(cell) || cell.id !== i || !Array.isArray(cell.surface) || !Array.isArray(cell.neighbours)) throw new Error(`${where}: cells[${i}]: expected id ${i}, surface [u, v] and neighbours.`);
+    if (!isObject(cell) || cell.id !== i || !Array.isArray(cell.surface) || !Array.isArray(cell.neighbours))
+      throw new Error(`${where}: cells[${i}]: expected id ${i}, surface [u, v] and neighbours.`);
   });
   value.surfaces.forEach((surface, k) => {
     if (!isObject(surface) || !Array.isArray(surface.cells) || surface.cells.length !== n || !isObject(surface.grid)) {
@@ -159,7 +161,8 @@ function checkGrid(value: unknown, where: string): Grid {
 }
 
 function readImage(value: unknown, cellCount: number, where: string): LabelImage {
-  if (!isObject(value) || typeof value.name !== 'string' || typeof value.labelsRle !== 'string') throw new Error(`${where}: expected name, grid and labelsRle.`);
+  if (!isObject(value) || typeof value.name !== 'string' || typeof value.labelsRle !== 'string')
+    throw new Error(`${where}: expected name, grid and labelsRle.`);
   const grid = checkGrid(value.grid, `${where}.grid`);
   const texels = grid.width * grid.height;
   const runs = new Int32Array(fromBase64(value.labelsRle, `${where}.labelsRle`, 8 * texels).buffer);
@@ -167,7 +170,8 @@ function readImage(value: unknown, cellCount: number, where: string): LabelImage
   let at = 0;
   for (let k = 0; k + 1 < runs.length; k += 2) {
     const [id, count] = [runs[k], runs[k + 1]];
-    if (id < -1 || id >= cellCount || count <= 0 || at + count > texels) throw new Error(`${where}.labelsRle: run ${k / 2} (id ${id}, length ${count}) does not fit ${texels} texels of ${cellCount} cells.`);
+    if (id < -1 || id >= cellCount || count <= 0 || at + count > texels)
+      throw new Error(`${where}.labelsRle: run ${k / 2} (id ${id}, length ${count}) does not fit ${texels} texels of ${cellCount} cells.`);
     labels.fill(id, at, at + count);
     at += count;
   }
@@ -181,10 +185,13 @@ function readImage(value: unknown, cellCount: number, where: string): LabelImage
 function readView(value: unknown, surfaces: number, where: string): ViewState {
   if (!isObject(value)) throw new Error(`${where}: expected the view state.`);
   const vec = (v: unknown) => Array.isArray(v) && v.length === 3 && v.every((x) => Number.isFinite(x));
-  const camera = isObject(value.camera) && vec(value.camera.position) && vec(value.camera.target)
-    ? { position: value.camera.position as [number, number, number], target: value.camera.target as [number, number, number] }
-    : null;
-  const visible = Array.isArray(value.visible) ? Array.from({ length: surfaces }, (_, k) => (value.visible as unknown[])[k] !== false) : Array(surfaces).fill(true);
+  const camera =
+    isObject(value.camera) && vec(value.camera.position) && vec(value.camera.target)
+      ? { position: value.camera.position as [number, number, number], target: value.camera.target as [number, number, number] }
+      : null;
+  const visible = Array.isArray(value.visible)
+    ? Array.from({ length: surfaces }, (_, k) => (value.visible as unknown[])[k] !== false)
+    : Array(surfaces).fill(true);
   const cut = Number.isFinite(value.cut) ? Math.max(0, Math.min(1, value.cut as number)) : 0;
   const selected = Number.isInteger(value.selectedCell) ? (value.selectedCell as number) : null;
   return { camera, visible, cut, highlightScutoids: value.highlightScutoids !== false, selectedCell: selected, cellSolid: value.cellSolid === true };
@@ -193,7 +200,7 @@ function readView(value: unknown, surfaces: number, where: string): ViewState {
 /** (label, run length) pairs of `labels`. */
 function runLengths(labels: Int32Array): Int32Array {
   const runs: number[] = [];
-  for (let i = 0; i < labels.length; ) {
+  for (let i = 0; i < labels.length;) {
     let j = i + 1;
     while (j < labels.length && labels[j] === labels[i]) j++;
     runs.push(labels[i], j - i);

@@ -108,7 +108,10 @@ export function explainRefusal(error: unknown, config: AnyConfig | null): Refusa
     };
   }
   const words = FIELD_WORDS[field] ?? field;
-  return { message: `${words ? `${words}: ` : ''}this value cannot be computed (see the details). Change it, or the resolution under Advanced.`, details: text };
+  return {
+    message: `${words ? `${words}: ` : ''}this value cannot be computed (see the details). Change it, or the resolution under Advanced.`,
+    details: text,
+  };
 }
 
 /** The seeded surface's area in µm² where the configuration alone gives it (null for meshes). */

@@ -90,7 +90,14 @@ export function unrolledSvg(stack: ViewStack, options: { widthMm?: number } = {}
     unit: 'µm',
     title: `tissue-sheet ${result.software.version}: unrolled surfaces, seed ${result.seed}`,
     provenance,
-    metadata: { software: result.software, seed: result.seed, engine: result.engine, method: stack.analysis?.method ?? null, headline: result.headline, config: result.config },
+    metadata: {
+      software: result.software,
+      seed: result.seed,
+      engine: result.engine,
+      method: stack.analysis?.method ?? null,
+      headline: result.headline,
+      config: result.config,
+    },
     defs: `<pattern id="hatch" patternUnits="userSpaceOnUse" width="${num(font / 2)}" height="${num(font / 2)}" patternTransform="rotate(45)"><rect width="${num(font / 6)}" height="${num(font / 2)}" fill="#141414"/></pattern>`,
     body: [
       `<metadata id="tissue-sheet-config">${escapeXml(JSON.stringify(result.config))}</metadata>`,
@@ -107,7 +114,10 @@ export function unrolledSvg(stack: ViewStack, options: { widthMm?: number } = {}
 export function headlineLine(stack: ViewStack): string {
   const h = stack.result.headline;
   if (!h || h.percentScutoids === null) return 'no % scutoids (no cell counted)';
-  const over = h.realizations > 1 && h.ci95 ? `mean of n = ${h.realizations}, 95 % CI ${h.ci95[0].toFixed(1)}–${h.ci95[1].toFixed(1)} %; cells shown: seed ${stack.result.seed}` : `one realization, seed ${stack.result.seed}`;
+  const over =
+    h.realizations > 1 && h.ci95
+      ? `mean of n = ${h.realizations}, 95 % CI ${h.ci95[0].toFixed(1)}–${h.ci95[1].toFixed(1)} %; cells shown: seed ${stack.result.seed}`
+      : `one realization, seed ${stack.result.seed}`;
   return `${h.percentScutoids.toFixed(1)} % scutoids (${over}), ${h.method} method, Voronoi ${h.voronoiK}`;
 }
 

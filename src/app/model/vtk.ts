@@ -63,7 +63,12 @@ export function sheetPolygons(stack: ViewStack): SheetPolygons {
         const { position } = embed(stack.result.config.surface, grid, polygon[2 * k], polygon[2 * k + 1], surface.offset);
         out.points.push(...position);
       }
-      push(cell.id, surface.index, surface.sides[cell.id], Array.from({ length: count }, (_, k) => first + k));
+      push(
+        cell.id,
+        surface.index,
+        surface.sides[cell.id],
+        Array.from({ length: count }, (_, k) => first + k),
+      );
     }
   }
   return out;
@@ -74,7 +79,10 @@ export function cellsVtk(stack: ViewStack): string {
   const mesh = sheetPolygons(stack);
   const method = stack.analysis?.method ?? 'none';
   const h = result.headline;
-  const headline = h && h.percentScutoids !== null ? `, ${h.percentScutoids.toFixed(1)} % scutoids${h.realizations > 1 && h.ci95 ? ` (mean n=${h.realizations}, 95% CI ${h.ci95[0].toFixed(1)}-${h.ci95[1].toFixed(1)})` : ' (one realization)'}` : '';
+  const headline =
+    h && h.percentScutoids !== null
+      ? `, ${h.percentScutoids.toFixed(1)} % scutoids${h.realizations > 1 && h.ci95 ? ` (mean n=${h.realizations}, 95% CI ${h.ci95[0].toFixed(1)}-${h.ci95[1].toFixed(1)})` : ' (one realization)'}`
+      : '';
   const title = `tissue-sheet ${result.software.version} cells, seed ${result.seed}, ${result.config.surface.kind}, ${result.engine.name} engine, ${method} adjacency${headline}, um`;
   const lines = ['# vtk DataFile Version 3.0', title.replace(/[\r\n]/g, ' ').slice(0, 255), 'ASCII', 'DATASET POLYDATA'];
   const pointCount = mesh.points.length / 3;

@@ -28,11 +28,21 @@ export interface ChartProvenance {
 }
 
 export function provenanceOf(p: ChartProvenance): string[] {
-  return [`${p.what}, written by tissue-sheet ${version}`, `engine: ${p.engine}`, `method: ${p.method}`, `seed ${p.seed}; configuration (rerun it to reproduce this figure): ${JSON.stringify(p.config)}`];
+  return [
+    `${p.what}, written by tissue-sheet ${version}`,
+    `engine: ${p.engine}`,
+    `method: ${p.method}`,
+    `seed ${p.seed}; configuration (rerun it to reproduce this figure): ${JSON.stringify(p.config)}`,
+  ];
 }
 
 /** The chart `figure` as an SVG or PNG download named `name` (no extension). */
-export async function downloadChart(kind: 'svg' | 'png', name: string, figure: Omit<ChartSpec, 'provenance' | 'metadata' | 'widthMm'> | null, provenance: ChartProvenance): Promise<void> {
+export async function downloadChart(
+  kind: 'svg' | 'png',
+  name: string,
+  figure: Omit<ChartSpec, 'provenance' | 'metadata' | 'widthMm'> | null,
+  provenance: ChartProvenance,
+): Promise<void> {
   if (!figure) throw new Error('There is no chart to save yet: run a sweep first.');
   const options = chosenFigureOptions();
   const lines = provenanceOf(provenance);

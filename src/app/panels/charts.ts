@@ -99,7 +99,10 @@ export class Charts {
         title: 'CVT energy per iteration (µm⁴)',
         scales: { x: { time: false } },
         axes: [{}, { size: 72, values: (_u, ticks) => ticks.map((t) => t.toPrecision(3)) }],
-        series: [{ label: 'iteration' }, { label: 'energy', stroke: '#1f5fa8', width: 2, points: { show: true }, value: (_u, v) => (v === null ? '' : v.toPrecision(6)) }],
+        series: [
+          { label: 'iteration' },
+          { label: 'energy', stroke: '#1f5fa8', width: 2, points: { show: true }, value: (_u, v) => (v === null ? '' : v.toPrecision(6)) },
+        ],
       },
       [iterations.map((r) => r.iteration), iterations.map((r) => r.energy)],
     );
@@ -131,11 +134,7 @@ export class Charts {
         title: `Lewis's law: area of n-sided cells / mean area (${method})`,
         scales: { x: { time: false, range: [2.5, 10.5] } },
         axes: [{ values: sideTicks }, {}],
-        series: [
-          { label: 'sides n' },
-          ...names.map(line),
-          { label: '(n − 2) / 4', stroke: '#555', dash: [4, 4], width: 1, points: { show: false } },
-        ],
+        series: [{ label: 'sides n' }, ...names.map(line), { label: '(n − 2) / 4', stroke: '#555', dash: [4, 4], width: 1, points: { show: false } }],
       },
       [x, ...perSurface.map((s) => s.lewis.map((e) => finite(e.normalizedArea))), x.map((n) => (n - 2) / 4)] as uPlot.AlignedData,
     );
@@ -144,11 +143,7 @@ export class Charts {
         title: `Aboav-Weaire: mean sides of the neighbours m(n) (${method})`,
         scales: { x: { time: false, range: [2.5, 10.5] } },
         axes: [{ values: sideTicks }, {}],
-        series: [
-          { label: 'sides n' },
-          ...names.map(line),
-          { label: '5 + 8/n (Aboav)', stroke: '#555', dash: [4, 4], width: 1, points: { show: false } },
-        ],
+        series: [{ label: 'sides n' }, ...names.map(line), { label: '5 + 8/n (Aboav)', stroke: '#555', dash: [4, 4], width: 1, points: { show: false } }],
       },
       [x, ...perSurface.map((s) => s.aboavWeaire.map((e) => finite(e.meanNeighbourSides))), x.map((n) => 5 + 8 / n)] as uPlot.AlignedData,
     );

@@ -309,8 +309,7 @@ export class ConfigControls {
       else if (spec.kind === 'mesh-file') {
         if (output) output.value = meshSourceText(String(value ?? ''));
         continue;
-      }
-      else if (document.activeElement !== input || spec.kind === 'select' || spec.kind === 'range') {
+      } else if (document.activeElement !== input || spec.kind === 'select' || spec.kind === 'range') {
         input.value = value === null || value === undefined || (typeof value === 'number' && Number.isNaN(value)) ? '' : String(roundForDisplay(value));
       }
     }

@@ -16,14 +16,7 @@ import { kindsWithField, schemaField, schemaUnion } from '../../core/config/sche
 import { SAMPLE_MESHES, sampleName, sampleUrl } from '../model/meshFiles';
 
 // The presets moved to core/config/presets.ts (the element needs them too); kept here for importers.
-export {
-  DEFAULT_ELLIPSOID,
-  DEFAULT_MESH_SCALE,
-  DEFAULT_MESH_SRC,
-  DEFAULT_SPHERE_RADIUS,
-  densityPreset,
-  surfaceOfKind,
-} from '../../core/config/presets';
+export { DEFAULT_ELLIPSOID, DEFAULT_MESH_SCALE, DEFAULT_MESH_SRC, DEFAULT_SPHERE_RADIUS, densityPreset, surfaceOfKind } from '../../core/config/presets';
 
 /** The form's config: a resolution left null is the default (defaultResolution), recomputed as the fields it depends on change. */
 type Config = ConfigDraft;
@@ -120,7 +113,9 @@ function field(path: string, p: Presentation): FieldSpec {
   if (p.placeholder) spec.placeholder = p.placeholder;
   if (p.set) spec.set = p.set;
   const kinds = inUnion ? kindsWithField(path) : null;
-  spec.description = kinds ? (c) => schemaField(path, kinds.includes(unionKindOf(c, path)) ? unionKindOf(c, path) : kinds[0]).description : () => schema.description;
+  spec.description = kinds
+    ? (c) => schemaField(path, kinds.includes(unionKindOf(c, path)) ? unionKindOf(c, path) : kinds[0]).description
+    : () => schema.description;
   const extra = p.show;
   if (kinds && extra) spec.show = (c) => kinds.includes(unionKindOf(c, path)) && extra(c);
   else if (kinds) spec.show = (c) => kinds.includes(unionKindOf(c, path));
@@ -235,7 +230,8 @@ export const FIELDS: FieldSpec[] = [
     kind: 'mesh-file',
     note: `${UPLOAD_NOTE} A file replacing a sample starts at Scale 1: its coordinates are taken as µm (change Scale for other units).`,
     // A user's file is not the sample: the sample's scale (50 µm per unit) is not carried over.
-    set: (c, v) => (c.surface.kind === 'mesh' ? { ...c, surface: { ...c.surface, src: String(v), scale: sampleName(c.surface.src) ? 1 : c.surface.scale } } : c),
+    set: (c, v) =>
+      c.surface.kind === 'mesh' ? { ...c, surface: { ...c.surface, src: String(v), scale: sampleName(c.surface.src) ? 1 : c.surface.scale } } : c,
   }),
   field('surface.scale', { label: 'Scale', group: 'Surface', step: 1 }),
   field('surface.geodesic', { label: 'Compare with the geodesic (heat-method) Voronoi', group: 'Surface' }),
@@ -294,7 +290,7 @@ export const FIELDS: FieldSpec[] = [
       { value: 'ratio', label: 'surface ratio' },
       { value: 'thickness', label: 'thickness' },
     ],
-    description: () => 'A tube\'s other surface is set either by the surface ratio s = R_outer / R_inner (the published tube model) or by a thickness in µm.',
+    description: () => "A tube's other surface is set either by the surface ratio s = R_outer / R_inner (the published tube model) or by a thickness in µm.",
     show: isTube,
     get: (c) => (c.sheet.surfaceRatio === null ? 'thickness' : 'ratio'),
     // The current wall is converted, not replaced: s = (R + t) / R outward, R / (R - t) inward.
@@ -331,7 +327,7 @@ export const FIELDS: FieldSpec[] = [
   field('sheet.protocol', {
     label: 'Protocol',
     group: 'Sheet',
-    labels: { default: 'default', lab: "lab (Gómez-Gálvez et al.: tubes with a surface ratio, outward)" },
+    labels: { default: 'default', lab: 'lab (Gómez-Gálvez et al.: tubes with a surface ratio, outward)' },
   }),
   field('sheet.offset', {
     label: 'Other surface made by',
@@ -341,28 +337,34 @@ export const FIELDS: FieldSpec[] = [
   }),
   field('sheet.layerStep', { label: 'Layer step (tube: in s; else µm; empty: layers evenly spaced)', group: 'Sheet', step: 0.05 }),
   field('sheet.validityMaxRatio', { label: 'Lab protocol: valid cells checked up to ratio', group: 'Sheet', step: 0.25 }),
-  field('sheet.minContactPixels', { label: "Labels method: ignore contacts shorter than (texel edges at 512 px around; empty: the µm rule)", group: 'Sheet', step: 1 }),
-  field('engine', { label: 'Engine', group: 'Lloyd', labels: { auto: 'auto', gpu: 'GPU (jump flood; labels and exact)', exact: 'exact (CPU; exact method only)' } }),
-  ...(['u', 'v'] as const).map(
-    (axis, k): FieldSpec => ({
-      // Panel only: one coordinate of density.center ([u, v], µm).
-      path: `density.center.${axis}`,
-      label: `Patch centre ${axis}`,
-      group: 'Density',
-      kind: 'number',
-      unit: 'µm',
-      step: 1,
-      description: () => schemaField('density.center', 'gaussian').description ?? '',
-      show: (c) => c.density.kind === 'gaussian',
-      get: (c) => (c.density.kind === 'gaussian' ? c.density.center[k] : null),
-      set: (c, v) => {
-        if (c.density.kind !== 'gaussian') return c;
-        const center = [...c.density.center] as [number, number];
-        center[k] = Number(v);
-        return { ...c, density: { ...c.density, center } };
-      },
-    }),
-  ),
+  field('sheet.minContactPixels', {
+    label: 'Labels method: ignore contacts shorter than (texel edges at 512 px around; empty: the µm rule)',
+    group: 'Sheet',
+    step: 1,
+  }),
+  field('engine', {
+    label: 'Engine',
+    group: 'Lloyd',
+    labels: { auto: 'auto', gpu: 'GPU (jump flood; labels and exact)', exact: 'exact (CPU; exact method only)' },
+  }),
+  ...(['u', 'v'] as const).map((axis, k): FieldSpec => ({
+    // Panel only: one coordinate of density.center ([u, v], µm).
+    path: `density.center.${axis}`,
+    label: `Patch centre ${axis}`,
+    group: 'Density',
+    kind: 'number',
+    unit: 'µm',
+    step: 1,
+    description: () => schemaField('density.center', 'gaussian').description ?? '',
+    show: (c) => c.density.kind === 'gaussian',
+    get: (c) => (c.density.kind === 'gaussian' ? c.density.center[k] : null),
+    set: (c, v) => {
+      if (c.density.kind !== 'gaussian') return c;
+      const center = [...c.density.center] as [number, number];
+      center[k] = Number(v);
+      return { ...c, density: { ...c.density, center } };
+    },
+  })),
 ];
 
 /** A field whose value differs between two configurations, in the page's words ("Thickness", "17 µm"). */
@@ -389,7 +391,7 @@ export function changedFields(shown: Config, form: Config): ChangedField[] {
     return value;
   };
   for (const spec of FIELDS) {
-    if (spec.show && !spec.show(form) && !(spec.show(shown))) continue;
+    if (spec.show && !spec.show(form) && !spec.show(shown)) continue;
     const a = read(spec, shown);
     const b = read(spec, form);
     if (JSON.stringify(a) !== JSON.stringify(b)) out.push({ path: spec.path, label: spec.label, shown: text(spec, a), form: text(spec, b) });

@@ -38,11 +38,23 @@ export class FlintstonesChart {
     fits.forEach((fit, k) => {
       const color = COLORS[k % COLORS.length];
       const means = meanPerRatio(rows, fit);
-      series.push({ label: `Voronoi ${fit.voronoi}: mean 3D neighbours of the runs`, color, style: 'points', labels: 2, points: [...means].sort((a, b) => a[0] - b[0]).map(([x, y]) => ({ x, y })) });
+      series.push({
+        label: `Voronoi ${fit.voronoi}: mean 3D neighbours of the runs`,
+        color,
+        style: 'points',
+        labels: 2,
+        points: [...means].sort((a, b) => a[0] - b[0]).map(([x, y]) => ({ x, y })),
+      });
       const p = fit.parameters;
       if (p) {
         const curve = Array.from({ length: CURVE_POINTS }, (_, j) => lo + ((hi - lo) * j) / (CURVE_POINTS - 1)).map((x) => ({ x, y: flintstonesLaw(x, p) }));
-        series.push({ label: `Voronoi ${fit.voronoi}: fit n3D(s) = Nmax (b + e^(s/c)) / (d + e^(s/c))`, color, style: 'curve', dashed: fit.illConditioned, points: curve });
+        series.push({
+          label: `Voronoi ${fit.voronoi}: fit n3D(s) = Nmax (b + e^(s/c)) / (d + e^(s/c))`,
+          color,
+          style: 'curve',
+          dashed: fit.illConditioned,
+          points: curve,
+        });
       }
     });
     return {
@@ -116,7 +128,8 @@ function fitLine(fit: SweepFlintstonesFit): HTMLElement {
   const item = document.createElement('li');
   const p = fit.parameters;
   const se = fit.standardErrors;
-  const pm = (value: number, error: number | null | undefined) => `${value.toPrecision(4)}${error !== null && error !== undefined ? ` ± ${error.toPrecision(2)}` : ''}`;
+  const pm = (value: number, error: number | null | undefined) =>
+    `${value.toPrecision(4)}${error !== null && error !== undefined ? ` ± ${error.toPrecision(2)}` : ''}`;
   item.textContent = p
     ? `Voronoi ${fit.voronoi}: Nmax ${pm(p.nMax, se?.nMax)}, c ${pm(p.c, se?.c)}, d ${pm(p.d, se?.d)}, b ${p.b.toPrecision(4)}` +
       `${fit.rSquared !== null ? `, R² ${fit.rSquared.toFixed(3)}` : ''} (${fit.points} runs, ${fit.ratios} ratios, ${fit.metric})` +

@@ -135,8 +135,10 @@ export class MeasurePanel {
     const pixel = value('#measure-pixel-size');
     const contact = value('#measure-min-contact');
     const realizations = Number(value('#measure-realizations') || '0');
-    if (pixel !== '' && !(Number(pixel) > 0 && Number.isFinite(Number(pixel)))) throw new MeasureFileError('pixel size', `pixel size (µm): ${pixel} is not a number > 0`);
-    if (contact !== '' && !(Number(contact) >= 0 && Number.isFinite(Number(contact)))) throw new MeasureFileError('min contact', `min contact (µm): ${contact} is not a number >= 0`);
+    if (pixel !== '' && !(Number(pixel) > 0 && Number.isFinite(Number(pixel))))
+      throw new MeasureFileError('pixel size', `pixel size (µm): ${pixel} is not a number > 0`);
+    if (contact !== '' && !(Number(contact) >= 0 && Number.isFinite(Number(contact))))
+      throw new MeasureFileError('min contact', `min contact (µm): ${contact} is not a number >= 0`);
     if (!Number.isInteger(realizations) || realizations < 0 || realizations > 100) {
       throw new MeasureFileError('model realizations', `model realizations: ${value('#measure-realizations')} is not an integer 0..100`);
     }
@@ -238,14 +240,19 @@ export class MeasurePanel {
     const named = (/apical/i.test(first.file) && !/basal/i.test(first.file)) || (/basal/i.test(last.file) && !/apical/i.test(last.file));
     const below = s < 1;
     const warnings: string[] = [];
-    if (named) warnings.push(`the file taken as basal is named ${first.file} and the one taken as apical ${last.file}: if the names are right, press Reverse layer order.`);
+    if (named)
+      warnings.push(
+        `the file taken as basal is named ${first.file} and the one taken as apical ${last.file}: if the names are right, press Reverse layer order.`,
+      );
     if (below) {
       warnings.push(
         `the surface ratio comes out s = ${s.toFixed(3)} < 1: the layer taken as basal is the wider one. Either the files are in the wrong order (Reverse layer order), or the basal side of this tissue is the wider (as in a salivary gland), which the model's s (apical width / basal width, seeded basal) reads as s < 1.`,
       );
     }
     const warn = warnings.length > 0;
-    box.textContent = warn ? `${taken} Warning: ${warnings.join(' Also, ')}` : `${taken} Surface ratio s = ${s.toFixed(3)} (from the ${result.surfaceRatio.source}).`;
+    box.textContent = warn
+      ? `${taken} Warning: ${warnings.join(' Also, ')}`
+      : `${taken} Surface ratio s = ${s.toFixed(3)} (from the ${result.surfaceRatio.source}).`;
     box.className = warn ? 'by-construction measure-warning' : 'small';
     box.dataset.warning = [named ? 'names' : '', below ? 'ratio-below-1' : ''].filter(Boolean).join(' ');
   }
@@ -260,7 +267,18 @@ export class MeasurePanel {
         engine: this.comparison ? 'measured: label images; model: exact CPU Voronoi (compareMeasured)' : 'measured: label images',
         method: this.comparison ? 'measured: pixel-based adjacency; model: exact' : 'pixel-based adjacency',
         seed: this.comparison?.seed ?? '',
-        config: { inputs: result.inputs, model: this.comparison ? { cells: this.comparison.cells, realizations: this.comparison.realizations, seed: this.comparison.seed, bestK: this.comparison.bestK, surfaceRatio: this.comparison.surfaceRatio } : null },
+        config: {
+          inputs: result.inputs,
+          model: this.comparison
+            ? {
+                cells: this.comparison.cells,
+                realizations: this.comparison.realizations,
+                seed: this.comparison.seed,
+                bestK: this.comparison.bestK,
+                surfaceRatio: this.comparison.surfaceRatio,
+              }
+            : null,
+        },
       });
     } catch (error) {
       this.alert((error as Error).message);

@@ -58,7 +58,9 @@ export function summaryTable(result: MeasuredResult, comparison: ModelComparison
   const table = document.createElement('table');
   table.className = 'summary';
   table.id = 'measure-summary';
-  const columns: { name: string; summary: ScutoidSummary }[] = [{ name: `measured (labels, min contact ${fmt(result.analyses[0].minContactLength, 3)} µm)`, summary: result.analyses[0].summary }];
+  const columns: { name: string; summary: ScutoidSummary }[] = [
+    { name: `measured (labels, min contact ${fmt(result.analyses[0].minContactLength, 3)} µm)`, summary: result.analyses[0].summary },
+  ];
   if (comparison) columns.push({ name: `model Voronoi ${comparison.bestK} (exact; realization 1, % scutoids: mean)`, summary: comparison.summary });
   table.append(row(['', ...columns.map((c) => c.name)], true));
   const line = (key: keyof ScutoidSummary, label: string, digits: number, values = columns.map((c) => num(c.summary[key] as number))) =>
@@ -157,7 +159,14 @@ export class MeasureChart {
       data.push(surface.polygonDistribution.map((f) => (f === null || !Number.isFinite(f) ? null : 100 * f)));
     });
     if (comparison) {
-      series.push({ label: `model Voronoi ${comparison.bestK} basal (mean)`, stroke: '#111', width: 2, dash: [5, 3], points: { show: true, size: 6 }, value: percent });
+      series.push({
+        label: `model Voronoi ${comparison.bestK} basal (mean)`,
+        stroke: '#111',
+        width: 2,
+        dash: [5, 3],
+        points: { show: true, size: 6 },
+        value: percent,
+      });
       data.push(comparison.candidates[comparison.bestK - 1].polygonDistribution.map((f) => 100 * f));
     }
     this.plot?.destroy();

@@ -9,7 +9,17 @@
  * legend values carry those numbers. A bad file shows its one-line error in a role="alert" box
  * and leaves the curves already shown as they were.
  */
-import { configDifferences, overlayFor, quantityOfField, readReferenceFile, REFERENCE_LIMITS, validateReferenceDocument, type ReferenceCurve, type ReferenceDocument, type ReferencePoint } from '../../core/reference';
+import {
+  configDifferences,
+  overlayFor,
+  quantityOfField,
+  readReferenceFile,
+  REFERENCE_LIMITS,
+  validateReferenceDocument,
+  type ReferenceCurve,
+  type ReferenceDocument,
+  type ReferencePoint,
+} from '../../core/reference';
 import type { ReferenceSeries, SweepChart } from './sweepChart';
 
 /** A loaded set: where it came from and its document. */
@@ -47,7 +57,9 @@ export class ReferenceOverlay {
     after.after(this.root);
     this.shippedBox = this.root.querySelector<HTMLInputElement>('[name="reference-shipped"]')!;
     this.shippedBox.addEventListener('change', () => void this.toggleShipped());
-    this.root.querySelector<HTMLInputElement>('[name="reference-load"]')!.addEventListener('change', (event) => void this.load(event.target as HTMLInputElement));
+    this.root
+      .querySelector<HTMLInputElement>('[name="reference-load"]')!
+      .addEventListener('change', (event) => void this.load(event.target as HTMLInputElement));
     this.root.querySelector('[data-reference="clear"]')!.addEventListener('click', () => {
       this.loaded = [];
       this.update();
@@ -102,7 +114,10 @@ export class ReferenceOverlay {
 
   /** Recomputes what is drawn, the notes and the Sources list. */
   private update(): void {
-    const sets: LoadedSet[] = [...(this.shippedBox.checked && this.shipped && !this.shippedBox.disabled ? [{ name: SHIPPED_NAME, doc: this.shipped }] : []), ...this.loaded];
+    const sets: LoadedSet[] = [
+      ...(this.shippedBox.checked && this.shipped && !this.shippedBox.disabled ? [{ name: SHIPPED_NAME, doc: this.shipped }] : []),
+      ...this.loaded,
+    ];
     (this.root.querySelector('[data-reference="clear"]') as HTMLButtonElement).disabled = this.loaded.length === 0;
     const notes: string[] = [];
     const drawn: { set: LoadedSet; curve: ReferenceCurve }[] = [];

@@ -127,7 +127,12 @@ export class SweepChart {
         color: REFERENCE_COLORS[k % REFERENCE_COLORS.length],
         style: curve.kind === 'data' ? 'points' : 'line',
         dashed: true,
-        points: curve.points.map((p) => ({ x: p.x, y: p.percent, low: p.sd !== null ? Math.max(0, p.percent - p.sd) : null, high: p.sd !== null ? Math.min(100, p.percent + p.sd) : null })),
+        points: curve.points.map((p) => ({
+          x: p.x,
+          y: p.percent,
+          low: p.sd !== null ? Math.max(0, p.percent - p.sd) : null,
+          high: p.sd !== null ? Math.min(100, p.percent + p.sd) : null,
+        })),
       });
       for (const point of curve.points) {
         const line = `[${sourceNumber(point)}] ${point.source}`;
@@ -145,7 +150,9 @@ export class SweepChart {
       series,
       notes: [
         `n = ${nLo === nHi ? nLo : `${nLo}–${nHi}`} realizations per point; line: the mean; band: 95 % confidence interval of the mean (Student's t), clamped to 0–100 %.`,
-        ...(this.reference.length ? ['Dashed: reference curves; their error bars are ± SD where the source gives one.', ...sources.map((line) => `Source ${line}`)] : []),
+        ...(this.reference.length
+          ? ['Dashed: reference curves; their error bars are ± SD where the source gives one.', ...sources.map((line) => `Source ${line}`)]
+          : []),
       ],
     };
   }
@@ -220,7 +227,10 @@ export class SweepChart {
         width,
         height: 200,
         // The runs' range when there are runs: reference points beyond it stay off screen.
-        scales: { x: { time: false, range: (_u, min, max) => this.xRange(min, max) }, y: { range: (_u, _min, max) => [0, Math.min(100, Math.max(10, Math.ceil(max * 1.1)))] } },
+        scales: {
+          x: { time: false, range: (_u, min, max) => this.xRange(min, max) },
+          y: { range: (_u, _min, max) => [0, Math.min(100, Math.max(10, Math.ceil(max * 1.1)))] },
+        },
         series,
         bands,
       },

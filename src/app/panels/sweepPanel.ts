@@ -72,7 +72,13 @@ export class SweepPanel {
     this.button('resume').addEventListener('click', () => void this.resume());
     this.button('runs-csv').addEventListener('click', () => this.download('runs.csv', this.runsCsv, 'text/csv'));
     this.button('aggregate-csv').addEventListener('click', () => this.download('aggregate.csv', this.aggregateCsv, 'text/csv'));
-    this.button('spec').addEventListener('click', () => this.download('sweep.json', this.spec ? `${JSON.stringify({ software: { name: 'tissue-sheet', version }, spec: this.spec }, null, 2)}\n` : '', 'application/json'));
+    this.button('spec').addEventListener('click', () =>
+      this.download(
+        'sweep.json',
+        this.spec ? `${JSON.stringify({ software: { name: 'tissue-sheet', version }, spec: this.spec }, null, 2)}\n` : '',
+        'application/json',
+      ),
+    );
     for (const kind of ['svg', 'png'] as const) {
       this.button(`chart-${kind}`).addEventListener('click', () => void this.figure(kind, 'chart'));
       this.button(`fit-${kind}`).addEventListener('click', () => void this.figure(kind, 'fit'));
@@ -284,7 +290,10 @@ export class SweepPanel {
       this.root.dataset.finished = String(done);
       this.root.dataset.done = String(done);
       this.root.dataset.state = result.aborted ? 'cancelled' : 'done';
-      const rejected = result.rejected.length > 0 ? ` ${result.rejected.length} rows of the loaded runs.csv were not valid for this spec and were computed again (first: line ${result.rejected[0].line}, ${result.rejected[0].reason}).` : '';
+      const rejected =
+        result.rejected.length > 0
+          ? ` ${result.rejected.length} rows of the loaded runs.csv were not valid for this spec and were computed again (first: line ${result.rejected[0].line}, ${result.rejected[0].reason}).`
+          : '';
       this.status(
         result.aborted
           ? `Sweep cancelled: ${done} of ${total} runs kept; Resume computes the other ${total - done}.${rejected}`
@@ -331,7 +340,13 @@ export class SweepPanel {
       const engine = paths.length === 0 ? 'unknown' : paths.map((p) => (/exact engine/.test(p) ? 'exact engine' : `GPU, centroid path ${p}`)).join(', ');
       const spec = this.spec as { base?: { seed?: number }; seed?: number } | null;
       const figure = which === 'chart' ? this.chart.figure() : this.flintstones.figure();
-      const methods = which === 'chart' ? (figure?.series.filter((s) => s.band).map((s) => s.label.split(' ')[0]).join(', ') ?? '') : 'exact wherever the runs have it (meanNeighbours3D)';
+      const methods =
+        which === 'chart'
+          ? (figure?.series
+              .filter((s) => s.band)
+              .map((s) => s.label.split(' ')[0])
+              .join(', ') ?? '')
+          : 'exact wherever the runs have it (meanNeighbours3D)';
       await downloadChart(kind, which === 'chart' ? 'tissue-sheet-sweep-chart' : 'tissue-sheet-flintstones-fit', figure, {
         what: which === 'chart' ? 'tissue-sheet sweep chart (% scutoids, mean and 95 % CI per point)' : 'tissue-sheet Flintstones law fit',
         engine,
@@ -384,7 +399,9 @@ export class SweepPanel {
 
   private download(name: string, text: string, type: string): void {
     if (!text) {
-      this.events.onError(name === 'aggregate.csv' ? 'The aggregate is written when a sweep finishes or is cancelled; resume the loaded sweep first.' : 'Run a sweep first.');
+      this.events.onError(
+        name === 'aggregate.csv' ? 'The aggregate is written when a sweep finishes or is cancelled; resume the loaded sweep first.' : 'Run a sweep first.',
+      );
       return;
     }
     download(name, text, type);

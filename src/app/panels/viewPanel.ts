@@ -91,13 +91,25 @@ export class ViewPanel {
       // Ticking the box is asking to see the scutoid: bring it into view.
       if (this.solidBox.checked) this.view?.focusOnSolid();
     });
-    this.solidPly = solidButton('cell-solid-ply', 'Solid as PLY', 'Saves the solid on screen as a closed triangle mesh (ASCII PLY, µm; each vertex with cell, surface, sides, scutoid, valid)', () => {
-      if (!this.stack || !this.solid) return;
-      const { config } = this.stack.result;
-      download(`tissue-sheet-${config.surface.kind}-seed${config.seed}-cell${this.solid.cell}-solid.ply`, cellSolidPly(this.stack, this.solid), 'application/octet-stream');
-    });
-    this.solidZoom = solidButton('cell-solid-zoom', 'Zoom to cell', "Turns the camera to the picked cell's solid, seen from outside the sheet (Reset camera shows the whole sheet again)", () =>
-      this.view?.focusOnSolid(),
+    this.solidPly = solidButton(
+      'cell-solid-ply',
+      'Solid as PLY',
+      'Saves the solid on screen as a closed triangle mesh (ASCII PLY, µm; each vertex with cell, surface, sides, scutoid, valid)',
+      () => {
+        if (!this.stack || !this.solid) return;
+        const { config } = this.stack.result;
+        download(
+          `tissue-sheet-${config.surface.kind}-seed${config.seed}-cell${this.solid.cell}-solid.ply`,
+          cellSolidPly(this.stack, this.solid),
+          'application/octet-stream',
+        );
+      },
+    );
+    this.solidZoom = solidButton(
+      'cell-solid-zoom',
+      'Zoom to cell',
+      "Turns the camera to the picked cell's solid, seen from outside the sheet (Reset camera shows the whole sheet again)",
+      () => this.view?.focusOnSolid(),
     );
     picker.append(label, solidLabel, this.solidZoom, this.solidPly, this.cellInfo);
     root.querySelector('#legend')!.after(picker);

@@ -55,7 +55,10 @@ export function renderCellInfo(container: HTMLElement, stack: ViewStack | null, 
     `Sides: ${s.sides.map((x) => `${x.surface} ${x.sides}`).join(', ')}.`,
     `Neighbours won from ${first} to ${last}: ${cells(s.won)}; lost: ${cells(s.lost)} (${s.neighbourSource} neighbours).`,
   ];
-  if (stats) lines.push(`Analysis (${stack.analysis!.method}): ${stats.won} won, ${stats.lost} lost, ${stats.transitions} transitions, ${stats.neighbours3D} 3D neighbours.`);
+  if (stats)
+    lines.push(
+      `Analysis (${stack.analysis!.method}): ${stats.won} won, ${stats.lost} lost, ${stats.transitions} transitions, ${stats.neighbours3D} 3D neighbours.`,
+    );
   for (const line of lines) {
     const p = document.createElement('p');
     p.textContent = line;

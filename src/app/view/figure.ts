@@ -73,7 +73,9 @@ export async function rasterizeSvg(svg: string, options: FigureOptions): Promise
 /** A chart's SVG as a PNG at the chosen DPI and width: pHYs records the DPI, tEXt the provenance. */
 export async function svgPng(svg: string, options: FigureOptions, text: [string, string][]): Promise<Uint8Array> {
   const canvas = await rasterizeSvg(svg, options);
-  const blob = await new Promise<Blob>((resolve, reject) => canvas.toBlob((b) => (b ? resolve(b) : reject(new Error('the figure could not be encoded'))), 'image/png'));
+  const blob = await new Promise<Blob>((resolve, reject) =>
+    canvas.toBlob((b) => (b ? resolve(b) : reject(new Error('the figure could not be encoded'))), 'image/png'),
+  );
   return withPngText(withPngDpi(new Uint8Array(await blob.arrayBuffer()), options.dpi), text);
 }
 

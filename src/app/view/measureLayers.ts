@@ -42,7 +42,10 @@ export class MeasureLayers {
       canvas.height = picture.height;
       canvas.dataset.layer = picture.name;
       canvas.setAttribute('role', 'img');
-      canvas.setAttribute('aria-label', `measured ${picture.name} layer, ${layer.width} x ${layer.height} pixels${picture.step > 1 ? `, drawn at 1/${picture.step}` : ''}; click a cell to pick it`);
+      canvas.setAttribute(
+        'aria-label',
+        `measured ${picture.name} layer, ${layer.width} x ${layer.height} pixels${picture.step > 1 ? `, drawn at 1/${picture.step}` : ''}; click a cell to pick it`,
+      );
       canvas.style.height = `${height}px`;
       canvas.style.width = `${height * aspects[k]}px`;
       canvas.getContext('2d')?.putImageData(new ImageData(picture.rgba, picture.width, picture.height), 0, 0);

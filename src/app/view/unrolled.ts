@@ -102,7 +102,7 @@ function cubeStrip(rgba: Uint8ClampedArray, n: number): Uint8ClampedArray<ArrayB
   const out = new Uint8ClampedArray(rgba.length);
   for (let f = 0; f < 6; f++) {
     for (let j = 0; j < n; j++) {
-      const from = ((f * n + j) * n) * 4;
+      const from = (f * n + j) * n * 4;
       const to = (j * 6 * n + f * n) * 4;
       out.set(rgba.subarray(from, from + 4 * n), to);
     }

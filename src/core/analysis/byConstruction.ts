@@ -37,7 +37,8 @@ export function byConstruction(config: AnyConfig): ByConstruction | null {
     return {
       percent: 0,
       reason: 'surface-ratio-1',
-      message: 'Surface ratio s = 1: both surfaces are the same cylinder, so every cell keeps its neighbours and % scutoids is 0 by construction. Raise s above 1.',
+      message:
+        'Surface ratio s = 1: both surfaces are the same cylinder, so every cell keeps its neighbours and % scutoids is 0 by construction. Raise s above 1.',
     };
   }
   if (ratio === null && sheet.thickness === 0) {
@@ -51,17 +52,17 @@ export function byConstruction(config: AnyConfig): ByConstruction | null {
     return {
       percent: 0,
       reason: 'parallel-planes',
-      message: 'Parallel planes: each site keeps its position on the other plane, so the Voronoi diagrams are identical and % scutoids is 0 by construction. Curvature makes scutoids: try a tube, an ellipsoid or a mesh.',
+      message:
+        'Parallel planes: each site keeps its position on the other plane, so the Voronoi diagrams are identical and % scutoids is 0 by construction. Curvature makes scutoids: try a tube, an ellipsoid or a mesh.',
     };
   }
-  const isSphere =
-    surface.kind === 'sphere' ||
-    (surface.kind === 'ellipsoid' && sameLength(surface.a, surface.b) && sameLength(surface.b, surface.c));
+  const isSphere = surface.kind === 'sphere' || (surface.kind === 'ellipsoid' && sameLength(surface.a, surface.b) && sameLength(surface.b, surface.c));
   if (isClosedConfig(config) && isSphere) {
     return {
       percent: 0,
       reason: 'concentric-spheres',
-      message: 'Concentric spheres: projecting along the radius only scales the spherical Voronoi diagram, so every cell keeps its neighbours and % scutoids is 0 by construction. Try an ellipsoid or a mesh.',
+      message:
+        'Concentric spheres: projecting along the radius only scales the spherical Voronoi diagram, so every cell keeps its neighbours and % scutoids is 0 by construction. Try an ellipsoid or a mesh.',
     };
   }
   return null;

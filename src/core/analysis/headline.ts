@@ -65,7 +65,10 @@ export function omittedMethods(config: AnyConfig, reported: readonly AdjacencyMe
       : 'engine "auto" took the exact engine (Lloyd on the exact Voronoi diagram on the CPU) because the renderer here is software, not a GPU, and that engine makes no label images';
   return asked
     .filter((method) => !reported.includes(method))
-    .map((method) => ({ method, reason: method === 'labels' ? `${why}; set engine "gpu" (in the page: Engine, under Advanced) for the labels method` : 'not computed by this run' }));
+    .map((method) => ({
+      method,
+      reason: method === 'labels' ? `${why}; set engine "gpu" (in the page: Engine, under Advanced) for the labels method` : 'not computed by this run',
+    }));
 }
 
 /** The omitted methods in one line ("labels method left out: ..."), or null when none was. */
@@ -103,7 +106,10 @@ export function runHeadline(config: AnyConfig, analyses: readonly AnalysisRecord
     realizationValues: [counted ? finiteOrNull(s.percentScutoids) : null],
     byConstruction: byConstruction(config),
     noValidCells: noValidCells(s.validCells, s.cells),
-    omittedMethods: omittedMethods(config, analyses.map((a) => a.method)),
+    omittedMethods: omittedMethods(
+      config,
+      analyses.map((a) => a.method),
+    ),
   };
 }
 
@@ -135,8 +141,13 @@ export function describeHeadline(headline: Headline | null): string {
   const value = headline.percentScutoids === null ? 'no % scutoids' : `${headline.percentScutoids.toFixed(1)} % scutoids`;
   const protocol = headline.protocol === 'lab' ? ", the lab's protocol" : '';
   const why = headline.noValidCells ?? headline.byConstruction?.message ?? null;
-  const counted = headline.realizations > 1 ? `${headline.validCells} of ${headline.cells} cells counted in realization 1` : `${headline.validCells} of ${headline.cells} cells counted`;
+  const counted =
+    headline.realizations > 1
+      ? `${headline.validCells} of ${headline.cells} cells counted in realization 1`
+      : `${headline.validCells} of ${headline.cells} cells counted`;
   const omitted = describeOmitted(headline);
-  const sentences = [why, omitted && `${omitted.charAt(0).toUpperCase()}${omitted.slice(1)}`].filter((x): x is string => Boolean(x)).map((x) => x.replace(/\.$/, ''));
+  const sentences = [why, omitted && `${omitted.charAt(0).toUpperCase()}${omitted.slice(1)}`]
+    .filter((x): x is string => Boolean(x))
+    .map((x) => x.replace(/\.$/, ''));
   return `${value} (${headline.method} method${protocol}, ${counted}; ${describeRealizations(headline)}), Voronoi ${headline.voronoiK}${sentences.map((x) => `. ${x}`).join('')}`;
 }

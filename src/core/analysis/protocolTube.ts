@@ -85,7 +85,12 @@ export function analyzeTubeLab(
  * The lab's valid set of one realization: 1 for every cell that touches an open end of the tube
  * on any layer s = 1 : step : validityMaxRatio (decided once, so every ratio uses the same cells).
  */
-export function labInvalidCells(grid: Grid, sites: ArrayLike<number>, settings: LabProtocolSettings = LAB_PROTOCOL, surfaceOf: SurfaceOf = referenceSurface): Uint8Array {
+export function labInvalidCells(
+  grid: Grid,
+  sites: ArrayLike<number>,
+  settings: LabProtocolSettings = LAB_PROTOCOL,
+  surfaceOf: SurfaceOf = referenceSurface,
+): Uint8Array {
   const count = Math.floor(sites.length / 2);
   const surfaceAt = surfaceCache(grid, sites, surfaceOf);
   return invalidOnAnySurface(validityRatios(settings).map(surfaceAt), count);
@@ -251,4 +256,3 @@ export function labTubeTable(
     meanSides: mean(sums[t].sides),
   }));
 }
-

@@ -36,7 +36,10 @@ export function checkRealizations(n: unknown, name = 'realizations'): number {
 
 /** Two-sided 97.5 % quantile of Student's t with `df` degrees of freedom (for 95 % intervals). */
 export function tQuantile975(df: number): number {
-  const table = [12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.16, 2.145, 2.131, 2.12, 2.11, 2.101, 2.093, 2.086, 2.08, 2.074, 2.069, 2.064, 2.06, 2.056, 2.052, 2.048, 2.045, 2.042];
+  const table = [
+    12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.16, 2.145, 2.131, 2.12, 2.11, 2.101, 2.093, 2.086, 2.08, 2.074,
+    2.069, 2.064, 2.06, 2.056, 2.052, 2.048, 2.045, 2.042,
+  ];
   if (!(df >= 1)) return Number.NaN;
   if (df <= table.length) return table[Math.floor(df) - 1];
   // Cornish-Fisher expansion around the normal quantile: within 1e-3 for df > 30.

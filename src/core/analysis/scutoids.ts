@@ -138,8 +138,6 @@ export interface ScutoidAnalysis {
   summary: ScutoidSummary;
 }
 
-
-
 /**
  * Every cell's neighbour set (sorted, deduplicated, without the cell: neighbourSet's form) in one
  * flat list: cell i's is ids[offsets[i] .. offsets[i + 1]). Segments that are already strictly
@@ -180,7 +178,6 @@ export function neighbourExchange(from: AdjacencyInput, to: AdjacencyInput, i: n
   const sb = new Set(b);
   return { won: [...b].filter((x) => !sa.has(x)), lost: [...a].filter((x) => !sb.has(x)) };
 }
-
 
 /** Per-cell statistics and summary of a stack of surfaces (see the module comment). */
 export function analyzeSurfaces(surfaces: SurfaceAdjacency[], options: AnalysisOptions = {}): ScutoidAnalysis {
@@ -369,7 +366,13 @@ export function surfaceFromLabels(
   a: { count: number; offsets: Int32Array; neighbours: Int32Array; lengths: Float64Array; area: Float64Array; touchesBorder: Uint8Array },
   label?: string,
 ): SurfaceAdjacency & { adjacency: CsrAdjacency & { lengths: Float64Array }; areas: Float64Array; touchesBorder: Uint8Array } {
-  return { count: a.count, adjacency: { offsets: a.offsets, neighbours: a.neighbours, lengths: a.lengths }, areas: a.area, touchesBorder: a.touchesBorder, label };
+  return {
+    count: a.count,
+    adjacency: { offsets: a.offsets, neighbours: a.neighbours, lengths: a.lengths },
+    areas: a.area,
+    touchesBorder: a.touchesBorder,
+    label,
+  };
 }
 
 /** The analysis input for one exact Voronoi diagram. */

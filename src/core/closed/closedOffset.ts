@@ -60,15 +60,26 @@ export function offsetClosedSurface(
   if (!Number.isFinite(t)) throw new Error(`sheet.thickness: offset ${t} µm is not a finite number`);
   if (mode !== 'normal' && mode !== 'axes') throw new Error(`sheet.offset: "${mode}" is not "normal" or "axes"`);
   if (surface.kind === 'mesh') {
-    if (mode === 'axes') throw new Error('sheet.offset: "axes" (semi-axes a + t, b + t, c + t) is defined for a sphere or an ellipsoid only; use "normal" for a mesh');
-    return { surface: offsetMesh(surface, t), sites: moveAlong(sites, normals, count, t), normals: Float64Array.from({ length: 3 * count }, (_, k) => normals[k]), representation: 'mesh', deviation: 0 };
+    if (mode === 'axes')
+      throw new Error('sheet.offset: "axes" (semi-axes a + t, b + t, c + t) is defined for a sphere or an ellipsoid only; use "normal" for a mesh');
+    return {
+      surface: offsetMesh(surface, t),
+      sites: moveAlong(sites, normals, count, t),
+      normals: Float64Array.from({ length: 3 * count }, (_, k) => normals[k]),
+      representation: 'mesh',
+      deviation: 0,
+    };
   }
   const { a, b, c } = surface;
   const sphere = a === b && b === c;
   if (mode === 'axes' || sphere) {
-    const A = a + t, B = b + t, C = c + t;
-    if (!(Math.min(A, B, C) > 0)) throw new Error(`sheet.thickness: an inward offset of ${-t} µm reaches the smallest semi-axis (${Math.min(a, b, c)} µm); use less`);
-    const out = new Float64Array(3 * count), nrm = new Float64Array(3 * count);
+    const A = a + t,
+      B = b + t,
+      C = c + t;
+    if (!(Math.min(A, B, C) > 0))
+      throw new Error(`sheet.thickness: an inward offset of ${-t} µm reaches the smallest semi-axis (${Math.min(a, b, c)} µm); use less`);
+    const out = new Float64Array(3 * count),
+      nrm = new Float64Array(3 * count);
     for (let i = 0; i < count; i++) {
       const p = closestPointOnEllipsoid([sites[3 * i], sites[3 * i + 1], sites[3 * i + 2]], A, B, C);
       for (let k = 0; k < 3; k++) out[3 * i + k] = p[k];
@@ -80,7 +91,9 @@ export function offsetClosedSurface(
 }
 
 function ellipsoidNormal(x: number, y: number, z: number, a: number, b: number, c: number, out: Float64Array, o: number): void {
-  const nx = x / (a * a), ny = y / (b * b), nz = z / (c * c);
+  const nx = x / (a * a),
+    ny = y / (b * b),
+    nz = z / (c * c);
   const l = Math.hypot(nx, ny, nz) || 1;
   out[o] = nx / l;
   out[o + 1] = ny / l;
@@ -107,9 +120,13 @@ export function offsetMesh(mesh: MeshSurface, t: number): MeshSurface {
 /** Triangulated parallel surface of an ellipsoid at offset t, and the sites moved onto the exact one. */
 function parallelEllipsoid(surface: EllipsoidSurface, sites: ArrayLike<number>, count: number, t: number, options: OffsetOptions): OffsetSurface {
   const { a, b, c } = surface;
-  const lo = Math.min(a, b, c), hi = Math.max(a, b, c);
+  const lo = Math.min(a, b, c),
+    hi = Math.max(a, b, c);
   const rho = (lo * lo) / hi + t; // smallest radius of curvature of the parallel surface
-  if (!(rho > 0)) throw new Error(`sheet.thickness: an inward offset of ${-t} µm reaches the smallest radius of curvature of the ellipsoid (${((lo * lo) / hi).toPrecision(4)} µm), where the offset surface folds over itself; use less or direction "outward"`);
+  if (!(rho > 0))
+    throw new Error(
+      `sheet.thickness: an inward offset of ${-t} µm reaches the smallest radius of curvature of the ellipsoid (${((lo * lo) / hi).toPrecision(4)} µm), where the offset surface folds over itself; use less or direction "outward"`,
+    );
   // 1 % of the cell spacing: against 0.1 % it changed no neighbour set after the minimum contact
   // length (3,200 cells: 90:45:45, offsets -8 to 16 µm, 4 seeds) and contact lengths by < 0.4 %,
   // at a quarter of the cost (the diagram of every layer of a stack triangulates one).
@@ -123,16 +140,22 @@ function parallelEllipsoid(surface: EllipsoidSurface, sites: ArrayLike<number>, 
   let f = roundFrequency(Math.max(2, Math.ceil((1.15 * (hi + Math.max(0, t))) / Math.sqrt(6 * rho * maxDeviation))));
   for (;;) {
     if (20 * f * f > maxTriangles) {
-      throw new Error(`maxDeviation: ${maxDeviation} µm would need about ${20 * f * f} triangles for the parallel surface at ${t} µm (more than maxTriangles ${maxTriangles}); allow a larger deviation`);
+      throw new Error(
+        `maxDeviation: ${maxDeviation} µm would need about ${20 * f * f} triangles for the parallel surface at ${t} µm (more than maxTriangles ${maxTriangles}); allow a larger deviation`,
+      );
     }
     const mesh = cachedIcosphere(f);
     const P = new Float64Array(mesh.positions.length);
     const N = new Float64Array(3);
     for (let v = 0; v < P.length; v += 3) {
       // Normalise in float64 (icosphere stores float32).
-      const ux = mesh.positions[v], uy = mesh.positions[v + 1], uz = mesh.positions[v + 2];
+      const ux = mesh.positions[v],
+        uy = mesh.positions[v + 1],
+        uz = mesh.positions[v + 2];
       const l = Math.hypot(ux, uy, uz);
-      const x = (a * ux) / l, y = (b * uy) / l, z = (c * uz) / l;
+      const x = (a * ux) / l,
+        y = (b * uy) / l,
+        z = (c * uz) / l;
       ellipsoidNormal(x, y, z, a, b, c, N, 0);
       P[v] = x + t * N[0];
       P[v + 1] = y + t * N[1];
@@ -142,7 +165,8 @@ function parallelEllipsoid(surface: EllipsoidSurface, sites: ArrayLike<number>, 
     const T = mesh.indices;
     for (let k = 0; k < T.length; k += 3) {
       for (let e = 0; e < 3; e++) {
-        const u = 3 * T[k + e], w = 3 * T[k + ((e + 1) % 3)];
+        const u = 3 * T[k + e],
+          w = 3 * T[k + ((e + 1) % 3)];
         h = Math.max(h, Math.hypot(P[w] - P[u], P[w + 1] - P[u + 1], P[w + 2] - P[u + 2]));
       }
     }
@@ -150,7 +174,8 @@ function parallelEllipsoid(surface: EllipsoidSurface, sites: ArrayLike<number>, 
     // at the longest edge's midpoint (obtuse): its distance to the surface ≤ h² / (6 ρ).
     const deviation = (h * h) / (6 * rho);
     if (deviation <= maxDeviation) {
-      const out = new Float64Array(3 * count), nrm = new Float64Array(3 * count);
+      const out = new Float64Array(3 * count),
+        nrm = new Float64Array(3 * count);
       for (let i = 0; i < count; i++) {
         // Sites are expected on the ellipsoid; their closest point makes that exact.
         const p = closestPointOnEllipsoid([sites[3 * i], sites[3 * i + 1], sites[3 * i + 2]], a, b, c);

@@ -21,12 +21,14 @@
 
 /** Gauss–Legendre nodes and weights on [-1, 1] (Newton on P_n, Golub–Welsch not needed). */
 export function gaussLegendre(n: number): { x: Float64Array; w: Float64Array } {
-  const x = new Float64Array(n), w = new Float64Array(n);
+  const x = new Float64Array(n),
+    w = new Float64Array(n);
   for (let i = 0; i < n; i++) {
     let z = Math.cos((Math.PI * (i + 0.75)) / (n + 0.5));
     let dp = 0;
     for (let it = 0; it < 100; it++) {
-      let p0 = 1, p1 = z;
+      let p0 = 1,
+        p1 = z;
       for (let k = 2; k <= n; k++) {
         const p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
         p0 = p1;
@@ -44,8 +46,13 @@ export function gaussLegendre(n: number): { x: Float64Array; w: Float64Array } {
 }
 
 /** Gauss–Kronrod 7–15 on [-1, 1]: nodes x (x[7] = 0, symmetric), Kronrod weights, Gauss weights of the odd nodes. */
-const GK_X = [0.991455371120812639, 0.949107912342758525, 0.864864423359769073, 0.741531185599394440, 0.586087235467691130, 0.405845151377397167, 0.207784955007898468, 0];
-const GK_WK = [0.022935322010529225, 0.063092092629978553, 0.104790010322250184, 0.140653259715525919, 0.169004726639267903, 0.190350578064785410, 0.204432940075298892, 0.209482141084727828];
+const GK_X = [
+  0.991455371120812639, 0.949107912342758525, 0.864864423359769073, 0.74153118559939444, 0.58608723546769113, 0.405845151377397167, 0.207784955007898468, 0,
+];
+const GK_WK = [
+  0.022935322010529225, 0.063092092629978553, 0.104790010322250184, 0.140653259715525919, 0.169004726639267903, 0.19035057806478541, 0.204432940075298892,
+  0.209482141084727828,
+];
 const GK_WG = [0.129484966168869693, 0.279705391489276668, 0.381830050505118945, 0.417959183673469388]; // nodes 1, 3, 5, 7
 const INNER_NEAR = gaussLegendre(8);
 const INNER_FAR = gaussLegendre(16);
@@ -57,13 +64,25 @@ export class EllipsoidArcIntegrator {
   private readonly ib: number;
   private readonly ic: number;
   // Pole frame for areas.
-  private e1x = 1; private e1y = 0; private e1z = 0;
-  private e2x = 0; private e2y = 1; private e2z = 0;
-  private e3x = 0; private e3y = 0; private e3z = 1;
+  private e1x = 1;
+  private e1y = 0;
+  private e1z = 0;
+  private e2x = 0;
+  private e2y = 1;
+  private e2z = 0;
+  private e3x = 0;
+  private e3y = 0;
+  private e3z = 1;
   // Current circle on the unit sphere.
-  private cx = 0; private cy = 0; private cz = 0;
-  private ux = 0; private uy = 0; private uz = 0;
-  private vx = 0; private vy = 0; private vz = 0;
+  private cx = 0;
+  private cy = 0;
+  private cz = 0;
+  private ux = 0;
+  private uy = 0;
+  private uz = 0;
+  private vx = 0;
+  private vy = 0;
+  private vz = 0;
   private mode = 0; // 0: length, 1: area term
   private readonly sphere: boolean;
   private lastError = 0;
@@ -71,7 +90,11 @@ export class EllipsoidArcIntegrator {
   private readonly stackHi = new Float64Array(2 * MAX_DEPTH + 2);
   private readonly stackDepth = new Int32Array(2 * MAX_DEPTH + 2);
 
-  constructor(readonly a: number, readonly b: number, readonly c: number) {
+  constructor(
+    readonly a: number,
+    readonly b: number,
+    readonly c: number,
+  ) {
     this.abc = a * b * c;
     this.ia = 1 / a;
     this.ib = 1 / b;
@@ -86,8 +109,11 @@ export class EllipsoidArcIntegrator {
     this.e3y = y / l;
     this.e3z = z / l;
     // Any unit vector ⊥ e3, then e2 = e3 × e1.
-    const ax = Math.abs(this.e3x) < 0.9 ? 1 : 0, ay = 1 - ax;
-    let px = ay * this.e3z, py = -ax * this.e3z, pz = ax * this.e3y - ay * this.e3x; // (ax, ay, 0) × e3
+    const ax = Math.abs(this.e3x) < 0.9 ? 1 : 0,
+      ay = 1 - ax;
+    let px = ay * this.e3z,
+      py = -ax * this.e3z,
+      pz = ax * this.e3y - ay * this.e3x; // (ax, ay, 0) × e3
     const pl = Math.hypot(px, py, pz);
     px /= pl;
     py /= pl;
@@ -102,9 +128,15 @@ export class EllipsoidArcIntegrator {
 
   /** The circle x(θ) = C + cos θ U + sin θ V on the unit sphere. */
   setCircle(C: ArrayLike<number>, U: ArrayLike<number>, V: ArrayLike<number>, o = 0): void {
-    this.cx = C[o]; this.cy = C[o + 1]; this.cz = C[o + 2];
-    this.ux = U[o]; this.uy = U[o + 1]; this.uz = U[o + 2];
-    this.vx = V[o]; this.vy = V[o + 1]; this.vz = V[o + 2];
+    this.cx = C[o];
+    this.cy = C[o + 1];
+    this.cz = C[o + 2];
+    this.ux = U[o];
+    this.uy = U[o + 1];
+    this.uz = U[o + 2];
+    this.vx = V[o];
+    this.vy = V[o + 1];
+    this.vz = V[o + 2];
   }
 
   /** Length of the ellipsoid arc M x(θ), θ in [t0, t1], to about `tolerance` (absolute, µm). */
@@ -121,7 +153,8 @@ export class EllipsoidArcIntegrator {
 
   /** Point of the ellipsoid arc at θ into out[o..o+2]. */
   point(theta: number, out: Float64Array, o = 0): void {
-    const co = Math.cos(theta), si = Math.sin(theta);
+    const co = Math.cos(theta),
+      si = Math.sin(theta);
     out[o] = this.a * (this.cx + co * this.ux + si * this.vx);
     out[o + 1] = this.b * (this.cy + co * this.uy + si * this.vy);
     out[o + 2] = this.c * (this.cz + co * this.uz + si * this.vz);
@@ -133,10 +166,15 @@ export class EllipsoidArcIntegrator {
   }
 
   private integrand(theta: number): number {
-    const co = Math.cos(theta), si = Math.sin(theta);
-    const dx = -si * this.ux + co * this.vx, dy = -si * this.uy + co * this.vy, dz = -si * this.uz + co * this.vz;
+    const co = Math.cos(theta),
+      si = Math.sin(theta);
+    const dx = -si * this.ux + co * this.vx,
+      dy = -si * this.uy + co * this.vy,
+      dz = -si * this.uz + co * this.vz;
     if (this.mode === 0) return Math.hypot(this.a * dx, this.b * dy, this.c * dz);
-    const x = this.cx + co * this.ux + si * this.vx, y = this.cy + co * this.uy + si * this.vy, z = this.cz + co * this.uz + si * this.vz;
+    const x = this.cx + co * this.ux + si * this.vx,
+      y = this.cy + co * this.uy + si * this.vy,
+      z = this.cz + co * this.uz + si * this.vz;
     const X1 = x * this.e1x + y * this.e1y + z * this.e1z;
     const X2 = x * this.e2x + y * this.e2y + z * this.e2z;
     const X3 = x * this.e3x + y * this.e3y + z * this.e3z;
@@ -148,9 +186,12 @@ export class EllipsoidArcIntegrator {
     if (this.sphere) return this.a * this.a * (rho2 / (1 + X3)) * dLambda; // R² (1 - cos φ)
     const rho = Math.sqrt(rho2);
     const phi = Math.atan2(rho, X3);
-    const cl = X1 / rho, sl = X2 / rho;
+    const cl = X1 / rho,
+      sl = X2 / rho;
     // Meridian direction at longitude λ: cos λ e1 + sin λ e2.
-    const mx = cl * this.e1x + sl * this.e2x, my = cl * this.e1y + sl * this.e2y, mz = cl * this.e1z + sl * this.e2z;
+    const mx = cl * this.e1x + sl * this.e2x,
+      my = cl * this.e1y + sl * this.e2y,
+      mz = cl * this.e1z + sl * this.e2z;
     let G = 0;
     const half = 0.5 * phi;
     // The meridian integrand is smooth (w is analytic on the sphere): 8 nodes reach rounding
@@ -158,8 +199,11 @@ export class EllipsoidArcIntegrator {
     const inner = phi < 0.6 ? INNER_NEAR : INNER_FAR;
     for (let q = 0; q < inner.x.length; q++) {
       const psi = half * (1 + inner.x[q]);
-      const sp = Math.sin(psi), cp = Math.cos(psi);
-      const yx = sp * mx + cp * this.e3x, yy = sp * my + cp * this.e3y, yz = sp * mz + cp * this.e3z;
+      const sp = Math.sin(psi),
+        cp = Math.cos(psi);
+      const yx = sp * mx + cp * this.e3x,
+        yy = sp * my + cp * this.e3y,
+        yz = sp * mz + cp * this.e3z;
       G += inner.w[q] * Math.sqrt(yx * yx * this.ia * this.ia + yy * yy * this.ib * this.ib + yz * yz * this.ic * this.ic) * sp;
     }
     return this.abc * half * G * dLambda;
@@ -167,9 +211,11 @@ export class EllipsoidArcIntegrator {
 
   /** Kronrod 15-point estimate on [lo, hi]; |K15 - G7| goes to lastError. */
   private rule(lo: number, hi: number): number {
-    const half = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
+    const half = 0.5 * (hi - lo),
+      mid = 0.5 * (hi + lo);
     const f0 = this.integrand(mid);
-    let k = GK_WK[7] * f0, g = GK_WG[3] * f0;
+    let k = GK_WK[7] * f0,
+      g = GK_WG[3] * f0;
     for (let q = 0; q < 7; q++) {
       const f = this.integrand(mid - half * GK_X[q]) + this.integrand(mid + half * GK_X[q]);
       k += GK_WK[q] * f;
@@ -189,15 +235,21 @@ export class EllipsoidArcIntegrator {
     this.stackDepth[top++] = 0;
     while (top > 0) {
       top--;
-      const lo = this.stackLo[top], hi = this.stackHi[top], depth = this.stackDepth[top];
+      const lo = this.stackLo[top],
+        hi = this.stackHi[top],
+        depth = this.stackDepth[top];
       const value = this.rule(lo, hi);
       if (this.lastError <= (tolerance * (hi - lo)) / (t1 - t0) || depth >= MAX_DEPTH) {
         total += value;
         continue;
       }
       const mid = 0.5 * (lo + hi);
-      this.stackLo[top] = lo; this.stackHi[top] = mid; this.stackDepth[top++] = depth + 1;
-      this.stackLo[top] = mid; this.stackHi[top] = hi; this.stackDepth[top++] = depth + 1;
+      this.stackLo[top] = lo;
+      this.stackHi[top] = mid;
+      this.stackDepth[top++] = depth + 1;
+      this.stackLo[top] = mid;
+      this.stackHi[top] = hi;
+      this.stackDepth[top++] = depth + 1;
     }
     return total;
   }
@@ -213,10 +265,12 @@ export function ellipsoidArea(a: number, b: number, c: number): number {
   const nl = 128;
   let s = 0;
   for (let q = 0; q < gl.x.length; q++) {
-    const z = gl.x[q], r = Math.sqrt(1 - z * z);
+    const z = gl.x[q],
+      r = Math.sqrt(1 - z * z);
     for (let k = 0; k < nl; k++) {
       const l = (2 * Math.PI * (k + 0.5)) / nl;
-      const x = r * Math.cos(l), y = r * Math.sin(l);
+      const x = r * Math.cos(l),
+        y = r * Math.sin(l);
       s += gl.w[q] * Math.hypot(x / a, y / b, z / c);
     }
   }

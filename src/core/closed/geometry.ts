@@ -51,13 +51,7 @@ export function storeProjection(sites: ClosedSites, i: number, buffer: Float64Ar
  * surface (the texel's point plus the jitter). With minSpacing > 0, dart throwing in 3D
  * (Euclidean distance; a hash grid of cells minSpacing wide). Reproducible from `seed`.
  */
-export function placeClosedSites(
-  image: CubeGeometryImage,
-  projector: ClosedProjector,
-  count: number,
-  seed: number,
-  minSpacing: number,
-): ClosedSites {
+export function placeClosedSites(image: CubeGeometryImage, projector: ClosedProjector, count: number, seed: number, minSpacing: number): ClosedSites {
   const { n, area, position } = image;
   const texels = 6 * n * n;
   const cdf = new Float64Array(texels);
@@ -80,19 +74,26 @@ export function placeClosedSites(
     // Jitter within the texel: up to half the spacing towards the neighbours along i and j
     // (wrapped across face edges), then onto the surface.
     const { face, i, j } = texelFromIndex(texel, n);
-    const ju = random.next() - 0.5, jv = random.next() - 0.5;
+    const ju = random.next() - 0.5,
+      jv = random.next() - 0.5;
     const ni = wrapTexel(face, i + (ju >= 0 ? 1 : -1), j, n);
     const nj = wrapTexel(face, i, j + (jv >= 0 ? 1 : -1), n);
-    const ki = texelIndex(ni.face, ni.i, ni.j, n), kj = texelIndex(nj.face, nj.i, nj.j, n);
-    const fu = Math.abs(ju), fv = Math.abs(jv);
+    const ki = texelIndex(ni.face, ni.i, ni.j, n),
+      kj = texelIndex(nj.face, nj.i, nj.j, n);
+    const fu = Math.abs(ju),
+      fv = Math.abs(jv);
     const x = position[3 * texel] + fu * (position[3 * ki] - position[3 * texel]) + fv * (position[3 * kj] - position[3 * texel]);
     const y = position[3 * texel + 1] + fu * (position[3 * ki + 1] - position[3 * texel + 1]) + fv * (position[3 * kj + 1] - position[3 * texel + 1]);
     const z = position[3 * texel + 2] + fu * (position[3 * ki + 2] - position[3 * texel + 2]) + fv * (position[3 * kj + 2] - position[3 * texel + 2]);
     projector.project(x, y, z, buffer, 0);
-    const px = buffer[0], py = buffer[1], pz = buffer[2];
+    const px = buffer[0],
+      py = buffer[1],
+      pz = buffer[2];
     if (minSpacing > 0) {
       let close = false;
-      const cx = Math.floor(px / cell), cy = Math.floor(py / cell), cz = Math.floor(pz / cell);
+      const cx = Math.floor(px / cell),
+        cy = Math.floor(py / cell),
+        cz = Math.floor(pz / cell);
       for (let a = -1; a <= 1 && !close; a++) {
         for (let b = -1; b <= 1 && !close; b++) {
           for (let c = -1; c <= 1 && !close; c++) {
@@ -137,7 +138,12 @@ export function texelNeighbours(n: number): Int32Array {
     for (let j = 0; j < n; j++) {
       for (let i = 0; i < n; i++) {
         const k = texelIndex(f, i, j, n);
-        const steps: [number, number][] = [[i - 1, j], [i + 1, j], [i, j - 1], [i, j + 1]];
+        const steps: [number, number][] = [
+          [i - 1, j],
+          [i + 1, j],
+          [i, j - 1],
+          [i, j + 1],
+        ];
         steps.forEach(([a, b], s) => {
           const w = wrapTexel(f, a, b, n);
           out[4 * k + s] = texelIndex(w.face, w.i, w.j, n);
@@ -171,9 +177,16 @@ export function offsetSurface(image: CubeGeometryImage, t: number, neighbours = 
   const area = new Float32Array(count);
   let total = 0;
   const crossNorm = (X: ArrayLike<number>, k: number) => {
-    const a = neighbours[4 * k], b = neighbours[4 * k + 1], c = neighbours[4 * k + 2], d = neighbours[4 * k + 3];
-    const ux = X[3 * b] - X[3 * a], uy = X[3 * b + 1] - X[3 * a + 1], uz = X[3 * b + 2] - X[3 * a + 2];
-    const vx = X[3 * d] - X[3 * c], vy = X[3 * d + 1] - X[3 * c + 1], vz = X[3 * d + 2] - X[3 * c + 2];
+    const a = neighbours[4 * k],
+      b = neighbours[4 * k + 1],
+      c = neighbours[4 * k + 2],
+      d = neighbours[4 * k + 3];
+    const ux = X[3 * b] - X[3 * a],
+      uy = X[3 * b + 1] - X[3 * a + 1],
+      uz = X[3 * b + 2] - X[3 * a + 2];
+    const vx = X[3 * d] - X[3 * c],
+      vy = X[3 * d + 1] - X[3 * c + 1],
+      vz = X[3 * d + 2] - X[3 * c + 2];
     return Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
   };
   for (let k = 0; k < count; k++) {
@@ -254,7 +267,8 @@ export function cubeLabelAdjacency(
       // steps +i, -j give +axis and -i, +j give -axis (the step turned by +90° in the face
       // frame), with the smaller id on k's side; flipped otherwise.
       const along = s < 2 ? 2 : 0;
-      const from = neighbours[4 * k + along], to = neighbours[4 * k + along + 1];
+      const from = neighbours[4 * k + along],
+        to = neighbours[4 * k + along + 1];
       const sign = (s === 1 || s === 2 ? 0.5 : -0.5) * (a < b ? 1 : -1);
       const slotKey = key * 6 + Math.floor(k / perFace);
       let slot = slots.get(slotKey);
@@ -288,7 +302,8 @@ export function cubeLabelAdjacency(
   const rows = new ContactRows(offsets, count);
   const sorted = [...pairs.entries()].sort((x, y) => x[0] - y[0]);
   for (const [key, staircase] of sorted) {
-    const a = Math.floor(key / count), b = key % count;
+    const a = Math.floor(key / count),
+      b = key % count;
     rows.add(a, b, unbiased.get(key)!, staircase);
   }
   const { lengths, staircaseLengths } = rows;
@@ -304,14 +319,19 @@ export function cubeLabelAdjacency(
  * not an exact value.
  */
 export function meshCurvatureRadii(mesh: TriangleMesh): { convex: number; concave: number } {
-  const p = mesh.positions, t = mesh.indices;
+  const p = mesh.positions,
+    t = mesh.indices;
   const nrm = vertexNormals(mesh);
-  let kPlus = 0, kMinus = 0;
+  let kPlus = 0,
+    kMinus = 0;
   for (let f = 0; f < t.length; f += 3) {
     for (let e = 0; e < 3; e++) {
-      const i = t[f + e], j = t[f + ((e + 1) % 3)];
+      const i = t[f + e],
+        j = t[f + ((e + 1) % 3)];
       if (i > j) continue;
-      const dx = p[3 * i] - p[3 * j], dy = p[3 * i + 1] - p[3 * j + 1], dz = p[3 * i + 2] - p[3 * j + 2];
+      const dx = p[3 * i] - p[3 * j],
+        dy = p[3 * i + 1] - p[3 * j + 1],
+        dz = p[3 * i + 2] - p[3 * j + 2];
       const l2 = dx * dx + dy * dy + dz * dz;
       if (!(l2 > 0)) continue;
       const k = ((nrm[3 * i] - nrm[3 * j]) * dx + (nrm[3 * i + 1] - nrm[3 * j + 1]) * dy + (nrm[3 * i + 2] - nrm[3 * j + 2]) * dz) / l2;

@@ -53,8 +53,14 @@ export class KdTree3 {
       this.axis[node] = -1;
       return node;
     }
-    const p = this.xyz, o = this.order;
-    let minX = Infinity, minY = Infinity, minZ = Infinity, maxX = -Infinity, maxY = -Infinity, maxZ = -Infinity;
+    const p = this.xyz,
+      o = this.order;
+    let minX = Infinity,
+      minY = Infinity,
+      minZ = Infinity,
+      maxX = -Infinity,
+      maxY = -Infinity,
+      maxZ = -Infinity;
     for (let k = lo; k < hi; k++) {
       const b = 3 * o[k];
       if (p[b] < minX) minX = p[b];
@@ -64,7 +70,9 @@ export class KdTree3 {
       if (p[b + 2] < minZ) minZ = p[b + 2];
       if (p[b + 2] > maxZ) maxZ = p[b + 2];
     }
-    const ex = maxX - minX, ey = maxY - minY, ez = maxZ - minZ;
+    const ex = maxX - minX,
+      ey = maxY - minY,
+      ez = maxZ - minZ;
     const ax = ex >= ey && ex >= ez ? 0 : ey >= ez ? 1 : 2;
     const mid = (lo + hi) >> 1;
     this.select(lo, hi - 1, mid, ax);
@@ -77,10 +85,12 @@ export class KdTree3 {
 
   /** Quickselect: order[k] gets the point with the k-th smallest coordinate `ax` in [l, r]. */
   private select(l: number, r: number, k: number, ax: number): void {
-    const p = this.xyz, o = this.order;
+    const p = this.xyz,
+      o = this.order;
     while (r > l) {
       const pivot = p[3 * o[(l + r) >> 1] + ax];
-      let i = l, j = r;
+      let i = l,
+        j = r;
       while (i <= j) {
         while (p[3 * o[i] + ax] < pivot) i++;
         while (p[3 * o[j] + ax] > pivot) j--;
@@ -105,7 +115,8 @@ export class KdTree3 {
    */
   knn(x: number, y: number, z: number, k: number, outIds: Int32Array, outD2: Float64Array, skip = -1): number {
     if (this.count === 0 || k <= 0) return 0;
-    const p = this.xyz, o = this.order;
+    const p = this.xyz,
+      o = this.order;
     let found = 0;
     let worst = Infinity; // k-th best squared distance once found === k
     let top = 0;
@@ -120,7 +131,9 @@ export class KdTree3 {
         for (let q = this.lo[node]; q < this.hi[node]; q++) {
           const id = o[q];
           if (id === skip) continue;
-          const dx = p[3 * id] - x, dy = p[3 * id + 1] - y, dz = p[3 * id + 2] - z;
+          const dx = p[3 * id] - x,
+            dy = p[3 * id + 1] - y,
+            dz = p[3 * id + 2] - z;
           const d = dx * dx + dy * dy + dz * dz;
           if (found === k && (d > worst || (d === worst && id > outIds[k - 1]))) continue;
           // Insertion into the sorted prefix.

@@ -54,7 +54,9 @@ export function ellipsoidProjector(a: number, b: number, c: number): ClosedProje
       out[k] = px;
       out[k + 1] = py;
       out[k + 2] = pz;
-      let nx = px / (a * a), ny = py / (b * b), nz = pz / (c * c);
+      let nx = px / (a * a),
+        ny = py / (b * b),
+        nz = pz / (c * c);
       let l = Math.hypot(nx, ny, nz) || 1;
       out[k + 3] = nx / l;
       out[k + 4] = ny / l;
@@ -80,7 +82,8 @@ export function meshProjector(mesh: TriangleMesh, sphere: Float64Array): ClosedP
   g.setIndex(new BufferAttribute(mesh.indices.slice(), 1));
   const bvh = new MeshBVH(g, { indirect: true });
   const normals = vertexNormals(mesh);
-  const p = mesh.positions, t = mesh.indices;
+  const p = mesh.positions,
+    t = mesh.indices;
   const q = new Vector3();
   const target = { point: new Vector3(), distance: 0, faceIndex: 0 };
   const w = [0, 0, 0];
@@ -89,16 +92,28 @@ export function meshProjector(mesh: TriangleMesh, sphere: Float64Array): ClosedP
   const locate = (x: number, y: number, z: number) => {
     bvh.closestPointToPoint(q.set(x, y, z), target);
     const f = target.faceIndex;
-    const ia = t[3 * f], ib = t[3 * f + 1], ic = t[3 * f + 2];
+    const ia = t[3 * f],
+      ib = t[3 * f + 1],
+      ic = t[3 * f + 2];
     // Barycentric coordinates of the closest point in its triangle (Ericson, Real-Time Collision Detection).
     const P = target.point;
-    const v0x = p[3 * ib] - p[3 * ia], v0y = p[3 * ib + 1] - p[3 * ia + 1], v0z = p[3 * ib + 2] - p[3 * ia + 2];
-    const v1x = p[3 * ic] - p[3 * ia], v1y = p[3 * ic + 1] - p[3 * ia + 1], v1z = p[3 * ic + 2] - p[3 * ia + 2];
-    const v2x = P.x - p[3 * ia], v2y = P.y - p[3 * ia + 1], v2z = P.z - p[3 * ia + 2];
-    const d00 = v0x * v0x + v0y * v0y + v0z * v0z, d01 = v0x * v1x + v0y * v1y + v0z * v1z, d11 = v1x * v1x + v1y * v1y + v1z * v1z;
-    const d20 = v2x * v0x + v2y * v0y + v2z * v0z, d21 = v2x * v1x + v2y * v1y + v2z * v1z;
+    const v0x = p[3 * ib] - p[3 * ia],
+      v0y = p[3 * ib + 1] - p[3 * ia + 1],
+      v0z = p[3 * ib + 2] - p[3 * ia + 2];
+    const v1x = p[3 * ic] - p[3 * ia],
+      v1y = p[3 * ic + 1] - p[3 * ia + 1],
+      v1z = p[3 * ic + 2] - p[3 * ia + 2];
+    const v2x = P.x - p[3 * ia],
+      v2y = P.y - p[3 * ia + 1],
+      v2z = P.z - p[3 * ia + 2];
+    const d00 = v0x * v0x + v0y * v0y + v0z * v0z,
+      d01 = v0x * v1x + v0y * v1y + v0z * v1z,
+      d11 = v1x * v1x + v1y * v1y + v1z * v1z;
+    const d20 = v2x * v0x + v2y * v0y + v2z * v0z,
+      d21 = v2x * v1x + v2y * v1y + v2z * v1z;
     const den = d00 * d11 - d01 * d01 || 1;
-    let beta = (d11 * d20 - d01 * d21) / den, gamma = (d00 * d21 - d01 * d20) / den;
+    let beta = (d11 * d20 - d01 * d21) / den,
+      gamma = (d00 * d21 - d01 * d20) / den;
     beta = Math.min(1, Math.max(0, beta));
     gamma = Math.min(1 - beta, Math.max(0, gamma));
     w[0] = 1 - beta - gamma;
@@ -119,7 +134,9 @@ export function meshProjector(mesh: TriangleMesh, sphere: Float64Array): ClosedP
       for (let pass = 0; pass < 2; pass++) {
         const base = pass === 0 ? 3 : 6;
         const src: ArrayLike<number> = pass === 0 ? normals : sphere;
-        let sx = 0, sy = 0, sz = 0;
+        let sx = 0,
+          sy = 0,
+          sz = 0;
         for (let v = 0; v < 3; v++) {
           sx += w[v] * src[3 * ids[v]];
           sy += w[v] * src[3 * ids[v] + 1];
@@ -144,7 +161,9 @@ export function meshProjector(mesh: TriangleMesh, sphere: Float64Array): ClosedP
  * the Lloyd loop.
  */
 export function directionTexel(dx: number, dy: number, dz: number, n: number): number {
-  const ax = Math.abs(dx), ay = Math.abs(dy), az = Math.abs(dz);
+  const ax = Math.abs(dx),
+    ay = Math.abs(dy),
+    az = Math.abs(dz);
   let face: number;
   if (ax >= ay && ax >= az) face = dx >= 0 ? 0 : 1;
   else if (ay >= az) face = dy >= 0 ? 2 : 3;

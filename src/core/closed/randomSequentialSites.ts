@@ -51,8 +51,10 @@ export function randomSequentialSites(
   if (!(Number.isFinite(minSpacing) && minSpacing >= 0)) throw new Error(`minSpacing: ${minSpacing} is not a distance ≥ 0 in µm`);
   const maxFailures = options.maxFailures ?? 20000;
   const random = createRandom(seed);
-  const positions = new Float64Array(3 * count), normals = new Float64Array(3 * count);
-  const draw = surface.kind === 'ellipsoid' ? ellipsoidSampler(surface.a, surface.b, surface.c, random) : meshSampler(surface.positions, surface.indices, random);
+  const positions = new Float64Array(3 * count),
+    normals = new Float64Array(3 * count);
+  const draw =
+    surface.kind === 'ellipsoid' ? ellipsoidSampler(surface.a, surface.b, surface.c, random) : meshSampler(surface.positions, surface.indices, random);
   const area = surface.kind === 'ellipsoid' ? ellipsoidArea(surface.a, surface.b, surface.c) : draw.area;
   // Hash grid: bucket heads per hashed cell, one link per site.
   const tableSize = 1 << Math.max(4, Math.ceil(Math.log2(2 * count)));
@@ -61,7 +63,9 @@ export function randomSequentialSites(
   const cell = minSpacing > 0 ? minSpacing : 1;
   const hash = (ix: number, iy: number, iz: number) => ((Math.imul(ix, 73856093) ^ Math.imul(iy, 19349663) ^ Math.imul(iz, 83492791)) >>> 0) & (tableSize - 1);
   const point = new Float64Array(6);
-  let placed = 0, failures = 0, draws = 0;
+  let placed = 0,
+    failures = 0,
+    draws = 0;
   while (placed < count) {
     if (failures >= maxFailures) {
       const fit = Math.sqrt((4 * JAMMING_COVERAGE * area) / (Math.PI * count));
@@ -71,8 +75,12 @@ export function randomSequentialSites(
     }
     draws++;
     draw.sample(point);
-    const x = point[0], y = point[1], z = point[2];
-    const ix = Math.floor(x / cell), iy = Math.floor(y / cell), iz = Math.floor(z / cell);
+    const x = point[0],
+      y = point[1],
+      z = point[2];
+    const ix = Math.floor(x / cell),
+      iy = Math.floor(y / cell),
+      iz = Math.floor(z / cell);
     let close = false;
     if (minSpacing > 0) {
       const d2 = minSpacing * minSpacing;
@@ -80,7 +88,9 @@ export function randomSequentialSites(
         for (let b = -1; b <= 1 && !close; b++) {
           for (let c = -1; c <= 1 && !close; c++) {
             for (let s = head[hash(ix + a, iy + b, iz + c)]; s >= 0; s = next[s]) {
-              const dx = positions[3 * s] - x, dy = positions[3 * s + 1] - y, dz = positions[3 * s + 2] - z;
+              const dx = positions[3 * s] - x,
+                dy = positions[3 * s + 1] - y,
+                dz = positions[3 * s + 2] - z;
               if (dx * dx + dy * dy + dz * dz < d2) {
                 close = true;
                 break;
@@ -119,10 +129,14 @@ function ellipsoidSampler(a: number, b: number, c: number, random: { next(): num
     sample(out) {
       for (;;) {
         // Uniform direction: z uniform in [-1, 1], longitude uniform (Archimedes).
-        const z = 2 * random.next() - 1, l = 2 * Math.PI * random.next();
+        const z = 2 * random.next() - 1,
+          l = 2 * Math.PI * random.next();
         const r = Math.sqrt(Math.max(0, 1 - z * z));
-        const x = r * Math.cos(l), y = r * Math.sin(l);
-        const nx = x / a, ny = y / b, nz = z / c;
+        const x = r * Math.cos(l),
+          y = r * Math.sin(l);
+        const nx = x / a,
+          ny = y / b,
+          nz = z / c;
         const w = Math.hypot(nx, ny, nz);
         if (random.next() * wMax > w) continue;
         out[0] = a * x;
@@ -142,9 +156,15 @@ function meshSampler(P: ArrayLike<number>, T: ArrayLike<number>, random: { next(
   const cdf = new Float64Array(nf);
   let total = 0;
   for (let f = 0; f < nf; f++) {
-    const a = 3 * T[3 * f], b = 3 * T[3 * f + 1], c = 3 * T[3 * f + 2];
-    const ux = P[b] - P[a], uy = P[b + 1] - P[a + 1], uz = P[b + 2] - P[a + 2];
-    const vx = P[c] - P[a], vy = P[c + 1] - P[a + 1], vz = P[c + 2] - P[a + 2];
+    const a = 3 * T[3 * f],
+      b = 3 * T[3 * f + 1],
+      c = 3 * T[3 * f + 2];
+    const ux = P[b] - P[a],
+      uy = P[b + 1] - P[a + 1],
+      uz = P[b + 2] - P[a + 2];
+    const vx = P[c] - P[a],
+      vy = P[c + 1] - P[a + 1],
+      vz = P[c + 2] - P[a + 2];
     total += 0.5 * Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
     cdf[f] = total;
   }
@@ -153,10 +173,17 @@ function meshSampler(P: ArrayLike<number>, T: ArrayLike<number>, random: { next(
     area: total,
     sample(out) {
       const triangle = searchCdf(cdf, nf, random.next() * total);
-      const s = Math.sqrt(random.next()), u = random.next();
-      const wa = 1 - s, wb = s * (1 - u), wc = s * u;
-      const a = 3 * T[3 * triangle], b = 3 * T[3 * triangle + 1], c = 3 * T[3 * triangle + 2];
-      let nx = 0, ny = 0, nz = 0;
+      const s = Math.sqrt(random.next()),
+        u = random.next();
+      const wa = 1 - s,
+        wb = s * (1 - u),
+        wc = s * u;
+      const a = 3 * T[3 * triangle],
+        b = 3 * T[3 * triangle + 1],
+        c = 3 * T[3 * triangle + 2];
+      let nx = 0,
+        ny = 0,
+        nz = 0;
       for (let k = 0; k < 3; k++) out[k] = wa * P[a + k] + wb * P[b + k] + wc * P[c + k];
       nx = wa * N[a] + wb * N[b] + wc * N[c];
       ny = wa * N[a + 1] + wb * N[b + 1] + wc * N[c + 1];

@@ -66,7 +66,9 @@ export class ContactRecorder {
 
   private grow(): void {
     const n = 2 * this.from.length;
-    const f = new Int32Array(n), t = new Int32Array(n), l = new Float64Array(n);
+    const f = new Int32Array(n),
+      t = new Int32Array(n),
+      l = new Float64Array(n);
     f.set(this.from);
     t.set(this.to);
     l.set(this.length);
@@ -81,7 +83,8 @@ export class ContactRecorder {
    */
   finish(tolerance: number): RestrictedAdjacency {
     this.flush();
-    const n = this.count, size = this.size;
+    const n = this.count,
+      size = this.size;
     // Directed records grouped by cell (counting sort), then summed per (i, j) after sorting
     // each cell's run by j (a cell can be visited by more than one traversal).
     const start = new Int32Array(n + 1);
@@ -101,7 +104,8 @@ export class ContactRecorder {
     const dirLens = new Float64Array(size);
     let m = 0;
     for (let i = 0; i < n; i++) {
-      const a = start[i], b = start[i + 1];
+      const a = start[i],
+        b = start[i + 1];
       for (let q = a; q < b; q++) perm[q] = q;
       perm.subarray(a, b).sort((x, y) => ids[x] - ids[y]);
       for (let q = a; q < b; q++) {
@@ -122,8 +126,10 @@ export class ContactRecorder {
     const reverse = this.reverseRecords(n, dirOffsets, dirIds, dirLens);
     for (let i = 0; i < n; i++) {
       // Merge i's own run with the cells that listed i (reverse run, sorted by j).
-      let p = dirOffsets[i], q = reverse.offsets[i];
-      const pe = dirOffsets[i + 1], qe = reverse.offsets[i + 1];
+      let p = dirOffsets[i],
+        q = reverse.offsets[i];
+      const pe = dirOffsets[i + 1],
+        qe = reverse.offsets[i + 1];
       while (p < pe || q < qe) {
         const jp = p < pe ? dirIds[p] : Infinity;
         const jq = q < qe ? reverse.ids[q] : Infinity;

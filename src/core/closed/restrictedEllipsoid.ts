@@ -75,7 +75,8 @@ export class EllipsoidRestrictedVoronoi {
     this.a = surface.a;
     this.b = surface.b;
     this.c = surface.c;
-    const lo = Math.min(this.a, this.b, this.c), hi = Math.max(this.a, this.b, this.c);
+    const lo = Math.min(this.a, this.b, this.c),
+      hi = Math.max(this.a, this.b, this.c);
     this.reach = (lo * lo) / hi;
     this.arcs = new EllipsoidArcIntegrator(this.a, this.b, this.c);
     this.ensure(Math.min(INITIAL_CANDIDATES, Math.max(1, count - 1)));
@@ -109,9 +110,13 @@ export class EllipsoidRestrictedVoronoi {
 
   private cell(i: number): void {
     const S = this.sites;
-    const sx = S[3 * i], sy = S[3 * i + 1], sz = S[3 * i + 2];
+    const sx = S[3 * i],
+      sy = S[3 * i + 1],
+      sz = S[3 * i + 2];
     // Parameter direction of the site (the pole of the area form).
-    const px = sx / this.a, py = sy / this.b, pz = sz / this.c;
+    const px = sx / this.a,
+      py = sy / this.b,
+      pz = sz / this.c;
     // kNN list of `found` sites; the cell is clipped by its first n. Every site outside the
     // prefix is at least sqrt(next) away; the cell is proven once next > (2 R)².
     let k = Math.min(INITIAL_CANDIDATES, this.count - 1);
@@ -159,10 +164,12 @@ export class EllipsoidRestrictedVoronoi {
     } else this.arcs.setPole(px, py, pz);
     this.recorder.begin(i);
     const scale = Math.max(this.a, this.b, this.c);
-    const lengthTol = 1e-10 * scale, areaTol = 1e-12 * scale * scale;
+    const lengthTol = 1e-10 * scale,
+      areaTol = 1e-12 * scale * scale;
     let area = 0;
     for (let q = 0; q < n; q++) {
-      const first = this.ivStart[q], last = this.ivStart[q + 1];
+      const first = this.ivStart[q],
+        last = this.ivStart[q + 1];
       if (first === last) continue;
       this.arcs.setCircle(this.circC, this.circU, this.circV, 3 * q);
       let len = 0;
@@ -186,12 +193,17 @@ export class EllipsoidRestrictedVoronoi {
 
   /** Constraints and circles of the n candidates, and the surviving θ-intervals of each. */
   private clipArcs(i: number, n: number): void {
-    const S = this.sites, m = this.m;
-    const sx = S[3 * i], sy = S[3 * i + 1], sz = S[3 * i + 2];
+    const S = this.sites,
+      m = this.m;
+    const sx = S[3 * i],
+      sy = S[3 * i + 1],
+      sz = S[3 * i + 2];
     const s2 = sx * sx + sy * sy + sz * sz;
     for (let q = 0; q < n; q++) {
       const j = this.cand[q];
-      const jx = S[3 * j], jy = S[3 * j + 1], jz = S[3 * j + 2];
+      const jx = S[3 * j],
+        jy = S[3 * j + 1],
+        jz = S[3 * j + 2];
       m[3 * q] = this.a * (jx - sx);
       m[3 * q + 1] = this.b * (jy - sy);
       m[3 * q + 2] = this.c * (jz - sz);
@@ -200,31 +212,50 @@ export class EllipsoidRestrictedVoronoi {
     let ivCount = 0;
     for (let q = 0; q < n; q++) {
       this.ivStart[q] = ivCount;
-      const mx = m[3 * q], my = m[3 * q + 1], mz = m[3 * q + 2];
+      const mx = m[3 * q],
+        my = m[3 * q + 1],
+        mz = m[3 * q + 2];
       const L = Math.hypot(mx, my, mz);
       if (L === 0) continue; // duplicate site
       const h = this.off[q] / L;
       if (!(Math.abs(h) < 1)) continue; // the bisector plane misses the ellipsoid
-      const nx = mx / L, ny = my / L, nz = mz / L;
+      const nx = mx / L,
+        ny = my / L,
+        nz = mz / L;
       const r = Math.sqrt(1 - h * h);
       // u ⊥ m̂, v = m̂ × u, so u × v = m̂.
-      const ax = Math.abs(nx) < 0.9 ? 1 : 0, ay = 1 - ax;
-      let ux = ay * nz, uy = -ax * nz, uz = ax * ny - ay * nx;
+      const ax = Math.abs(nx) < 0.9 ? 1 : 0,
+        ay = 1 - ax;
+      let ux = ay * nz,
+        uy = -ax * nz,
+        uz = ax * ny - ay * nx;
       const ul = Math.hypot(ux, uy, uz);
       ux /= ul;
       uy /= ul;
       uz /= ul;
-      const vx = ny * uz - nz * uy, vy = nz * ux - nx * uz, vz = nx * uy - ny * ux;
-      const C = this.circC, U = this.circU, V = this.circV;
-      C[3 * q] = h * nx; C[3 * q + 1] = h * ny; C[3 * q + 2] = h * nz;
-      U[3 * q] = r * ux; U[3 * q + 1] = r * uy; U[3 * q + 2] = r * uz;
-      V[3 * q] = r * vx; V[3 * q + 1] = r * vy; V[3 * q + 2] = r * vz;
+      const vx = ny * uz - nz * uy,
+        vy = nz * ux - nx * uz,
+        vz = nx * uy - ny * ux;
+      const C = this.circC,
+        U = this.circU,
+        V = this.circV;
+      C[3 * q] = h * nx;
+      C[3 * q + 1] = h * ny;
+      C[3 * q + 2] = h * nz;
+      U[3 * q] = r * ux;
+      U[3 * q + 1] = r * uy;
+      U[3 * q + 2] = r * uz;
+      V[3 * q] = r * vx;
+      V[3 * q + 1] = r * vy;
+      V[3 * q + 2] = r * vz;
       let cur = 1;
       this.curLo[0] = 0;
       this.curHi[0] = TWO_PI;
       for (let p = 0; p < n && cur > 0; p++) {
         if (p === q) continue;
-        const kx = m[3 * p], ky = m[3 * p + 1], kz = m[3 * p + 2];
+        const kx = m[3 * p],
+          ky = m[3 * p + 1],
+          kz = m[3 * p + 2];
         const A = r * (ux * kx + uy * ky + uz * kz);
         const B = r * (vx * kx + vy * ky + vz * kz);
         const Cc = this.off[p] - h * (nx * kx + ny * ky + nz * kz);
@@ -258,14 +289,21 @@ export class EllipsoidRestrictedVoronoi {
     for (let piece = 0; piece < 2; piece++) {
       let lo: number, hi: number;
       if (end > TWO_PI) {
-        if (piece === 0) { lo = 0; hi = end - TWO_PI; } else { lo = start; hi = TWO_PI; }
+        if (piece === 0) {
+          lo = 0;
+          hi = end - TWO_PI;
+        } else {
+          lo = start;
+          hi = TWO_PI;
+        }
       } else {
         if (piece === 1) break;
         lo = start;
         hi = end;
       }
       for (let t = 0; t < cur; t++) {
-        const a = Math.max(lo, this.curLo[t]), b = Math.min(hi, this.curHi[t]);
+        const a = Math.max(lo, this.curLo[t]),
+          b = Math.min(hi, this.curHi[t]);
         if (b > a) {
           if (out === this.nxtLo.length) this.growScratch();
           this.nxtLo[out] = a;
@@ -273,7 +311,8 @@ export class EllipsoidRestrictedVoronoi {
         }
       }
     }
-    const tl = this.curLo, th = this.curHi;
+    const tl = this.curLo,
+      th = this.curHi;
     this.curLo = this.nxtLo;
     this.curHi = this.nxtHi;
     this.nxtLo = tl;
@@ -291,7 +330,8 @@ export class EllipsoidRestrictedVoronoi {
   }
 
   private growIntervals(): void {
-    const lo = new Float64Array(2 * this.ivLo.length), hi = new Float64Array(2 * this.ivHi.length);
+    const lo = new Float64Array(2 * this.ivLo.length),
+      hi = new Float64Array(2 * this.ivHi.length);
     lo.set(this.ivLo);
     hi.set(this.ivHi);
     this.ivLo = lo;
@@ -305,12 +345,14 @@ export class EllipsoidRestrictedVoronoi {
   private boundaryRadius(n: number, sx: number, sy: number, sz: number): number {
     let R = 0;
     for (let q = 0; q < n; q++) {
-      const first = this.ivStart[q], last = this.ivStart[q + 1];
+      const first = this.ivStart[q],
+        last = this.ivStart[q + 1];
       if (first === last) continue;
       this.arcs.setCircle(this.circC, this.circU, this.circV, 3 * q);
       const speed = this.arcs.speedBound();
       for (let t = first; t < last; t++) {
-        const lo = this.ivLo[t], hi = this.ivHi[t];
+        const lo = this.ivLo[t],
+          hi = this.ivHi[t];
         const steps = Math.max(2, Math.ceil((hi - lo) / 0.05));
         const dt = (hi - lo) / steps;
         for (let s = 0; s <= steps; s++) {

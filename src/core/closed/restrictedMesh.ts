@@ -94,10 +94,16 @@ export class MeshRestrictedVoronoi {
     this.triArea = new Float64Array(nf);
     const centroids = new Float64Array(3 * nf);
     for (let f = 0; f < nf; f++) {
-      const a = 3 * this.T[3 * f], b = 3 * this.T[3 * f + 1], c = 3 * this.T[3 * f + 2];
+      const a = 3 * this.T[3 * f],
+        b = 3 * this.T[3 * f + 1],
+        c = 3 * this.T[3 * f + 2];
       const P = this.P;
-      const ux = P[b] - P[a], uy = P[b + 1] - P[a + 1], uz = P[b + 2] - P[a + 2];
-      const vx = P[c] - P[a], vy = P[c + 1] - P[a + 1], vz = P[c + 2] - P[a + 2];
+      const ux = P[b] - P[a],
+        uy = P[b + 1] - P[a + 1],
+        uz = P[b + 2] - P[a + 2];
+      const vx = P[c] - P[a],
+        vy = P[c + 1] - P[a + 1],
+        vz = P[c + 2] - P[a + 2];
       this.triArea[f] = 0.5 * Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
       for (let k = 0; k < 3; k++) centroids[3 * f + k] = (P[a + k] + P[b + k] + P[c + k]) / 3;
     }
@@ -127,7 +133,9 @@ export class MeshRestrictedVoronoi {
         continue;
       }
       if (!this.triTree) this.triTree = new KdTree3(this.centroids, this.nf);
-      const x = this.sites[3 * i], y = this.sites[3 * i + 1], z = this.sites[3 * i + 2];
+      const x = this.sites[3 * i],
+        y = this.sites[3 * i + 1],
+        z = this.sites[3 * i + 2];
       const found = this.triTree.knn(x, y, z, 8, this.near, this.nearD2);
       for (let q = 0; q < found; q++) {
         const f = this.near[q];
@@ -150,7 +158,8 @@ export class MeshRestrictedVoronoi {
   private addOwner(f: number, i: number): void {
     if (this.owners === this.ownerSeed.length) {
       const n = 2 * this.owners;
-      const next = new Int32Array(n), seed = new Int32Array(n);
+      const next = new Int32Array(n),
+        seed = new Int32Array(n);
       next.set(this.ownerNext);
       seed.set(this.ownerSeed);
       this.ownerNext = next;
@@ -164,7 +173,8 @@ export class MeshRestrictedVoronoi {
   /** Breadth-first walk of seed i's cell from triangle `start`; returns the area found. */
   private traverse(i: number, start: number): number {
     const t = ++this.traversal;
-    let head = 0, tail = 0;
+    let head = 0,
+      tail = 0;
     this.queue[tail++] = start;
     this.stamp[start] = t;
     let total = 0;
@@ -172,13 +182,22 @@ export class MeshRestrictedVoronoi {
       const f = this.queue[head++];
       const n = this.clip(f, i);
       if (n === 0) continue;
-      const V = this.out, L = this.outLab;
+      const V = this.out,
+        L = this.outLab;
       // Area of the convex planar polygon (fan from vertex 0).
-      let cx = 0, cy = 0, cz = 0;
-      const x0 = V[0], y0 = V[1], z0 = V[2];
+      let cx = 0,
+        cy = 0,
+        cz = 0;
+      const x0 = V[0],
+        y0 = V[1],
+        z0 = V[2];
       for (let k = 1; k + 1 < n; k++) {
-        const ux = V[3 * k] - x0, uy = V[3 * k + 1] - y0, uz = V[3 * k + 2] - z0;
-        const vx = V[3 * k + 3] - x0, vy = V[3 * k + 4] - y0, vz = V[3 * k + 5] - z0;
+        const ux = V[3 * k] - x0,
+          uy = V[3 * k + 1] - y0,
+          uz = V[3 * k + 2] - z0;
+        const vx = V[3 * k + 3] - x0,
+          vy = V[3 * k + 4] - y0,
+          vz = V[3 * k + 5] - z0;
         cx += uy * vz - uz * vy;
         cy += uz * vx - ux * vz;
         cz += ux * vy - uy * vx;
@@ -224,8 +243,13 @@ export class MeshRestrictedVoronoi {
   private clip(f: number, i: number): number {
     this.stats.clips++;
     if (this.candSeed !== i) this.loadCandidates(i, Math.min(INITIAL_CANDIDATES, this.count - 1));
-    const sx = this.sites[3 * i], sy = this.sites[3 * i + 1], sz = this.sites[3 * i + 2];
-    let V = this.polyA, L = this.labA, W = this.polyB, M = this.labB;
+    const sx = this.sites[3 * i],
+      sy = this.sites[3 * i + 1],
+      sz = this.sites[3 * i + 2];
+    let V = this.polyA,
+      L = this.labA,
+      W = this.polyB,
+      M = this.labB;
     for (let e = 0; e < 3; e++) {
       const v = 3 * this.T[3 * f + e];
       V[3 * e] = this.P[v];
@@ -244,10 +268,16 @@ export class MeshRestrictedVoronoi {
       }
       if (this.candD2[c] > 4 * R2) break;
       const j = this.cand[c++];
-      const jx = this.sites[3 * j], jy = this.sites[3 * j + 1], jz = this.sites[3 * j + 2];
-      const nx = jx - sx, ny = jy - sy, nz = jz - sz;
+      const jx = this.sites[3 * j],
+        jy = this.sites[3 * j + 1],
+        jz = this.sites[3 * j + 2];
+      const nx = jx - sx,
+        ny = jy - sy,
+        nz = jz - sz;
       if (nx === 0 && ny === 0 && nz === 0) continue; // a duplicate site has no bisector
-      const mx = 0.5 * (jx + sx), my = 0.5 * (jy + sy), mz = 0.5 * (jz + sz);
+      const mx = 0.5 * (jx + sx),
+        my = 0.5 * (jy + sy),
+        mz = 0.5 * (jz + sz);
       let outside = 0;
       for (let k = 0; k < n; k++) {
         const d = (V[3 * k] - mx) * nx + (V[3 * k + 1] - my) * ny + (V[3 * k + 2] - mz) * nz;
@@ -263,7 +293,8 @@ export class MeshRestrictedVoronoi {
       let m = 0;
       for (let k = 0; k < n; k++) {
         const k1 = k + 1 === n ? 0 : k + 1;
-        const da = this.dist[k], db = this.dist[k1];
+        const da = this.dist[k],
+          db = this.dist[k1];
         if (m + 2 > MAX_POLYGON) throw new Error(`restrictedVoronoi: a clipped polygon exceeded ${MAX_POLYGON} vertices`);
         if (da <= 0) {
           W[3 * m] = V[3 * k];
@@ -285,7 +316,8 @@ export class MeshRestrictedVoronoi {
           M[m++] = L[k];
         }
       }
-      const tv = V, tl = L;
+      const tv = V,
+        tl = L;
       V = W;
       L = M;
       W = tv;
@@ -301,7 +333,9 @@ export class MeshRestrictedVoronoi {
   private maxDistance2(V: Float64Array, n: number, x: number, y: number, z: number): number {
     let r = 0;
     for (let k = 0; k < n; k++) {
-      const dx = V[3 * k] - x, dy = V[3 * k + 1] - y, dz = V[3 * k + 2] - z;
+      const dx = V[3 * k] - x,
+        dy = V[3 * k + 1] - y,
+        dz = V[3 * k + 2] - z;
       const d = dx * dx + dy * dy + dz * dz;
       if (d > r) r = d;
     }
@@ -313,14 +347,22 @@ export class MeshRestrictedVoronoi {
    * of one and has not clipped it yet starts a traversal there.
    */
   private repair(): void {
-    const P = this.P, T = this.T;
-    let ids = new Int32Array(32), d2 = new Float64Array(32);
-    const one = new Int32Array(1), oneD = new Float64Array(1);
+    const P = this.P,
+      T = this.T;
+    let ids = new Int32Array(32),
+      d2 = new Float64Array(32);
+    const one = new Int32Array(1),
+      oneD = new Float64Array(1);
     for (let f = 0; f < this.nf; f++) {
       if (!(this.covered[f] < this.triArea[f] * (1 - COVERAGE_SLACK))) continue;
-      let cx = 0, cy = 0, cz = 0, reach = 0, diam = 0;
+      let cx = 0,
+        cy = 0,
+        cz = 0,
+        reach = 0,
+        diam = 0;
       for (let e = 0; e < 3; e++) {
-        const v = 3 * T[3 * f + e], w = 3 * T[3 * f + ((e + 1) % 3)];
+        const v = 3 * T[3 * f + e],
+          w = 3 * T[3 * f + ((e + 1) % 3)];
         cx += P[v] / 3;
         cy += P[v + 1] / 3;
         cz += P[v + 2] / 3;

@@ -46,7 +46,8 @@ export function triangleNeighbours(indices: ArrayLike<number>, vertexCount: numb
   const out = new Int32Array(3 * nf).fill(-1);
   for (let f = 0; f < nf; f++) {
     for (let e = 0; e < 3; e++) {
-      const u = indices[3 * f + e], v = indices[3 * f + ((e + 1) % 3)];
+      const u = indices[3 * f + e],
+        v = indices[3 * f + ((e + 1) % 3)];
       for (let q = start[u]; q < start[u + 1]; q++) {
         const g = faces[q];
         if (g === f) continue;

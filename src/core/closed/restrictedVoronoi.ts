@@ -80,7 +80,9 @@ export function restrictedVoronoi(
   if (surface.kind === 'ellipsoid') {
     const { a, b, c } = surface;
     for (let i = 0; i < count; i++) {
-      const x = xyz[3 * i] / a, y = xyz[3 * i + 1] / b, z = xyz[3 * i + 2] / c;
+      const x = xyz[3 * i] / a,
+        y = xyz[3 * i + 1] / b,
+        z = xyz[3 * i + 2] / c;
       const off = Math.abs(Math.hypot(x, y, z) - 1);
       if (off > ON_SURFACE_TOLERANCE) {
         throw new Error(
@@ -105,9 +107,15 @@ export function restrictedVoronoi(
 function meshArea(p: ArrayLike<number>, t: ArrayLike<number>): number {
   let s = 0;
   for (let f = 0; f < t.length; f += 3) {
-    const a = 3 * t[f], b = 3 * t[f + 1], c = 3 * t[f + 2];
-    const ux = p[b] - p[a], uy = p[b + 1] - p[a + 1], uz = p[b + 2] - p[a + 2];
-    const vx = p[c] - p[a], vy = p[c + 1] - p[a + 1], vz = p[c + 2] - p[a + 2];
+    const a = 3 * t[f],
+      b = 3 * t[f + 1],
+      c = 3 * t[f + 2];
+    const ux = p[b] - p[a],
+      uy = p[b + 1] - p[a + 1],
+      uz = p[b + 2] - p[a + 2];
+    const vx = p[c] - p[a],
+      vy = p[c + 1] - p[a + 1],
+      vz = p[c + 2] - p[a + 2];
     s += 0.5 * Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
   }
   return s;

@@ -17,7 +17,8 @@ export function readDecimal(text: string): DecimalReading {
   if (commas > 0 && compact.includes('.')) {
     return { ok: false, message: `"${text.trim()}" has both a comma and a point: type one decimal separator (22.5 or 22,5) and no thousands separator` };
   }
-  if (commas > 1) return { ok: false, message: `"${text.trim()}" has more than one comma: type one decimal separator (22.5 or 22,5) and no thousands separator` };
+  if (commas > 1)
+    return { ok: false, message: `"${text.trim()}" has more than one comma: type one decimal separator (22.5 or 22,5) and no thousands separator` };
   const normal = compact.replace(',', '.');
   if (!NUMBER.test(normal)) return { ok: false, message: `"${text.trim()}" is not a number` };
   const value = Number(normal);

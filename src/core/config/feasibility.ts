@@ -144,7 +144,8 @@ const LAB_CONTACT_PER_DIAMETER = LAB_MIN_BOUNDARY_PIXELS / LAB_MEAN_CELL_DIAMETE
 export function defaultResolution(config: Pick<AnyConfig, 'surface' | 'cells' | 'sheet'>): number {
   const { surface, cells, sheet } = config;
   if (surface.kind === 'plane' || surface.kind === 'tube') return PLANAR_DEFAULT_RESOLUTION;
-  const area = surface.kind === 'sphere' ? 4 * Math.PI * surface.radius ** 2 : surface.kind === 'ellipsoid' ? ellipsoidArea(surface.a, surface.b, surface.c) : null;
+  const area =
+    surface.kind === 'sphere' ? 4 * Math.PI * surface.radius ** 2 : surface.kind === 'ellipsoid' ? ellipsoidArea(surface.a, surface.b, surface.c) : null;
   const length = sheet.minContactLength;
   // Diameter over contact length: from the given length where the area is known before loading.
   const diameterPerContact = area !== null && length !== null && length > 0 ? Math.sqrt(area / cells) / length : 1 / LAB_CONTACT_PER_DIAMETER;
@@ -213,10 +214,7 @@ export function checkClosedFeasible(config: ClosedConfig, grid: CubeGrid = makeC
     );
   }
   if (config.density.kind !== 'uniform') {
-    throw new ConfigError(
-      'density.kind',
-      `density.kind: closed surfaces support only "uniform" density for now (got "${config.density.kind}")`,
-    );
+    throw new ConfigError('density.kind', `density.kind: closed surfaces support only "uniform" density for now (got "${config.density.kind}")`);
   }
   const { surface } = config;
   const d = config.minSpacing;

@@ -137,7 +137,9 @@ export function checkTexelsPerSide(config: AnyConfig): void {
     throw new ConfigError(
       'resolution',
       `resolution: the grid is ${seeded.width} x ${seeded.height} texels, so its short side has ${short} (at least ${MIN_TEXELS_PER_SIDE} are needed to resolve cells); ${
-        need <= 16384 ? `raise resolution to at least ${need}, or make the surface less elongated` : `the surface is too elongated (${fmt(Math.max(d.lengthX, d.lengthY) / Math.min(d.lengthX, d.lengthY))}:1) for any resolution up to 16384: make it shorter or wider`
+        need <= 16384
+          ? `raise resolution to at least ${need}, or make the surface less elongated`
+          : `the surface is too elongated (${fmt(Math.max(d.lengthX, d.lengthY) / Math.min(d.lengthX, d.lengthY))}:1) for any resolution up to 16384: make it shorter or wider`
       }`,
     );
   }

@@ -46,10 +46,16 @@ export function checkMethods(config: AnyConfig): void {
   const problem = protocolProblem(sheet.protocol, surface.kind, sheet.surfaceRatio);
   if (problem) throw new ConfigError('sheet.protocol', problem);
   if (sheet.protocol === 'lab' && sheet.direction === 'inward') {
-    throw new ConfigError('sheet.direction', 'sheet.direction: protocol "lab" steps outward from the inner (basal) tube, s >= 1; use "outward" or protocol "default"');
+    throw new ConfigError(
+      'sheet.direction',
+      'sheet.direction: protocol "lab" steps outward from the inner (basal) tube, s >= 1; use "outward" or protocol "default"',
+    );
   }
   if (sheet.minContactPixels !== null && sheet.minContactLength !== null) {
-    throw new ConfigError('sheet.minContactPixels', 'sheet.minContactPixels: give either sheet.minContactPixels (texel edges) or sheet.minContactLength (µm), not both');
+    throw new ConfigError(
+      'sheet.minContactPixels',
+      'sheet.minContactPixels: give either sheet.minContactPixels (texel edges) or sheet.minContactLength (µm), not both',
+    );
   }
   if (sheet.minContactPixels !== null && surface.kind !== 'tube') {
     throw new ConfigError(
@@ -59,10 +65,7 @@ export function checkMethods(config: AnyConfig): void {
   }
   if (sheet.offset === 'axes') {
     if (surface.kind !== 'sphere' && surface.kind !== 'ellipsoid') {
-      throw new ConfigError(
-        'sheet.offset',
-        `sheet.offset: "axes" grows the semi-axes of a sphere or ellipsoid; a ${surface.kind} has none: use "normal"`,
-      );
+      throw new ConfigError('sheet.offset', `sheet.offset: "axes" grows the semi-axes of a sphere or ellipsoid; a ${surface.kind} has none: use "normal"`);
     }
     const smallest = surface.kind === 'sphere' ? surface.radius : Math.min(surface.a, surface.b, surface.c);
     if (sheet.direction === 'inward' && sheet.thickness >= smallest) {
@@ -79,15 +82,13 @@ export function checkMethods(config: AnyConfig): void {
   }
   let span = sheet.thickness;
   if (surface.kind === 'tube') {
-    const other = sheet.surfaceRatio ?? (sheet.direction === 'outward' ? 1 + sheet.thickness / surface.radius : Math.max(1e-9, 1 - sheet.thickness / surface.radius));
+    const other =
+      sheet.surfaceRatio ?? (sheet.direction === 'outward' ? 1 + sheet.thickness / surface.radius : Math.max(1e-9, 1 - sheet.thickness / surface.radius));
     span = other >= 1 ? other - 1 : 1 / other - 1;
   }
   const spanOf = sheet.protocol === 'lab' ? Math.max(span, sheet.validityMaxRatio - 1) : span;
   const surfaces = Math.floor(spanOf / step) + 2;
   if (surfaces > MAX_PROTOCOL_LAYERS) {
-    throw new ConfigError(
-      'sheet.layerStep',
-      `sheet.layerStep: ${step} gives ${surfaces} surfaces (at most ${MAX_PROTOCOL_LAYERS}); raise sheet.layerStep`,
-    );
+    throw new ConfigError('sheet.layerStep', `sheet.layerStep: ${step} gives ${surfaces} surfaces (at most ${MAX_PROTOCOL_LAYERS}); raise sheet.layerStep`);
   }
 }

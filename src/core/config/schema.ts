@@ -91,7 +91,8 @@ export const configSchema = {
             src: {
               type: 'string',
               minLength: 1,
-              description: "An .obj, .ply or .stl file. The pipeline reads no file: the CLI reads a path (relative to the config file, else the working directory, else a sample of public/meshes/ by name), the page a URL or a user's uploaded file by its name; a library caller loads it (tissue-sheet/node loadMeshFile, or fetchMeshFile) and passes it to runSheet as meshFile.",
+              description:
+                "An .obj, .ply or .stl file. The pipeline reads no file: the CLI reads a path (relative to the config file, else the working directory, else a sample of public/meshes/ by name), the page a URL or a user's uploaded file by its name; a library caller loads it (tissue-sheet/node loadMeshFile, or fetchMeshFile) and passes it to runSheet as meshFile.",
             },
             scale: {
               type: 'number',
@@ -269,8 +270,7 @@ export const configSchema = {
         'Which engine runs Lloyd and finds the neighbours: "gpu" (jump flood and centroid passes in WebGL2), "exact" (planes and tubes only: Lloyd on the exact Voronoi diagram on the CPU, every analysis exact, no label textures) or "auto" (exact on planes and tubes where the renderer is software, e.g. SwiftShader or llvmpipe, and the labels method is not asked for; the GPU otherwise). The result records which engine ran and why.',
     },
     sheet: {
-      description:
-        'The sheet: the seeded surface (where Lloyd runs), the other surface at a thickness along the normal, and layers between them.',
+      description: 'The sheet: the seeded surface (where Lloyd runs), the other surface at a thickness along the normal, and layers between them.',
       type: 'object',
       default: {},
       additionalProperties: false,
@@ -285,8 +285,7 @@ export const configSchema = {
           type: 'string',
           enum: ['outward', 'inward'],
           default: 'outward',
-          description:
-            'Side of the seeded surface the other surface lies on, along its normal: "outward" is +z on a plane, away from the axis on a tube.',
+          description: 'Side of the seeded surface the other surface lies on, along its normal: "outward" is +z on a plane, away from the axis on a tube.',
         },
         thickness: {
           type: 'number',
@@ -300,8 +299,7 @@ export const configSchema = {
           type: ['number', 'null'],
           minimum: 1,
           default: null,
-          description:
-            'Tube only, instead of thickness: s = R_outer / R_inner (outward: the other radius is radius·s; inward: radius/s). null: use thickness.',
+          description: 'Tube only, instead of thickness: s = R_outer / R_inner (outward: the other radius is radius·s; inward: radius/s). null: use thickness.',
         },
         offset: {
           type: 'string',

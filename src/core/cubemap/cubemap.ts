@@ -54,7 +54,9 @@ export function texelFromIndex(index: number, n: number): { face: number; i: num
 /** Unit direction through the face-plane point (u, v) of face f (u, v may lie outside [-1, 1]). */
 export function faceUvToDirection(face: number, u: number, v: number): Vec3 {
   const { normal: N, s, t } = CUBE_FACES[face];
-  const x = N[0] + u * s[0] + v * t[0], y = N[1] + u * s[1] + v * t[1], z = N[2] + u * s[2] + v * t[2];
+  const x = N[0] + u * s[0] + v * t[0],
+    y = N[1] + u * s[1] + v * t[1],
+    z = N[2] + u * s[2] + v * t[2];
   const l = Math.hypot(x, y, z);
   return [x / l, y / l, z / l];
 }
@@ -69,7 +71,9 @@ export function texelDirection(face: number, i: number, j: number, n: number): V
  * largest |component|; ties (cube edges) go to x before y before z, and to + before -.
  */
 export function directionToFaceUv(d: Vec3): { face: number; u: number; v: number } {
-  const ax = Math.abs(d[0]), ay = Math.abs(d[1]), az = Math.abs(d[2]);
+  const ax = Math.abs(d[0]),
+    ay = Math.abs(d[1]),
+    az = Math.abs(d[2]);
   let face: number;
   if (ax >= ay && ax >= az) face = d[0] >= 0 ? 0 : 1;
   else if (ay >= az) face = d[1] >= 0 ? 2 : 3;
@@ -101,8 +105,10 @@ function cornerSolidAngle(x: number, y: number): number {
  * Summed over the 6 n² texels this is 4π up to rounding.
  */
 export function texelSolidAngle(i: number, j: number, n: number): number {
-  const x0 = (2 * i) / n - 1, x1 = (2 * (i + 1)) / n - 1;
-  const y0 = (2 * j) / n - 1, y1 = (2 * (j + 1)) / n - 1;
+  const x0 = (2 * i) / n - 1,
+    x1 = (2 * (i + 1)) / n - 1;
+  const y0 = (2 * j) / n - 1,
+    y1 = (2 * (j + 1)) / n - 1;
   return cornerSolidAngle(x1, y1) - cornerSolidAngle(x0, y1) - cornerSolidAngle(x1, y0) + cornerSolidAngle(x0, y0);
 }
 
@@ -123,8 +129,12 @@ export type CubeEdge = (typeof CUBE_EDGE)[keyof typeof CUBE_EDGE];
  */
 export interface EdgeTransform {
   face: number;
-  a: number; b: number; c: number;
-  d: number; e: number; f: number;
+  a: number;
+  b: number;
+  c: number;
+  d: number;
+  e: number;
+  f: number;
 }
 
 function computeEdgeTransforms(): EdgeTransform[][] {
@@ -141,7 +151,8 @@ function computeEdgeTransforms(): EdgeTransform[][] {
       // Fold a point beyond the edge onto g: clamp the crossing coordinate to the edge and go
       // δ (the excess) along -normal_f.
       const fold = (u: number, v: number): [number, number] => {
-        const cu = edge < 2 ? sign : u, cv = edge < 2 ? v : sign;
+        const cu = edge < 2 ? sign : u,
+          cv = edge < 2 ? v : sign;
         const delta = edge < 2 ? sign * u - 1 : sign * v - 1;
         const P: Vec3 = [0, 1, 2].map((k) => F.normal[k] * (1 - delta) + cu * F.s[k] + cv * F.t[k]) as Vec3;
         return [dot(P, G.s), dot(P, G.t)];
@@ -150,11 +161,20 @@ function computeEdgeTransforms(): EdgeTransform[][] {
       const p0: [number, number] = edge < 2 ? [sign * 1.5, 0] : [0, sign * 1.5];
       const p1: [number, number] = edge < 2 ? [sign * 1.25, 0] : [0, sign * 1.25];
       const p2: [number, number] = edge < 2 ? [sign * 1.5, 0.5] : [0.5, sign * 1.5];
-      const q0 = fold(...p0), q1 = fold(...p1), q2 = fold(...p2);
+      const q0 = fold(...p0),
+        q1 = fold(...p1),
+        q2 = fold(...p2);
       // Solve for (a, b, c) and (d, e, f).
       const solve = (r0: number, r1: number, r2: number) => {
-        const M = [[p0[0], p0[1], 1], [p1[0], p1[1], 1], [p2[0], p2[1], 1]];
-        const det = (m: number[][]) => m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+        const M = [
+          [p0[0], p0[1], 1],
+          [p1[0], p1[1], 1],
+          [p2[0], p2[1], 1],
+        ];
+        const det = (m: number[][]) =>
+          m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+          m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+          m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
         const D = det(M);
         const rhs = [r0, r1, r2];
         return [0, 1, 2].map((col) => Math.round(det(M.map((r, k) => r.map((x, c) => (c === col ? rhs[k] : x)))) / D));

@@ -73,7 +73,9 @@ export function sampleSurface(surface: CubeSurface, n: number): CubeGeometryImag
         img.position[3 * k] = a * x;
         img.position[3 * k + 1] = b * y;
         img.position[3 * k + 2] = c * z;
-        const nx = x / a, ny = y / b, nz = z / c;
+        const nx = x / a,
+          ny = y / b,
+          nz = z / c;
         const l = Math.hypot(nx, ny, nz);
         img.normal[3 * k] = nx / l;
         img.normal[3 * k + 1] = ny / l;
@@ -106,9 +108,12 @@ function coneBarycentric(s: Float64Array, ia: number, ib: number, ic: number, d:
   const A = [s[3 * ia], s[3 * ia + 1], s[3 * ia + 2]];
   const B = [s[3 * ib], s[3 * ib + 1], s[3 * ib + 2]];
   const C = [s[3 * ic], s[3 * ic + 1], s[3 * ic + 2]];
-  const det = (u: number[], v: number[], w: number[]) => u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
+  const det = (u: number[], v: number[], w: number[]) =>
+    u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
   const D = det(A, B, C);
-  let al = det(d, B, C) / D, be = det(A, d, C) / D, ga = det(A, B, d) / D;
+  let al = det(d, B, C) / D,
+    be = det(A, d, C) / D,
+    ga = det(A, B, d) / D;
   al = Math.max(al, 0);
   be = Math.max(be, 0);
   ga = Math.max(ga, 0);
@@ -118,7 +123,8 @@ function coneBarycentric(s: Float64Array, ia: number, ib: number, ic: number, d:
 
 /** Geometry image of a mesh through its spherical parameterization. */
 export function sampleParameterizedMesh(mesh: TriangleMesh, sphere: Float64Array, n: number): CubeGeometryImage {
-  const t = mesh.indices, p = mesh.positions;
+  const t = mesh.indices,
+    p = mesh.positions;
   const nf = t.length / 3;
   if (sphere.length !== p.length) throw new Error('sampleParameterizedMesh: sphere must have one point per mesh vertex');
   const bvh = sphereBvh(mesh, sphere);
@@ -151,11 +157,15 @@ export function sampleParameterizedMesh(mesh: TriangleMesh, sphere: Float64Array
           bvh.closestPointToPoint(q.set(d[0], d[1], d[2]), target);
           tri = target.faceIndex;
         }
-        const ia = t[3 * tri], ib = t[3 * tri + 1], ic = t[3 * tri + 2];
+        const ia = t[3 * tri],
+          ib = t[3 * tri + 1],
+          ic = t[3 * tri + 2];
         const w = coneBarycentric(sphere, ia, ib, ic, d);
         img.triangle[k] = tri;
         img.barycentric.set(w, 3 * k);
-        let nx = 0, ny = 0, nz = 0;
+        let nx = 0,
+          ny = 0,
+          nz = 0;
         for (let c = 0; c < 3; c++) {
           const o = 3 * k + c;
           img.position[o] = w[0] * p[3 * ia + c] + w[1] * p[3 * ib + c] + w[2] * p[3 * ic + c];

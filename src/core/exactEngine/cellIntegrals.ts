@@ -24,11 +24,7 @@ import { clipHalfPlane, PolygonBuffer, polygonExtent, polygonMoments } from './p
 
 /** A density the exact engine integrates (analytic, or piecewise constant per texel). */
 export type ExactDensity =
-  | { readonly kind: 'uniform' }
-  | LinearDensity
-  | GaussianDensity
-  | StripesDensity
-  | { readonly kind: 'texels'; readonly field: Float32Array };
+  { readonly kind: 'uniform' } | LinearDensity | GaussianDensity | StripesDensity | { readonly kind: 'texels'; readonly field: Float32Array };
 
 /** The exact engine's form of a config density: analytic kinds as they are, images per texel. */
 export function exactDensity(spec: DensitySpec, grid: Grid, image?: GrayImage): ExactDensity {
@@ -37,8 +33,8 @@ export function exactDensity(spec: DensitySpec, grid: Grid, image?: GrayImage): 
 }
 
 /** Degree-5, 7-point rule on a triangle: barycentric (a, b, b) orbits and weights (sum 1). */
-const RULE_A = [1 / 3, 0.059715871789770, 0.470142064105115, 0.470142064105115, 0.797426985353087, 0.101286507323456, 0.101286507323456];
-const RULE_B = [1 / 3, 0.470142064105115, 0.059715871789770, 0.470142064105115, 0.101286507323456, 0.797426985353087, 0.101286507323456];
+const RULE_A = [1 / 3, 0.05971587178977, 0.470142064105115, 0.470142064105115, 0.797426985353087, 0.101286507323456, 0.101286507323456];
+const RULE_B = [1 / 3, 0.470142064105115, 0.05971587178977, 0.470142064105115, 0.101286507323456, 0.797426985353087, 0.101286507323456];
 const RULE_W = [0.225, 0.132394152788506, 0.132394152788506, 0.132394152788506, 0.125939180544827, 0.125939180544827, 0.125939180544827];
 
 interface CutFamily {
@@ -59,7 +55,10 @@ export class CellIntegrator {
   private acc!: Float64Array;
   private accOffset = 0;
 
-  constructor(readonly grid: Grid, readonly density: ExactDensity) {
+  constructor(
+    readonly grid: Grid,
+    readonly density: ExactDensity,
+  ) {
     this.widthUm = grid.width * grid.texelX;
     this.heightUm = grid.height * grid.texelY;
     const periodic = [grid.periodicX, grid.periodicY];

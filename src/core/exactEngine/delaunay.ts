@@ -242,7 +242,16 @@ export class Triangulation {
       const pr = triangles[a];
       const pl = triangles[al];
       const p1 = triangles[bl];
-      const illegal = inCircle(coords[2 * p0], coords[2 * p0 + 1], coords[2 * pr], coords[2 * pr + 1], coords[2 * pl], coords[2 * pl + 1], coords[2 * p1], coords[2 * p1 + 1]);
+      const illegal = inCircle(
+        coords[2 * p0],
+        coords[2 * p0 + 1],
+        coords[2 * pr],
+        coords[2 * pr + 1],
+        coords[2 * pl],
+        coords[2 * pl + 1],
+        coords[2 * p1],
+        coords[2 * p1 + 1],
+      );
       if (illegal) {
         triangles[a] = p1;
         triangles[b] = p0;

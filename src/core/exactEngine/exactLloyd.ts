@@ -47,7 +47,11 @@ export class ExactCentroids {
   /** The moments in the diagram's spatial order, as the cells are walked. */
   private readonly spatial: Float64Array;
 
-  constructor(readonly grid: Grid, readonly count: number, density: ExactDensity = UNIFORM) {
+  constructor(
+    readonly grid: Grid,
+    readonly count: number,
+    density: ExactDensity = UNIFORM,
+  ) {
     this.voronoi = new PlanarVoronoi(grid, count);
     this.integrator = new CellIntegrator(grid, density);
     this.sums = new Float64Array(4 * count);

@@ -88,7 +88,10 @@ export class PlanarVoronoi {
   private readonly ping = new PolygonBuffer();
   private readonly pong = new PolygonBuffer();
 
-  constructor(public grid: Grid, count: number) {
+  constructor(
+    public grid: Grid,
+    count: number,
+  ) {
     this.count = count;
     this.siteX = new Float64Array(count);
     this.siteY = new Float64Array(count);

@@ -28,8 +28,10 @@ export function rasterizeCells(grid: Grid, voronoi: ExactVoronoi, out = new Int3
       let xMin = Infinity;
       let xMax = -Infinity;
       for (let k = 0; k < n; k++) {
-        const x0 = p[2 * k], y0 = p[2 * k + 1];
-        const x1 = p[(2 * k + 2) % (2 * n)], y1 = p[(2 * k + 3) % (2 * n)];
+        const x0 = p[2 * k],
+          y0 = p[2 * k + 1];
+        const x1 = p[(2 * k + 2) % (2 * n)],
+          y1 = p[(2 * k + 3) % (2 * n)];
         if ((y0 <= y && y < y1) || (y1 <= y && y < y0)) {
           const x = x0 + ((y - y0) * (x1 - x0)) / (y1 - y0);
           xMin = Math.min(xMin, x);

@@ -106,7 +106,10 @@ function choosePixelSize(files: PlannedFile[], option: number | undefined, warni
     if (!p) continue;
     if (metadata && Math.abs(p.value - metadata.value) > 1e-6 * metadata.value) {
       if (option === undefined) {
-        throw new MeasureInputError(f.name, `pixel size ${p.value} µm differs from ${metadata.value} µm in ${metadata.file}; fix the metadata or give --pixel-size`);
+        throw new MeasureInputError(
+          f.name,
+          `pixel size ${p.value} µm differs from ${metadata.value} µm in ${metadata.file}; fix the metadata or give --pixel-size`,
+        );
       }
       continue;
     }
@@ -132,7 +135,5 @@ function choosePixelSize(files: PlannedFile[], option: number | undefined, warni
 /** Decodes one planned layer from its file's bytes. */
 export function decodeLayer(bytes: Uint8Array, plan: LayerPlan, layer: PlannedLayer): LabelPixels {
   const file = plan.files[layer.file];
-  return file.header.format === 'png'
-    ? decodePngLabels(bytes, file.name)
-    : decodeTiffPage(bytes, file.name, layer.page, layer.header);
+  return file.header.format === 'png' ? decodePngLabels(bytes, file.name) : decodeTiffPage(bytes, file.name, layer.page, layer.header);
 }

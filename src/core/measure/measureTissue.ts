@@ -8,15 +8,7 @@ import { BORDER_NAMES, countContacts, type LayerContacts } from './contacts';
 import { MeasureInputError } from './errors';
 import type { LabelPixels } from './labelImage';
 import { decodeLayer, planLayers, type LabelFileInput, type LayerPlan } from './layerPlan';
-import type {
-  BorderTouch,
-  CellExclusion,
-  ContactRecord,
-  MeasuredAnalysis,
-  MeasuredCellRecord,
-  MeasuredLayerRecord,
-  MeasuredResult,
-} from './measuredResult';
+import type { BorderTouch, CellExclusion, ContactRecord, MeasuredAnalysis, MeasuredCellRecord, MeasuredLayerRecord, MeasuredResult } from './measuredResult';
 
 export interface MeasureOptions {
   /** µm per pixel; overrides the files' metadata. */
@@ -68,7 +60,9 @@ export function measureTissue(files: LabelFileInput[], options: MeasureOptions):
     }
     contacts.push(counted);
     options.onLayerPixels?.(contacts.length - 1, pixels);
-    options.onProgress?.(`${layer.name}: ${file}${plan.files.length === 1 ? ` page ${layer.page + 1}` : ''}, ${pixels.width} x ${pixels.height}, ${counted.labels} labels, ${counted.edges.size} contacts`);
+    options.onProgress?.(
+      `${layer.name}: ${file}${plan.files.length === 1 ? ` page ${layer.page + 1}` : ''}, ${pixels.width} x ${pixels.height}, ${counted.labels} labels, ${counted.edges.size} contacts`,
+    );
   }
   bytes = null;
 

@@ -12,7 +12,11 @@ import type { PixelSizeMetadata } from './labelImage';
 
 /** µm per unit for the units ImageJ and common writers use; null for "pixel" or unknown. */
 export function micronsPerUnit(unit: string): number | null {
-  const u = unit.trim().toLowerCase().replace(/\\u00b5/g, 'µ').replace(/μ/g, 'µ');
+  const u = unit
+    .trim()
+    .toLowerCase()
+    .replace(/\\u00b5/g, 'µ')
+    .replace(/μ/g, 'µ');
   if (['micron', 'microns', 'µm', 'um', 'micrometer', 'micrometre', 'micrometers', 'micrometres'].includes(u)) return 1;
   if (['nm', 'nanometer', 'nanometre', 'nanometers', 'nanometres'].includes(u)) return 1e-3;
   if (['mm', 'millimeter', 'millimetre', 'millimeters', 'millimetres'].includes(u)) return 1e3;

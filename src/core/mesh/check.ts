@@ -64,7 +64,8 @@ class UnionFind {
     return i;
   }
   union(a: number, b: number): void {
-    const ra = this.find(a), rb = this.find(b);
+    const ra = this.find(a),
+      rb = this.find(b);
     if (ra !== rb) this.parent[ra] = rb;
   }
 }
@@ -84,9 +85,11 @@ export function buildEdges(mesh: TriangleMesh): Map<number, EdgeInfo> {
   const edges = new Map<number, EdgeInfo>();
   for (let f = 0; f < t.length / 3; f++) {
     for (let k = 0; k < 3; k++) {
-      const u = t[3 * f + k], w = t[3 * f + ((k + 1) % 3)];
+      const u = t[3 * f + k],
+        w = t[3 * f + ((k + 1) % 3)];
       if (u === w) continue;
-      const a = Math.min(u, w), b = Math.max(u, w);
+      const a = Math.min(u, w),
+        b = Math.max(u, w);
       const key = a * nv + b;
       let e = edges.get(key);
       if (!e) {
@@ -110,7 +113,8 @@ export function meshTopology(mesh: TriangleMesh): MeshTopology {
   let V = 0;
   for (const u of used) V += u;
   const edges = buildEdges(mesh);
-  let boundary = 0, nonManifold = 0;
+  let boundary = 0,
+    nonManifold = 0;
   for (const e of edges.values()) {
     if (e.faces.length === 1) boundary++;
     else if (e.faces.length > 2) nonManifold++;
@@ -124,7 +128,16 @@ export function meshTopology(mesh: TriangleMesh): MeshTopology {
   for (let v = 0; v < nv; v++) if (used[v]) roots.add(uf.find(v));
   const chi = V - edges.size + nf;
   const genus = boundary === 0 && nonManifold === 0 && roots.size === 1 && chi % 2 === 0 ? (2 - chi) / 2 : null;
-  return { vertices: V, edges: edges.size, faces: nf, eulerCharacteristic: chi, components: roots.size, boundaryEdges: boundary, nonManifoldEdges: nonManifold, genus };
+  return {
+    vertices: V,
+    edges: edges.size,
+    faces: nf,
+    eulerCharacteristic: chi,
+    components: roots.size,
+    boundaryEdges: boundary,
+    nonManifoldEdges: nonManifold,
+    genus,
+  };
 }
 
 /**
@@ -156,9 +169,14 @@ export function checkMesh(mesh: TriangleMesh): MeshProblem[] {
   const diag = boundingBox(mesh.positions).diagonal;
   const areas = faceAreas(mesh);
   const areaEps = 1e-12 * diag * diag;
-  let repeated = 0, zero = 0, firstRepeated = -1, firstZero = -1;
+  let repeated = 0,
+    zero = 0,
+    firstRepeated = -1,
+    firstZero = -1;
   for (let f = 0; f < nf; f++) {
-    const a = t[3 * f], b = t[3 * f + 1], c = t[3 * f + 2];
+    const a = t[3 * f],
+      b = t[3 * f + 1],
+      c = t[3 * f + 2];
     if (a === b || b === c || a === c) {
       repeated++;
       if (firstRepeated < 0) firstRepeated = f;
@@ -258,9 +276,11 @@ export function checkMesh(mesh: TriangleMesh): MeshProblem[] {
 
   // Non-manifold vertices: the faces around a vertex must form a single fan (no "bow tie").
   const vf = vertexFaces(mesh);
-  let badVertices = 0, firstBad = -1;
+  let badVertices = 0,
+    firstBad = -1;
   for (let v = 0; v < nv; v++) {
-    const start = vf.offsets[v], end = vf.offsets[v + 1];
+    const start = vf.offsets[v],
+      end = vf.offsets[v + 1];
     const k = end - start;
     if (k === 0) continue;
     const uf = new UnionFind(k);
@@ -319,12 +339,7 @@ export function checkMesh(mesh: TriangleMesh): MeshProblem[] {
     const chi = V - edges.size + nf;
     if (chi !== 2) {
       const g = (2 - chi) / 2;
-      const what =
-        g === 1
-          ? 'this mesh has a hole through it'
-          : Number.isInteger(g)
-            ? `this mesh has ${g} holes through it`
-            : 'this surface is not orientable';
+      const what = g === 1 ? 'this mesh has a hole through it' : Number.isInteger(g) ? `this mesh has ${g} holes through it` : 'this surface is not orientable';
       problems.push({
         kind: 'genus',
         severity: 'error',

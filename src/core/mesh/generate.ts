@@ -20,7 +20,10 @@ export function mulberry32(seed: number): () => number {
 
 const PHI = (1 + Math.sqrt(5)) / 2;
 const ICO_V = [-1, PHI, 0, 1, PHI, 0, -1, -PHI, 0, 1, -PHI, 0, 0, -1, PHI, 0, 1, PHI, 0, -1, -PHI, 0, 1, -PHI, PHI, 0, -1, PHI, 0, 1, -PHI, 0, -1, -PHI, 0, 1];
-const ICO_F = [0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1];
+const ICO_F = [
+  0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4,
+  11, 6, 2, 10, 8, 6, 7, 9, 8, 1,
+];
 
 /**
  * Unit geodesic sphere: each icosahedron face split into `frequency`² triangles, projected to
@@ -84,7 +87,7 @@ export function bumpySphere(frequency: number, seed: number, amplitude = 0.08, r
     const w = [rnd() - 0.5, rnd() - 0.5, rnd() - 0.5];
     const l = Math.hypot(w[0], w[1], w[2]) || 1;
     const k = 1.5 + 1.5 * rnd();
-    return { w: w.map((x) => (x / l) * k), phase: 2 * Math.PI * rnd(), amp: amplitude * (0.5 + rnd()) / 2 };
+    return { w: w.map((x) => (x / l) * k), phase: 2 * Math.PI * rnd(), amp: (amplitude * (0.5 + rnd())) / 2 };
   });
   return mapVertices(icosphere(frequency), (d) => {
     let r = 1;
@@ -111,7 +114,8 @@ export function levelSetBlob(frequency: number, seed: number): TriangleMesh {
     return v - iso;
   };
   return mapVertices(icosphere(frequency), ([dx, dy, dz]) => {
-    let lo = 0, hi = 3;
+    let lo = 0,
+      hi = 3;
     // Outermost crossing: march inward from far away, then bisect.
     for (let r = 3; r > 0; r -= 0.02) {
       if (F(r * dx, r * dy, r * dz) > 0) {
@@ -139,7 +143,10 @@ export function torusMesh(R: number, r: number, nu: number, nv: number): Triangl
     for (let j = 0; j < nv; j++) {
       const v = (2 * Math.PI * j) / nv;
       pos.set([(R + r * Math.cos(v)) * Math.cos(u), (R + r * Math.cos(v)) * Math.sin(u), r * Math.sin(v)], 3 * (i * nv + j));
-      const a = i * nv + j, b = ((i + 1) % nu) * nv + j, c = ((i + 1) % nu) * nv + ((j + 1) % nv), d = i * nv + ((j + 1) % nv);
+      const a = i * nv + j,
+        b = ((i + 1) % nu) * nv + j,
+        c = ((i + 1) % nu) * nv + ((j + 1) % nv),
+        d = i * nv + ((j + 1) % nv);
       idx.push(a, b, c, a, c, d);
     }
   }
@@ -170,7 +177,8 @@ export function selectFaces(mesh: TriangleMesh, keep: (f: number) => boolean): T
 /** A sphere with a hole: the icosphere without the faces around the north pole (z > cos θ). */
 export function openSphere(frequency: number, holeAngle = 0.5): TriangleMesh {
   const s = icosphere(frequency);
-  const p = s.positions, t = s.indices;
+  const p = s.positions,
+    t = s.indices;
   return selectFaces(s, (f) => {
     const z = (p[3 * t[3 * f] + 2] + p[3 * t[3 * f + 1] + 2] + p[3 * t[3 * f + 2] + 2]) / 3;
     return z < Math.cos(holeAngle);

@@ -22,10 +22,16 @@ import { meanEdgeLength, type TriangleMesh } from './types';
 
 /** Cotangent of the angle at vertex o of triangle (o, a, b). */
 function cotAt(p: Float32Array, o: number, a: number, b: number): number {
-  const ux = p[3 * a] - p[3 * o], uy = p[3 * a + 1] - p[3 * o + 1], uz = p[3 * a + 2] - p[3 * o + 2];
-  const vx = p[3 * b] - p[3 * o], vy = p[3 * b + 1] - p[3 * o + 1], vz = p[3 * b + 2] - p[3 * o + 2];
+  const ux = p[3 * a] - p[3 * o],
+    uy = p[3 * a + 1] - p[3 * o + 1],
+    uz = p[3 * a + 2] - p[3 * o + 2];
+  const vx = p[3 * b] - p[3 * o],
+    vy = p[3 * b + 1] - p[3 * o + 1],
+    vz = p[3 * b + 2] - p[3 * o + 2];
   const dot = ux * vx + uy * vy + uz * vz;
-  const cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
+  const cx = uy * vz - uz * vy,
+    cy = uz * vx - ux * vz,
+    cz = ux * vy - uy * vx;
   return dot / Math.max(Math.sqrt(cx * cx + cy * cy + cz * cz), 1e-300);
 }
 
@@ -35,21 +41,27 @@ function cotAt(p: Float32Array, o: number, a: number, b: number): number {
  * embedding in the spherical parameterization needs to be guaranteed flip-free.
  */
 export function cotanLaplacian(mesh: TriangleMesh, clampNegative = false): CsrMatrix {
-  const p = mesh.positions, t = mesh.indices;
+  const p = mesh.positions,
+    t = mesh.indices;
   const nv = p.length / 3;
   const weights = new Map<number, number>();
   for (let f = 0; f < t.length; f += 3) {
     for (let k = 0; k < 3; k++) {
-      const o = t[f + k], a = t[f + ((k + 1) % 3)], b = t[f + ((k + 2) % 3)];
+      const o = t[f + k],
+        a = t[f + ((k + 1) % 3)],
+        b = t[f + ((k + 2) % 3)];
       const key = Math.min(a, b) * nv + Math.max(a, b);
       weights.set(key, (weights.get(key) ?? 0) + 0.5 * cotAt(p, o, a, b));
     }
   }
-  const rows: number[] = [], cols: number[] = [], vals: number[] = [];
+  const rows: number[] = [],
+    cols: number[] = [],
+    vals: number[] = [];
   const diag = new Float64Array(nv);
   for (const [key, w0] of weights) {
     const w = clampNegative ? Math.max(w0, 0) : w0;
-    const a = Math.floor(key / nv), b = key - a * nv;
+    const a = Math.floor(key / nv),
+      b = key - a * nv;
     rows.push(a, b);
     cols.push(b, a);
     vals.push(-w, -w);
@@ -66,12 +78,19 @@ export function cotanLaplacian(mesh: TriangleMesh, clampNegative = false): CsrMa
 
 /** Lumped mass: one third of the area of the triangles around each vertex. */
 export function lumpedMass(mesh: TriangleMesh): Float64Array {
-  const p = mesh.positions, t = mesh.indices;
+  const p = mesh.positions,
+    t = mesh.indices;
   const m = new Float64Array(p.length / 3);
   for (let f = 0; f < t.length; f += 3) {
-    const a = 3 * t[f], b = 3 * t[f + 1], c = 3 * t[f + 2];
-    const ux = p[b] - p[a], uy = p[b + 1] - p[a + 1], uz = p[b + 2] - p[a + 2];
-    const vx = p[c] - p[a], vy = p[c + 1] - p[a + 1], vz = p[c + 2] - p[a + 2];
+    const a = 3 * t[f],
+      b = 3 * t[f + 1],
+      c = 3 * t[f + 2];
+    const ux = p[b] - p[a],
+      uy = p[b + 1] - p[a + 1],
+      uz = p[b + 2] - p[a + 2];
+    const vx = p[c] - p[a],
+      vy = p[c + 1] - p[a + 1],
+      vz = p[c + 2] - p[a + 2];
     const area = 0.5 * Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
     for (let k = 0; k < 3; k++) m[t[f + k]] += area / 3;
   }
@@ -109,13 +128,15 @@ export class HeatGeodesics {
     this.heat = new SparseCholesky(A);
     // L is singular (constants); a tiny mass shift makes it definite without changing φ
     // beyond a constant (removed by the shift to the sources).
-    let trace = 0, msum = 0;
+    let trace = 0,
+      msum = 0;
     for (let i = 0; i < M.length; i++) msum += M[i];
     for (let i = 0; i < L.n; i++) for (let p = L.rowPtr[i]; p < L.rowPtr[i + 1]; p++) if (L.colIdx[p] === i) trace += L.values[p];
     const eps = (1e-10 * trace) / msum;
     this.poisson = new SparseCholesky(csrAddDiagonal(L, M, eps), this.heat.perm);
 
-    const p = mesh.positions, t = mesh.indices;
+    const p = mesh.positions,
+      t = mesh.indices;
     const nf = t.length / 3;
     this.cots = new Float64Array(3 * nf);
     this.faceData = new Float64Array(4 * nf);
@@ -124,9 +145,15 @@ export class HeatGeodesics {
       this.cots[3 * f] = cotAt(p, a, b, c);
       this.cots[3 * f + 1] = cotAt(p, b, c, a);
       this.cots[3 * f + 2] = cotAt(p, c, a, b);
-      const ux = p[3 * b] - p[3 * a], uy = p[3 * b + 1] - p[3 * a + 1], uz = p[3 * b + 2] - p[3 * a + 2];
-      const vx = p[3 * c] - p[3 * a], vy = p[3 * c + 1] - p[3 * a + 1], vz = p[3 * c + 2] - p[3 * a + 2];
-      const nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+      const ux = p[3 * b] - p[3 * a],
+        uy = p[3 * b + 1] - p[3 * a + 1],
+        uz = p[3 * b + 2] - p[3 * a + 2];
+      const vx = p[3 * c] - p[3 * a],
+        vy = p[3 * c + 1] - p[3 * a + 1],
+        vz = p[3 * c + 2] - p[3 * a + 2];
+      const nx = uy * vz - uz * vy,
+        ny = uz * vx - ux * vz,
+        nz = ux * vy - uy * vx;
       const twiceArea = Math.hypot(nx, ny, nz) || 1e-300;
       this.faceData.set([1 / twiceArea, nx / twiceArea, ny / twiceArea, nz / twiceArea], 4 * f);
     }
@@ -148,7 +175,8 @@ export class HeatGeodesics {
       delta[s] = 1;
     }
     const u = this.heat.solve(delta);
-    const p = this.mesh.positions, t = this.mesh.indices;
+    const p = this.mesh.positions,
+      t = this.mesh.indices;
     const nf = t.length / 3;
     const div = new Float64Array(nv);
     const ids = [0, 0, 0];
@@ -157,12 +185,20 @@ export class HeatGeodesics {
       ids[1] = t[3 * f + 1];
       ids[2] = t[3 * f + 2];
       const inv2A = this.faceData[4 * f];
-      const nx = this.faceData[4 * f + 1], ny = this.faceData[4 * f + 2], nz = this.faceData[4 * f + 3];
+      const nx = this.faceData[4 * f + 1],
+        ny = this.faceData[4 * f + 2],
+        nz = this.faceData[4 * f + 3];
       // ∇u = 1/(2A) Σ_i u_i (N × e_i), e_i = edge opposite i, counter-clockwise.
-      let gx = 0, gy = 0, gz = 0;
+      let gx = 0,
+        gy = 0,
+        gz = 0;
       for (let k = 0; k < 3; k++) {
-        const i = ids[k], j = ids[(k + 1) % 3], l = ids[(k + 2) % 3];
-        const ex = p[3 * l] - p[3 * j], ey = p[3 * l + 1] - p[3 * j + 1], ez = p[3 * l + 2] - p[3 * j + 2];
+        const i = ids[k],
+          j = ids[(k + 1) % 3],
+          l = ids[(k + 2) % 3];
+        const ex = p[3 * l] - p[3 * j],
+          ey = p[3 * l + 1] - p[3 * j + 1],
+          ez = p[3 * l + 2] - p[3 * j + 2];
         const ui = u[i];
         gx += ui * (ny * ez - nz * ey);
         gy += ui * (nz * ex - nx * ez);
@@ -173,10 +209,14 @@ export class HeatGeodesics {
       gz *= inv2A;
       const gl = Math.hypot(gx, gy, gz);
       if (gl === 0) continue;
-      const Xx = -gx / gl, Xy = -gy / gl, Xz = -gz / gl;
+      const Xx = -gx / gl,
+        Xy = -gy / gl,
+        Xz = -gz / gl;
       // Integrated divergence: at vertex i, ½ Σ cot θ_1 (e_1 · X) + cot θ_2 (e_2 · X).
       for (let k = 0; k < 3; k++) {
-        const i = ids[k], j = ids[(k + 1) % 3], l = ids[(k + 2) % 3];
+        const i = ids[k],
+          j = ids[(k + 1) % 3],
+          l = ids[(k + 2) % 3];
         const cotL = this.cots[3 * f + ((k + 2) % 3)]; // angle at l, opposite edge i-j
         const cotJ = this.cots[3 * f + ((k + 1) % 3)]; // angle at j, opposite edge i-l
         const e1 = (p[3 * j] - p[3 * i]) * Xx + (p[3 * j + 1] - p[3 * i + 1]) * Xy + (p[3 * j + 2] - p[3 * i + 2]) * Xz;

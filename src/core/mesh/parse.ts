@@ -184,7 +184,10 @@ function precheckPly(data: ArrayBuffer | string): PlyHeader {
   if (!head.startsWith('ply')) throw new MeshParseError('PLY', 'the file does not start with the "ply" magic word');
   const end = head.indexOf('end_header');
   if (end < 0) throw new MeshParseError('PLY', 'the header has no "end_header" line (truncated or not a PLY file)');
-  const lines = head.slice(0, end).split(/\r?\n/).map((l) => l.trim());
+  const lines = head
+    .slice(0, end)
+    .split(/\r?\n/)
+    .map((l) => l.trim());
   const fmt = lines.find((l) => l.startsWith('format '));
   if (!fmt) throw new MeshParseError('PLY', 'the header has no "format" line');
   const format = fmt.split(/\s+/)[1];
@@ -232,7 +235,12 @@ function precheckStl(data: ArrayBuffer | string): string {
     throw new MeshParseError('STL (ascii)', `${facets} facets need ${3 * facets} "vertex x y z" lines, found ${verts.length} (truncated file?)`);
   }
   for (const v of verts) {
-    if (v.split(/\s+/).slice(1).some((s) => !Number.isFinite(Number(s)))) {
+    if (
+      v
+        .split(/\s+/)
+        .slice(1)
+        .some((s) => !Number.isFinite(Number(s)))
+    ) {
       throw new MeshParseError('STL (ascii)', `non-numeric vertex "${v.slice(0, 60)}"`);
     }
   }
@@ -258,8 +266,12 @@ export function weldVertices(mesh: TriangleMesh, relativeTolerance = 1e-6): Tria
   for (const i of indices) used[i] = 1;
   for (let i = 0; i < nv; i++) {
     if (!used[i]) continue;
-    const x = p[3 * i], y = p[3 * i + 1], z = p[3 * i + 2];
-    const cx = Math.floor(x / tol), cy = Math.floor(y / tol), cz = Math.floor(z / tol);
+    const x = p[3 * i],
+      y = p[3 * i + 1],
+      z = p[3 * i + 2];
+    const cx = Math.floor(x / tol),
+      cy = Math.floor(y / tol),
+      cz = Math.floor(z / tol);
     let found = -1;
     search: for (let dx = -1; dx <= 1; dx++) {
       for (let dy = -1; dy <= 1; dy++) {
@@ -268,7 +280,9 @@ export function weldVertices(mesh: TriangleMesh, relativeTolerance = 1e-6): Tria
           if (!list) continue;
           for (const k of list) {
             const j = kept[k];
-            const ex = p[3 * j] - x, ey = p[3 * j + 1] - y, ez = p[3 * j + 2] - z;
+            const ex = p[3 * j] - x,
+              ey = p[3 * j + 1] - y,
+              ez = p[3 * j + 2] - z;
             if (ex * ex + ey * ey + ez * ez <= tol2) {
               found = k;
               break search;

@@ -69,8 +69,13 @@ export function csrMultiply(A: CsrMatrix, x: ArrayLike<number>, y = new Float64A
 
 /** a A + b B for matrices with any patterns (result pattern = union). */
 export function csrAdd(A: CsrMatrix, a: number, B: CsrMatrix, b: number): CsrMatrix {
-  const rows: number[] = [], cols: number[] = [], vals: number[] = [];
-  for (const [M, s] of [[A, a], [B, b]] as const) {
+  const rows: number[] = [],
+    cols: number[] = [],
+    vals: number[] = [];
+  for (const [M, s] of [
+    [A, a],
+    [B, b],
+  ] as const) {
     for (let i = 0; i < M.n; i++) {
       for (let p = M.rowPtr[i]; p < M.rowPtr[i + 1]; p++) {
         rows.push(i);
@@ -115,7 +120,8 @@ export function nestedDissection(A: CsrMatrix, leafSize = 48): Int32Array {
 
   /** BFS inside the current stamp from `start`; fills `level`, returns visited vertices in order. */
   const bfs = (start: number, partStamp: number, seen: Int32Array, seenStamp: number): Int32Array => {
-    let head = 0, tail = 0;
+    let head = 0,
+      tail = 0;
     queue[tail++] = start;
     seen[start] = seenStamp;
     level[start] = 0;
@@ -177,7 +183,9 @@ export function nestedDissection(A: CsrMatrix, leafSize = 48): Int32Array {
         break;
       }
     }
-    const sep: number[] = [], left: number[] = [], right: number[] = [];
+    const sep: number[] = [],
+      left: number[] = [],
+      right: number[] = [];
     for (const v of comp) {
       if (level[v] === mid) sep.push(v);
       else if (level[v] < mid) left.push(v);
@@ -217,7 +225,8 @@ export class SparseCholesky {
     const Cp = new Int32Array(n + 1);
     for (let i = 0; i < n; i++) {
       for (let p = A.rowPtr[i]; p < A.rowPtr[i + 1]; p++) {
-        const a = inv[i], b = inv[A.colIdx[p]];
+        const a = inv[i],
+          b = inv[A.colIdx[p]];
         if (a <= b) Cp[b + 1]++;
       }
     }
@@ -227,7 +236,8 @@ export class SparseCholesky {
     const fill = Cp.slice(0, n);
     for (let i = 0; i < n; i++) {
       for (let p = A.rowPtr[i]; p < A.rowPtr[i + 1]; p++) {
-        const a = inv[i], b = inv[A.colIdx[p]];
+        const a = inv[i],
+          b = inv[A.colIdx[p]];
         if (a <= b) {
           const q = fill[b]++;
           Ci[q] = a;

@@ -64,17 +64,29 @@ export interface SphericalOptions {
 }
 
 function det3(s: Float64Array, a: number, b: number, c: number): number {
-  const ax = s[3 * a], ay = s[3 * a + 1], az = s[3 * a + 2];
-  const bx = s[3 * b], by = s[3 * b + 1], bz = s[3 * b + 2];
-  const cx = s[3 * c], cy = s[3 * c + 1], cz = s[3 * c + 2];
+  const ax = s[3 * a],
+    ay = s[3 * a + 1],
+    az = s[3 * a + 2];
+  const bx = s[3 * b],
+    by = s[3 * b + 1],
+    bz = s[3 * b + 2];
+  const cx = s[3 * c],
+    cy = s[3 * c + 1],
+    cz = s[3 * c + 2];
   return ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx);
 }
 
 /** Solid angle of the spherical triangle (a, b, c), signed (Van Oosterom & Strackee 1983). */
 export function sphericalTriangleArea(s: ArrayLike<number>, a: number, b: number, c: number): number {
-  const ax = s[3 * a], ay = s[3 * a + 1], az = s[3 * a + 2];
-  const bx = s[3 * b], by = s[3 * b + 1], bz = s[3 * b + 2];
-  const cx = s[3 * c], cy = s[3 * c + 1], cz = s[3 * c + 2];
+  const ax = s[3 * a],
+    ay = s[3 * a + 1],
+    az = s[3 * a + 2];
+  const bx = s[3 * b],
+    by = s[3 * b + 1],
+    bz = s[3 * b + 2];
+  const cx = s[3 * c],
+    cy = s[3 * c + 1],
+    cz = s[3 * c + 2];
   const det = ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx);
   const den = 1 + ax * bx + ay * by + az * bz + bx * cx + by * cy + bz * cz + cx * ax + cy * ay + cz * az;
   return 2 * Math.atan2(det, den);
@@ -89,9 +101,14 @@ export function countFlipped(indices: Uint32Array, sphere: Float64Array): number
 
 /** Area-weighted centre of mass of the mapped triangles (chordal centroids, mesh-area masses). */
 export function sphereCenterOfMass(indices: Uint32Array, sphere: Float64Array, weights: Float64Array): Vec3 {
-  let x = 0, y = 0, z = 0, w = 0;
+  let x = 0,
+    y = 0,
+    z = 0,
+    w = 0;
   for (let f = 0; f < indices.length / 3; f++) {
-    const a = 3 * indices[3 * f], b = 3 * indices[3 * f + 1], c = 3 * indices[3 * f + 2];
+    const a = 3 * indices[3 * f],
+      b = 3 * indices[3 * f + 1],
+      c = 3 * indices[3 * f + 2];
     const m = weights[f] / 3;
     x += m * (sphere[a] + sphere[b] + sphere[c]);
     y += m * (sphere[a + 1] + sphere[b + 1] + sphere[c + 1]);
@@ -105,9 +122,13 @@ export function sphereCenterOfMass(indices: Uint32Array, sphere: Float64Array, w
 export function applyMobius(sphere: Float64Array, c: Vec3): void {
   const k = 1 - (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
   for (let i = 0; i < sphere.length; i += 3) {
-    const wx = sphere[i] + c[0], wy = sphere[i + 1] + c[1], wz = sphere[i + 2] + c[2];
+    const wx = sphere[i] + c[0],
+      wy = sphere[i + 1] + c[1],
+      wz = sphere[i + 2] + c[2];
     const w2 = wx * wx + wy * wy + wz * wz;
-    let x = c[0] + (k * wx) / w2, y = c[1] + (k * wy) / w2, z = c[2] + (k * wz) / w2;
+    let x = c[0] + (k * wx) / w2,
+      y = c[1] + (k * wy) / w2,
+      z = c[2] + (k * wz) / w2;
     const l = Math.hypot(x, y, z);
     x /= l;
     y /= l;
@@ -120,7 +141,9 @@ export function applyMobius(sphere: Float64Array, c: Vec3): void {
 
 function solve3(J: number[], r: Vec3): Vec3 {
   const [a, b, c, d, e, f, g, h, i] = J;
-  const A = e * i - f * h, B = -(d * i - f * g), C = d * h - e * g;
+  const A = e * i - f * h,
+    B = -(d * i - f * g),
+    C = d * h - e * g;
   const det = a * A + b * B + c * C;
   const inv = [A, -(b * i - c * h), b * f - c * e, B, a * i - c * g, -(a * f - c * d), C, -(a * h - b * g), a * e - b * d];
   return [
@@ -135,7 +158,13 @@ function solve3(J: number[], r: Vec3): Vec3 {
  * 2(I - v vᵀ)c, so the Jacobian is J = 2 Σ m_i (I - v_i v_iᵀ) / Σ m_i and the step c = -J⁻¹ μ.
  * Steps are limited to |c| ≤ 0.5 so a badly off-centre start converges.
  */
-export function mobiusCenter(indices: Uint32Array, sphere: Float64Array, weights: Float64Array, tolerance = 1e-8, maxIterations = 200): { iterations: number; mu: Vec3 } {
+export function mobiusCenter(
+  indices: Uint32Array,
+  sphere: Float64Array,
+  weights: Float64Array,
+  tolerance = 1e-8,
+  maxIterations = 200,
+): { iterations: number; mu: Vec3 } {
   let mu = sphereCenterOfMass(indices, sphere, weights);
   let it = 0;
   while (Math.hypot(...mu) > tolerance && it < maxIterations) {
@@ -146,10 +175,18 @@ export function mobiusCenter(indices: Uint32Array, sphere: Float64Array, weights
       wsum += weights[f];
       for (let k = 0; k < 3; k++) {
         const v = 3 * indices[3 * f + k];
-        const x = sphere[v], y = sphere[v + 1], z = sphere[v + 2];
-        J[0] += m * (1 - x * x); J[1] -= m * x * y; J[2] -= m * x * z;
-        J[3] -= m * y * x; J[4] += m * (1 - y * y); J[5] -= m * y * z;
-        J[6] -= m * z * x; J[7] -= m * z * y; J[8] += m * (1 - z * z);
+        const x = sphere[v],
+          y = sphere[v + 1],
+          z = sphere[v + 2];
+        J[0] += m * (1 - x * x);
+        J[1] -= m * x * y;
+        J[2] -= m * x * z;
+        J[3] -= m * y * x;
+        J[4] += m * (1 - y * y);
+        J[5] -= m * y * z;
+        J[6] -= m * z * x;
+        J[7] -= m * z * y;
+        J[8] += m * (1 - z * z);
       }
     }
     for (let k = 0; k < 9; k++) J[k] = (2 * J[k]) / wsum;
@@ -168,7 +205,9 @@ export function mobiusCenter(indices: Uint32Array, sphere: Float64Array, weights
 export function areaDistortion(indices: Uint32Array, sphere: Float64Array, areas: Float64Array): AreaDistortion {
   let total = 0;
   for (const a of areas) total += a;
-  let min = Infinity, max = 0, acc = 0;
+  let min = Infinity,
+    max = 0,
+    acc = 0;
   for (let f = 0; f < indices.length / 3; f++) {
     const omega = sphericalTriangleArea(sphere, indices[3 * f], indices[3 * f + 1], indices[3 * f + 2]);
     const r = omega / (4 * Math.PI) / (areas[f] / total);
@@ -192,7 +231,9 @@ export function relaxSphere(mesh: TriangleMesh, sphere: Float64Array, sweeps: nu
   let moved = 0;
   for (let s = 0; s < sweeps; s++) {
     for (let v = 0; v < nv; v++) {
-      let x = 0, y = 0, z = 0;
+      let x = 0,
+        y = 0,
+        z = 0;
       for (let p = W.rowPtr[v]; p < W.rowPtr[v + 1]; p++) {
         const j = W.colIdx[p];
         if (j === v) continue;
@@ -255,8 +296,11 @@ export function sphericalParameterization(input: TriangleMesh, options: Spherica
   const free: number[] = [];
   const index = new Int32Array(nv).fill(-1);
   for (let v = 0; v < nv; v++) if (!isPinned[v]) index[v] = free.push(v) - 1;
-  const rows: number[] = [], cols: number[] = [], vals: number[] = [];
-  const bx = new Float64Array(free.length), by = new Float64Array(free.length);
+  const rows: number[] = [],
+    cols: number[] = [],
+    vals: number[] = [];
+  const bx = new Float64Array(free.length),
+    by = new Float64Array(free.length);
   for (let r = 0; r < free.length; r++) {
     const v = free[r];
     for (let p = W.rowPtr[v]; p < W.rowPtr[v + 1]; p++) {
@@ -274,7 +318,8 @@ export function sphericalParameterization(input: TriangleMesh, options: Spherica
     }
   }
   const chol = new SparseCholesky(csrFromTriplets(free.length, rows, cols, vals));
-  const xs = chol.solve(bx), ys = chol.solve(by);
+  const xs = chol.solve(bx),
+    ys = chol.solve(by);
   for (let r = 0; r < free.length; r++) {
     planar[2 * free[r]] = xs[r];
     planar[2 * free[r] + 1] = ys[r];
@@ -285,7 +330,8 @@ export function sphericalParameterization(input: TriangleMesh, options: Spherica
   const scale = 1 / Math.max(radii[Math.floor(nv / 2)], 1e-300);
   const sphere = new Float64Array(3 * nv);
   for (let v = 0; v < nv; v++) {
-    const x = planar[2 * v] * scale, y = planar[2 * v + 1] * scale;
+    const x = planar[2 * v] * scale,
+      y = planar[2 * v + 1] * scale;
     const r2 = x * x + y * y;
     sphere[3 * v] = (2 * x) / (1 + r2);
     sphere[3 * v + 1] = (2 * y) / (1 + r2);

@@ -53,10 +53,18 @@ export function faceAreas(mesh: TriangleMesh): Float64Array {
   const nf = t.length / 3;
   const out = new Float64Array(nf);
   for (let f = 0; f < nf; f++) {
-    const a = 3 * t[3 * f], b = 3 * t[3 * f + 1], c = 3 * t[3 * f + 2];
-    const ux = p[b] - p[a], uy = p[b + 1] - p[a + 1], uz = p[b + 2] - p[a + 2];
-    const vx = p[c] - p[a], vy = p[c + 1] - p[a + 1], vz = p[c + 2] - p[a + 2];
-    const cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
+    const a = 3 * t[3 * f],
+      b = 3 * t[3 * f + 1],
+      c = 3 * t[3 * f + 2];
+    const ux = p[b] - p[a],
+      uy = p[b + 1] - p[a + 1],
+      uz = p[b + 2] - p[a + 2];
+    const vx = p[c] - p[a],
+      vy = p[c + 1] - p[a + 1],
+      vz = p[c + 2] - p[a + 2];
+    const cx = uy * vz - uz * vy,
+      cy = uz * vx - ux * vz,
+      cz = ux * vy - uy * vx;
     out[f] = 0.5 * Math.sqrt(cx * cx + cy * cy + cz * cz);
   }
   return out;
@@ -76,11 +84,10 @@ export function signedVolume(mesh: { readonly positions: ArrayLike<number>; read
   const { positions: p, indices: t } = mesh;
   let v = 0;
   for (let f = 0; f < t.length; f += 3) {
-    const a = 3 * t[f], b = 3 * t[f + 1], c = 3 * t[f + 2];
-    v +=
-      p[a] * (p[b + 1] * p[c + 2] - p[b + 2] * p[c + 1]) -
-      p[a + 1] * (p[b] * p[c + 2] - p[b + 2] * p[c]) +
-      p[a + 2] * (p[b] * p[c + 1] - p[b + 1] * p[c]);
+    const a = 3 * t[f],
+      b = 3 * t[f + 1],
+      c = 3 * t[f + 2];
+    v += p[a] * (p[b + 1] * p[c + 2] - p[b + 2] * p[c + 1]) - p[a + 1] * (p[b] * p[c + 2] - p[b + 2] * p[c]) + p[a + 2] * (p[b] * p[c + 1] - p[b + 1] * p[c]);
   }
   return v / 6;
 }
@@ -99,10 +106,18 @@ export function areaWeightedVertexNormals(positions: ArrayLike<number>, indices:
   const p = positions;
   const n = new Float64Array(p.length);
   for (let f = 0; f < indices.length; f += 3) {
-    const a = 3 * indices[f], b = 3 * indices[f + 1], c = 3 * indices[f + 2];
-    const ux = p[b] - p[a], uy = p[b + 1] - p[a + 1], uz = p[b + 2] - p[a + 2];
-    const vx = p[c] - p[a], vy = p[c + 1] - p[a + 1], vz = p[c + 2] - p[a + 2];
-    const cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
+    const a = 3 * indices[f],
+      b = 3 * indices[f + 1],
+      c = 3 * indices[f + 2];
+    const ux = p[b] - p[a],
+      uy = p[b + 1] - p[a + 1],
+      uz = p[b + 2] - p[a + 2];
+    const vx = p[c] - p[a],
+      vy = p[c + 1] - p[a + 1],
+      vz = p[c + 2] - p[a + 2];
+    const cx = uy * vz - uz * vy,
+      cy = uz * vx - ux * vz,
+      cz = ux * vy - uy * vx;
     for (const i of [a, b, c]) {
       n[i] += cx;
       n[i + 1] += cy;
@@ -124,7 +139,8 @@ export function meanEdgeLength(mesh: TriangleMesh): number {
   let s = 0;
   for (let f = 0; f < t.length; f += 3) {
     for (let k = 0; k < 3; k++) {
-      const a = 3 * t[f + k], b = 3 * t[f + ((k + 1) % 3)];
+      const a = 3 * t[f + k],
+        b = 3 * t[f + ((k + 1) % 3)];
       s += Math.hypot(p[b] - p[a], p[b + 1] - p[a + 1], p[b + 2] - p[a + 2]);
     }
   }
@@ -135,7 +151,8 @@ export function meanEdgeLength(mesh: TriangleMesh): number {
 export function mergeMeshes(...meshes: TriangleMesh[]): TriangleMesh {
   const positions = new Float32Array(meshes.reduce((s, m) => s + m.positions.length, 0));
   const indices = new Uint32Array(meshes.reduce((s, m) => s + m.indices.length, 0));
-  let pv = 0, pi = 0;
+  let pv = 0,
+    pi = 0;
   for (const m of meshes) {
     positions.set(m.positions, pv);
     for (let i = 0; i < m.indices.length; i++) indices[pi + i] = m.indices[i] + pv / 3;

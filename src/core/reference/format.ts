@@ -136,7 +136,10 @@ export function checkPoint(where: (field: string) => string, raw: { x: unknown; 
 }
 
 /** A curve's own fields (not its points), checked. */
-export function checkCurveHead(where: (field: string) => string, raw: { id: unknown; label: unknown; kind: unknown; quantity: unknown }): Omit<ReferenceCurve, 'points' | 'fixed'> {
+export function checkCurveHead(
+  where: (field: string) => string,
+  raw: { id: unknown; label: unknown; kind: unknown; quantity: unknown },
+): Omit<ReferenceCurve, 'points' | 'fixed'> {
   const id = text(where('id'), raw.id, REFERENCE_LIMITS.maxLabel);
   if (!ID.test(id)) fail(where('id'), `${describe(id)} may hold letters, digits, space and _ . : = + - only`);
   const label = text(where('label'), raw.label, REFERENCE_LIMITS.maxLabel);

@@ -52,12 +52,24 @@ export function overlayFor(curves: readonly ReferenceCurve[], field: string, bas
   };
   const matching = onAxis.filter((c) => Object.keys(c.fixed).length > 0 && fixedMismatch(c) === null);
   if (matching.length === 0) return { drawn: onAxis, skipped };
-  for (const curve of onAxis) if (!matching.includes(curve)) skipped.push({ curve, reason: fixedMismatch(curve) ?? 'does not say which value of the other quantities it holds' });
+  for (const curve of onAxis)
+    if (!matching.includes(curve)) skipped.push({ curve, reason: fixedMismatch(curve) ?? 'does not say which value of the other quantities it holds' });
   return { drawn: matching, skipped };
 }
 
 /** Config fields whose values decide whether two sets of % scutoids are comparable. */
-export const COMPARED_FIELDS = ['surface.kind', 'surface.radius', 'surface.length', 'cells', 'minSpacing', 'sheet.protocol', 'sheet.adjacency', 'sheet.seeded', 'sheet.direction', 'density.kind'] as const;
+export const COMPARED_FIELDS = [
+  'surface.kind',
+  'surface.radius',
+  'surface.length',
+  'cells',
+  'minSpacing',
+  'sheet.protocol',
+  'sheet.adjacency',
+  'sheet.seeded',
+  'sheet.direction',
+  'density.kind',
+] as const;
 
 /** Where the sweep's configuration differs from the one a reference set records (`provenance.spec.base`). */
 export function configDifferences(doc: ReferenceDocument, base: unknown): { field: string; reference: unknown; sweep: unknown }[] {
@@ -68,7 +80,8 @@ export function configDifferences(doc: ReferenceDocument, base: unknown): { fiel
     const reference = getPath(recorded, field);
     const sweep = getPath(base, field);
     if (reference === undefined) continue;
-    const same = typeof reference === 'number' && typeof sweep === 'number' ? Math.abs(reference - sweep) <= 1e-6 * Math.max(1, Math.abs(reference)) : reference === sweep;
+    const same =
+      typeof reference === 'number' && typeof sweep === 'number' ? Math.abs(reference - sweep) <= 1e-6 * Math.max(1, Math.abs(reference)) : reference === sweep;
     if (!same) out.push({ field, reference, sweep });
   }
   return out;

@@ -42,7 +42,8 @@ export function parseReferenceCsv(text: string): ReferenceDocument {
   const header = head.cells.map((h) => h.trim());
   const seen = new Set<string>();
   for (const name of header) {
-    if (!(REFERENCE_CSV_COLUMNS as readonly string[]).includes(name)) throw new ReferenceError(`line ${head.line}: unknown column "${name}" (columns: ${REFERENCE_CSV_COLUMNS.join(', ')})`);
+    if (!(REFERENCE_CSV_COLUMNS as readonly string[]).includes(name))
+      throw new ReferenceError(`line ${head.line}: unknown column "${name}" (columns: ${REFERENCE_CSV_COLUMNS.join(', ')})`);
     if (seen.has(name)) throw new ReferenceError(`line ${head.line}: column "${name}" appears twice`);
     seen.add(name);
   }
@@ -64,7 +65,8 @@ export function parseReferenceCsv(text: string): ReferenceDocument {
       curves.set(head.id, (entry = { curve: head, line, points: [] }));
     } else {
       for (const field of ['label', 'kind', 'quantity'] as const) {
-        if (entry.curve[field] !== head[field]) throw new ReferenceError(`line ${line}, column ${field}: curve "${head.id}" has ${field} "${entry.curve[field]}" on line ${entry.line}`);
+        if (entry.curve[field] !== head[field])
+          throw new ReferenceError(`line ${line}, column ${field}: curve "${head.id}" has ${field} "${entry.curve[field]}" on line ${entry.line}`);
       }
     }
     const number = (name: string, optional: boolean): unknown => {
@@ -76,7 +78,9 @@ export function parseReferenceCsv(text: string): ReferenceDocument {
       if (!NUMBER.test(value)) throw new ReferenceError(`${where(name)}: "${value.length > 40 ? `${value.slice(0, 40)}…` : value}" is not a number`);
       return Number(value);
     };
-    entry.points.push(checkPoint(where, { x: number('x', false), percent: number('percent', false), sd: number('sd', true), n: number('n', true), source: cell('source') }));
+    entry.points.push(
+      checkPoint(where, { x: number('x', false), percent: number('percent', false), sd: number('sd', true), n: number('n', true), source: cell('source') }),
+    );
   }
   const list: ReferenceCurve[] = [...curves.values()].map(({ curve, points }) => ({ ...curve, fixed: {}, points: orderPoints(`curve "${curve.id}"`, points) }));
   checkDocument(list);

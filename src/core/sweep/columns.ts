@@ -14,13 +14,7 @@
  * `<method>.<surface>.polygons.<3..10+>`. A CLI test checks a real run's summary against this.
  */
 import { SIDE_CLASSES } from '../analysis';
-import {
-  ADJACENCY_METHODS,
-  methodsOnRenderer,
-  type AdjacencyMethod,
-  type AnyConfig,
-  type RendererTraits,
-} from '../config';
+import { ADJACENCY_METHODS, methodsOnRenderer, type AdjacencyMethod, type AnyConfig, type RendererTraits } from '../config';
 import { sheetOffsets } from '../sheetGeometry';
 
 export const TOP_COLUMNS = ['iterations', 'finalEnergy', 'centroidPath'] as const;

@@ -159,11 +159,12 @@ export function readCsvTable(text: string): CsvTable {
 /** Nested object/array -> flat column map (keys joined with "."). Typed arrays count as arrays. */
 export function flattenSummary(value: unknown, prefix = '', out: Record<string, unknown> = {}): Record<string, unknown> {
   if (value !== null && typeof value === 'object') {
-    const entries: [string, unknown][] = ArrayBuffer.isView(value) && !(value instanceof DataView)
-      ? Array.from(value as ArrayBufferView & ArrayLike<unknown>, (v, k) => [String(k), v])
-      : Array.isArray(value)
-        ? value.map((v, k) => [String(k), v])
-        : Object.entries(value as Record<string, unknown>);
+    const entries: [string, unknown][] =
+      ArrayBuffer.isView(value) && !(value instanceof DataView)
+        ? Array.from(value as ArrayBufferView & ArrayLike<unknown>, (v, k) => [String(k), v])
+        : Array.isArray(value)
+          ? value.map((v, k) => [String(k), v])
+          : Object.entries(value as Record<string, unknown>);
     if (entries.length === 0 && prefix) out[prefix] = '';
     for (const [k, v] of entries) flattenSummary(v, prefix ? `${prefix}.${k}` : k, out);
     return out;

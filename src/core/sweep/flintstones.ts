@@ -54,7 +54,11 @@ const finiteOrNull = (x: number): number | null => (Number.isFinite(x) ? x : nul
  * `rows` are runs.csv rows (key, fields, metrics as text), `runs` the expanded spec (for each
  * row's configuration). Groups are in order of first appearance in `rows`.
  */
-export function sweepFlintstones<C extends Config>(rows: readonly Record<string, string>[], runs: readonly SweepRun<C>[], fields: readonly string[]): SweepFlintstonesFit[] {
+export function sweepFlintstones<C extends Config>(
+  rows: readonly Record<string, string>[],
+  runs: readonly SweepRun<C>[],
+  fields: readonly string[],
+): SweepFlintstonesFit[] {
   const byKey = new Map(runs.map((r) => [r.key, r]));
   // Validated (defaults filled in: lloyd.maxIterations need not be in the spec), once per grid point.
   const configs = new Map<string, unknown>();
@@ -87,7 +91,21 @@ function fitGroup(group: Record<string, string>, voronoi: number, members: { s: 
   const metric = FLINTSTONES_METRICS.find((m) => members.some(({ row }) => Number.isFinite(valueOf(row, m)))) ?? FLINTSTONES_METRICS[0];
   const points = members.map(({ s, row }) => ({ s, n: valueOf(row, metric) })).filter((p) => Number.isFinite(p.n));
   const ratios = new Set(points.map((p) => p.s)).size;
-  const empty = { group, voronoi, metric, points: points.length, ratios, anchor: FLINTSTONES_ANCHOR, parameters: null, standardErrors: null, rSquared: null, chiSquared: null, degreesOfFreedom: null, converged: false, illConditioned: true };
+  const empty = {
+    group,
+    voronoi,
+    metric,
+    points: points.length,
+    ratios,
+    anchor: FLINTSTONES_ANCHOR,
+    parameters: null,
+    standardErrors: null,
+    rSquared: null,
+    chiSquared: null,
+    degreesOfFreedom: null,
+    converged: false,
+    illConditioned: true,
+  };
   if (ratios <= FREE_PARAMETERS) {
     return { ...empty, note: `${ratios} distinct surface ratios with values; the law needs at least ${FREE_PARAMETERS + 1}` };
   }
@@ -103,7 +121,8 @@ function fitGroup(group: Record<string, string>, voronoi: number, members: { s: 
   if (!fit.converged) reasons.push('did not converge');
   for (const name of ['nMax', 'c', 'd'] as const) {
     if (!Number.isFinite(se[name])) reasons.push(`${name} standard error not finite`);
-    else if (se[name] > Math.abs(p[name])) reasons.push(`${name} standard error ${se[name].toPrecision(3)} exceeds |${name}| ${Math.abs(p[name]).toPrecision(3)}`);
+    else if (se[name] > Math.abs(p[name]))
+      reasons.push(`${name} standard error ${se[name].toPrecision(3)} exceeds |${name}| ${Math.abs(p[name]).toPrecision(3)}`);
   }
   return {
     ...empty,

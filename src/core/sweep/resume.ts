@@ -62,9 +62,7 @@ export function planResume<C extends Config>(text: string, spec: ResumeSpec<C>, 
       : k === -1
         ? `it has ${header.length} columns, this spec writes ${spec.header.length}`
         : `column ${k + 1} is ${JSON.stringify(header[k] ?? '')}, this spec writes ${JSON.stringify(spec.header[k])}`;
-    throw new ResumeError(
-      `${fileName}: written for another spec or version (${detail}); give a new --out directory, or move ${fileName} away to start over`,
-    );
+    throw new ResumeError(`${fileName}: written for another spec or version (${detail}); give a new --out directory, or move ${fileName} away to start over`);
   }
   const byKey = new Map(spec.runs.map((r) => [r.key, r]));
   const firstLine = new Map<string, number>();
@@ -111,7 +109,8 @@ function checkRecord<C extends Config>(
   if (!run) return `key ${JSON.stringify(key.length > 80 ? `${key.slice(0, 77)}...` : key)} is not a run of this spec`;
   const seen = firstLine.get(key);
   if (seen !== undefined) return `duplicate of line ${seen} (key ${key})`;
-  if (cell('realization') !== String(run.realization)) return `realization ${JSON.stringify(cell('realization'))} but run ${key} is realization ${run.realization}`;
+  if (cell('realization') !== String(run.realization))
+    return `realization ${JSON.stringify(cell('realization'))} but run ${key} is realization ${run.realization}`;
   if (cell('seed') !== String(run.seed)) return `seed ${JSON.stringify(cell('seed'))} but run ${key} has seed ${run.seed}`;
   for (const f of spec.fields) {
     if (cell(f) !== valueText(run.point[f])) return `${f} is ${JSON.stringify(cell(f))} but run ${key} has ${valueText(run.point[f])}`;

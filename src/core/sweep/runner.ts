@@ -118,9 +118,18 @@ export function remainingRuns<C extends Config>(runs: readonly SweepRun<C>[], ro
  * column missing from the header is an error: the header is fixed before the first run and
  * must cover every column (see columns.ts), and a dropped column would be a silent lie.
  */
-export function runCells<C extends Config>(run: SweepRun<C>, fields: readonly string[], summary: unknown, header: readonly string[]): { cells: unknown[]; row: Record<string, string> } {
+export function runCells<C extends Config>(
+  run: SweepRun<C>,
+  fields: readonly string[],
+  summary: unknown,
+  header: readonly string[],
+): { cells: unknown[]; row: Record<string, string> } {
   const flat = flattenSummary(summary);
-  const base = new Map<string, unknown>([['key', run.key], ['realization', run.realization], ['seed', run.seed]]);
+  const base = new Map<string, unknown>([
+    ['key', run.key],
+    ['realization', run.realization],
+    ['seed', run.seed],
+  ]);
   for (const f of fields) base.set(f, valueText(run.point[f]));
   const known = new Set(header);
   const extra = Object.keys(flat).find((c) => !known.has(c) && !base.has(c));
@@ -303,5 +312,3 @@ export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, 
   if (thrown) throw firstError;
   return { header: header ?? baseColumns(fields), rows, completed, skipped, failed, aborted };
 }
-
-

@@ -35,7 +35,8 @@ export function parseShard(text: string, env: Record<string, string | undefined>
   const index = Number(match[1]);
   const count = Number(match[2]);
   if (!(count >= 1 && count <= MAX_SHARDS)) throw new SweepSpecError('--shard', `--shard: the number of shards N must be 1 to ${MAX_SHARDS} (got ${match[2]})`);
-  if (!(index >= 1 && index <= count)) throw new SweepSpecError('--shard', `--shard: I must be 1 to ${count} in I/N (got ${match[1]}; shards are numbered from 1)`);
+  if (!(index >= 1 && index <= count))
+    throw new SweepSpecError('--shard', `--shard: I must be 1 to ${count} in I/N (got ${match[1]}; shards are numbered from 1)`);
   return { index, count };
 }
 

@@ -151,7 +151,10 @@ export function checkVariedPath(path: string): void {
 
 function shapeError(error: { instancePath: string; keyword: string; params: Record<string, unknown>; message?: string } | undefined): SweepSpecError {
   if (!error) return new SweepSpecError('', 'sweep spec: invalid');
-  const parts = error.instancePath.split('/').slice(1).map((p) => p.replace(/~1/g, '/').replace(/~0/g, '~'));
+  const parts = error.instancePath
+    .split('/')
+    .slice(1)
+    .map((p) => p.replace(/~1/g, '/').replace(/~0/g, '~'));
   const field = parts.length === 0 ? '' : parts[0] === 'vary' && parts.length > 1 ? `vary["${parts[1]}"]` : parts.join('.');
   const where = field === '' ? 'sweep spec' : field;
   switch (error.keyword) {

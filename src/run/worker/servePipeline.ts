@@ -68,10 +68,7 @@ export function servePipeline(presenter?: Presenter): void {
         return;
       }
       const presentation = presenter && message.present !== undefined ? presenter(output, message.present) : null;
-      post(
-        { type: 'result', id: message.id, output, ...(presentation ? { presented: presentation.presented } : {}) },
-        presentation?.transfer ?? [],
-      );
+      post({ type: 'result', id: message.id, output, ...(presentation ? { presented: presentation.presented } : {}) }, presentation?.transfer ?? []);
     } catch (error) {
       post({ type: 'error', id: message.id, error: serialize(error) });
     } finally {

@@ -29,4 +29,3 @@ export function contactCurves(edges: ContactEdges, surface: number, W: number, H
   }
   return curves;
 }
-

@@ -100,7 +100,9 @@ export function scanContactEdges(ids: VolumeArray, classes: Uint8Array, width: n
         const c = classes[i];
         // Edge along z through corner (x+1, y+1): voxels i, i+1, i+1+W, i+W.
         if (x < W - 1 && y < H - 1) {
-          const c1 = classes[i + 1], c2 = classes[i + 1 + W], c3 = classes[i + W];
+          const c1 = classes[i + 1],
+            c2 = classes[i + 1 + W],
+            c3 = classes[i + W];
           if (!(c === c1 && c === c2 && c === c3)) {
             const u = (z * (H + 1) + y + 1) * VX + x + 1;
             edge(i, i + 1, i + 1 + W, i + W, u, u + VXY);
@@ -108,7 +110,9 @@ export function scanContactEdges(ids: VolumeArray, classes: Uint8Array, width: n
         }
         // Edge along x through corner (y+1, z+1): voxels i, i+W, i+W+plane, i+plane.
         if (y < H - 1 && z < depth - 1) {
-          const c1 = classes[i + W], c2 = classes[i + W + plane], c3 = classes[i + plane];
+          const c1 = classes[i + W],
+            c2 = classes[i + W + plane],
+            c3 = classes[i + plane];
           if (!(c === c1 && c === c2 && c === c3)) {
             const u = ((z + 1) * (H + 1) + y + 1) * VX + x;
             edge(i, i + W, i + W + plane, i + plane, u, u + 1);
@@ -116,7 +120,9 @@ export function scanContactEdges(ids: VolumeArray, classes: Uint8Array, width: n
         }
         // Edge along y through corner (x+1, z+1): voxels i, i+1, i+1+plane, i+plane.
         if (x < W - 1 && z < depth - 1) {
-          const c1 = classes[i + 1], c2 = classes[i + 1 + plane], c3 = classes[i + plane];
+          const c1 = classes[i + 1],
+            c2 = classes[i + 1 + plane],
+            c3 = classes[i + plane];
           if (!(c === c1 && c === c2 && c === c3)) {
             const u = ((z + 1) * (H + 1) + y) * VX + x + 1;
             edge(i, i + 1, i + 1 + plane, i + plane, u, u + VX);

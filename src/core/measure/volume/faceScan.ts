@@ -66,7 +66,8 @@ function tally(cells: number): FaceTally {
 function ballOffsets(): { dx: Int32Array; dy: Int32Array; dz: Int32Array } {
   const r = NORMAL_RADIUS;
   const list: number[][] = [];
-  for (let dz = -r; dz <= r; dz++) for (let dy = -r; dy <= r; dy++) for (let dx = -r; dx <= r; dx++) if (dx * dx + dy * dy + dz * dz <= r * r) list.push([dx, dy, dz]);
+  for (let dz = -r; dz <= r; dz++)
+    for (let dy = -r; dy <= r; dy++) for (let dx = -r; dx <= r; dx++) if (dx * dx + dy * dy + dz * dz <= r * r) list.push([dx, dy, dz]);
   return { dx: Int32Array.from(list, (e) => e[0]), dy: Int32Array.from(list, (e) => e[1]), dz: Int32Array.from(list, (e) => e[2]) };
 }
 

@@ -55,7 +55,9 @@ export function measureVolume(file: LabelFileInput, options: MeasureVolumeOption
   const volume = decodeVolumeTiff(bytes, name, header);
   bytes = null; // the decoded volume is all we need from here
   const { width: W, height: H, depth: D } = volume;
-  options.onProgress?.(`read ${name}: ${W} x ${H} x ${D} voxels, ${volume.bitsPerSample}-bit, voxel ${voxelSize.x} x ${voxelSize.y} x ${voxelSize.z} µm (${voxelSize.source})`);
+  options.onProgress?.(
+    `read ${name}: ${W} x ${H} x ${D} voxels, ${volume.bitsPerSample}-bit, voxel ${voxelSize.x} x ${voxelSize.y} x ${voxelSize.z} µm (${voxelSize.source})`,
+  );
   const readMs = now() - start;
 
   const t1 = now();
@@ -81,7 +83,22 @@ export function measureVolume(file: LabelFileInput, options: MeasureVolumeOption
   options.onProgress?.(`contacts: ${cells} cells, ${edges.count} contact edges, ${curves[0].size} basal and ${curves[1].size} apical contact curves`);
 
   const t3 = now();
-  const result = assemble(name, fileBytes, header.chain.pages.length, volume.bitsPerSample, W, H, D, voxelSize, classes, faces, curves, layerClass, options, warnings);
+  const result = assemble(
+    name,
+    fileBytes,
+    header.chain.pages.length,
+    volume.bitsPerSample,
+    W,
+    H,
+    D,
+    voxelSize,
+    classes,
+    faces,
+    curves,
+    layerClass,
+    options,
+    warnings,
+  );
   const analysisMs = now() - t3;
   if (options.onSurfaceMeshes) {
     const lumenLayer = result.inputs.layers.find((l) => l.faces === 'lumen')!;
@@ -101,7 +118,10 @@ function checkHyperstack(description: string | null, file: string, pages: number
   if (ome && ome.channels > 1) throw new MeasureInputError(file, `an OME-TIFF with ${ome.channels} channels; save the label channel alone`);
   if (ome && ome.times > 1) throw new MeasureInputError(file, `an OME-TIFF with ${ome.times} time points; save one time point`);
   if (ome && ome.slices !== null && ome.slices !== pages) {
-    throw new MeasureInputError(file, `its OME-XML says SizeZ=${ome.slices} but it has ${pages} pages${ome.images > 1 ? ` (${ome.images} images)` : ''}; save one image of one channel`);
+    throw new MeasureInputError(
+      file,
+      `its OME-XML says SizeZ=${ome.slices} but it has ${pages} pages${ome.images > 1 ? ` (${ome.images} images)` : ''}; save one image of one channel`,
+    );
   }
 }
 
@@ -223,7 +243,8 @@ function assemble(
       exclusion,
     };
   });
-  if (analysis.summary.validCells === 0) warnings.push('no valid cell: every cell touches a face of the volume or does not reach both the lumen and the outside');
+  if (analysis.summary.validCells === 0)
+    warnings.push('no valid cell: every cell touches a face of the volume or does not reach both the lumen and the outside');
   // Cells of an epithelium share more membrane with each other than with the lumen and the
   // outside; when they barely touch, background lines separate them (and join the outside).
   let lateralArea = 0;

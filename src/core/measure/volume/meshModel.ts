@@ -38,10 +38,18 @@ export function prepareMesh(mesh: SurfaceMesh): PreparedMesh {
   const normals = new Float64Array(3 * nf);
   let area = 0;
   for (let f = 0; f < nf; f++) {
-    const a = 3 * t[3 * f], b = 3 * t[3 * f + 1], c = 3 * t[3 * f + 2];
-    const ux = p[b] - p[a], uy = p[b + 1] - p[a + 1], uz = p[b + 2] - p[a + 2];
-    const vx = p[c] - p[a], vy = p[c + 1] - p[a + 1], vz = p[c + 2] - p[a + 2];
-    const nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+    const a = 3 * t[3 * f],
+      b = 3 * t[3 * f + 1],
+      c = 3 * t[3 * f + 2];
+    const ux = p[b] - p[a],
+      uy = p[b + 1] - p[a + 1],
+      uz = p[b + 2] - p[a + 2];
+    const vx = p[c] - p[a],
+      vy = p[c + 1] - p[a + 1],
+      vz = p[c + 2] - p[a + 2];
+    const nx = uy * vz - uz * vy,
+      ny = uz * vx - ux * vz,
+      nz = ux * vy - uy * vx;
     const len = Math.hypot(nx, ny, nz);
     areas[f] = len / 2;
     area += len / 2;
@@ -52,7 +60,16 @@ export function prepareMesh(mesh: SurfaceMesh): PreparedMesh {
   g.setAttribute('position', new BufferAttribute(Float32Array.from(p), 3));
   g.setIndex(new BufferAttribute(Uint32Array.from(t), 1));
   // indirect: the BVH leaves the index order alone, so faceIndex is our triangle number.
-  return { positions: p, indices: t, neighbours: triangleNeighbours(t, p.length / 3), centroids, areas, normals, area, bvh: new MeshBVH(g, { indirect: true }) };
+  return {
+    positions: p,
+    indices: t,
+    neighbours: triangleNeighbours(t, p.length / 3),
+    centroids,
+    areas,
+    normals,
+    area,
+    bvh: new MeshBVH(g, { indirect: true }),
+  };
 }
 
 const point = new Vector3();
@@ -92,7 +109,9 @@ export function randomSitesOnMesh(mesh: PreparedMesh, count: number, minSpacing:
       else hi = mid;
     }
     const t = mesh.indices;
-    const a = 3 * t[3 * lo], b = 3 * t[3 * lo + 1], c = 3 * t[3 * lo + 2];
+    const a = 3 * t[3 * lo],
+      b = 3 * t[3 * lo + 1],
+      c = 3 * t[3 * lo + 2];
     let u = random.next();
     let v = random.next();
     if (u + v > 1) {
@@ -104,7 +123,9 @@ export function randomSitesOnMesh(mesh: PreparedMesh, count: number, minSpacing:
     const y = p[a + 1] + u * (p[b + 1] - p[a + 1]) + v * (p[c + 1] - p[a + 1]);
     const z = p[a + 2] + u * (p[b + 2] - p[a + 2]) + v * (p[c + 2] - p[a + 2]);
     let ok = true;
-    const gx = Math.floor(x / cell), gy = Math.floor(y / cell), gz = Math.floor(z / cell);
+    const gx = Math.floor(x / cell),
+      gy = Math.floor(y / cell),
+      gz = Math.floor(z / cell);
     for (let dz = -1; dz <= 1 && ok; dz++) {
       for (let dy = -1; dy <= 1 && ok; dy++) {
         for (let dx = -1; dx <= 1 && ok; dx++) {

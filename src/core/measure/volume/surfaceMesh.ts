@@ -127,9 +127,12 @@ export function maskSurfaceMesh(
       for (let i = 0; i < cw - 1; i++) {
         const v = field[at(i, j, k)] > 0.5;
         // Edge along x to (i+1, j, k): cubes (i, j-1..j, k-1..k). Edges in the empty ring never cross.
-        if (j > 0 && k > 0 && v !== field[at(i + 1, j, k)] > 0.5) quad(vertexOf[at(i, j - 1, k - 1)], vertexOf[at(i, j, k - 1)], vertexOf[at(i, j, k)], vertexOf[at(i, j - 1, k)], !v);
-        if (i > 0 && k > 0 && v !== field[at(i, j + 1, k)] > 0.5) quad(vertexOf[at(i - 1, j, k - 1)], vertexOf[at(i - 1, j, k)], vertexOf[at(i, j, k)], vertexOf[at(i, j, k - 1)], !v);
-        if (i > 0 && j > 0 && v !== field[at(i, j, k + 1)] > 0.5) quad(vertexOf[at(i - 1, j - 1, k)], vertexOf[at(i, j - 1, k)], vertexOf[at(i, j, k)], vertexOf[at(i - 1, j, k)], !v);
+        if (j > 0 && k > 0 && v !== field[at(i + 1, j, k)] > 0.5)
+          quad(vertexOf[at(i, j - 1, k - 1)], vertexOf[at(i, j, k - 1)], vertexOf[at(i, j, k)], vertexOf[at(i, j - 1, k)], !v);
+        if (i > 0 && k > 0 && v !== field[at(i, j + 1, k)] > 0.5)
+          quad(vertexOf[at(i - 1, j, k - 1)], vertexOf[at(i - 1, j, k)], vertexOf[at(i, j, k)], vertexOf[at(i, j, k - 1)], !v);
+        if (i > 0 && j > 0 && v !== field[at(i, j, k + 1)] > 0.5)
+          quad(vertexOf[at(i - 1, j - 1, k)], vertexOf[at(i, j - 1, k)], vertexOf[at(i, j, k)], vertexOf[at(i - 1, j, k)], !v);
       }
     }
   }
@@ -192,8 +195,12 @@ export function meshArea(p: ArrayLike<number>, t: ArrayLike<number>): number {
     const a = 3 * t[f];
     const b = 3 * t[f + 1];
     const c = 3 * t[f + 2];
-    const ux = p[b] - p[a], uy = p[b + 1] - p[a + 1], uz = p[b + 2] - p[a + 2];
-    const vx = p[c] - p[a], vy = p[c + 1] - p[a + 1], vz = p[c + 2] - p[a + 2];
+    const ux = p[b] - p[a],
+      uy = p[b + 1] - p[a + 1],
+      uz = p[b + 2] - p[a + 2];
+    const vx = p[c] - p[a],
+      vy = p[c + 1] - p[a + 1],
+      vz = p[c + 2] - p[a + 2];
     s += 0.5 * Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
   }
   return s;

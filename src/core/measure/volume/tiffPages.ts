@@ -113,7 +113,8 @@ export function readTiffChain(bytes: Uint8Array, file: string, maxVoxels: number
     seen.add(offset);
     if (!inFile(offset, countSize)) throw fail(`corrupt TIFF (page ${pages.length + 1} starts outside the file)`);
     const entries = big ? u64(offset) : view.getUint16(offset, le);
-    if (entries > MAX_ENTRIES || !inFile(offset + countSize, entries * entrySize + inline)) throw fail(`corrupt TIFF (page ${pages.length + 1} has a truncated tag directory)`);
+    if (entries > MAX_ENTRIES || !inFile(offset + countSize, entries * entrySize + inline))
+      throw fail(`corrupt TIFF (page ${pages.length + 1} has a truncated tag directory)`);
     const tags = new Map<number, number[]>();
     for (let e = 0; e < entries; e++) {
       const at = offset + countSize + entrySize * e;
@@ -138,7 +139,9 @@ export function readTiffChain(bytes: Uint8Array, file: string, maxVoxels: number
     const where = `page ${pages.length + 1}`;
     if (!(page.width > 0 && page.height > 0)) throw fail(`corrupt TIFF (${where} has no image size)`);
     if (page.width * page.height * (pages.length + 1) > maxVoxels) {
-      throw fail(`the header declares ${page.width} x ${page.height} pixels per page and at least ${pages.length + 1} pages, over the limit of ${maxVoxels} voxels; crop or downsample it`);
+      throw fail(
+        `the header declares ${page.width} x ${page.height} pixels per page and at least ${pages.length + 1} pages, over the limit of ${maxVoxels} voxels; crop or downsample it`,
+      );
     }
     if (pages.length === 0) {
       xResolution = tags.has(282) ? first(282, NaN) : null;

@@ -57,7 +57,8 @@ function checkPage(page: TiffPageInfo, first: TiffPageInfo, k: number, pages: nu
   if (page.sampleFormat === 2) throw fail(`${bits}-bit signed samples; labels must be 8-, 16- or 32-bit unsigned integers`);
   if (page.sampleFormat !== 1) throw fail(`sample format ${page.sampleFormat}; labels must be 8-, 16- or 32-bit unsigned integers`);
   if (bits !== 8 && bits !== 16 && bits !== 32) throw fail(`${bits}-bit samples${bits < 8 ? ' (a mask, not labels?)' : ''}; labels must be 8-, 16- or 32-bit`);
-  if (page.photometric !== 0 && page.photometric !== 1 && page.photometric !== 3) throw fail(`photometric interpretation ${page.photometric}; labels must be grey`);
+  if (page.photometric !== 0 && page.photometric !== 1 && page.photometric !== 3)
+    throw fail(`photometric interpretation ${page.photometric}; labels must be grey`);
   if (!COMPRESSIONS.has(page.compression)) throw fail(`compression ${page.compression}; save without compression, or with LZW or Deflate`);
   if (page.predictor !== 1 && page.predictor !== 2) throw fail(`predictor ${page.predictor}; only horizontal differencing (2) is supported`);
   if (page.orientation !== 1) throw fail(`orientation ${page.orientation}; save it top-left (orientation 1)`);

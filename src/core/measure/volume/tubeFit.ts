@@ -185,4 +185,3 @@ export function thicknessOf(result: VolumeMeasuredResult): { mean: number; sd: n
   const sd = heights.length > 1 ? Math.sqrt(heights.reduce((a, b) => a + (b - mean) ** 2, 0) / (heights.length - 1)) : NaN;
   return { mean: heights.length ? mean : NaN, sd, cells: heights.length };
 }
-

@@ -128,5 +128,11 @@ export interface VolumeMeasuredResult {
   /** With --compare: the model of the same tissue (closed shells: on their own meshes; open pieces: the fitted tube), else null. */
   readonly comparison: VolumeComparison | null;
   readonly warnings: string[];
-  readonly timings: { readonly readMs: number; readonly classifyMs: number; readonly contactsMs: number; readonly analysisMs: number; readonly totalMs: number };
+  readonly timings: {
+    readonly readMs: number;
+    readonly classifyMs: number;
+    readonly contactsMs: number;
+    readonly analysisMs: number;
+    readonly totalMs: number;
+  };
 }

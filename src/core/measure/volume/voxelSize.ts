@@ -59,7 +59,7 @@ function firstElementAttributes(xml: string, tag: string): Map<string, string> |
   return attributes;
 }
 
-const OME_UNITS: Record<string, number> = { 'Å': 1e-4, 'pm': 1e-6 };
+const OME_UNITS: Record<string, number> = { Å: 1e-4, pm: 1e-6 };
 
 function omeUnit(text: string | undefined): number | null {
   if (text === undefined || text === '') return 1; // OME's default unit is µm
