@@ -8,8 +8,14 @@ export default defineConfig({
   build: { target: 'es2022', outDir: 'dist/app' },
   // Scan every page up front: otherwise Vite discovers a dependency on first load, re-optimizes
   // and reloads the page under a running test.
-  // The measuring worker's decoders are imported by no page module, so the scan cannot see them.
-  optimizeDeps: { entries: ['index.html', 'e2e/pages/*.html', 'bench/page/*.html', 'examples/*.html'], include: ['fast-png', 'tiff'] },
+  // Workers' dependencies (the measuring worker's decoders, the exact engine's predicates and
+  // triangulation in the pipeline worker) are imported by no page module, so the scan cannot see
+  // them: every browser-side runtime dependency is listed (a reload in a fresh checkout's first
+  // measure-and-compare run failed an e2e test otherwise).
+  optimizeDeps: {
+    entries: ['index.html', 'e2e/pages/*.html', 'bench/page/*.html', 'examples/*.html'],
+    include: ['d3-delaunay', 'fast-png', 'fflate', 'robust-predicates', 'three', 'three-mesh-bvh', 'tiff'],
+  },
   test: {
     include: ['tests/**/*.test.ts'],
     // headless-gl is a native module: one process per test file, not worker threads.
