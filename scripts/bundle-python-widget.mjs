@@ -38,7 +38,8 @@ element = element.replace(/new URL\(\s*"assets\/([A-Za-z0-9_.-]+\.js)",\s*import
 });
 const assets = existsSync(join(lib, 'assets')) ? readdirSync(join(lib, 'assets')).filter((f) => f.endsWith('.js')) : [];
 const missed = assets.filter((f) => !(f in workers));
-if (missed.length > 0) throw new Error(`bundle-python-widget: dist/lib/assets/${missed.join(', ')} is not referenced as new URL("assets/...", import.meta.url); update this script`);
+if (missed.length > 0)
+  throw new Error(`bundle-python-widget: dist/lib/assets/${missed.join(', ')} is not referenced as new URL("assets/...", import.meta.url); update this script`);
 if (/import\.meta\.url\s*\)\.href/.test(element.replace(/"" \+ import\.meta\.url/g, ''))) {
   throw new Error('bundle-python-widget: the element still resolves a file next to itself; update this script');
 }

@@ -26,13 +26,21 @@ _STATIC = Path(__file__).resolve().parent / "static" / "widget.js"
 _ids = itertools.count(1)
 
 
-def _esm() -> Path:
+_esm_text: str | None = None
+
+
+def _esm() -> str:
+    """The widget module's text (read once; anywidget sends it to the browser as a string)."""
+    global _esm_text
+    if _esm_text is not None:
+        return _esm_text
     if not _STATIC.is_file():
         raise RuntimeError(
             f"{_STATIC} is missing: this tissue_sheet was not built with its widget (install the wheel, "
             "or in a checkout run `node scripts/bundle-python-widget.mjs` after `npm run build:lib`)"
         )
-    return _STATIC
+    _esm_text = _STATIC.read_text(encoding="utf-8")
+    return _esm_text
 
 
 class BrowserJob:
@@ -117,7 +125,7 @@ class Sheet(anywidget.AnyWidget):
     as DataFrames. ``realizations``: the headline's n (the element's default 5 when None).
     """
 
-    _esm = traitlets.Any().tag(sync=True)
+    _esm = traitlets.Unicode().tag(sync=True)
     config = traitlets.Dict().tag(sync=True)
     result = traitlets.Dict(allow_none=True, default_value=None).tag(sync=True)
     error = traitlets.Unicode("").tag(sync=True)
