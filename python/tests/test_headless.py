@@ -134,3 +134,20 @@ def test_missing_node_or_cli_says_what_to_install(monkeypatch, tmp_path):
     monkeypatch.setenv("PATH", str(tmp_path))  # no node on PATH
     with pytest.raises(tissue_sheet.TissueSheetCliNotFound, match="needs Node.js"):
         tissue_sheet.run(TUBE)
+
+
+def test_cli_found_from_a_folder_of_the_checkout(monkeypatch):
+    monkeypatch.delenv("TISSUE_SHEET_CLI", raising=False)
+    monkeypatch.chdir(ROOT / "docs")  # a notebook beside the project
+    assert tissue_sheet.find_cli()[-1] == str(ROOT / "bin" / "tissue-sheet.mjs")
+
+
+def test_old_node_is_named(monkeypatch, tmp_path):
+    # A Node.js older than 20 on PATH (a stand-in script answering --version as node 18 does).
+    node = tmp_path / "node"
+    node.write_text("#!/bin/sh\necho v18.19.1\n")
+    node.chmod(0o755)
+    monkeypatch.setenv("PATH", str(tmp_path))
+    monkeypatch.setenv("TISSUE_SHEET_CLI", str(ROOT / "bin" / "tissue-sheet.mjs"))
+    with pytest.raises(tissue_sheet.TissueSheetCliNotFound, match="Node.js v18.19.1; tissue-sheet needs 20 or later"):
+        tissue_sheet.run(TUBE)

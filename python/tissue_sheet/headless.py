@@ -5,8 +5,10 @@ The CLI is found, first found wins:
    of a ``tissue-sheet`` executable;
 2. a checkout around this package (``python/`` beside ``bin/tissue-sheet.mjs``: ``pip install -e``
    or running from the source tree);
-3. ``tissue-sheet`` on PATH (``npm install -g tissue-sheet``), or
-   ``node_modules/.bin/tissue-sheet`` under the working directory (``npm install tissue-sheet``).
+3. a checkout or an ``npm install tissue-sheet`` in the working directory or one above it (a
+   notebook next to the project: ``bin/tissue-sheet.mjs`` of a package.json named tissue-sheet, or
+   ``node_modules/tissue-sheet/bin/tissue-sheet.mjs``);
+4. ``tissue-sheet`` on PATH (``npm install -g tissue-sheet``).
 Where Node or the CLI is missing, ``TissueSheetCliNotFound`` says what to install. There is no
 fallback: nothing is computed in Python.
 """
@@ -51,11 +53,40 @@ class TissueSheetInputError(TissueSheetCliError, ValueError):
     """The CLI refused its input (exit 2): the message is its one line naming the field or file."""
 
 
+_checked_nodes: set[str] = set()
+
+
 def _node() -> str:
     node = shutil.which("node")
     if node is None:
         raise TissueSheetCliNotFound(f"tissue-sheet needs Node.js to run headless, and `node` is not on PATH: {INSTALL_HINT}")
+    if node not in _checked_nodes:
+        try:
+            version = subprocess.run([node, "--version"], capture_output=True, text=True, timeout=30).stdout.strip()
+            major = int(version.lstrip("v").split(".")[0])
+        except (OSError, ValueError, subprocess.SubprocessError):
+            raise TissueSheetCliNotFound(f"{node} does not answer --version: {INSTALL_HINT}") from None
+        if major < 20:
+            raise TissueSheetCliNotFound(f"{node} is Node.js {version}; tissue-sheet needs 20 or later: {INSTALL_HINT}")
+        _checked_nodes.add(node)
     return node
+
+
+def _checkout_above(start: Path) -> Path | None:
+    """bin/tissue-sheet.mjs of a tissue-sheet checkout or npm install in ``start`` or a folder above it."""
+    for folder in (start, *start.parents):
+        installed = folder / "node_modules" / "tissue-sheet" / "bin" / "tissue-sheet.mjs"
+        if installed.is_file():
+            return installed
+        package = folder / "package.json"
+        launcher = folder / "bin" / "tissue-sheet.mjs"
+        if launcher.is_file() and package.is_file():
+            try:
+                if json.loads(package.read_text(encoding="utf-8")).get("name") == "tissue-sheet":
+                    return launcher
+            except (OSError, ValueError):
+                pass
+    return None
 
 
 def find_cli() -> list[str]:
@@ -69,12 +100,13 @@ def find_cli() -> list[str]:
     checkout = Path(__file__).resolve().parent.parent.parent / "bin" / "tissue-sheet.mjs"
     if checkout.is_file():
         return [_node(), str(checkout)]
-    local = Path.cwd() / "node_modules" / ".bin" / "tissue-sheet"
+    above = _checkout_above(Path.cwd().resolve())
+    if above is not None:
+        return [_node(), str(above)]
     on_path = shutil.which("tissue-sheet")
-    for candidate in (on_path, str(local) if local.is_file() else None):
-        if candidate:
-            _node()
-            return [candidate]
+    if on_path:
+        _node()
+        return [on_path]
     raise TissueSheetCliNotFound(f"the tissue-sheet CLI was not found (no TISSUE_SHEET_CLI, no checkout, no tissue-sheet on PATH): {INSTALL_HINT}")
 
 
