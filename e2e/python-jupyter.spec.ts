@@ -10,7 +10,8 @@ import { expect, test, type Page } from '@playwright/test';
  * shows the widget, the sheet runs in the browser (in the element's inlined worker), Python reads
  * the result, sets a new config and reads the new result, sees a change made in the widget, runs
  * a sweep in the browser that equals the CLI's runs.csv, saves the view as PNG, and a re-run cell
- * (the element registered again) is harmless.
+ * (the element registered again) is harmless; all of it under a Content-Security-Policy with no
+ * other origin, and nothing requested from one.
  *
  * Run by `npm run test:python` (TISSUE_SHEET_JUPYTER_E2E=1, TISSUE_SHEET_VENV); skipped by a plain
  * `npm run test:e2e`, which has no venv.
@@ -20,6 +21,23 @@ const venv = resolve(process.env.TISSUE_SHEET_VENV ?? 'python/.venv');
 const jupyter = join(venv, 'bin', 'jupyter');
 const port = Number(process.env.E2E_PORT ?? 5174) + 3000;
 const base = `http://127.0.0.1:${port}`;
+/**
+ * The host's Content-Security-Policy: the app's (index.html), plus what any notebook widget needs
+ * (anywidget imports the module from a blob: URL; JupyterLab itself evaluates code, and talks to
+ * its kernel over a WebSocket). Nothing from another origin; workers only from 'self' or blob:.
+ */
+const csp = [
+  "default-src 'self'",
+  "script-src 'self' 'unsafe-eval' blob:",
+  "style-src 'self' 'unsafe-inline'",
+  "img-src 'self' data: blob:",
+  `connect-src 'self' data: blob: ws://127.0.0.1:${port}`,
+  "worker-src 'self' blob:",
+  "font-src 'self' data:",
+  "frame-src 'self'",
+  "object-src 'none'",
+  "base-uri 'self'",
+].join('; ');
 
 const config = {
   surface: { kind: 'tube', radius: 128 / (2 * Math.PI), length: 256 },
@@ -116,6 +134,7 @@ test.describe('tissue_sheet.Sheet in JupyterLab', () => {
         '--ServerApp.password=',
         `--ServerApp.root_dir=${dir}`,
         '--LabApp.news_url=',
+        `--ServerApp.tornado_settings=${JSON.stringify({ headers: { 'Content-Security-Policy': csp } })}`,
       ],
       {
         cwd: dir,
@@ -154,10 +173,22 @@ test.describe('tissue_sheet.Sheet in JupyterLab', () => {
     test.setTimeout(480_000);
     const errors: string[] = [];
     page.on('pageerror', (e) => errors.push(e.message));
+    // Nothing is fetched from elsewhere: every request goes to the notebook server (or is a blob:/data: URL).
+    const elsewhere: string[] = [];
+    page.on('request', (r) => {
+      if (!/^(blob:|data:)/.test(r.url()) && !r.url().startsWith(base)) elsewhere.push(r.url());
+    });
+    const violations: string[] = [];
+    page.on('console', (m) => {
+      if (/Content Security Policy/i.test(m.text())) violations.push(m.text());
+    });
     await page.goto(`${base}/lab/tree/sheet.ipynb`);
     await expect(page.locator('.jp-Notebook .jp-Cell')).toHaveCount(cells.length, { timeout: 90_000 });
     await expect(page.locator('.jp-Notebook-ExecutionIndicator[data-status="idle"]').first()).toBeAttached({ timeout: 90_000 });
 
+    // JupyterLab's own page breaks this policy once (an inline script of its index page); what
+    // the widget does afterwards must break it never.
+    const hostViolations = violations.splice(0);
     await runCell(page, 0);
     await waitForResult(page, 0, 30);
     const site = await page.evaluate(() => document.querySelector('tissue-sheet')!.computeSite);
@@ -196,5 +227,9 @@ test.describe('tissue_sheet.Sheet in JupyterLab', () => {
     await waitForResult(page, 1, 20);
     await expect(page.locator('.jp-OutputArea-output[data-mime-type="application/vnd.jupyter.stderr"]')).toHaveCount(0);
     expect(errors, `page errors:\n${errors.join('\n')}`).toEqual([]);
+    expect(elsewhere, 'requests to other origins').toEqual([]);
+    expect(violations, `CSP violations after the page loaded (the page's own: ${hostViolations.length})`).toEqual([]);
+    const header = (await page.request.get(`${base}/lab/tree/sheet.ipynb`)).headers()['content-security-policy'];
+    expect(header, 'the server sent the CSP under test').toBe(csp);
   });
 });
