@@ -20,6 +20,11 @@ TUBE = {
     "lloyd": {"maxIterations": 4},
     "sheet": {"surfaceRatio": 2, "layers": 1},
 }
+# The GPU engine (on headless-gl's software renderer here) with both adjacency methods, and a
+# closed surface (a sphere on a cube map): the other result layouts the readers meet.
+GPU_TUBE = {**TUBE, "resolution": 128, "engine": "gpu", "sheet": {"surfaceRatio": 2, "adjacency": "both"}}
+SPHERE = {"surface": {"kind": "sphere", "radius": 40}, "resolution": 64, "cells": 40, "seed": 2, "lloyd": {"maxIterations": 2}, "sheet": {"thickness": 10}}
+CONFIGS = {"tube": TUBE, "gpu": GPU_TUBE, "sphere": SPHERE}
 SWEEP = {
     "base": {"surface": {"kind": "tube", "radius": 30, "length": 240}, "cells": 30, "lloyd": {"maxIterations": 2}},
     "vary": {"sheet.surfaceRatio": [1.5, 2.5]},
@@ -37,12 +42,21 @@ def cli_command():
 def outputs(tmp_path_factory):
     """CLI outputs made by the CLI itself (not through tissue_sheet): plain JSON, side file, sweep."""
     d = tmp_path_factory.mktemp("cli")
-    (d / "tube.json").write_text(json.dumps(TUBE))
     (d / "sweep.json").write_text(json.dumps(SWEEP))
     cli = cli_command()
-    subprocess.run([*cli, "run", str(d / "tube.json"), "--out", str(d / "plain.json"), "--realizations", "1"], check=True, capture_output=True)
-    subprocess.run(
-        [*cli, "run", str(d / "tube.json"), "--out", str(d / "compact.json"), "--realizations", "1", "--cells-file"], check=True, capture_output=True
-    )
+    # NAME-plain.json (cells in the JSON) and NAME-compact.json (+ NAME-compact.cells.bin); the
+    # tube's also as plain.json and compact.json.
+    for name, config in CONFIGS.items():
+        (d / f"{name}.json").write_text(json.dumps(config))
+        for form, extra in (("plain", []), ("compact", ["--cells-file"])):
+            out = d / f"{name}-{form}.json"
+            subprocess.run([*cli, "run", str(d / f"{name}.json"), "--out", str(out), "--realizations", "1", *extra], check=True, capture_output=True)
+        if name == "tube":
+            for form in ("plain", "compact"):
+                result = json.loads((d / f"tube-{form}.json").read_text())
+                if result.get("cellsFile"):
+                    shutil.copy(d / result["cellsFile"]["path"], d / "compact.cells.bin")
+                    result["cellsFile"]["path"] = "compact.cells.bin"
+                (d / f"{form}.json").write_text(json.dumps(result, indent=2))
     subprocess.run([*cli, "sweep", str(d / "sweep.json"), "--out", str(d / "sweep"), "--workers", "1"], check=True, capture_output=True)
     return d

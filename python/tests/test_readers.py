@@ -10,14 +10,16 @@ import pandas as pd
 import pytest
 
 import tissue_sheet
-from conftest import ROOT, SWEEP, TUBE
+from conftest import CONFIGS, ROOT, SWEEP, TUBE
 
 
-def test_cells_table_is_the_json_cell_by_cell(outputs):
-    result = json.loads((outputs / "plain.json").read_text())
-    df = tissue_sheet.read_result(outputs / "plain.json")
+@pytest.mark.parametrize("name", list(CONFIGS))
+def test_cells_table_is_the_json_cell_by_cell(outputs, name):
+    result = json.loads((outputs / f"{name}-plain.json").read_text())
+    df = tissue_sheet.read_result(outputs / f"{name}-plain.json")
     stack = [result["cells"]] + [s["cells"] for s in result["surfaces"]]
-    assert len(df) == sum(len(cells) for cells in stack) == TUBE["cells"] * (2 + TUBE["sheet"]["layers"])
+    assert len(df) == sum(len(cells) for cells in stack) == CONFIGS[name]["cells"] * len(stack)
+    assert list(df["surface_name"].unique()) == [result["config"]["sheet"]["seeded"]] + [s["name"] for s in result["surfaces"]]
     methods = [a["method"] for a in result["analyses"]]
     for k, cells in enumerate(stack):
         rows = df[df["surface"] == k].set_index("cell")
@@ -52,16 +54,28 @@ def test_headline_follows_from_the_table(outputs):
     assert 0 < percent < 100  # a tube with s = 2 has scutoids and non-scutoids
 
 
-def test_side_file_and_json_read_the_same(outputs):
-    plain = tissue_sheet.read_result(outputs / "plain.json")
-    compact = tissue_sheet.read_result(outputs / "compact.json")
-    assert (outputs / "compact.cells.bin").read_bytes()[:8] == b"TSCELLS1"
-    assert json.loads((outputs / "compact.json").read_text())["cells"] is None
+@pytest.mark.parametrize("name", list(CONFIGS))
+def test_side_file_and_json_read_the_same(outputs, name):
+    plain = tissue_sheet.read_result(outputs / f"{name}-plain.json")
+    compact = tissue_sheet.read_result(outputs / f"{name}-compact.json")
+    assert (outputs / f"{name}-compact.cells.bin").read_bytes()[:8] == b"TSCELLS1"
+    assert json.loads((outputs / f"{name}-compact.json").read_text())["cells"] is None
     pd.testing.assert_frame_equal(plain, compact, check_dtype=False, check_exact=True)
     for table in ("contacts", "summary"):
         pd.testing.assert_frame_equal(
-            tissue_sheet.read_result(outputs / "plain.json", table), tissue_sheet.read_result(outputs / "compact.json", table), check_dtype=False
+            tissue_sheet.read_result(outputs / f"{name}-plain.json", table),
+            tissue_sheet.read_result(outputs / f"{name}-compact.json", table),
+            check_dtype=False,
         )
+
+
+def test_both_methods_are_columns(outputs):
+    df = tissue_sheet.read_result(outputs / "gpu-compact.json")
+    assert df.attrs["engine"]["name"] == "gpu"
+    for method in ("labels", "exact"):
+        assert {f"{method}.valid", f"{method}.scutoid", f"{method}.sides"} <= set(df.columns)
+    summary = tissue_sheet.read_result(outputs / "gpu-compact.json", "summary")
+    assert sorted(summary["method"].unique()) == ["exact", "labels"]
 
 
 def test_contacts_are_symmetric(outputs):
