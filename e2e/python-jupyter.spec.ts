@@ -10,7 +10,7 @@ import { expect, test, type Page } from '@playwright/test';
  * shows the widget, the sheet runs in the browser (in the element's inlined worker), Python reads
  * the result, sets a new config and reads the new result, sees a change made in the widget, runs
  * a sweep in the browser that equals the CLI's runs.csv, saves the view as PNG, and a re-run cell
- * (the element registered again) is harmless; all of it under a Content-Security-Policy with no
+ * (the element registered again) is harmless, a refused config reaches Python as `sheet.error`; all of it under a Content-Security-Policy with no
  * other origin, and nothing requested from one.
  *
  * Run by `npm run test:python` (TISSUE_SHEET_JUPYTER_E2E=1, TISSUE_SHEET_VENV); skipped by a plain
@@ -75,6 +75,10 @@ const cells = [
   `print("FIGURE", figure.done, open("view.png", "rb").read()[:4] == b"\\x89PNG", figure.bytes > 1000)`,
   // 9: the widget cell again (the element is registered a second time)
   `again = tissue_sheet.Sheet(config={**CONFIG, "cells": 20}, realizations=1, height="320px")\nagain`,
+  // 10: a config the element refuses
+  `sheet.config = {**CONFIG, "cells": -5}`,
+  // 11: the refusal in Python; the last result stays
+  `print("REFUSED", sheet.result["config"]["cells"], sheet.error)`,
 ];
 
 function notebook(): string {
@@ -225,6 +229,17 @@ test.describe('tissue_sheet.Sheet in JupyterLab', () => {
 
     await runCell(page, 9);
     await waitForResult(page, 1, 20);
+
+    await page.evaluate(() => {
+      const w = window as unknown as { refused?: string };
+      document.querySelector('tissue-sheet')!.addEventListener('error', (e) => (w.refused = (e as CustomEvent<{ message: string }>).detail.message));
+    });
+    await runCell(page, 10);
+    const refused = await page.waitForFunction(() => (window as unknown as { refused?: string }).refused, undefined, { timeout: 60_000 });
+    const message = String(await refused.jsonValue());
+    expect(message).toContain('cells');
+    await runCell(page, 11);
+    await expect(output(page, 11)).toContainText(`REFUSED 18 ${message}`);
     await expect(page.locator('.jp-OutputArea-output[data-mime-type="application/vnd.jupyter.stderr"]')).toHaveCount(0);
     expect(errors, `page errors:\n${errors.join('\n')}`).toEqual([]);
     expect(elsewhere, 'requests to other origins').toEqual([]);
