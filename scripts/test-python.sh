@@ -16,7 +16,13 @@ if ! python3 -c 'import ensurepip, venv' 2>/dev/null; then
   DEBIAN_FRONTEND=noninteractive apt-get install -y -qq python3-venv >/dev/null
 fi
 
-[ -f dist/lib/tissue-sheet.js ] && [ -f dist/esm/cli.js ] || npm run build:lib
+# The wheel bundles dist/lib and the tests run the CLI (dist/esm): rebuild both when a source is newer.
+if [ ! -f dist/lib/tissue-sheet.js ] || [ ! -f dist/esm/cli.js ] ||
+  [ -n "$(find src package.json vite.lib.config.ts -newer dist/lib/tissue-sheet.js -print -quit)" ] ||
+  [ -n "$(find src package.json vite.lib.config.ts -newer dist/esm/cli.js -print -quit)" ]; then
+  echo "== build:lib (dist/lib, dist/esm older than src)"
+  npm run build:lib
+fi
 
 echo "== python: build the sdist and the wheel (python -m build)"
 rm -rf python/.venv-build python/dist
