@@ -66,7 +66,8 @@ class BrowserJob:
             total = "?" if self.total is None else self.total
             raise RuntimeError(
                 f"the {self.kind} is still running in the browser ({self.finished} of {total}); a notebook hears "
-                "back between cells: read it in a later cell (job.done says when)"
+                "back between cells: read it in a later cell (job.done says when). The browser computes it only "
+                "while the widget is shown"
             )
         if self.error is not None:
             raise RuntimeError(f"the {self.kind} failed in the browser: {self.error}")
