@@ -2,7 +2,7 @@
 # Installs everything the tests need on a fresh Debian 12 machine (as root) and runs every test:
 # typecheck, Vitest (headless-gl under Xvfb), Playwright (Debian's Chromium), then the npm
 # package as a consumer installs it (scripts/check-pack.sh, about a minute; needs the registry),
-# then the Python package (scripts/test-python.sh, about 2 minutes; needs PyPI).
+# then the Python package (scripts/test-python.sh, about 5 minutes; needs PyPI).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

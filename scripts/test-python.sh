@@ -4,7 +4,8 @@
 # pytest (readers against CLI outputs, headless calls, the example notebook) and the JupyterLab
 # end-to-end test (e2e/python-jupyter.spec.ts, Debian's Chromium). Venvs and the built files live
 # in git-ignored folders under python/. Needs the checkout built (npm ci; npm run build:lib, which
-# this script runs when dist/lib is missing). About 2 minutes, most of it pip.
+# this script runs when dist/lib is missing or older than src). About 5 minutes on 2 shared
+# cores, most of it pip and the build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
