@@ -19,6 +19,16 @@ ROOT = HERE.parent
 WIDGET = HERE / "tissue_sheet" / "static" / "widget.js"
 
 
+def _lib_is_stale() -> bool:
+    """dist/lib/tissue-sheet.js is missing, or a source of it is newer."""
+    built = ROOT / "dist" / "lib" / "tissue-sheet.js"
+    if not built.is_file():
+        return True
+    at = built.stat().st_mtime
+    sources = [ROOT / "package.json", ROOT / "vite.lib.config.ts", *(p for p in (ROOT / "src").rglob("*") if p.is_file())]
+    return any(p.is_file() and p.stat().st_mtime > at for p in sources)
+
+
 class CustomBuildHook(BuildHookInterface):
     def initialize(self, version, build_data):
         package_json = ROOT / "package.json"
@@ -34,10 +44,10 @@ class CustomBuildHook(BuildHookInterface):
             node = shutil.which("node")
             if node is None:
                 raise RuntimeError("building the tissue-sheet wheel needs Node.js (>= 20) to bundle the element: install it")
-            if not (ROOT / "dist" / "lib" / "tissue-sheet.js").is_file():
+            if _lib_is_stale():
                 npm = shutil.which("npm")
                 if npm is None:
-                    raise RuntimeError("dist/lib is missing and npm is not installed: run `npm ci && npm run build:lib` in the checkout")
+                    raise RuntimeError("dist/lib is missing or older than src and npm is not installed: run `npm ci && npm run build:lib` in the checkout")
                 subprocess.run([npm, "run", "build:lib"], cwd=ROOT, check=True)
             subprocess.run([node, str(bundler)], cwd=ROOT, check=True)
         if not WIDGET.is_file():

@@ -13,9 +13,15 @@ const __tissueSheetWidget = (() => {
   function render({ model, el }) {
     const sheet = document.createElement('tissue-sheet');
     sheet.style.display = 'block';
-    sheet.style.height = model.get('height');
-    const realizations = model.get('realizations');
-    if (realizations) sheet.setAttribute('realizations', String(realizations));
+    const applyLook = () => {
+      const realizations = model.get('realizations');
+      if (realizations) sheet.setAttribute('realizations', String(realizations));
+      else sheet.removeAttribute('realizations');
+      sheet.style.height = model.get('height');
+    };
+    applyLook();
+    model.on('change:realizations', applyLook);
+    model.on('change:height', applyLook);
     const progress = document.createElement('div');
     progress.className = 'tissue-sheet-widget-progress';
     progress.hidden = true;
@@ -95,6 +101,8 @@ const __tissueSheetWidget = (() => {
 
     return () => {
       model.off('change:config', onConfig);
+      model.off('change:realizations', applyLook);
+      model.off('change:height', applyLook);
       model.off('msg:custom', onMessage);
       sheet.removeEventListener('result', onResult);
       sheet.removeEventListener('error', onError);
