@@ -1,5 +1,5 @@
 import { spawn, type ChildProcess } from 'node:child_process';
-import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
@@ -229,6 +229,27 @@ test.describe('tissue_sheet.Sheet in JupyterLab', () => {
 
     await runCell(page, 9);
     await waitForResult(page, 1, 20);
+
+    // The widget module evaluated twice more on the same page (two more definitions of the
+    // element's class): no error, and the element already registered keeps working.
+    const installed = readdirSync(join(venv, 'lib')).map((v) => join(venv, 'lib', v, 'site-packages', 'tissue_sheet', 'static', 'widget.js'));
+    const moduleText = readFileSync(
+      installed.find((p) => existsSync(p))!,
+      'utf8',
+    );
+    const twice = await page.evaluate(async (text) => {
+      const load = async () => {
+        const url = URL.createObjectURL(new Blob([text], { type: 'text/javascript' }));
+        try {
+          return (await import(/* @vite-ignore */ url)) as { default: { render: unknown } };
+        } finally {
+          URL.revokeObjectURL(url);
+        }
+      };
+      const [a, b] = [await load(), await load()];
+      return [typeof a.default.render, typeof b.default.render, customElements.get('tissue-sheet') === document.querySelector('tissue-sheet')!.constructor];
+    }, moduleText);
+    expect(twice).toEqual(['function', 'function', true]);
 
     await page.evaluate(() => {
       const w = window as unknown as { refused?: string };
