@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs everything the tests need on a fresh Debian 12 machine (as root) and runs every test:
 # typecheck, Vitest (headless-gl under Xvfb), Playwright (Debian's Chromium), then the npm
-# package as a consumer installs it (scripts/check-pack.sh, about a minute; needs the registry).
+# package as a consumer installs it (scripts/check-pack.sh, about a minute; needs the registry),
+# then the Python package (scripts/test-python.sh, about 5 minutes; needs PyPI).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -13,6 +14,8 @@ command -v chromium >/dev/null || need+=(chromium)
 command -v g++ >/dev/null || need+=(g++)
 command -v make >/dev/null || need+=(make)
 command -v python3 >/dev/null || need+=(python3)
+# The Python package's venvs (scripts/test-python.sh): Debian's python3 is externally managed.
+python3 -c 'import ensurepip, venv' 2>/dev/null || need+=(python3-venv)
 if [ ${#need[@]} -gt 0 ]; then
   echo "== installing system packages: ${need[*]}"
   apt-get update -qq
@@ -43,3 +46,6 @@ npm test
 
 echo "== the package as a consumer installs it"
 npm run check:pack
+
+echo "== the Python package: wheel in a fresh venv, pytest, the widget in JupyterLab (docs/python.md)"
+npm run test:python
