@@ -17,8 +17,9 @@ import type { Grid } from '../core/grid';
 import type { EngineChoice } from './enginePolicy';
 import type { CentroidPath } from '../gpu/centroidPolicy';
 import type { GpuContext } from '../gpu/context';
-import { CubeCcvtEngine } from '../gpu/cubeEngine';
-import { ClosedLloydRun } from '../gpu/cubeLloyd';
+import { GpuEngine } from '../gpu/engine';
+import { cubeLayout } from '../gpu/layout';
+import { closedSites, GpuLloydRun } from '../gpu/lloyd';
 import { closedExactAdjacency } from './closedExact';
 import { closedSection } from './closedRecord';
 import { checkOffsets, prepareClosedSurface } from './closedSurface';
@@ -53,10 +54,10 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
     const { image, projector } = geometry;
     const centroidPath = gpuPath(choice);
     const sites = placeClosedSites(image, projector, config.cells, config.seed, config.minSpacing);
-    const engine = new CubeCcvtEngine(context, image.n, config.cells, { variant: config.jumpFlood.variant, centroidPath });
+    const engine = new GpuEngine(context, cubeLayout(image.n), config.cells, { variant: config.jumpFlood.variant, centroidPath });
     try {
-      engine.setGeometry(image.position, image.area);
-      const run = new ClosedLloydRun(engine, projector, sites, config.lloyd, minTexelSpacing(geometry));
+      engine.setGeometry(image.area, image.position);
+      const run = new GpuLloydRun(engine, closedSites(projector, sites, minTexelSpacing(geometry)), config.lloyd);
       return {
         sites,
         relaxation: relaxation(
@@ -204,10 +205,10 @@ function gpuPath(choice: EngineChoice): CentroidPath {
 
 /** Every surface of the stack has the same cube map: one engine labels them all (setGeometry). */
 function cubeMapLabeller(context: GpuContext, config: ClosedConfig, n: number, choice: EngineChoice): Labeller<CubeMapLayer, CubeMapProjected> {
-  const engine = new CubeCcvtEngine(context, n, config.cells, { variant: config.jumpFlood.variant, centroidPath: gpuPath(choice) });
+  const engine = new GpuEngine(context, cubeLayout(n), config.cells, { variant: config.jumpFlood.variant, centroidPath: gpuPath(choice) });
   return {
     label(layer, sites) {
-      engine.setGeometry(layer.sample.position, layer.sample.area);
+      engine.setGeometry(layer.sample.area, layer.sample.position);
       engine.setSites(sites.positions, sites.texels);
       engine.floodLabels();
       return engine.readLabels();

@@ -18,8 +18,9 @@ import { placeSites } from '../core/sites';
 import { embed, embedAll, surfaceCoordinates } from '../core/surface';
 import type { EngineChoice } from './enginePolicy';
 import type { GpuContext } from '../gpu/context';
-import { CcvtEngine } from '../gpu/engine';
-import { LloydRun } from '../gpu/lloyd';
+import { GpuEngine } from '../gpu/engine';
+import { gridLayout } from '../gpu/layout';
+import { GpuLloydRun, gridSites } from '../gpu/lloyd';
 import type { Labeller, RunCallbacks, SurfaceFamily } from './family';
 import { relaxation } from './relax';
 
@@ -63,11 +64,11 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
       // No label image: the stack rasterizes the exact cells for views when asked.
       return { sites, relaxation: relaxation(run, () => NO_LABELS) };
     }
-    const engine = new CcvtEngine(context, grid, config.cells, { variant: config.jumpFlood.variant, centroidPath: choice.centroidPath });
+    const engine = new GpuEngine(context, gridLayout(grid), config.cells, { variant: config.jumpFlood.variant, centroidPath: choice.centroidPath });
     try {
       // Planar-family texels all cover the same area, so the weight is the density alone.
-      engine.setWeights(density);
-      const run = new LloydRun(engine, grid, sites, config.lloyd);
+      engine.setGeometry(density);
+      const run = new GpuLloydRun(engine, gridSites(grid, sites), config.lloyd);
       // Label the final sites with a cold flood, as every other surface of the stack is
       // labelled: identical surfaces then get identical labels (no warm-start residue at s = 1).
       return {
@@ -248,7 +249,7 @@ function planarLabeller(context: GpuContext, config: Config, choice: EngineChoic
     label(layer, sites) {
       // The exact engine makes no label textures: exactLabels draws its cells instead.
       if (choice.name !== 'gpu') throw new Error('planar labeller: the exact engine has no label textures');
-      const engine = new CcvtEngine(context, layer.grid, config.cells, { variant: config.jumpFlood.variant, centroidPath: choice.centroidPath });
+      const engine = new GpuEngine(context, gridLayout(layer.grid), config.cells, { variant: config.jumpFlood.variant, centroidPath: choice.centroidPath });
       try {
         engine.setSites(sites);
         engine.floodLabels();

@@ -1,6 +1,6 @@
 import type { AnyConfig } from '../core/config';
 import type { GpuContext } from '../gpu/context';
-import type { IterationRecord } from '../gpu/lloyd';
+import type { IterationRecord, LloydIterations } from '../core/iterationRecord';
 import type { EngineChoice } from './enginePolicy';
 import type { Relaxation, RunCallbacks, StackLayer, SurfaceFamily } from './family';
 
@@ -62,21 +62,12 @@ export async function relaxSeededSurface<C extends AnyConfig, G, S, L extends St
   }
 }
 
-/** A Lloyd loop of either engine (LloydRun, ClosedLloydRun, ExactLloydRun). */
-export interface LloydDriver {
-  readonly done: boolean;
-  readonly converged: boolean;
-  readonly iterations: IterationRecord[];
-  step(): IterationRecord;
-  finish(): { energy: number; emptyCells: number };
-}
-
 /**
  * A Lloyd loop as the pipeline drives it. `labels` gives the final label image after the final
  * sums, `beforeFinish` runs before them (the planar GPU family re-labels the final sites with a
  * cold flood there), `dispose` frees the engine.
  */
-export function relaxation(run: LloydDriver, labels: () => Int32Array, dispose: () => void = () => {}, beforeFinish: () => void = () => {}): Relaxation {
+export function relaxation(run: LloydIterations, labels: () => Int32Array, dispose: () => void = () => {}, beforeFinish: () => void = () => {}): Relaxation {
   return {
     get done() {
       return run.done;

@@ -8,8 +8,9 @@ import { defaultMinContactLength, planarFamily, type PlanarGeometry } from '../.
 import { relaxSeededSurface, type SeededSurface } from '../../src/run/relax';
 import { runSheet, SheetRunner } from '../../src/run/runSheet';
 import { analyzeStack } from '../../src/run/stack';
-import { CcvtEngine } from '../../src/gpu/engine';
 import { useHeadlessContext } from '../gpu/context';
+import { GpuEngine } from '../../src/gpu/engine';
+import { gridLayout } from '../../src/gpu/layout';
 
 const context = useHeadlessContext();
 
@@ -88,7 +89,7 @@ describe('a hand-built exchange: rhombi of four sites whose shared edge flips wh
         sites[2 * id + 1] = h * j + h / 2;
       }
     }
-    const engine = new CcvtEngine(context, grid, columns * rows, { variant: 'jfa+2', centroidPath: 'auto' });
+    const engine = new GpuEngine(context, gridLayout(grid), columns * rows, { variant: 'jfa+2', centroidPath: 'auto' });
     engine.setSites(sites);
     engine.floodLabels();
     const seeded: SeededSurface<PlanarGeometry, Float32Array> = {
