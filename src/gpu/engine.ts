@@ -189,8 +189,7 @@ export class GpuEngine {
     const { sums, siteCount, staging } = this;
     if (this.centroidPath === 'readback') {
       sums.fill(0);
-      const geometry = this.uniformWeights ? null : this.geometryData;
-      this.packedLabels.read(labels, (ids, firstRow, rows) => this.layout.accumulate(ids, firstRow, rows, this.siteData, geometry, siteCount, sums));
+      this.packedLabels.read(labels, this.accumulateBand);
       return sums;
     }
     if (this.gather) {
@@ -214,6 +213,10 @@ export class GpuEngine {
     }
     return sums;
   }
+
+  /** The readback path's reduction of one band of packed ids (a field: no closure per call). */
+  private readonly accumulateBand = (ids: Int32Array, firstRow: number, rows: number): void =>
+    this.layout.accumulate(ids, firstRow, rows, this.siteData, this.uniformWeights ? null : this.geometryData, this.siteCount, this.sums);
 
   /** The blend path: one additive scatter of every texel into the sums target, read into `staging`. */
   private scatter(labels: THREE.Texture, energyPass: boolean): void {

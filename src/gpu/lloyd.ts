@@ -1,55 +1,33 @@
 import { PROJECTION_STRIDE, type ClosedProjector } from '../core/closed/projector';
 import { storeProjection, type ClosedSites } from '../core/closed/geometry';
 import type { Grid } from '../core/grid';
+import type { LloydConfig } from '../core/config';
 import type { IterationRecord, LloydIterations } from '../core/iterationRecord';
 import { moveSitesToCentroids, type LloydMove } from '../core/lloydUpdate';
 import { SUMS_STRIDE, type GpuEngine } from './engine';
 
 export type { IterationRecord } from '../core/iterationRecord';
 
-/** Lloyd's settings, as the config's `lloyd` section gives them. */
-export interface LloydOptions {
-  readonly maxIterations: number;
-  /** Stop once the largest site displacement (µm) falls below this; 0 runs every iteration. */
-  readonly tolerance: number;
-  /** 1 = plain Lloyd; up to ~1.9 over-relaxes. */
-  readonly overRelaxation: number;
-  /** Start each jump flood from the previous labels instead of from scratch. */
-  readonly warmStart: boolean;
-  /** Wait for the GPU after each jump flood, so jump flood and centroid times are apart. */
-  readonly profile?: boolean;
-}
-
-/** A Lloyd move as a loop reports it (a reused object: the loop allocates nothing for it). */
-export interface MoveSummary {
-  /** CVT energy of the sites before the move (summed as the engine's sums hold it). */
-  energy: number;
-  /** Largest site displacement, µm. */
-  maxDisplacement: number;
-  /** How far (texels, an upper bound) any site moved: where a warm-started flood starts. */
-  warmFrom: number;
-}
+/** Lloyd's settings (the config's `lloyd` section), and `profile`: wait for the GPU after each flood, so flood and centroid times are apart. */
+export type LloydOptions = LloydConfig & { readonly profile?: boolean };
 
 /** The CPU half of Lloyd's method on one surface family: the sites, how they upload and move. */
 export interface SiteMover<Sites = unknown> {
   readonly sites: Sites;
   upload(engine: GpuEngine): void;
-  /** Moves every site to (towards, with over-relaxation ω) its cell's centroid, from engine.sums. */
-  move(engine: GpuEngine, omega: number, summary: MoveSummary): void;
+  /**
+   * Moves every site to (towards, with over-relaxation ω) its cell's centroid, from engine.sums;
+   * `move.maxDisplacementTexels` bounds the move in texels, where a warm-started flood starts.
+   */
+  move(engine: GpuEngine, omega: number, move: LloydMove): void;
 }
 
 /** Sites on a planar-family grid (interleaved x, y, texel units; updated in place). */
 export function gridSites(grid: Grid, sites: Float32Array): SiteMover<Float32Array> {
-  const move: LloydMove = { energy: 0, maxDisplacement: 0, maxDisplacementTexels: 0, emptyCells: 0 };
   return {
     sites,
     upload: (engine) => engine.setSites(sites),
-    move(engine, omega, summary) {
-      moveSitesToCentroids(grid, sites, engine.sums, engine.siteCount, omega, move, SUMS_STRIDE);
-      summary.energy = move.energy;
-      summary.maxDisplacement = move.maxDisplacement;
-      summary.warmFrom = move.maxDisplacementTexels;
-    },
+    move: (engine, omega, move) => moveSitesToCentroids(grid, sites, engine.sums, engine.siteCount, omega, move, SUMS_STRIDE),
   };
 }
 
@@ -66,7 +44,7 @@ export function closedSites(projector: ClosedProjector, sites: ClosedSites, texe
   return {
     sites,
     upload: (engine) => engine.setSites(sites.positions, sites.texels),
-    move(engine, omega, summary) {
+    move(engine, omega, move) {
       const sums = engine.sums;
       let energy = 0;
       let maxSquared = 0;
@@ -85,9 +63,9 @@ export function closedSites(projector: ClosedProjector, sites: ClosedSites, texe
         maxSquared = Math.max(maxSquared, dx * dx + dy * dy + dz * dz);
         storeProjection(sites, i, buffer, 0, engine.layout.width);
       }
-      summary.energy = energy;
-      summary.maxDisplacement = Math.sqrt(maxSquared);
-      summary.warmFrom = Math.min(engine.layout.width, summary.maxDisplacement / texelSpacing);
+      move.energy = energy;
+      move.maxDisplacement = Math.sqrt(maxSquared);
+      move.maxDisplacementTexels = Math.min(engine.layout.width, move.maxDisplacement / texelSpacing);
     },
   };
 }
@@ -101,7 +79,7 @@ export function closedSites(projector: ClosedProjector, sites: ClosedSites, texe
 export class GpuLloydRun<Sites = unknown> implements LloydIterations {
   readonly iterations: IterationRecord[] = [];
   converged = false;
-  private readonly summary: MoveSummary = { energy: 0, maxDisplacement: 0, warmFrom: 0 };
+  private readonly move: LloydMove = { energy: 0, maxDisplacement: 0, maxDisplacementTexels: 0, emptyCells: 0 };
   private lastFloodMs = 0;
   private lastPasses = 0;
 
@@ -126,7 +104,7 @@ export class GpuLloydRun<Sites = unknown> implements LloydIterations {
     const start = performance.now();
     this.engine.computeSums();
     const centroidMs = performance.now() - start;
-    const move = this.summary;
+    const move = this.move;
     this.mover.move(this.engine, this.options.overRelaxation, move);
     const record: IterationRecord = {
       iteration: this.iterations.length + 1,
@@ -138,7 +116,7 @@ export class GpuLloydRun<Sites = unknown> implements LloydIterations {
     };
     this.iterations.push(record);
     if (move.maxDisplacement < this.options.tolerance) this.converged = true;
-    this.flood(this.options.warmStart ? move.warmFrom : undefined);
+    this.flood(this.options.warmStart ? move.maxDisplacementTexels : undefined);
     return record;
   }
 

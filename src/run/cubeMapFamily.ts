@@ -113,10 +113,9 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
   // The lab protocol is refused on closed surfaces (no open ends): validity is the stack's.
   protocolInvalid: () => null,
 
-  labelImage: (geometry, layer, labels) => ({
+  labelFrame: (geometry, layer) => ({
     name: layer.name,
     grid: atlasGrid(geometry.image.n, layer.sample.totalArea),
-    labels,
     positions: layer.sample.position,
   }),
 

@@ -47,8 +47,8 @@ export interface Relaxation {
   readonly converged: boolean;
   readonly iterations: IterationRecord[];
   step(): IterationRecord;
-  /** The final sites' CVT energy, empty cells and label image (site id per texel). */
-  finish(): { energy: number; emptyCells: number; labels: Int32Array };
+  /** The final sites' CVT energy, empty cells and label image (site id per texel; null from the exact engine). */
+  finish(): { energy: number; emptyCells: number; labels: Int32Array | null };
   dispose(): void;
 }
 
@@ -99,7 +99,8 @@ export interface SurfaceFamily<C extends AnyConfig, Geometry, Sites, Layer exten
    * engine's cells drawn on the texels, or on a cube map each texel's nearest site.
    */
   exactLabels(geometry: Geometry, layer: Layer, projected: Projected): Int32Array;
-  labelImage(geometry: Geometry, layer: Layer, labels: Int32Array): LabelImage;
+  /** A layer's label image less its labels: its name, grid and (closed surfaces) texel positions. */
+  labelFrame(geometry: Geometry, layer: Layer): Omit<LabelImage, 'labels'>;
   /** Neighbours, contact lengths (µm), areas and border contacts from a layer's label image. */
   labelAdjacency(config: C, geometry: Geometry, layer: Layer, labels: Int32Array, count: number): LabelSurfaceAdjacency;
   /** The shortest contact (µm) the labels method counts on each layer, and the value reported. */

@@ -62,7 +62,7 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
       // adjacency reads it instead of triangulating the same sites again (exactAdjacency).
       memo(sites, FINAL_DIAGRAM, () => run.voronoi);
       // No label image: the stack rasterizes the exact cells for views when asked.
-      return { sites, relaxation: relaxation(run, () => NO_LABELS) };
+      return { sites, relaxation: relaxation(run, () => null) };
     }
     const engine = new GpuEngine(context, gridLayout(grid), config.cells, { variant: config.jumpFlood.variant, centroidPath: choice.centroidPath });
     try {
@@ -95,7 +95,7 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
 
   exactLabels: (_geometry, layer, projected) => rasterizeCells(layer.grid, exactVoronoi(layer.grid, projected)),
 
-  labelImage: (_geometry, layer, labels) => ({ name: layer.name, grid: layer.grid, labels }),
+  labelFrame: (_geometry, layer) => ({ name: layer.name, grid: layer.grid }),
 
   // Contact lengths without the staircase bias, except under a pixel rule (the lab's 6 px),
   // which counts texel edges: there the staircase is the quantity the rule is about.
@@ -229,9 +229,6 @@ function sameValues(a: ArrayLike<number>, b: ArrayLike<number>): boolean {
   for (let k = 0; k < a.length; k++) if (a[k] !== b[k]) return false;
   return true;
 }
-
-/** The exact engine's seeded surface has no label image (the stack draws its cells for views). */
-const NO_LABELS = new Int32Array(0);
 
 /** The lab protocol's knobs as the config sets them. */
 function labSettings(sheet: Config['sheet']): LabProtocolSettings {

@@ -9,8 +9,8 @@ export interface SeededSurface<Geometry, Sites> {
   readonly geometry: Geometry;
   /** The final sites, as the family keeps them. */
   readonly sites: Sites;
-  /** Label image of the final sites (site id per texel). */
-  readonly labels: Int32Array;
+  /** Label image of the final sites (site id per texel); null where the engine makes none (exact). */
+  readonly labels: Int32Array | null;
   readonly engine: EngineChoice;
   readonly iterations: IterationRecord[];
   readonly converged: boolean;
@@ -64,10 +64,15 @@ export async function relaxSeededSurface<C extends AnyConfig, G, S, L extends St
 
 /**
  * A Lloyd loop as the pipeline drives it. `labels` gives the final label image after the final
- * sums, `beforeFinish` runs before them (the planar GPU family re-labels the final sites with a
+ * sums (null: this engine makes none), `beforeFinish` runs before them (the planar GPU family re-labels the final sites with a
  * cold flood there), `dispose` frees the engine.
  */
-export function relaxation(run: LloydIterations, labels: () => Int32Array, dispose: () => void = () => {}, beforeFinish: () => void = () => {}): Relaxation {
+export function relaxation(
+  run: LloydIterations,
+  labels: () => Int32Array | null,
+  dispose: () => void = () => {},
+  beforeFinish: () => void = () => {},
+): Relaxation {
   return {
     get done() {
       return run.done;

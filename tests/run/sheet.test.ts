@@ -165,7 +165,7 @@ describe('pixel adjacency against exact adjacency at the default resolution', ()
       const config = validateConfig({ ...input, engine: 'gpu' });
       const seeded = await relaxSeededSurface(planarFamily, config, context, chooseEngine(config, 'planar grid', context.capabilities));
       const { grid } = seeded.geometry;
-      const labels = labelAdjacency(grid, seeded.labels, config.cells);
+      const labels = labelAdjacency(grid, seeded.labels!, config.cells);
       const pixel = filterShortContacts(labels, defaultMinContactLength(grid, config.cells));
       const exact = exactVoronoi(grid, seeded.sites).adjacency;
       const p = pairSet(pixel.offsets, pixel.neighbours);
