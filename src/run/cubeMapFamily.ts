@@ -122,6 +122,7 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
   labelAdjacency: (_config, geometry, layer, labels, count) =>
     surfaceFromLabels(cubeLabelAdjacency(layer.sample, labels, count, geometry.neighbours), layer.name),
 
+  // True contact lengths: the same thresholds for both methods, per surface.
   minContactLengths(config, geometry, layers) {
     const { totalArea } = geometry.image;
     const length = config.sheet.minContactLength ?? labMinBoundaryLength(totalArea, config.cells);
@@ -132,19 +133,15 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
 
   exactAdjacency: (config, geometry, layer, sites) => closedExactAdjacency(config, geometry, sites, layer.offset, config.sheet.offset, layer.name),
 
-  // True contact lengths: the same thresholds as the labels method, per surface.
-  exactMinContactLengths: (config, geometry, layers) => cubeMapFamily.minContactLengths(config, geometry, layers),
-
-  cellPlacement(_config, _layer, sites, projected, id) {
+  cellPlacements(_config, _layer, sites, projected, position, coordinates) {
     const deg = 180 / Math.PI;
-    const dx = sites.directions[3 * id],
-      dy = sites.directions[3 * id + 1],
-      dz = sites.directions[3 * id + 2];
-    return {
-      position: [projected.positions[3 * id], projected.positions[3 * id + 1], projected.positions[3 * id + 2]],
+    position.set(projected.positions.subarray(0, position.length));
+    for (let id = 0; 2 * id < coordinates.length; id++) {
       // [longitude, latitude] (degrees) of the site's parameter direction.
-      surface: [Math.atan2(dy, dx) * deg, Math.asin(Math.max(-1, Math.min(1, dz))) * deg],
-    };
+      const d = sites.directions;
+      coordinates[2 * id] = Math.atan2(d[3 * id + 1], d[3 * id]) * deg;
+      coordinates[2 * id + 1] = Math.asin(Math.max(-1, Math.min(1, d[3 * id + 2]))) * deg;
+    }
   },
 
   layerRatio: (geometry, layer) => Math.sqrt(layer.sample.totalArea / geometry.image.totalArea),

@@ -15,7 +15,7 @@ import type { Grid } from '../core/grid';
 import { labelAdjacency } from '../core/labels';
 import { projectSites, surfaceStack, type StackSurface } from '../core/sheetGeometry';
 import { placeSites } from '../core/sites';
-import { embed, embedAll, surfaceCoordinates } from '../core/surface';
+import { embedAll } from '../core/surface';
 import type { EngineChoice } from './enginePolicy';
 import type { GpuContext } from '../gpu/context';
 import { GpuEngine } from '../gpu/engine';
@@ -108,7 +108,9 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
   // A pixel rule (texel edges, e.g. the lab's 6 px around a 512 px tube) or a length in µm;
   // by default the lab's threshold scaled to this sheet's mean cell size. Texels are square
   // and the same size on every surface of the stack, so one length serves them all.
-  minContactLengths(config, geometry, layers) {
+  minContactLengths(config, geometry, layers, method) {
+    // The exact Delaunay needs no threshold: every contact of positive length counts.
+    if (method === 'exact') return null;
     const pixels = minContactPixelsOf(config.sheet);
     const length =
       pixels !== null
@@ -134,18 +136,9 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
     });
   },
 
-  // The exact Delaunay needs no threshold: every contact of positive length counts.
-  exactMinContactLengths: () => null,
-
   // Kept per seeded surface: runs that differ in the sheet share most of their layers (and the
   // seeded surface's own sites reuse the exact Lloyd run's final diagram: see exactLayer).
   exactAdjacency: (_config, _geometry, layer, sites, projected) => ({ ...exactLayer(layer.grid, sites, projected), label: layer.name }),
-
-  cellPlacement(config, layer, _sites, projected, id) {
-    const x = projected[2 * id];
-    const y = projected[2 * id + 1];
-    return { position: embed(config.surface, layer.grid, x, y, layer.offset).position, surface: surfaceCoordinates(layer.grid, x, y) };
-  },
 
   cellPlacements: (config, layer, _sites, projected, position, coordinates) =>
     embedAll(config.surface, layer.grid, projected, layer.offset, position, coordinates),

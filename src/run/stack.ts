@@ -84,14 +84,14 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
       return { method, protocol: config.sheet.protocol, minContactLength, summary: analysis.summary, cells: [] };
     };
     if (methods.includes('labels')) {
-      const minContact = family.minContactLengths(config, geometry, layers);
-      const inputs = labelled.map((surface, k) => withMinBoundaryLength(surface, minContact.perLayer[k]));
-      analyses.push(record('labels', minContact.reported, analyze(inputs)));
+      const minContact = family.minContactLengths(config, geometry, layers, 'labels');
+      const inputs = minContact ? labelled.map((surface, k) => withMinBoundaryLength(surface, minContact.perLayer[k])) : labelled;
+      analyses.push(record('labels', minContact?.reported ?? 0, analyze(inputs)));
     }
     let exactSurfaces: SurfaceAdjacency[] | null = null;
     if (methods.includes('exact')) {
       exactSurfaces = layers.map((layer, k) => family.exactAdjacency(config, geometry, layer, seeded.sites, projected[k]));
-      const minContact = family.exactMinContactLengths(config, geometry, layers);
+      const minContact = family.minContactLengths(config, geometry, layers, 'exact');
       const inputs = minContact ? exactSurfaces.map((surface, k) => withMinBoundaryLength(surface, minContact.perLayer[k])) : exactSurfaces;
       analyses.push(record('exact', minContact?.reported ?? 0, analyze(inputs)));
     }
@@ -101,11 +101,7 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
     // Cells and their contacts: exact where only the exact method ran, else from the label images.
     const cellSurfaces = !labelsAsked && exactSurfaces ? exactSurfaces : labelled;
     const tables: CellTable[] = layers.map((layer, k) =>
-      cellTable(
-        cellSurfaces[k],
-        (id) => family.cellPlacement(config, layer, seeded.sites, projected[k], id),
-        family.cellPlacements && ((position, coordinates) => family.cellPlacements!(config, layer, seeded.sites, projected[k], position, coordinates)),
-      ),
+      cellTable(cellSurfaces[k], (position, coordinates) => family.cellPlacements(config, layer, seeded.sites, projected[k], position, coordinates)),
     );
     // Records built on first read (a sweep reads only the analyses): hundreds of objects per
     // surface; none with cell tables (the columns are the cells).
