@@ -12,6 +12,7 @@ import {
   placeClosedSites,
   texelNeighbours,
   type ClosedSites,
+  type CubeSurfaceSample,
 } from '../core/closed/geometry';
 import type { Grid } from '../core/grid';
 import type { EngineChoice } from './enginePolicy';
@@ -79,12 +80,15 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
     return offsets.map((offset, k) => {
       const role = k === 0 ? 'seeded' : k === count - 1 ? 'other' : 'layer';
       const name = role === 'seeded' ? sheet.seeded : role === 'other' ? (sheet.seeded === 'basal' ? 'apical' : 'basal') : `layer ${k}`;
+      const ratioOf = (sample: CubeSurfaceSample) => Math.sqrt(sample.totalArea / geometry.image.totalArea);
       if (sheet.offset === 'axes' && offset !== 0) {
         const [a, b, c] = semiAxes(config);
         const axes = [a + offset, b + offset, c + offset] as const;
-        return { name, role, offset, axes, sample: sampleSurface({ kind: 'ellipsoid', a: axes[0], b: axes[1], c: axes[2] }, geometry.image.n) };
+        const sample = sampleSurface({ kind: 'ellipsoid', a: axes[0], b: axes[1], c: axes[2] }, geometry.image.n);
+        return { name, role, offset, axes, sample, ratio: ratioOf(sample) };
       }
-      return { name, role, offset, sample: offsetSurface(geometry.image, offset, geometry.neighbours) };
+      const sample = offsetSurface(geometry.image, offset, geometry.neighbours);
+      return { name, role, offset, sample, ratio: ratioOf(sample) };
     });
   },
 
@@ -143,8 +147,6 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
       coordinates[2 * id + 1] = Math.asin(Math.max(-1, Math.min(1, d[3 * id + 2]))) * deg;
     }
   },
-
-  layerRatio: (geometry, layer) => Math.sqrt(layer.sample.totalArea / geometry.image.totalArea),
 
   gridRecord: (geometry) => ({ ...atlasGrid(geometry.image.n, geometry.image.totalArea) }),
 

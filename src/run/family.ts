@@ -38,6 +38,8 @@ export interface StackLayer {
   readonly role: 'seeded' | 'layer' | 'other';
   /** Signed distance from the seeded surface along its normal, µm (outward > 0). */
   readonly offset: number;
+  /** Size relative to the seeded surface: R / R_seeded on a tube, 1 on a plane, √(area ratio) on a closed surface. */
+  readonly ratio: number;
 }
 
 /** Lloyd's method on the seeded surface, one iteration at a time (GPU passes, CPU moves). */
@@ -105,8 +107,6 @@ export interface SurfaceFamily<C extends AnyConfig, Geometry, Sites, Layer exten
    * coordinates at 2·id (unrolled µm on planes and tubes; [longitude, latitude] in degrees on closed surfaces).
    */
   cellPlacements(config: C, layer: Layer, sites: Sites, projected: Projected, position: Float64Array, coordinates: Float64Array): void;
-  /** Size of a layer relative to the seeded surface (R / R_seeded on a tube; 1 on a plane). */
-  layerRatio(geometry: Geometry, layer: Layer): number;
   /** The texel grid of the seeded surface, as the result reports it. */
   gridRecord(geometry: Geometry): GridRecord;
   /** What this family adds to the result (the `closed` section), computed last. */

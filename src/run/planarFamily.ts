@@ -143,8 +143,6 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
   cellPlacements: (config, layer, _sites, projected, position, coordinates) =>
     embedAll(config.surface, layer.grid, projected, layer.offset, position, coordinates),
 
-  layerRatio: (_geometry, layer) => layer.ratio,
-
   gridRecord: (geometry) => ({ ...geometry.grid }),
 
   resultSection: () => ({}),

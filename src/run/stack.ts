@@ -112,7 +112,7 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
         name: layer.name,
         role: layer.role === 'layer' ? 'layer' : 'other',
         offset: layer.offset,
-        ratio: family.layerRatio(geometry, layer),
+        ratio: layer.ratio,
         grid: { ...labelImages[index + 1].grid },
         get cells() {
           return cells();
