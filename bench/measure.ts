@@ -3,10 +3,11 @@ import type { Grid } from '../src/core/grid';
 import { coldSchedule } from '../src/core/jumpSchedule';
 import { placeSites } from '../src/core/sites';
 import type { GpuContext } from '../src/gpu/context';
-import { CcvtEngine, type EngineOptions } from '../src/gpu/engine';
-import { LloydRun } from '../src/gpu/lloyd';
 import { cpuLloydIterations } from './cpuLloyd';
 import { FloorJumpFlood } from './floorJumpFlood';
+import { GpuEngine, type EngineOptions } from '../src/gpu/engine';
+import { gridLayout } from '../src/gpu/layout';
+import { GpuLloydRun, gridSites } from '../src/gpu/lloyd';
 
 export interface BenchCase {
   readonly size: number;
@@ -111,7 +112,7 @@ export async function measure(
     floor.setSeeds(sites, count);
     floor.flood(steps); // warm-up: compile, first upload
     context.renderer.resetState();
-    const engine = new CcvtEngine(context, grid, count, { variant: 'jfa+2', centroidPath });
+    const engine = new GpuEngine(context, gridLayout(grid), count, { variant: 'jfa+2', centroidPath });
     try {
       engine.setSites(sites);
       engine.floodLabels();
@@ -135,7 +136,7 @@ export async function measure(
       const coldJumpFloodMs = median(coldTimes);
 
       // Profiled run: jump flood and centroid pass timed apart.
-      const profiled = new LloydRun(engine, grid, sites.slice(), {
+      const profiled = new GpuLloydRun(engine, gridSites(grid, sites.slice()), {
         maxIterations: iterations,
         tolerance: 0,
         overRelaxation: 1,
@@ -157,7 +158,7 @@ export async function measure(
       }
 
       // Unprofiled run: what an iteration really costs.
-      const plain = new LloydRun(engine, grid, sites.slice(), {
+      const plain = new GpuLloydRun(engine, gridSites(grid, sites.slice()), {
         maxIterations: iterations,
         tolerance: 0,
         overRelaxation: 1,

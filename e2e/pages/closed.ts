@@ -5,8 +5,9 @@ import { placeClosedSites } from '../../src/core/closed/geometry';
 import { ellipsoidProjector } from '../../src/core/closed/projector';
 import { sampleSurface } from '../../src/core/cubemap/sample';
 import { createCanvasContext } from '../../src/gpu/context';
-import { CUBE_SUMS_STRIDE, CubeCcvtEngine } from '../../src/gpu/cubeEngine';
-import { ClosedLloydRun } from '../../src/gpu/cubeLloyd';
+import { GpuEngine, SUMS_STRIDE } from '../../src/gpu/engine';
+import { cubeLayout } from '../../src/gpu/layout';
+import { closedSites, GpuLloydRun } from '../../src/gpu/lloyd';
 
 const context = createCanvasContext(document.getElementById('gl') as HTMLCanvasElement);
 
@@ -17,8 +18,8 @@ function compare(n: number, count: number) {
   const sums: Float64Array[] = [];
   const paths: string[] = [];
   for (const centroidPath of ['blend', 'readback'] as const) {
-    const engine = new CubeCcvtEngine(context, n, count, { variant: 'jfa+2', centroidPath });
-    engine.setGeometry(image.position, image.area);
+    const engine = new GpuEngine(context, cubeLayout(n), count, { variant: 'jfa+2', centroidPath });
+    engine.setGeometry(image.area, image.position);
     engine.setSites(sites.positions, sites.texels);
     engine.floodLabels();
     sums.push(engine.computeSums().slice());
@@ -29,15 +30,15 @@ function compare(n: number, count: number) {
   let worstCentroid = 0,
     worstEnergy = 0;
   for (let i = 0; i < count; i++) {
-    const o = CUBE_SUMS_STRIDE * i;
+    const o = SUMS_STRIDE * i;
     const d = [0, 1, 2].map((c) => blend[o + c] / blend[o + 3] - readback[o + c] / readback[o + 3]);
     worstCentroid = Math.max(worstCentroid, Math.hypot(d[0], d[1], d[2]));
     worstEnergy = Math.max(worstEnergy, Math.abs(blend[o + 4] - readback[o + 4]) / readback[o + 4]);
   }
   // A plain Lloyd run on the blend path: the energy must not increase.
-  const engine = new CubeCcvtEngine(context, n, count, { variant: 'jfa+2', centroidPath: 'blend' });
-  engine.setGeometry(image.position, image.area);
-  const run = new ClosedLloydRun(engine, projector, sites, { maxIterations: 15, tolerance: 0, overRelaxation: 1, warmStart: true }, 0.5);
+  const engine = new GpuEngine(context, cubeLayout(n), count, { variant: 'jfa+2', centroidPath: 'blend' });
+  engine.setGeometry(image.area, image.position);
+  const run = new GpuLloydRun(engine, closedSites(projector, sites, 0.5), { maxIterations: 15, tolerance: 0, overRelaxation: 1, warmStart: true });
   while (!run.done) run.step();
   const energies = [...run.iterations.map((r) => r.energy), run.finish().energy];
   engine.dispose();

@@ -3,7 +3,8 @@
 import type { Grid } from '../../src/core/grid';
 import { placeSites } from '../../src/core/sites';
 import { createCanvasContext } from '../../src/gpu/context';
-import { CcvtEngine } from '../../src/gpu/engine';
+import { GpuEngine } from '../../src/gpu/engine';
+import { gridLayout } from '../../src/gpu/layout';
 
 const context = createCanvasContext(document.getElementById('gl') as HTMLCanvasElement);
 
@@ -18,8 +19,8 @@ function compareCentroidPaths(grid: Grid, count: number, seed: number, weighted:
     weights[i] = weighted ? 1 + 15 * ((i % grid.width) / grid.width > 0.5 ? 1 : 0) : 1;
   }
   const sumsOf = (centroidPath: 'blend' | 'gather' | 'readback') => {
-    const engine = new CcvtEngine(context, grid, count, { variant: 'jfa+2', centroidPath });
-    engine.setWeights(weights);
+    const engine = new GpuEngine(context, gridLayout(grid), count, { variant: 'jfa+2', centroidPath });
+    engine.setGeometry(weights);
     engine.setSites(sites);
     engine.floodLabels();
     const sums = engine.computeSums().slice();
@@ -28,15 +29,15 @@ function compareCentroidPaths(grid: Grid, count: number, seed: number, weighted:
   };
   const blend = sumsOf('blend');
   let emptyCells = 0;
-  for (let i = 0; i < count; i++) if (!(blend[4 * i + 2] > 0)) emptyCells++;
-  const against = (other: Float32Array) => {
+  for (let i = 0; i < count; i++) if (!(blend[5 * i + 3] > 0)) emptyCells++;
+  const against = (other: Float64Array) => {
     let worstCentroid = 0;
     let worstEnergy = 0;
     for (let i = 0; i < count; i++) {
-      const dx = blend[4 * i] / blend[4 * i + 2] - other[4 * i] / other[4 * i + 2];
-      const dy = blend[4 * i + 1] / blend[4 * i + 2] - other[4 * i + 1] / other[4 * i + 2];
+      const dx = blend[5 * i] / blend[5 * i + 3] - other[5 * i] / other[5 * i + 3];
+      const dy = blend[5 * i + 1] / blend[5 * i + 3] - other[5 * i + 1] / other[5 * i + 3];
       worstCentroid = Math.max(worstCentroid, Math.hypot(dx, dy));
-      worstEnergy = Math.max(worstEnergy, Math.abs(blend[4 * i + 3] - other[4 * i + 3]) / other[4 * i + 3]);
+      worstEnergy = Math.max(worstEnergy, Math.abs(blend[5 * i + 4] - other[5 * i + 4]) / other[5 * i + 4]);
     }
     return { worstCentroid, worstEnergy };
   };

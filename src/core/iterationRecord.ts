@@ -12,3 +12,18 @@ export interface IterationRecord {
   /** GPU: the centroid sums, ms; exact engine: integrating the cells and moving the sites, ms. */
   readonly centroidMs: number;
 }
+
+/**
+ * Lloyd's method driven one iteration at a time, so a page can yield between iterations and a
+ * user can cancel: the one interface the GPU engine's loop (gpu/lloyd.ts) and the exact
+ * engine's (exactEngine/exactLloyd.ts) implement.
+ */
+export interface LloydIterations {
+  readonly done: boolean;
+  readonly converged: boolean;
+  readonly iterations: IterationRecord[];
+  /** Centroids of the current sites' cells, then the move. */
+  step(): IterationRecord;
+  /** CVT energy (µm⁴ x density) and empty cells of the final sites. */
+  finish(): { energy: number; emptyCells: number };
+}

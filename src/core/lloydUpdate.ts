@@ -14,27 +14,36 @@ export interface LloydMove {
 
 /**
  * Moves every site to (site + omega * centroid offset), given the per-site sums
- * [w*dx, w*dy, w, w*d²] that the centroid pass computes (offsets from the site, texel units;
- * d² in µm²). omega = 1 is plain Lloyd; 1 < omega < 2 is over-relaxation. Periodic axes wrap,
+ * [w*dx, w*dy, ..., w, w*d²] (`stride` values a site: 4 from the exact engine, 5 from the GPU
+ * engine, whose third is w*dz) that the centroid pass computes (offsets from the site, texel
+ * units; d² in µm²). omega = 1 is plain Lloyd; 1 < omega < 2 is over-relaxation. Periodic axes wrap,
  * open axes clamp (a centroid of a convex cell is inside the domain; over-relaxation may not be).
  * Writes into `sites` in place and allocates nothing.
  */
-export function moveSitesToCentroids(grid: Grid, sites: Float32Array, sums: ArrayLike<number>, count: number, omega: number, move: LloydMove): LloydMove {
+export function moveSitesToCentroids(
+  grid: Grid,
+  sites: Float32Array,
+  sums: ArrayLike<number>,
+  count: number,
+  omega: number,
+  move: LloydMove,
+  stride = 4,
+): LloydMove {
   let energy = 0;
   let maxDisplacementSquared = 0;
   let maxTexels = 0;
   let emptyCells = 0;
   for (let i = 0; i < count; i++) {
-    const weight = sums[4 * i + 2];
-    energy += sums[4 * i + 3];
+    const weight = sums[stride * i + stride - 2];
+    energy += sums[stride * i + stride - 1];
     if (!(weight > 0)) {
       emptyCells++;
       continue;
     }
     const x = sites[2 * i];
     const y = sites[2 * i + 1];
-    const nextX = wrapCoordinate(x + (omega * sums[4 * i]) / weight, grid.width, grid.periodicX);
-    const nextY = wrapCoordinate(y + (omega * sums[4 * i + 1]) / weight, grid.height, grid.periodicY);
+    const nextX = wrapCoordinate(x + (omega * sums[stride * i]) / weight, grid.width, grid.periodicX);
+    const nextY = wrapCoordinate(y + (omega * sums[stride * i + 1]) / weight, grid.height, grid.periodicY);
     sites[2 * i] = nextX;
     sites[2 * i + 1] = nextY;
     // The stored float32 value is what the GPU sees next; measure the move from it.

@@ -1,7 +1,8 @@
 import * as THREE from 'three';
-import type { Grid } from '../core/grid';
+import { wrapDelta, type Grid } from '../core/grid';
 import centroidGatherFrag from '../shaders/centroidGather.frag';
 import fullscreenVert from '../shaders/fullscreen.vert';
+import type { TexelLayout } from './layout';
 import { ShaderPass } from './shaderPass';
 import { createFloatDataTexture, createFloatTarget, readTargetRGBA } from './textures';
 
@@ -22,7 +23,8 @@ const WINDOW_FACTOR = 1.2;
  * Windows are per site: radius = 1.2 x the radius of a disc of the cell's last area, + 1 texel,
  * + the largest move since then (at most one disc radius). A cell that reaches its window's
  * ring is summed again with a larger window in a retry that skips the finished cells, so a
- * tight guess costs little and a wrong one never costs accuracy.
+ * tight guess costs little and a wrong one never costs accuracy. Planar grids only (the cube
+ * map has no gather pass: chooseCentroidPath never picks it there).
  */
 export class GatherCentroids {
   /** Window half-size per site, texels (negative while retrying: finished). */
@@ -33,6 +35,10 @@ export class GatherCentroids {
   private readonly pass: ShaderPass;
   private readonly targets: THREE.WebGLRenderTarget[];
   private readonly largest: number;
+  private readonly grid: Grid;
+  /** Sites as of the last compute() (stride 4): how far they moved since sizes the windows. */
+  private readonly lastSites: Float32Array;
+  private first = true;
   /** Ping-pong index of the target the next draw writes. */
   private next = 0;
   /** Draws of the last compute(), retries included (for tests and the benchmark). */
@@ -42,13 +48,17 @@ export class GatherCentroids {
 
   constructor(
     private readonly renderer: THREE.WebGLRenderer,
-    private readonly grid: Grid,
+    layout: TexelLayout,
     private readonly siteCount: number,
     siteTextureWidth: number,
     siteTextureHeight: number,
+    /** Prepends the surface preamble and the layout's metric to a shader. */
+    program: (body: string) => string,
     uniforms: Record<string, THREE.IUniform>,
-    defines: Record<string, number>,
   ) {
+    if (!layout.grid) throw new Error('the gather centroid path runs on planar grids only');
+    const grid = (this.grid = layout.grid);
+    this.lastSites = new Float32Array(4 * siteCount);
     this.largest = Math.max(grid.width, grid.height);
     const texels = siteTextureWidth * siteTextureHeight;
     this.radii = new Float32Array(texels);
@@ -59,9 +69,10 @@ export class GatherCentroids {
     this.pass = new ShaderPass(
       'triangles',
       fullscreenVert,
-      centroidGatherFrag,
+      program(centroidGatherFrag),
       {
         ...uniforms,
+        labels: { value: null },
         radii: { value: this.radiusTexture },
         previousSums: { value: null },
         firstTile: { value: true },
@@ -71,18 +82,17 @@ export class GatherCentroids {
         tileSize: { value: GATHER_TILE },
       },
       false,
-      defines,
+      layout.defines,
     );
   }
 
   /**
-   * Sums (w*dx, w*dy, w, w*d²) per site into `sums`. `sites` holds positions with stride 4
-   * (the site texture's data), `weights` the per-texel weight (to measure areas in texels),
-   * `movedTexels` the largest distance any site moved since the last compute().
+   * Sums (w*dx, w*dy, w, w*d²) per site into `sums` (4 a site). `sites` holds positions with
+   * stride 4 (the site texture's data), `weights` the per-texel weight (to measure areas in texels).
    */
-  compute(labels: THREE.Texture, sums: Float32Array, sites: Float32Array, weights: Float32Array, movedTexels: number): Float32Array {
+  compute(labels: THREE.Texture, sums: Float32Array, sites: Float32Array, weights: Float32Array): Float32Array {
     this.pass.uniforms.labels.value = labels;
-    this.sizeWindows(movedTexels);
+    this.sizeWindows(this.movedSinceLast(sites));
     this.lastDrawCount = 0;
     this.lastRetries = 0;
     do {
@@ -103,6 +113,22 @@ export class GatherCentroids {
     this.pass.dispose();
     for (const target of this.targets) target.dispose();
     this.radiusTexture.dispose();
+  }
+
+  /** Largest distance (texels) any site moved since the last compute(); infinite the first time. */
+  private movedSinceLast(sites: Float32Array): number {
+    const { width, height, periodicX, periodicY } = this.grid;
+    let moved = 0;
+    for (let i = 0; i < this.siteCount; i++) {
+      const dx = wrapDelta(sites[4 * i] - this.lastSites[4 * i], width, periodicX);
+      const dy = wrapDelta(sites[4 * i + 1] - this.lastSites[4 * i + 1], height, periodicY);
+      moved = Math.max(moved, dx * dx + dy * dy);
+    }
+    this.lastSites.set(sites.subarray(0, 4 * this.siteCount));
+    const first = this.first;
+    this.first = false;
+    // NaN-safe: unknown is infinite.
+    return first || !(moved >= 0) ? Infinity : Math.sqrt(moved);
   }
 
   private sizeWindows(movedTexels: number): void {

@@ -1,8 +1,5 @@
 import * as THREE from 'three';
-import type { Grid } from '../core/grid';
-import fullscreenVert from '../shaders/fullscreen.vert';
-import packIdsFrag from '../shaders/packIds.frag';
-import { ShaderPass } from './shaderPass';
+import type { ShaderPass } from './shaderPass';
 
 /** Texels per readback band: bounds the staging buffer (4 MiB) on the largest grids. */
 const BAND_TEXELS = 1 << 20;
@@ -18,16 +15,15 @@ const LITTLE_ENDIAN = new Uint8Array(new Uint32Array([1]).buffer)[0] === 1;
  */
 export class PackedLabels {
   private readonly target: THREE.WebGLRenderTarget;
-  private readonly pass: ShaderPass;
   private readonly bytes: Uint8Array;
   private readonly ids: Int32Array;
   private readonly rowsPerBand: number;
 
   constructor(
     private readonly renderer: THREE.WebGLRenderer,
-    private readonly grid: Pick<Grid, 'width' | 'height'>,
-    uniforms: Record<string, THREE.IUniform>,
-    defines: Record<string, number>,
+    private readonly grid: { readonly width: number; readonly height: number },
+    /** The packing pass (shaders/packIds.frag, with a `labels` uniform). */
+    private readonly pass: ShaderPass,
   ) {
     if (!LITTLE_ENDIAN) throw new Error('tissue-sheet reads packed label ids as little-endian; this platform is big-endian');
     this.target = new THREE.WebGLRenderTarget(grid.width, grid.height, {
@@ -40,15 +36,13 @@ export class PackedLabels {
       magFilter: THREE.NearestFilter,
     });
     this.target.texture.colorSpace = THREE.NoColorSpace;
-    this.pass = new ShaderPass('triangles', fullscreenVert, packIdsFrag, uniforms, false, defines);
     this.rowsPerBand = Math.max(1, Math.min(grid.height, Math.floor(BAND_TEXELS / grid.width)));
     this.ids = new Int32Array(this.rowsPerBand * grid.width);
     this.bytes = new Uint8Array(this.ids.buffer);
   }
 
   /**
-   * Packs the ids of `labels` (flood positions resolved through the id map the pass's uniforms
-   * name; or, compiled with LABELS_ARE_IDS, the ids themselves) and hands them over band by band: `visit(ids, firstRow, rows)`, with `ids` holding
+   * Packs the ids of `labels` and hands them over band by band: `visit(ids, firstRow, rows)`, with `ids` holding
    * rows firstRow .. firstRow + rows - 1, row-major. `ids` is reused by the next band.
    */
   read(labels: THREE.Texture, visit: (ids: Int32Array, firstRow: number, rows: number) => void): void {

@@ -28,17 +28,10 @@ export class ShaderPass {
       depthTest: false,
       depthWrite: false,
     });
-    if (additiveBlend) {
-      this.material.blending = THREE.CustomBlending;
-      this.material.blendEquation = THREE.AddEquation;
-      this.material.blendSrc = THREE.OneFactor;
-      this.material.blendDst = THREE.OneFactor;
-      this.material.blendEquationAlpha = THREE.AddEquation;
-      this.material.blendSrcAlpha = THREE.OneFactor;
-      this.material.blendDstAlpha = THREE.OneFactor;
-    } else {
-      this.material.blending = THREE.NoBlending;
-    }
+    // Additive blending (one + one, colour and alpha) for the centroid scatter; none elsewhere.
+    const add = { blendEquation: THREE.AddEquation, blendSrc: THREE.OneFactor, blendDst: THREE.OneFactor };
+    const alpha = { blendEquationAlpha: THREE.AddEquation, blendSrcAlpha: THREE.OneFactor, blendDstAlpha: THREE.OneFactor };
+    Object.assign(this.material, additiveBlend ? { blending: THREE.CustomBlending, ...add, ...alpha } : { blending: THREE.NoBlending });
     const object = kind === 'points' ? new THREE.Points(this.geometry, this.material) : new THREE.Mesh(this.geometry, this.material);
     object.frustumCulled = false;
     this.geometry.setDrawRange(0, 3);

@@ -92,31 +92,15 @@ const HEADER_BYTES = 16;
 
 type Column = Float64Array | Int32Array | Uint8Array;
 
-/**
- * Columns of a surface's cells from its adjacency and each cell's placement (one call per cell,
- * or `placeAll` filling the position and surface columns at once).
- */
-export function cellTable(
-  surface: SurfaceAdjacency,
-  placement: (id: number) => Pick<CellRecord, 'position' | 'surface'>,
-  placeAll?: (position: Float64Array, coordinates: Float64Array) => void,
-): CellTable {
+/** Columns of a surface's cells from its adjacency, `placeAll` filling the position and surface columns. */
+export function cellTable(surface: SurfaceAdjacency, placeAll: (position: Float64Array, coordinates: Float64Array) => void): CellTable {
   const n = surface.count;
   const { offsets, neighbours, lengths } = toCsr(surface.adjacency);
   const position = new Float64Array(3 * n);
   const coordinates = new Float64Array(2 * n);
   const touchesBorder = new Uint8Array(n);
-  if (placeAll) placeAll(position, coordinates);
-  for (let id = 0; id < n; id++) {
-    touchesBorder[id] = surface.touchesBorder[id] === 1 ? 1 : 0;
-    if (placeAll) continue;
-    const place = placement(id);
-    position[3 * id] = place.position[0];
-    position[3 * id + 1] = place.position[1];
-    position[3 * id + 2] = place.position[2];
-    coordinates[2 * id] = place.surface[0];
-    coordinates[2 * id + 1] = place.surface[1];
-  }
+  placeAll(position, coordinates);
+  for (let id = 0; id < n; id++) touchesBorder[id] = surface.touchesBorder[id] === 1 ? 1 : 0;
   const total = offsets[n];
   // The adjacency's own arrays where they already have the columns' type and length (the exact
   // method's), else copies: no second copy of a million cells' contacts.

@@ -69,6 +69,7 @@ function compareGeodesic(geometry: CubeMapGeometry, sites: ClosedSites, labeller
     name: 'seeded',
     role: 'seeded',
     offset: 0,
+    ratio: 1,
     sample: { n: image.n, position: image.position, area: image.area, totalArea: image.totalArea },
   };
   const gpuLabels = labeller.label(seededLayer, { positions: sites.positions, texels: sites.texels });

@@ -12,13 +12,15 @@ import {
   placeClosedSites,
   texelNeighbours,
   type ClosedSites,
+  type CubeSurfaceSample,
 } from '../core/closed/geometry';
 import type { Grid } from '../core/grid';
 import type { EngineChoice } from './enginePolicy';
 import type { CentroidPath } from '../gpu/centroidPolicy';
 import type { GpuContext } from '../gpu/context';
-import { CubeCcvtEngine } from '../gpu/cubeEngine';
-import { ClosedLloydRun } from '../gpu/cubeLloyd';
+import { GpuEngine } from '../gpu/engine';
+import { cubeLayout } from '../gpu/layout';
+import { closedSites, GpuLloydRun } from '../gpu/lloyd';
 import { closedExactAdjacency } from './closedExact';
 import { closedSection } from './closedRecord';
 import { checkOffsets, prepareClosedSurface } from './closedSurface';
@@ -53,10 +55,10 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
     const { image, projector } = geometry;
     const centroidPath = gpuPath(choice);
     const sites = placeClosedSites(image, projector, config.cells, config.seed, config.minSpacing);
-    const engine = new CubeCcvtEngine(context, image.n, config.cells, { variant: config.jumpFlood.variant, centroidPath });
+    const engine = new GpuEngine(context, cubeLayout(image.n), config.cells, { variant: config.jumpFlood.variant, centroidPath });
     try {
-      engine.setGeometry(image.position, image.area);
-      const run = new ClosedLloydRun(engine, projector, sites, config.lloyd, minTexelSpacing(geometry));
+      engine.setGeometry(image.area, image.position);
+      const run = new GpuLloydRun(engine, closedSites(projector, sites, minTexelSpacing(geometry)), config.lloyd);
       return {
         sites,
         relaxation: relaxation(
@@ -78,12 +80,15 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
     return offsets.map((offset, k) => {
       const role = k === 0 ? 'seeded' : k === count - 1 ? 'other' : 'layer';
       const name = role === 'seeded' ? sheet.seeded : role === 'other' ? (sheet.seeded === 'basal' ? 'apical' : 'basal') : `layer ${k}`;
+      const ratioOf = (sample: CubeSurfaceSample) => Math.sqrt(sample.totalArea / geometry.image.totalArea);
       if (sheet.offset === 'axes' && offset !== 0) {
         const [a, b, c] = semiAxes(config);
         const axes = [a + offset, b + offset, c + offset] as const;
-        return { name, role, offset, axes, sample: sampleSurface({ kind: 'ellipsoid', a: axes[0], b: axes[1], c: axes[2] }, geometry.image.n) };
+        const sample = sampleSurface({ kind: 'ellipsoid', a: axes[0], b: axes[1], c: axes[2] }, geometry.image.n);
+        return { name, role, offset, axes, sample, ratio: ratioOf(sample) };
       }
-      return { name, role, offset, sample: offsetSurface(geometry.image, offset, geometry.neighbours) };
+      const sample = offsetSurface(geometry.image, offset, geometry.neighbours);
+      return { name, role, offset, sample, ratio: ratioOf(sample) };
     });
   },
 
@@ -112,16 +117,16 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
   // The lab protocol is refused on closed surfaces (no open ends): validity is the stack's.
   protocolInvalid: () => null,
 
-  labelImage: (geometry, layer, labels) => ({
+  labelFrame: (geometry, layer) => ({
     name: layer.name,
     grid: atlasGrid(geometry.image.n, layer.sample.totalArea),
-    labels,
     positions: layer.sample.position,
   }),
 
   labelAdjacency: (_config, geometry, layer, labels, count) =>
     surfaceFromLabels(cubeLabelAdjacency(layer.sample, labels, count, geometry.neighbours), layer.name),
 
+  // True contact lengths: the same thresholds for both methods, per surface.
   minContactLengths(config, geometry, layers) {
     const { totalArea } = geometry.image;
     const length = config.sheet.minContactLength ?? labMinBoundaryLength(totalArea, config.cells);
@@ -132,22 +137,16 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
 
   exactAdjacency: (config, geometry, layer, sites) => closedExactAdjacency(config, geometry, sites, layer.offset, config.sheet.offset, layer.name),
 
-  // True contact lengths: the same thresholds as the labels method, per surface.
-  exactMinContactLengths: (config, geometry, layers) => cubeMapFamily.minContactLengths(config, geometry, layers),
-
-  cellPlacement(_config, _layer, sites, projected, id) {
+  cellPlacements(_config, _layer, sites, projected, position, coordinates) {
     const deg = 180 / Math.PI;
-    const dx = sites.directions[3 * id],
-      dy = sites.directions[3 * id + 1],
-      dz = sites.directions[3 * id + 2];
-    return {
-      position: [projected.positions[3 * id], projected.positions[3 * id + 1], projected.positions[3 * id + 2]],
+    position.set(projected.positions.subarray(0, position.length));
+    for (let id = 0; 2 * id < coordinates.length; id++) {
       // [longitude, latitude] (degrees) of the site's parameter direction.
-      surface: [Math.atan2(dy, dx) * deg, Math.asin(Math.max(-1, Math.min(1, dz))) * deg],
-    };
+      const d = sites.directions;
+      coordinates[2 * id] = Math.atan2(d[3 * id + 1], d[3 * id]) * deg;
+      coordinates[2 * id + 1] = Math.asin(Math.max(-1, Math.min(1, d[3 * id + 2]))) * deg;
+    }
   },
-
-  layerRatio: (geometry, layer) => Math.sqrt(layer.sample.totalArea / geometry.image.totalArea),
 
   gridRecord: (geometry) => ({ ...atlasGrid(geometry.image.n, geometry.image.totalArea) }),
 
@@ -204,10 +203,10 @@ function gpuPath(choice: EngineChoice): CentroidPath {
 
 /** Every surface of the stack has the same cube map: one engine labels them all (setGeometry). */
 function cubeMapLabeller(context: GpuContext, config: ClosedConfig, n: number, choice: EngineChoice): Labeller<CubeMapLayer, CubeMapProjected> {
-  const engine = new CubeCcvtEngine(context, n, config.cells, { variant: config.jumpFlood.variant, centroidPath: gpuPath(choice) });
+  const engine = new GpuEngine(context, cubeLayout(n), config.cells, { variant: config.jumpFlood.variant, centroidPath: gpuPath(choice) });
   return {
     label(layer, sites) {
-      engine.setGeometry(layer.sample.position, layer.sample.area);
+      engine.setGeometry(layer.sample.area, layer.sample.position);
       engine.setSites(sites.positions, sites.texels);
       engine.floodLabels();
       return engine.readLabels();

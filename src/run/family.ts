@@ -1,7 +1,6 @@
 import type { SurfaceAdjacency } from '../core/analysis';
 import type { AnyConfig } from '../core/config';
 import type { GrayImage } from '../core/density';
-import type { Vec3 } from '../core/surface';
 import type { SurfaceFamilyName } from '../gpu/centroidPolicy';
 import type { GpuContext } from '../gpu/context';
 import type { IterationRecord } from '../gpu/lloyd';
@@ -39,6 +38,8 @@ export interface StackLayer {
   readonly role: 'seeded' | 'layer' | 'other';
   /** Signed distance from the seeded surface along its normal, µm (outward > 0). */
   readonly offset: number;
+  /** Size relative to the seeded surface: R / R_seeded on a tube, 1 on a plane, √(area ratio) on a closed surface. */
+  readonly ratio: number;
 }
 
 /** Lloyd's method on the seeded surface, one iteration at a time (GPU passes, CPU moves). */
@@ -47,8 +48,8 @@ export interface Relaxation {
   readonly converged: boolean;
   readonly iterations: IterationRecord[];
   step(): IterationRecord;
-  /** The final sites' CVT energy, empty cells and label image (site id per texel). */
-  finish(): { energy: number; emptyCells: number; labels: Int32Array };
+  /** The final sites' CVT energy, empty cells and label image (site id per texel; null from the exact engine). */
+  finish(): { energy: number; emptyCells: number; labels: Int32Array | null };
   dispose(): void;
 }
 
@@ -63,14 +64,6 @@ export interface LabelSurfaceAdjacency extends SurfaceAdjacency {
   readonly adjacency: { readonly offsets: Int32Array; readonly neighbours: Int32Array; readonly lengths: Float64Array };
   readonly areas: Float64Array;
   readonly touchesBorder: Uint8Array;
-}
-
-/** Where a cell's site lies, for its record. */
-export interface CellPlacement {
-  /** Site position in 3D, µm. */
-  readonly position: Vec3;
-  /** Unrolled coordinates (µm) on planes and tubes; [longitude, latitude] (degrees) on closed surfaces. */
-  readonly surface: [number, number];
 }
 
 /**
@@ -99,22 +92,21 @@ export interface SurfaceFamily<C extends AnyConfig, Geometry, Sites, Layer exten
    * engine's cells drawn on the texels, or on a cube map each texel's nearest site.
    */
   exactLabels(geometry: Geometry, layer: Layer, projected: Projected): Int32Array;
-  labelImage(geometry: Geometry, layer: Layer, labels: Int32Array): LabelImage;
+  /** A layer's label image less its labels: its name, grid and (closed surfaces) texel positions. */
+  labelFrame(geometry: Geometry, layer: Layer): Omit<LabelImage, 'labels'>;
   /** Neighbours, contact lengths (µm), areas and border contacts from a layer's label image. */
   labelAdjacency(config: C, geometry: Geometry, layer: Layer, labels: Int32Array, count: number): LabelSurfaceAdjacency;
-  /** The shortest contact (µm) the labels method counts on each layer, and the value reported. */
-  minContactLengths(config: C, geometry: Geometry, layers: Layer[]): { reported: number; perLayer: number[] };
+  /** The shortest contact (µm) a method counts on each layer and the value reported, or null: every contact counts. */
+  minContactLengths(config: C, geometry: Geometry, layers: Layer[], method: 'labels' | 'exact'): { reported: number; perLayer: number[] } | null;
   /** The protocol's invalid cells beyond those touching an open end of the stack (lab: any validity layer), or null. */
   protocolInvalid(config: C, geometry: Geometry, sites: Sites): Uint8Array | null;
-  /** The shortest contact (µm) the exact method counts on each layer, or null for every contact. */
-  exactMinContactLengths(config: C, geometry: Geometry, layers: Layer[]): { reported: number; perLayer: number[] } | null;
   /** The exact adjacency of a layer (every surface has one: planar Delaunay, restricted Voronoi). */
   exactAdjacency(config: C, geometry: Geometry, layer: Layer, sites: Sites, projected: Projected): SurfaceAdjacency;
-  cellPlacement(config: C, layer: Layer, sites: Sites, projected: Projected, id: number): CellPlacement;
-  /** Optional: cellPlacement of every cell at once into columns ((x, y, z) at 3·id, (u, v) at 2·id), the same values. */
-  cellPlacements?(config: C, layer: Layer, sites: Sites, projected: Projected, position: Float64Array, coordinates: Float64Array): void;
-  /** Size of a layer relative to the seeded surface (R / R_seeded on a tube; 1 on a plane). */
-  layerRatio(geometry: Geometry, layer: Layer): number;
+  /**
+   * Where every cell's site lies, into columns: position (x, y, z, µm) at 3·id; surface
+   * coordinates at 2·id (unrolled µm on planes and tubes; [longitude, latitude] in degrees on closed surfaces).
+   */
+  cellPlacements(config: C, layer: Layer, sites: Sites, projected: Projected, position: Float64Array, coordinates: Float64Array): void;
   /** The texel grid of the seeded surface, as the result reports it. */
   gridRecord(geometry: Geometry): GridRecord;
   /** What this family adds to the result (the `closed` section), computed last. */

@@ -15,11 +15,12 @@ import type { Grid } from '../core/grid';
 import { labelAdjacency } from '../core/labels';
 import { projectSites, surfaceStack, type StackSurface } from '../core/sheetGeometry';
 import { placeSites } from '../core/sites';
-import { embed, embedAll, surfaceCoordinates } from '../core/surface';
+import { embedAll } from '../core/surface';
 import type { EngineChoice } from './enginePolicy';
 import type { GpuContext } from '../gpu/context';
-import { CcvtEngine } from '../gpu/engine';
-import { LloydRun } from '../gpu/lloyd';
+import { GpuEngine } from '../gpu/engine';
+import { gridLayout } from '../gpu/layout';
+import { GpuLloydRun, gridSites } from '../gpu/lloyd';
 import type { Labeller, RunCallbacks, SurfaceFamily } from './family';
 import { relaxation } from './relax';
 
@@ -61,13 +62,13 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
       // adjacency reads it instead of triangulating the same sites again (exactAdjacency).
       memo(sites, FINAL_DIAGRAM, () => run.voronoi);
       // No label image: the stack rasterizes the exact cells for views when asked.
-      return { sites, relaxation: relaxation(run, () => NO_LABELS) };
+      return { sites, relaxation: relaxation(run, () => null) };
     }
-    const engine = new CcvtEngine(context, grid, config.cells, { variant: config.jumpFlood.variant, centroidPath: choice.centroidPath });
+    const engine = new GpuEngine(context, gridLayout(grid), config.cells, { variant: config.jumpFlood.variant, centroidPath: choice.centroidPath });
     try {
       // Planar-family texels all cover the same area, so the weight is the density alone.
-      engine.setWeights(density);
-      const run = new LloydRun(engine, grid, sites, config.lloyd);
+      engine.setGeometry(density);
+      const run = new GpuLloydRun(engine, gridSites(grid, sites), config.lloyd);
       // Label the final sites with a cold flood, as every other surface of the stack is
       // labelled: identical surfaces then get identical labels (no warm-start residue at s = 1).
       return {
@@ -94,7 +95,7 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
 
   exactLabels: (_geometry, layer, projected) => rasterizeCells(layer.grid, exactVoronoi(layer.grid, projected)),
 
-  labelImage: (_geometry, layer, labels) => ({ name: layer.name, grid: layer.grid, labels }),
+  labelFrame: (_geometry, layer) => ({ name: layer.name, grid: layer.grid }),
 
   // Contact lengths without the staircase bias, except under a pixel rule (the lab's 6 px),
   // which counts texel edges: there the staircase is the quantity the rule is about.
@@ -107,7 +108,9 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
   // A pixel rule (texel edges, e.g. the lab's 6 px around a 512 px tube) or a length in µm;
   // by default the lab's threshold scaled to this sheet's mean cell size. Texels are square
   // and the same size on every surface of the stack, so one length serves them all.
-  minContactLengths(config, geometry, layers) {
+  minContactLengths(config, geometry, layers, method) {
+    // The exact Delaunay needs no threshold: every contact of positive length counts.
+    if (method === 'exact') return null;
     const pixels = minContactPixelsOf(config.sheet);
     const length =
       pixels !== null
@@ -133,23 +136,12 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
     });
   },
 
-  // The exact Delaunay needs no threshold: every contact of positive length counts.
-  exactMinContactLengths: () => null,
-
   // Kept per seeded surface: runs that differ in the sheet share most of their layers (and the
   // seeded surface's own sites reuse the exact Lloyd run's final diagram: see exactLayer).
   exactAdjacency: (_config, _geometry, layer, sites, projected) => ({ ...exactLayer(layer.grid, sites, projected), label: layer.name }),
 
-  cellPlacement(config, layer, _sites, projected, id) {
-    const x = projected[2 * id];
-    const y = projected[2 * id + 1];
-    return { position: embed(config.surface, layer.grid, x, y, layer.offset).position, surface: surfaceCoordinates(layer.grid, x, y) };
-  },
-
   cellPlacements: (config, layer, _sites, projected, position, coordinates) =>
     embedAll(config.surface, layer.grid, projected, layer.offset, position, coordinates),
-
-  layerRatio: (_geometry, layer) => layer.ratio,
 
   gridRecord: (geometry) => ({ ...geometry.grid }),
 
@@ -229,9 +221,6 @@ function sameValues(a: ArrayLike<number>, b: ArrayLike<number>): boolean {
   return true;
 }
 
-/** The exact engine's seeded surface has no label image (the stack draws its cells for views). */
-const NO_LABELS = new Int32Array(0);
-
 /** The lab protocol's knobs as the config sets them. */
 function labSettings(sheet: Config['sheet']): LabProtocolSettings {
   return {
@@ -248,7 +237,7 @@ function planarLabeller(context: GpuContext, config: Config, choice: EngineChoic
     label(layer, sites) {
       // The exact engine makes no label textures: exactLabels draws its cells instead.
       if (choice.name !== 'gpu') throw new Error('planar labeller: the exact engine has no label textures');
-      const engine = new CcvtEngine(context, layer.grid, config.cells, { variant: config.jumpFlood.variant, centroidPath: choice.centroidPath });
+      const engine = new GpuEngine(context, gridLayout(layer.grid), config.cells, { variant: config.jumpFlood.variant, centroidPath: choice.centroidPath });
       try {
         engine.setSites(sites);
         engine.floodLabels();

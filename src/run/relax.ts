@@ -1,6 +1,6 @@
 import type { AnyConfig } from '../core/config';
 import type { GpuContext } from '../gpu/context';
-import type { IterationRecord } from '../gpu/lloyd';
+import type { IterationRecord, LloydIterations } from '../core/iterationRecord';
 import type { EngineChoice } from './enginePolicy';
 import type { Relaxation, RunCallbacks, StackLayer, SurfaceFamily } from './family';
 
@@ -9,8 +9,8 @@ export interface SeededSurface<Geometry, Sites> {
   readonly geometry: Geometry;
   /** The final sites, as the family keeps them. */
   readonly sites: Sites;
-  /** Label image of the final sites (site id per texel). */
-  readonly labels: Int32Array;
+  /** Label image of the final sites (site id per texel); null where the engine makes none (exact). */
+  readonly labels: Int32Array | null;
   readonly engine: EngineChoice;
   readonly iterations: IterationRecord[];
   readonly converged: boolean;
@@ -62,21 +62,17 @@ export async function relaxSeededSurface<C extends AnyConfig, G, S, L extends St
   }
 }
 
-/** A Lloyd loop of either engine (LloydRun, ClosedLloydRun, ExactLloydRun). */
-export interface LloydDriver {
-  readonly done: boolean;
-  readonly converged: boolean;
-  readonly iterations: IterationRecord[];
-  step(): IterationRecord;
-  finish(): { energy: number; emptyCells: number };
-}
-
 /**
  * A Lloyd loop as the pipeline drives it. `labels` gives the final label image after the final
- * sums, `beforeFinish` runs before them (the planar GPU family re-labels the final sites with a
+ * sums (null: this engine makes none), `beforeFinish` runs before them (the planar GPU family re-labels the final sites with a
  * cold flood there), `dispose` frees the engine.
  */
-export function relaxation(run: LloydDriver, labels: () => Int32Array, dispose: () => void = () => {}, beforeFinish: () => void = () => {}): Relaxation {
+export function relaxation(
+  run: LloydIterations,
+  labels: () => Int32Array | null,
+  dispose: () => void = () => {},
+  beforeFinish: () => void = () => {},
+): Relaxation {
   return {
     get done() {
       return run.done;

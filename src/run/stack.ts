@@ -41,14 +41,10 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
   const { geometry } = seeded;
   family.checkSheet(config, geometry);
   const layers = family.stack(config, geometry);
-  // The exact engine makes no label textures, and where only the exact method is asked for no
-  // surface but the seeded one needs any: those label images are drawn on the CPU, only when a
-  // view reads them.
-  const exactEngine = seeded.engine.name === 'exact';
   // The methods are the ones core/config/analysisMethods.ts describes (the sweep's columns
   // read the same description): labels and/or exact on the GPU engine, exact on the exact one.
   const methods = analysisMethods(config, seeded.engine.name);
-  const exactOnly = !methods.includes('labels');
+  const labelsAsked = methods.includes('labels');
   const labeller = family.labeller(context, config, geometry, seeded.engine);
   try {
     const projected: P[] = [];
@@ -58,8 +54,11 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
       throwIfAborted(signal);
       const sites = family.project(geometry, layer, seeded.sites);
       projected.push(sites);
-      if (exactEngine || (exactOnly && layer.role !== 'seeded')) {
-        labelImages.push(lazyLabels(family.labelImage(geometry, layer, EMPTY_LABELS), () => family.exactLabels(geometry, layer, sites)));
+      // The exact engine makes no label textures (seeded.labels null), and where only the exact
+      // method is asked for no surface but the seeded one needs any: those label images are
+      // drawn on the CPU, only when a view reads them.
+      if (seeded.labels === null || (!labelsAsked && layer.role !== 'seeded')) {
+        labelImages.push(lazyLabels(family.labelFrame(geometry, layer), () => family.exactLabels(geometry, layer, sites)));
         continue;
       }
       let labels = seeded.labels;
@@ -67,7 +66,7 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
         labels = labeller.label(layer, sites);
         await yieldToEventLoop();
       }
-      labelImages.push(family.labelImage(geometry, layer, labels));
+      labelImages.push({ ...family.labelFrame(geometry, layer), labels });
       labelled.push(family.labelAdjacency(config, geometry, layer, labels, config.cells));
     }
 
@@ -85,14 +84,14 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
       return { method, protocol: config.sheet.protocol, minContactLength, summary: analysis.summary, cells: [] };
     };
     if (methods.includes('labels')) {
-      const minContact = family.minContactLengths(config, geometry, layers);
-      const inputs = labelled.map((surface, k) => withMinBoundaryLength(surface, minContact.perLayer[k]));
-      analyses.push(record('labels', minContact.reported, analyze(inputs)));
+      const minContact = family.minContactLengths(config, geometry, layers, 'labels');
+      const inputs = minContact ? labelled.map((surface, k) => withMinBoundaryLength(surface, minContact.perLayer[k])) : labelled;
+      analyses.push(record('labels', minContact?.reported ?? 0, analyze(inputs)));
     }
     let exactSurfaces: SurfaceAdjacency[] | null = null;
     if (methods.includes('exact')) {
       exactSurfaces = layers.map((layer, k) => family.exactAdjacency(config, geometry, layer, seeded.sites, projected[k]));
-      const minContact = family.exactMinContactLengths(config, geometry, layers);
+      const minContact = family.minContactLengths(config, geometry, layers, 'exact');
       const inputs = minContact ? exactSurfaces.map((surface, k) => withMinBoundaryLength(surface, minContact.perLayer[k])) : exactSurfaces;
       analyses.push(record('exact', minContact?.reported ?? 0, analyze(inputs)));
     }
@@ -100,13 +99,9 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
 
     const section = family.resultSection(config, geometry, seeded, labeller);
     // Cells and their contacts: exact where only the exact method ran, else from the label images.
-    const cellSurfaces = exactOnly && exactSurfaces ? exactSurfaces : labelled;
+    const cellSurfaces = !labelsAsked && exactSurfaces ? exactSurfaces : labelled;
     const tables: CellTable[] = layers.map((layer, k) =>
-      cellTable(
-        cellSurfaces[k],
-        (id) => family.cellPlacement(config, layer, seeded.sites, projected[k], id),
-        family.cellPlacements && ((position, coordinates) => family.cellPlacements!(config, layer, seeded.sites, projected[k], position, coordinates)),
-      ),
+      cellTable(cellSurfaces[k], (position, coordinates) => family.cellPlacements(config, layer, seeded.sites, projected[k], position, coordinates)),
     );
     // Records built on first read (a sweep reads only the analyses): hundreds of objects per
     // surface; none with cell tables (the columns are the cells).
@@ -117,7 +112,7 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
         name: layer.name,
         role: layer.role === 'layer' ? 'layer' : 'other',
         offset: layer.offset,
-        ratio: family.layerRatio(geometry, layer),
+        ratio: layer.ratio,
         grid: { ...labelImages[index + 1].grid },
         get cells() {
           return cells();
@@ -142,8 +137,6 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
   }
 }
 
-const EMPTY_LABELS = new Int32Array(0);
-
 /** `compute()` on the first call, the same value after. */
 function once<T>(compute: () => T): () => T {
   let value: { v: T } | null = null;
@@ -151,10 +144,10 @@ function once<T>(compute: () => T): () => T {
 }
 
 /** A label image whose labels are computed on first read (and kept). */
-function lazyLabels(image: LabelImage, compute: () => Int32Array): LabelImage {
+function lazyLabels(frame: Omit<LabelImage, 'labels'>, compute: () => Int32Array): LabelImage {
   let labels: Int32Array | null = null;
   return {
-    ...image,
+    ...frame,
     get labels() {
       labels ??= compute();
       return labels;

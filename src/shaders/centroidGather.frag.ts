@@ -1,9 +1,8 @@
-import labelId from './labelId.glsl';
-
 /**
  * Centroid pass, portable path (no float blending needed): each site's pixel in the sums
  * target walks a window of texels around its site and adds up the same
- * (w * dx, w * dy, w, w * |d|²) as the scatter pass, for texels labelled with its id.
+ * (w * dx, w * dy, w, w * |d|²) as the scatter pass, for texels labelled with its id. Planar
+ * grids only (compiled after surface.glsl and gridMetric.glsl).
  *
  * Site i's window is (2R_i+1)² texels (R_i from the radii texture). One draw covers one tile
  * of the largest window (at most tileSize² texels per pixel, because software renderers
@@ -14,8 +13,7 @@ import labelId from './labelId.glsl';
  * small is never a silent wrong centroid.
  */
 export default /* glsl */ `
-${labelId}
-uniform highp sampler2D weights;
+uniform highp sampler2D labels;
 uniform highp sampler2D previousSums;
 uniform bool firstTile;
 uniform int siteCount;
@@ -33,8 +31,8 @@ void main() {
   if (radiusValue < 0.0) { sums = previous; return; } // finished in an earlier attempt
   vec4 total = firstTile ? vec4(0.0) : previous;
   if (site >= siteCount || total.z < 0.0) { sums = total; return; }
-  vec2 position = siteAt(site);
-  if (texelFetch(idMap, siteTexel(position), 0).r != float(site)) { sums = total; return; }
+  vec4 siteValue = siteAt(site);
+  vec2 position = siteValue.xy;
   int radius = int(radiusValue);
   ivec2 origin = ivec2(floor(position));
   // On a periodic axis the window never covers more than the axis once (no texel twice);
@@ -43,16 +41,16 @@ void main() {
   ivec2 high = ivec2(radius);
   bvec2 whole = bvec2(false);
   for (int axis = 0; axis < 2; ++axis) {
-    if (periodic[axis] && 2 * radius + 1 >= gridSize[axis]) {
-      low[axis] = -(gridSize[axis] / 2);
-      high[axis] = low[axis] + gridSize[axis] - 1;
+    if (periodic[axis] && 2 * radius + 1 >= atlasSize[axis]) {
+      low[axis] = -(atlasSize[axis] / 2);
+      high[axis] = low[axis] + atlasSize[axis] - 1;
       whole[axis] = true;
     }
   }
   // This draw's tile of the largest window, clipped to this site's own window.
   ivec2 tileLow = ivec2(-maxRadius) + tileStart;
   for (int axis = 0; axis < 2; ++axis) {
-    if (periodic[axis] && 2 * maxRadius + 1 >= gridSize[axis]) tileLow[axis] = -(gridSize[axis] / 2) + tileStart[axis];
+    if (periodic[axis] && 2 * maxRadius + 1 >= atlasSize[axis]) tileLow[axis] = -(atlasSize[axis] / 2) + tileStart[axis];
   }
   ivec2 from = max(low, tileLow);
   ivec2 to = min(high, tileLow + tileSize - 1);
@@ -61,12 +59,11 @@ void main() {
     for (int dx = from.x; dx <= to.x; ++dx) {
       ivec2 q = origin + ivec2(dx, dy);
       if (!wrapTexel(q)) continue;
-      if (texelFetch(labels, q, 0).xy != position) continue;
+      if (texelFetch(labels, q, 0).w != float(site)) continue;
       if ((!whole.x && abs(dx) == radius) || (!whole.y && abs(dy) == radius)) touchesRing = true;
-      vec2 d = gridDelta(position, vec2(q) + 0.5);
-      vec2 dPhysical = d * texelSize;
-      float w = texelFetch(weights, q, 0).r;
-      total += vec4(w * d, w, w * dot(dPhysical, dPhysical));
+      vec3 d = metricOffset(siteValue.xyz, texelPoint(q));
+      float w = texelWeight(q);
+      total += vec4(w * d.xy, w, w * physicalSquared(d));
     }
   }
   sums = touchesRing ? vec4(0.0, 0.0, -1.0, 0.0) : total;

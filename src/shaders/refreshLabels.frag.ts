@@ -1,16 +1,13 @@
-import labelId from './labelId.glsl';
-
 /**
- * Warm start: the previous iteration's labels hold the sites' previous positions. Each is
- * mapped to its site's id through the previous id map, and replaced by that site's current
- * position from the site texture.
+ * Warm start: the previous iteration's labels hold the sites' previous coordinates. Each is
+ * replaced by its site's current coordinates from the site texture (the id stays).
  */
 export default /* glsl */ `
-${labelId}
+uniform highp sampler2D labels;
 out vec4 label;
 
 void main() {
-  float id = labelIdAt(ivec2(gl_FragCoord.xy));
-  label = id < 0.0 ? vec4(-1.0, -1.0, 0.0, 0.0) : vec4(siteAt(int(id)), 0.0, 1.0);
+  float id = texelFetch(labels, ivec2(gl_FragCoord.xy), 0).w;
+  label = id < 0.0 ? vec4(0.0, 0.0, 0.0, -1.0) : vec4(siteAt(int(id)).xyz, id);
 }
 `;

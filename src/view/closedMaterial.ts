@@ -1,14 +1,14 @@
 /**
  * The material of a closed surface in the 3D view: cells found per fragment (closedCandidates.ts,
- * shaders/closedCells.*), coloured by their sides on that surface, the picked cell white,
+ * closedCells.vert/.frag), coloured by their sides on that surface, the picked cell white,
  * scutoids striped, borders one pixel wide, and a fixed light that leaves the lit side exactly
  * in the legend's colours. Per-surface data (sites, cell colours) lives in two small float
  * textures; the picked cell and the stripes are uniforms, so picking a cell redraws without
  * rebuilding anything.
  */
 import * as THREE from 'three';
-import vertexShader from '../shaders/closedCells.vert';
-import fragmentShader from '../shaders/closedCells.frag';
+import vertexShader from './closedCells.vert';
+import fragmentShader from './closedCells.frag';
 import { RGB, SELECTED_RGB, sideColorIndex } from './sideColors';
 
 /** A fixed light (object space, from the default camera's side). */

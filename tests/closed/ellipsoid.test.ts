@@ -3,10 +3,11 @@ import { ConfigError, validateAnyConfig, type ClosedConfig, type ConfigInput } f
 import { placeClosedSites } from '../../src/core/closed/geometry';
 import { ellipsoidProjector } from '../../src/core/closed/projector';
 import { sampleSurface } from '../../src/core/cubemap/sample';
-import { CubeCcvtEngine } from '../../src/gpu/cubeEngine';
-import { ClosedLloydRun } from '../../src/gpu/cubeLloyd';
 import { runSheet } from '../../src/run/runSheet';
 import { useHeadlessContext } from '../gpu/context';
+import { GpuEngine } from '../../src/gpu/engine';
+import { cubeLayout } from '../../src/gpu/layout';
+import { closedSites, GpuLloydRun } from '../../src/gpu/lloyd';
 
 const context = useHeadlessContext();
 const closed = (input: ConfigInput) => validateAnyConfig(input) as ClosedConfig;
@@ -16,10 +17,10 @@ describe('plain constrained Lloyd on an ellipsoid', () => {
     const image = sampleSurface({ kind: 'ellipsoid', a: 80, b: 40, c: 40 }, 64);
     const projector = ellipsoidProjector(80, 40, 40);
     const sites = placeClosedSites(image, projector, 200, 3, 0);
-    const engine = new CubeCcvtEngine(context, 64, 200, { variant: 'jfa+2', centroidPath: 'auto' });
+    const engine = new GpuEngine(context, cubeLayout(64), 200, { variant: 'jfa+2', centroidPath: 'auto' });
     try {
-      engine.setGeometry(image.position, image.area);
-      const run = new ClosedLloydRun(engine, projector, sites, { maxIterations: 25, tolerance: 0, overRelaxation: 1, warmStart: true }, 0.5);
+      engine.setGeometry(image.area, image.position);
+      const run = new GpuLloydRun(engine, closedSites(projector, sites, 0.5), { maxIterations: 25, tolerance: 0, overRelaxation: 1, warmStart: true });
       while (!run.done) run.step();
       const energies = [...run.iterations.map((r) => r.energy), run.finish().energy];
       for (let k = 1; k < energies.length; k++) expect(energies[k]).toBeLessThanOrEqual(energies[k - 1] * (1 + 1e-9));

@@ -3,9 +3,10 @@ import { placeClosedSites } from '../../src/core/closed/geometry';
 import { cubeBruteForceLabels } from '../oracles/cubeMap';
 import { ellipsoidProjector, sphereProjector } from '../../src/core/closed/projector';
 import { sampleSurface } from '../../src/core/cubemap/sample';
-import { CubeCcvtEngine } from '../../src/gpu/cubeEngine';
-import { ClosedLloydRun } from '../../src/gpu/cubeLloyd';
 import { mislabeledFraction, useHeadlessContext } from '../gpu/context';
+import { GpuEngine } from '../../src/gpu/engine';
+import { cubeLayout } from '../../src/gpu/layout';
+import { closedSites, GpuLloydRun } from '../../src/gpu/lloyd';
 
 const context = useHeadlessContext();
 
@@ -18,9 +19,9 @@ describe('jump flood on the cube map vs brute-force nearest site (3D distance)',
   for (const [name, image, projector, count] of cases) {
     it(`${name}: <= 1e-3 mislabeled (jfa+2)`, () => {
       const sites = placeClosedSites(image, projector, count, 5, 0);
-      const engine = new CubeCcvtEngine(context, image.n, count, { variant: 'jfa+2', centroidPath: 'auto' });
+      const engine = new GpuEngine(context, cubeLayout(image.n), count, { variant: 'jfa+2', centroidPath: 'auto' });
       try {
-        engine.setGeometry(image.position, image.area);
+        engine.setGeometry(image.area, image.position);
         engine.setSites(sites.positions, sites.texels);
         engine.floodLabels();
         const gpu = engine.readLabels();
@@ -41,11 +42,11 @@ describe('warm-started floods during Lloyd', () => {
     const image = sampleSurface({ kind: 'ellipsoid', a: 60, b: 30, c: 45 }, 64);
     const projector = ellipsoidProjector(60, 30, 45);
     const sites = placeClosedSites(image, projector, 250, 8, 0);
-    const engine = new CubeCcvtEngine(context, 64, 250, { variant: 'jfa+2', centroidPath: 'auto' });
+    const engine = new GpuEngine(context, cubeLayout(64), 250, { variant: 'jfa+2', centroidPath: 'auto' });
     try {
-      engine.setGeometry(image.position, image.area);
+      engine.setGeometry(image.area, image.position);
       const spacing = 0.9 * Math.sqrt(Math.min(...image.area));
-      const run = new ClosedLloydRun(engine, projector, sites, { maxIterations: 6, tolerance: 0, overRelaxation: 1, warmStart: true }, spacing);
+      const run = new GpuLloydRun(engine, closedSites(projector, sites, spacing), { maxIterations: 6, tolerance: 0, overRelaxation: 1, warmStart: true });
       while (!run.done) run.step();
       expect(run.iterations.at(-1)!.jumpFloodPasses).toBeLessThan(9);
       const wrong = mislabeledFraction(engine.readLabels(), cubeBruteForceLabels(image.position, Float32Array.from(sites.positions), 250));

@@ -4,9 +4,10 @@ import { placeSites } from '../../src/core/sites';
 import { neighbourSet, toCsr } from '../../src/core/analysis/adjacency';
 import { ExactLloydRun } from '../../src/core/exactEngine/exactLloyd';
 import { exactSurface } from '../../src/core/exactEngine/exactSurface';
-import { CcvtEngine } from '../../src/gpu/engine';
-import { LloydRun } from '../../src/gpu/lloyd';
 import { useHeadlessContext } from '../gpu/context';
+import { GpuEngine } from '../../src/gpu/engine';
+import { gridLayout } from '../../src/gpu/layout';
+import { GpuLloydRun, gridSites } from '../../src/gpu/lloyd';
 
 const context = useHeadlessContext();
 
@@ -25,9 +26,9 @@ describe('GPU and exact engines from the same initial sites', () => {
       const options = { maxIterations: 5, tolerance: 0, overRelaxation: 1, warmStart: true };
       const initial = placeSites(grid, count, 17, 5);
       const gpuSites = initial.slice();
-      const engine = new CcvtEngine(context, grid, count, { variant: 'jfa+2', centroidPath: 'auto' });
+      const engine = new GpuEngine(context, gridLayout(grid), count, { variant: 'jfa+2', centroidPath: 'auto' });
       try {
-        const gpu = new LloydRun(engine, grid, gpuSites, options);
+        const gpu = new GpuLloydRun(engine, gridSites(grid, gpuSites), options);
         while (!gpu.done) gpu.step();
       } finally {
         engine.dispose();

@@ -2,8 +2,9 @@ import { describe, expect, it } from 'vitest';
 import type { Grid } from '../../src/core/grid';
 import { bruteForceLabels, reduceCentroids } from '../oracles/labels';
 import { placeSites } from '../../src/core/sites';
-import { CcvtEngine } from '../../src/gpu/engine';
 import { useHeadlessContext } from './context';
+import { GpuEngine } from '../../src/gpu/engine';
+import { gridLayout } from '../../src/gpu/layout';
 
 const context = useHeadlessContext();
 
@@ -33,22 +34,22 @@ describe('centroid pass against a CPU reduction of the same labels', () => {
           `${centroidPath}, ${name}, ${weighted ? 'Gaussian density' : 'uniform density'}: centroids within 1e-3 texel`,
           () => {
             const sites = placeSites(grid, count, 5, 2);
-            const engine = new CcvtEngine(context, grid, count, { variant: 'jfa+2', centroidPath });
+            const engine = new GpuEngine(context, gridLayout(grid), count, { variant: 'jfa+2', centroidPath });
             try {
               const weights = weighted ? gaussianWeights(grid) : null;
-              if (weights) engine.setWeights(weights);
+              if (weights) engine.setGeometry(weights);
               engine.setSites(sites);
               engine.floodLabels();
               const gpu = engine.computeSums();
               const cpu = reduceCentroids(grid, engine.readLabels(), sites, weights);
               let worst = 0;
               for (let i = 0; i < count; i++) {
-                expect(gpu[4 * i + 2]).toBeGreaterThan(0);
-                const dx = gpu[4 * i] / gpu[4 * i + 2] - cpu[4 * i] / cpu[4 * i + 2];
-                const dy = gpu[4 * i + 1] / gpu[4 * i + 2] - cpu[4 * i + 1] / cpu[4 * i + 2];
+                expect(gpu[5 * i + 3]).toBeGreaterThan(0);
+                const dx = gpu[5 * i] / gpu[5 * i + 3] - cpu[4 * i] / cpu[4 * i + 2];
+                const dy = gpu[5 * i + 1] / gpu[5 * i + 3] - cpu[4 * i + 1] / cpu[4 * i + 2];
                 worst = Math.max(worst, Math.hypot(dx, dy));
                 // The cell's energy (w * d² summed) agrees to float32 summation accuracy.
-                expect(Math.abs(gpu[4 * i + 3] - cpu[4 * i + 3])).toBeLessThanOrEqual(1e-4 * cpu[4 * i + 3] + 1e-6);
+                expect(Math.abs(gpu[5 * i + 4] - cpu[4 * i + 3])).toBeLessThanOrEqual(1e-4 * cpu[4 * i + 3] + 1e-6);
               }
               expect(worst).toBeLessThanOrEqual(1e-3);
             } finally {
@@ -65,11 +66,11 @@ describe('centroid pass against a CPU reduction of the same labels', () => {
     const count = 400;
     const sites = placeSites(grid, count, 9, 4);
     const weights = gaussianWeights(grid);
-    const sums: Float32Array[] = [];
+    const sums: Float64Array[] = [];
     for (const centroidPath of ['readback', 'gather'] as const) {
-      const engine = new CcvtEngine(context, grid, count, { variant: 'jfa+2', centroidPath });
+      const engine = new GpuEngine(context, gridLayout(grid), count, { variant: 'jfa+2', centroidPath });
       try {
-        engine.setWeights(weights);
+        engine.setGeometry(weights);
         engine.setSites(sites);
         engine.floodLabels();
         sums.push(engine.computeSums().slice());
@@ -81,7 +82,10 @@ describe('centroid pass against a CPU reduction of the same labels', () => {
           expect(wrong / reference.length).toBeLessThanOrEqual(1e-4);
           // Band by band on the engine's packed ids = all rows at once on the ids read back.
           const cpu = reduceCentroids(grid, labels, sites, weights);
-          for (let k = 0; k < 4 * count; k++) expect(Math.abs(sums[0][k] - cpu[k])).toBeLessThanOrEqual(1e-6 * Math.abs(cpu[k]) + 1e-3);
+          for (let k = 0; k < 4 * count; k++) {
+            const gpu = sums[0][5 * (k >> 2) + [0, 1, 3, 4][k & 3]];
+            expect(Math.abs(gpu - cpu[k])).toBeLessThanOrEqual(1e-6 * Math.abs(cpu[k]) + 1e-3);
+          }
         }
       } finally {
         engine.dispose();
@@ -91,11 +95,11 @@ describe('centroid pass against a CPU reduction of the same labels', () => {
     // random first sites lie ~20 texels off their centroids, that costs up to ~3e-3 texel.
     const [readback, gather] = sums;
     for (let i = 0; i < count; i++) {
-      expect(readback[4 * i + 2]).toBeGreaterThan(0);
-      const dx = readback[4 * i] / readback[4 * i + 2] - gather[4 * i] / gather[4 * i + 2];
-      const dy = readback[4 * i + 1] / readback[4 * i + 2] - gather[4 * i + 1] / gather[4 * i + 2];
+      expect(readback[5 * i + 3]).toBeGreaterThan(0);
+      const dx = readback[5 * i] / readback[5 * i + 3] - gather[5 * i] / gather[5 * i + 3];
+      const dy = readback[5 * i + 1] / readback[5 * i + 3] - gather[5 * i + 1] / gather[5 * i + 3];
       expect(Math.hypot(dx, dy)).toBeLessThanOrEqual(5e-3);
-      expect(Math.abs(readback[4 * i + 3] - gather[4 * i + 3])).toBeLessThanOrEqual(1e-4 * gather[4 * i + 3]);
+      expect(Math.abs(readback[5 * i + 4] - gather[5 * i + 4])).toBeLessThanOrEqual(1e-4 * gather[5 * i + 4]);
     }
   });
 
@@ -111,21 +115,21 @@ describe('centroid pass against a CPU reduction of the same labels', () => {
     }
     sites[2 * (count - 1)] = 25.5;
     sites[2 * (count - 1) + 1] = 30.5;
-    const last = 4 * (count - 1);
-    const engine = new CcvtEngine(context, grid, count, { variant: 'jfa+2', centroidPath: 'gather' });
+    const last = 5 * (count - 1);
+    const engine = new GpuEngine(context, gridLayout(grid), count, { variant: 'jfa+2', centroidPath: 'gather' });
     try {
       engine.setSites(sites);
       engine.floodLabels();
       const gpu = engine.computeSums();
       const cpu = reduceCentroids(grid, engine.readLabels(), sites, null);
       expect(engine.gatherStats!.lastRetries).toBeGreaterThan(0);
-      expect(gpu[last + 2]).toBe(cpu[last + 2]);
-      expect(gpu[last] / gpu[last + 2]).toBeCloseTo(cpu[last] / cpu[last + 2], 3);
+      expect(gpu[last + 3]).toBe(cpu[4 * (count - 1) + 2]);
+      expect(gpu[last] / gpu[last + 3]).toBeCloseTo(cpu[4 * (count - 1)] / cpu[4 * (count - 1) + 2], 3);
       // The retry summed only the overflowing cells and passed every other cell's sums on.
       for (let i = 0; i < count; i++) {
-        expect(gpu[4 * i + 2]).toBe(cpu[4 * i + 2]);
-        expect(Math.abs(gpu[4 * i] - cpu[4 * i])).toBeLessThanOrEqual(1e-3 * cpu[4 * i + 2]);
-        expect(Math.abs(gpu[4 * i + 1] - cpu[4 * i + 1])).toBeLessThanOrEqual(1e-3 * cpu[4 * i + 2]);
+        expect(gpu[5 * i + 3]).toBe(cpu[4 * i + 2]);
+        expect(Math.abs(gpu[5 * i] - cpu[4 * i])).toBeLessThanOrEqual(1e-3 * cpu[4 * i + 2]);
+        expect(Math.abs(gpu[5 * i + 1] - cpu[4 * i + 1])).toBeLessThanOrEqual(1e-3 * cpu[4 * i + 2]);
       }
     } finally {
       engine.dispose();

@@ -3,9 +3,10 @@ import type { Grid } from '../../src/core/grid';
 import { coldSchedule } from '../../src/core/jumpSchedule';
 import { bruteForceLabels } from '../oracles/labels';
 import { placeSites } from '../../src/core/sites';
-import { CcvtEngine } from '../../src/gpu/engine';
-import { LloydRun } from '../../src/gpu/lloyd';
 import { mislabeledFraction, useHeadlessContext } from './context';
+import { GpuEngine } from '../../src/gpu/engine';
+import { gridLayout } from '../../src/gpu/layout';
+import { GpuLloydRun, gridSites } from '../../src/gpu/lloyd';
 
 const context = useHeadlessContext();
 
@@ -26,7 +27,7 @@ describe('jump flood against brute-force nearest site', () => {
     for (const count of [1, 2, 7, 60, 500, 2000]) {
       it(`${name}, ${count} sites: at most 1e-4 of texels mislabeled (jfa+2)`, () => {
         const sites = placeSites(grid, count, 1000 + count, minSpacingTexels * grid.texelX);
-        const engine = new CcvtEngine(context, grid, count, { variant: 'jfa+2', centroidPath: 'auto' });
+        const engine = new GpuEngine(context, gridLayout(grid), count, { variant: 'jfa+2', centroidPath: 'auto' });
         try {
           engine.setSites(sites);
           engine.floodLabels();
@@ -49,10 +50,10 @@ describe('jump flood against brute-force nearest site', () => {
   ] as const) {
     it(`${name}, ${count} sites: warm starts stay within the cold flood's error bound`, () => {
       const sites = placeSites(grid, count, 7, minSpacingTexels * grid.texelX);
-      const engine = new CcvtEngine(context, grid, count, { variant: 'jfa+2', centroidPath: 'auto' });
-      const cold = new CcvtEngine(context, grid, count, { variant: 'jfa+2', centroidPath: 'auto' });
+      const engine = new GpuEngine(context, gridLayout(grid), count, { variant: 'jfa+2', centroidPath: 'auto' });
+      const cold = new GpuEngine(context, gridLayout(grid), count, { variant: 'jfa+2', centroidPath: 'auto' });
       try {
-        const run = new LloydRun(engine, grid, sites, { maxIterations: 12, tolerance: 0, overRelaxation: 1, warmStart: true });
+        const run = new GpuLloydRun(engine, gridSites(grid, sites), { maxIterations: 12, tolerance: 0, overRelaxation: 1, warmStart: true });
         let worstWarm = 0;
         let worstCold = 0;
         while (!run.done) {
@@ -82,7 +83,7 @@ describe('jump flood against brute-force nearest site', () => {
     const reference = bruteForceLabels(grid, sites);
     const errors: Record<string, number> = {};
     for (const variant of ['jfa', 'jfa+2', '1+jfa'] as const) {
-      const engine = new CcvtEngine(context, grid, 2000, { variant, centroidPath: 'auto' });
+      const engine = new GpuEngine(context, gridLayout(grid), 2000, { variant, centroidPath: 'auto' });
       engine.setSites(sites);
       engine.floodLabels();
       errors[variant] = mislabeledFraction(engine.readLabels(), reference);

@@ -3,9 +3,10 @@ import { exactVoronoi } from '../../src/core/exact';
 import { wrapDelta, type Grid } from '../../src/core/grid';
 import { moveSitesToCentroids } from '../../src/core/lloydUpdate';
 import { placeSites } from '../../src/core/sites';
-import { CcvtEngine } from '../../src/gpu/engine';
-import { LloydRun } from '../../src/gpu/lloyd';
 import { useHeadlessContext } from './context';
+import { GpuEngine, SUMS_STRIDE } from '../../src/gpu/engine';
+import { gridLayout } from '../../src/gpu/layout';
+import { GpuLloydRun, gridSites } from '../../src/gpu/lloyd';
 
 const context = useHeadlessContext();
 
@@ -20,17 +21,25 @@ describe('one Lloyd step against exact Voronoi centroids (d3-delaunay)', () => {
     it(`${name}: mean centroid error <= 0.25 texel`, () => {
       const sites = placeSites(grid, count, 11, 2);
       const exact = exactVoronoi(grid, sites);
-      const engine = new CcvtEngine(context, grid, count, { variant: 'jfa+2', centroidPath: 'auto' });
+      const engine = new GpuEngine(context, gridLayout(grid), count, { variant: 'jfa+2', centroidPath: 'auto' });
       try {
         engine.setSites(sites);
         engine.floodLabels();
         const moved = sites.slice();
-        moveSitesToCentroids(grid, moved, engine.computeSums(), count, 1, {
-          energy: 0,
-          maxDisplacement: 0,
-          maxDisplacementTexels: 0,
-          emptyCells: 0,
-        });
+        moveSitesToCentroids(
+          grid,
+          moved,
+          engine.computeSums(),
+          count,
+          1,
+          {
+            energy: 0,
+            maxDisplacement: 0,
+            maxDisplacementTexels: 0,
+            emptyCells: 0,
+          },
+          SUMS_STRIDE,
+        );
         let total = 0;
         for (let i = 0; i < count; i++) {
           const dx = wrapDelta(moved[2 * i] - exact.centroids[2 * i], grid.width, grid.periodicX);
@@ -50,9 +59,9 @@ describe('Lloyd loop', () => {
 
   it('never increases the CVT energy under plain Lloyd', () => {
     const sites = placeSites(tube, 150, 3, 1.5);
-    const engine = new CcvtEngine(context, tube, 150, { variant: 'jfa+2', centroidPath: 'auto' });
+    const engine = new GpuEngine(context, gridLayout(tube), 150, { variant: 'jfa+2', centroidPath: 'auto' });
     try {
-      const run = new LloydRun(engine, tube, sites, options);
+      const run = new GpuLloydRun(engine, gridSites(tube, sites), options);
       while (!run.done) run.step();
       const energies = [...run.iterations.map((r) => r.energy), run.finish().energy];
       for (let k = 1; k < energies.length; k++) expect(energies[k]).toBeLessThanOrEqual(energies[k - 1] * (1 + 1e-6));
@@ -65,8 +74,8 @@ describe('Lloyd loop', () => {
   it('gives bit-identical sites for the same seed', () => {
     const results = [0, 1].map(() => {
       const sites = placeSites(plane, 90, 21, 1.5);
-      const engine = new CcvtEngine(context, plane, 90, { variant: 'jfa+2', centroidPath: 'auto' });
-      const run = new LloydRun(engine, plane, sites, { ...options, maxIterations: 5 });
+      const engine = new GpuEngine(context, gridLayout(plane), 90, { variant: 'jfa+2', centroidPath: 'auto' });
+      const run = new GpuLloydRun(engine, gridSites(plane, sites), { ...options, maxIterations: 5 });
       while (!run.done) run.step();
       engine.dispose();
       return { sites: Array.from(run.sites), energies: run.iterations.map((r) => r.energy) };
@@ -77,8 +86,8 @@ describe('Lloyd loop', () => {
   it('over-relaxation reaches a lower energy than plain Lloyd in the same iterations', () => {
     const energyAfter = (omega: number) => {
       const sites = placeSites(plane, 100, 8, 1.5);
-      const engine = new CcvtEngine(context, plane, 100, { variant: 'jfa+2', centroidPath: 'auto' });
-      const run = new LloydRun(engine, plane, sites, { maxIterations: 20, tolerance: 0, overRelaxation: omega, warmStart: true });
+      const engine = new GpuEngine(context, gridLayout(plane), 100, { variant: 'jfa+2', centroidPath: 'auto' });
+      const run = new GpuLloydRun(engine, gridSites(plane, sites), { maxIterations: 20, tolerance: 0, overRelaxation: omega, warmStart: true });
       while (!run.done) run.step();
       const energy = run.finish().energy;
       engine.dispose();

@@ -8,8 +8,9 @@ import { defaultMinContactLength, planarFamily, type PlanarGeometry } from '../.
 import { relaxSeededSurface, type SeededSurface } from '../../src/run/relax';
 import { runSheet, SheetRunner } from '../../src/run/runSheet';
 import { analyzeStack } from '../../src/run/stack';
-import { CcvtEngine } from '../../src/gpu/engine';
 import { useHeadlessContext } from '../gpu/context';
+import { GpuEngine } from '../../src/gpu/engine';
+import { gridLayout } from '../../src/gpu/layout';
 
 const context = useHeadlessContext();
 
@@ -88,7 +89,7 @@ describe('a hand-built exchange: rhombi of four sites whose shared edge flips wh
         sites[2 * id + 1] = h * j + h / 2;
       }
     }
-    const engine = new CcvtEngine(context, grid, columns * rows, { variant: 'jfa+2', centroidPath: 'auto' });
+    const engine = new GpuEngine(context, gridLayout(grid), columns * rows, { variant: 'jfa+2', centroidPath: 'auto' });
     engine.setSites(sites);
     engine.floodLabels();
     const seeded: SeededSurface<PlanarGeometry, Float32Array> = {
@@ -164,7 +165,7 @@ describe('pixel adjacency against exact adjacency at the default resolution', ()
       const config = validateConfig({ ...input, engine: 'gpu' });
       const seeded = await relaxSeededSurface(planarFamily, config, context, chooseEngine(config, 'planar grid', context.capabilities));
       const { grid } = seeded.geometry;
-      const labels = labelAdjacency(grid, seeded.labels, config.cells);
+      const labels = labelAdjacency(grid, seeded.labels!, config.cells);
       const pixel = filterShortContacts(labels, defaultMinContactLength(grid, config.cells));
       const exact = exactVoronoi(grid, seeded.sites).adjacency;
       const p = pairSet(pixel.offsets, pixel.neighbours);

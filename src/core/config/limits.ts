@@ -28,16 +28,20 @@ export const MIN_TEXELS_PER_SIDE = 8;
 export const DEFAULT_MAX_WORK = 2 ** 34;
 
 /**
- * Bytes per texel of the surface being computed (GPU targets: two RG32F label targets, R32F id
- * map, id and weight textures; CPU: density, weights, label readback and adjacency) and per
- * texel of every surface kept until the result is written (Int32 labels + adjacency).
+ * Bytes per texel of the surface being computed (GPU: two RGBA32F label targets of site
+ * coordinates and ids, the packed-id target and the weight texture, 40; CPU: density, weights,
+ * label readback and adjacency) and per texel of every surface kept until the result is
+ * written (Int32 labels + adjacency).
  */
-const ACTIVE_BYTES_PER_TEXEL = 64;
+const ACTIVE_BYTES_PER_TEXEL = 76;
 /** The exact engine: the density field and the placement density (float32 each). */
 const EXACT_BYTES_PER_TEXEL = 8;
 const KEPT_BYTES_PER_TEXEL = 8;
-/** A closed surface adds its cube-map geometry image (positions, normals, areas in float32/64). */
-const CUBE_EXTRA_BYTES_PER_TEXEL = 48;
+/**
+ * A closed surface adds its cube-map geometry image (positions, normals, areas in float32/64),
+ * and on the GPU its point and weight per texel (RGBA32F) instead of a weight alone (R32F).
+ */
+const CUBE_EXTRA_BYTES_PER_TEXEL = 60;
 /**
  * Per cell: the Lloyd run (the exact engine's triangulation of the sites and their copies near
  * the seams, cell sums; GPU: site buffers) and, per surface of the stack, its adjacency, the

@@ -1,6 +1,6 @@
 /**
  * Lloyd's method on the exact Voronoi diagram (CPU), for planes and tubes: the exact engine's
- * counterpart of gpu/lloyd.ts's LloydRun, with the same constructor shape, records and stopping
+ * counterpart of gpu/lloyd.ts's GpuLloydRun, with the same constructor shape, records and stopping
  * rules, so the pipeline drives either one the same way.
  *
  * Per iteration: triangulate the sites (periodic copies, cells clipped at open edges:
@@ -13,7 +13,7 @@
  * The loop reuses every buffer (the triangulation is updated in place); nothing is allocated per
  * iteration except by d3-delaunay when the triangle count grows past what it has.
  */
-import type { IterationRecord } from '../iterationRecord';
+import type { IterationRecord, LloydIterations } from '../iterationRecord';
 import type { Grid } from '../grid';
 import { moveSitesToCentroids, type LloydMove } from '../lloydUpdate';
 import { CellIntegrator, type ExactDensity } from './cellIntegrals';
@@ -107,10 +107,10 @@ export class ExactCentroids {
 }
 
 /**
- * Lloyd's method driven one iteration at a time (like gpu/lloyd.ts's LloydRun). `sites`
+ * Lloyd's method driven one iteration at a time (like gpu/lloyd.ts's GpuLloydRun; both implement LloydIterations). `sites`
  * (interleaved x, y, texel units, float32 as the GPU engine keeps them) is updated in place.
  */
-export class ExactLloydRun {
+export class ExactLloydRun implements LloydIterations {
   readonly iterations: ExactIterationRecord[] = [];
   converged = false;
   private readonly centroids: ExactCentroids;

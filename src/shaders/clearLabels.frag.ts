@@ -1,8 +1,0 @@
-/** Marks every texel as belonging to no site (-1) before a cold jump flood. */
-export default /* glsl */ `
-precision highp float;
-out vec4 label;
-void main() {
-  label = vec4(-1.0, 0.0, 0.0, 1.0);
-}
-`;
