@@ -48,6 +48,7 @@ def kernel():
     kc = km.client()
     kc.start_channels()
     kc.wait_for_ready(timeout=60)
+    kc.manager = km
     yield kc
     kc.stop_channels()
     km.shutdown_kernel(now=True)
@@ -126,3 +127,13 @@ def test_sweep_times_out_with_a_clear_error_when_no_view_answers(kernel):
     assert "did not finish in 1 s" in reply["evalue"] and "no view of the widget answered" in reply["evalue"]
     reply = _execute(kc, "assert lonely.last_sweep is not None and not lonely.last_sweep.done")
     assert reply["status"] == "ok", reply
+
+
+def test_interrupting_the_kernel_stops_the_wait(kernel):
+    kc = kernel
+    msg_id = _execute(kc, "import tissue_sheet\nhalted = tissue_sheet.Sheet()\nhalted.sweep({'base': {}, 'vary': {'cells': [10]}})", wait=False, stop_on_error=False)
+    _iopub_until(kc, lambda m: m["msg_type"] == "display_data" and m["parent_header"].get("msg_id") == msg_id)
+    kc.manager.interrupt_kernel()
+    reply = _reply(kc, msg_id)
+    assert reply["status"] == "error" and reply["ename"] == "KeyboardInterrupt", reply
+    assert _execute(kc, "assert not halted.last_sweep.done")["status"] == "ok"
