@@ -42,7 +42,7 @@ def _kernel() -> Any:
     get_ipython = getattr(ipython, "get_ipython", None) if ipython is not None else None
     shell = get_ipython() if get_ipython is not None else None
     if shell is None:
-        raise BlockingUnavailable("no IPython kernel runs this code (plain Python)")
+        raise BlockingUnavailable("no IPython kernel runs this code (plain Python, a script, marimo)")
     kernel = getattr(shell, "kernel", None)
     if kernel is None:
         raise BlockingUnavailable(f"{type(shell).__name__} has no Jupyter kernel (a terminal IPython?): nothing shows the widget")
