@@ -9,7 +9,8 @@ import { expect, test, type Page } from '@playwright/test';
  * scripts/test-python.sh makes, with the wheel it built), driven in Debian's Chromium: a notebook
  * shows the widget, the sheet runs in the browser (in the element's inlined worker), Python reads
  * the result, sets a new config and reads the new result, sees a change made in the widget, runs
- * a sweep in the browser that equals the CLI's runs.csv, saves the view as PNG, and a re-run cell
+ * a sweep in the browser in one cell (`runs = sheet.sweep(spec)` waits for the browser and
+ * returns the DataFrame) that equals the CLI's runs.csv, saves the view as PNG, and a re-run cell
  * (the element registered again) is harmless, a refused config reaches Python as `sheet.error`; all of it under a Content-Security-Policy with no
  * other origin, and nothing requested from one.
  *
@@ -65,10 +66,10 @@ const cells = [
   `print("CHANGED", sheet.result["config"]["cells"], len(sheet.cells), sheet.config["cells"])`,
   // 4: after a change made in the widget
   `print("FROM WIDGET", sheet.config["cells"], sheet.result["config"]["cells"])`,
-  // 5: a sweep in the browser
-  `job = sheet.sweep(json.loads(${JSON.stringify(JSON.stringify(spec))}))\njob`,
-  // 6: the same sweep by the CLI
-  `cli = tissue_sheet.sweep(job.spec, out="cli-sweep", workers=1)\npd.testing.assert_frame_equal(job.runs, cli)\nprint("SWEEP EQUAL", len(job.runs), list(job.runs.columns) == list(cli.columns))`,
+  // 5: the sweep by the CLI (headless)
+  `SPEC = json.loads(${JSON.stringify(JSON.stringify(spec))})\ncli = tissue_sheet.sweep(SPEC, out="cli-sweep", workers=1)\nprint("CLI", len(cli))`,
+  // 6: the same sweep in the browser, in one cell: it waits for the browser and returns runs.csv as a DataFrame
+  `runs = sheet.sweep(SPEC, timeout=240)\npd.testing.assert_frame_equal(runs, cli)\nprint("SWEEP EQUAL", type(runs).__name__, len(runs), list(runs.columns) == list(cli.columns), sheet.last_sweep.done)`,
   // 7: a figure
   `figure = sheet.save_figure("view.png")`,
   // 8: the figure on disk
@@ -90,12 +91,12 @@ function notebook(): string {
   });
 }
 
-async function runCell(page: Page, index: number): Promise<void> {
+async function runCell(page: Page, index: number, timeout = 120_000): Promise<void> {
   const cell = page.locator('.jp-Notebook .jp-Cell').nth(index);
   await cell.locator('.jp-InputArea-editor').click();
   await page.keyboard.press('Shift+Enter');
   // Done when the prompt shows an execution count ("[n]:"), not "[*]:".
-  await expect(cell.locator('.jp-InputPrompt')).toHaveText(/\[\d+\]/, { timeout: 120_000 });
+  await expect(cell.locator('.jp-InputPrompt')).toHaveText(/\[\d+\]/, { timeout });
 }
 
 const output = (page: Page, index: number) => page.locator('.jp-Notebook .jp-Cell').nth(index).locator('.jp-OutputArea');
@@ -215,11 +216,21 @@ test.describe('tissue_sheet.Sheet in JupyterLab', () => {
     await runCell(page, 4);
     await expect(output(page, 4)).toContainText('FROM WIDGET 18 18');
 
-    await runCell(page, 5);
-    await expect(page.locator('.tissue-sheet-widget-progress').first()).toContainText('sweep: 4 runs done', { timeout: 180_000 });
+    await runCell(page, 5, 180_000);
+    await expect(output(page, 5)).toContainText('CLI 4');
+    // One cell: sheet.sweep(spec) blocks while the browser runs the sweep (the kernel handles
+    // the widget's messages meanwhile) and returns the DataFrame, equal to the CLI's runs.csv.
+    const sweepCell = page.locator('.jp-Notebook .jp-Cell').nth(6);
+    await sweepCell.locator('.jp-InputArea-editor').click();
+    await page.keyboard.press('Shift+Enter');
+    // While the cell runs, the element shows the progress and the cell's output a progress line.
+    await expect(sweepCell.locator('.jp-InputPrompt')).toHaveText(/\[\*\]/, { timeout: 30_000 });
+    await expect(page.locator('.tissue-sheet-widget-progress').first()).toContainText('sweep:', { timeout: 60_000 });
+    await expect(sweepCell.locator('.jp-InputPrompt')).toHaveText(/\[\d+\]/, { timeout: 240_000 });
+    await expect(output(page, 6)).toContainText('SWEEP EQUAL DataFrame 4 True True');
+    await expect(output(page, 6)).toContainText(/sweep: 4 runs done in [\d.]+ s/);
+    await expect(page.locator('.tissue-sheet-widget-progress').first()).toContainText('sweep: 4 runs done');
     await expect(page.locator('.tissue-sheet-widget-progress progress').first()).toHaveAttribute('value', '4');
-    await runCell(page, 6);
-    await expect(output(page, 6)).toContainText('SWEEP EQUAL 4 True');
 
     await runCell(page, 7);
     await expect.poll(() => existsSync(join(dir, 'view.png')), { timeout: 60_000 }).toBe(true);

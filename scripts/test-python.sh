@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The Python package (python/, issue 29): builds its sdist and wheel, installs the wheel into a
 # fresh venv with what the tests need from PyPI (python/requirements-test.txt, pinned), and runs
-# pytest (readers against CLI outputs, headless calls, the example notebook) and the JupyterLab
-# end-to-end test (e2e/python-jupyter.spec.ts, Debian's Chromium). Venvs and the built files live
+# pytest (readers against CLI outputs, headless calls, the example notebook, sheet.sweep waiting
+# in a kernel) and the JupyterLab end-to-end test (e2e/python-jupyter.spec.ts, Debian's
+# Chromium). Venvs and the built files live
 # in git-ignored folders under python/. Needs the checkout built (npm ci; npm run build:lib, which
 # this script runs when dist/lib is missing or older than src). About 5 minutes on 2 shared
 # cores, most of it pip and the build.

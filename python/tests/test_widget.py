@@ -38,7 +38,7 @@ def test_sweep_job_reads_the_runs_csv_the_browser_sends(outputs):
     sent = []
     sheet.send = lambda content, buffers=None: sent.append(content)
     spec = json.loads((outputs / "sweep.json").read_text())
-    job = sheet.sweep(spec)
+    job = sheet.sweep(spec, wait=False)
     assert sent == [{"type": "sweep", "id": job.id, "spec": spec}]
     with pytest.raises(RuntimeError, match="still running in the browser"):
         job.runs
@@ -51,12 +51,12 @@ def test_sweep_job_reads_the_runs_csv_the_browser_sends(outputs):
     pd.testing.assert_frame_equal(job.runs, tissue_sheet.read_sweep(outputs / "sweep"))
     pd.testing.assert_frame_equal(job.aggregate, tissue_sheet.read_sweep(outputs / "sweep", "aggregate"))
     assert job.runs.attrs["spec"] == spec
-    failed = sheet.sweep(spec)
+    failed = sheet.sweep(spec, wait=False)
     sheet._handle_message(sheet, {"type": "sweep-error", "id": failed.id, "message": 'vary["x"]: "x" is not a field'}, [])
     with pytest.raises(RuntimeError, match="failed in the browser: vary"):
         failed.runs
     with pytest.raises(TypeError, match="spec: a dict"):
-        sheet.sweep("sweep.json")
+        sheet.sweep("sweep.json", wait=False)
 
 
 def test_figure_job_writes_the_png(tmp_path):

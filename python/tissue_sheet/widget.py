@@ -12,6 +12,7 @@ from __future__ import annotations
 import itertools
 import json
 import os
+import time
 from pathlib import Path
 from typing import Any, Callable, Mapping
 
@@ -21,6 +22,7 @@ import traitlets
 
 from .readers import cells_table, read_csv_text, summary_table, sweep_provenance
 from ._version import __version__
+from ._wait import BlockingUnavailable, KernelPump
 
 _STATIC = Path(__file__).resolve().parent / "static" / "widget.js"
 _ids = itertools.count(1)
@@ -50,6 +52,7 @@ class BrowserJob:
         self.id = next(_ids)
         self.kind = kind
         self.done = False
+        self.started = False  # a view of the widget answered
         self.error: str | None = None
         self.finished = 0
         self.total: int | None = None
@@ -117,6 +120,39 @@ class FigureJob(BrowserJob):
         return self.path.stat().st_size
 
 
+# After this long with no answer from a view, the progress line says the sheet may not be shown.
+_NO_VIEW_HINT_S = 10.0
+
+
+def _progress_text(job: "SweepJob", elapsed: float) -> str:
+    if job.done:
+        if job.error is not None:
+            return f"sweep failed in the browser after {elapsed:.1f} s: {job.error}"
+        return f"sweep: {job.finished} runs done in {elapsed:.1f} s" + (" (aborted)" if job.aborted else "")
+    if not job.started:
+        return "sweep: waiting for the browser"
+    return f"sweep: {job.finished} of {job.total if job.total is not None else '?'} runs, {elapsed:.0f} s"
+
+
+class _ProgressLine:
+    """One line of text in the running cell's output, updated in place (a display with an id)."""
+
+    def __init__(self) -> None:
+        self.hint = ""
+        self._handle = None
+
+    def show(self, text: str) -> None:
+        try:
+            from IPython.display import display
+        except ImportError:  # pragma: no cover - a kernel always has IPython
+            return
+        bundle = {"text/plain": text + self.hint}
+        if self._handle is None:
+            self._handle = display(bundle, raw=True, display_id=True)
+        else:
+            self._handle.update(bundle, raw=True)
+
+
 class Sheet(anywidget.AnyWidget):
     """The ``<tissue-sheet>`` element in a notebook.
 
@@ -137,6 +173,7 @@ class Sheet(anywidget.AnyWidget):
     def __init__(self, config: Mapping[str, Any] | None = None, **kwargs: Any):
         super().__init__(_esm=_esm(), config=dict(config or {}), **kwargs)
         self._jobs: dict[int, BrowserJob] = {}
+        self.last_sweep: SweepJob | None = None
         self.on_msg(self._handle_message)
 
     @traitlets.validate("config")
@@ -166,19 +203,89 @@ class Sheet(anywidget.AnyWidget):
             )
         return self.result
 
-    def sweep(self, spec: Mapping[str, Any], on_done: Callable[[SweepJob], None] | None = None) -> SweepJob:
+    def sweep(
+        self,
+        spec: Mapping[str, Any],
+        wait: bool = True,
+        timeout: float | None = None,
+        progress: bool = True,
+        on_done: Callable[[SweepJob], None] | None = None,
+    ) -> pd.DataFrame | SweepJob:
         """Runs a sweep (the CLI's spec, docs/sweep.md) in the browser's workers; progress shows under the view.
 
-        Returns a SweepJob at once; in a later cell ``job.runs`` is the runs.csv DataFrame (equal
-        to what ``tissue-sheet sweep`` writes for the spec) and ``job.aggregate`` aggregate.csv.
+        ``wait=True`` (the default): blocks until the browser has run it, handling the kernel's
+        messages meanwhile (a Jupyter kernel, ipykernel 6 or 7), and returns runs.csv as a
+        DataFrame (equal to what ``tissue-sheet sweep`` writes for the spec; the job, with
+        ``aggregate``, is ``sheet.last_sweep``). ``timeout`` (s; None: no limit) raises
+        ``TimeoutError`` (``.job``: the sweep, still running in the browser). ``progress``: a
+        line in the cell's output says how far it is. Where no kernel can be waited on (plain
+        Python, marimo, ...) it raises at once, before anything is sent.
+
+        ``wait=False``: returns a SweepJob at once; in a later cell ``job.runs`` is the runs.csv
+        DataFrame and ``job.aggregate`` aggregate.csv.
         """
         if not isinstance(spec, Mapping):
             raise TypeError(f"spec: a dict (docs/sweep.md), got {type(spec).__name__}")
         json.dumps(spec)
+        if timeout is not None and not timeout > 0:
+            raise ValueError(f"timeout: seconds > 0 (or None), got {timeout!r}")
+        pump = None
+        if wait:
+            try:
+                pump = KernelPump()
+            except BlockingUnavailable as e:
+                raise BlockingUnavailable(
+                    f"sheet.sweep(spec) cannot wait for the browser here: {e}. It needs a Jupyter kernel "
+                    "(JupyterLab, Notebook, VS Code); use sheet.sweep(spec, wait=False) and read job.runs in a "
+                    "later cell, or the headless tissue_sheet.sweep(spec, out=...)"
+                ) from None
         job = SweepJob(spec, on_done)
         self._jobs[job.id] = job
+        self.last_sweep = job
         self.send({"type": "sweep", "id": job.id, "spec": dict(spec)})
-        return job
+        if pump is None:
+            return job
+        return self._wait(job, pump, timeout, progress)
+
+    def _wait(self, job: SweepJob, pump: KernelPump, timeout: float | None, progress: bool) -> pd.DataFrame:
+        start = time.monotonic()
+        line = _ProgressLine() if progress else None
+        shown = [None]
+
+        def tick() -> None:
+            if line is None:
+                return
+            if job.started:
+                line.hint = ""
+            state = (job.started, job.finished, job.total, job.done, line.hint)
+            if state == shown[0]:
+                return
+            shown[0] = state
+            line.show(_progress_text(job, time.monotonic() - start))
+
+        if line is not None:
+            tick()
+        deadline = None if timeout is None else start + timeout
+        while not job.done:
+            now = time.monotonic()
+            if deadline is not None and now >= deadline:
+                if line is not None:
+                    line.show(_progress_text(job, now - start) + f": timed out after {timeout:g} s")
+                err = TimeoutError(
+                    f"the sweep did not finish in {timeout:g} s ({job.finished} of {job.total or '?'} runs"
+                    + ("" if job.started else "; no view of the widget answered: is the sheet shown?")
+                    + "); it goes on in the browser while the widget is shown: sheet.last_sweep is its job"
+                )
+                err.job = job  # type: ignore[attr-defined]
+                raise err
+            if not job.started and now - start > _NO_VIEW_HINT_S and line is not None:
+                line.hint = " (no view of the widget has answered yet: show the sheet, e.g. `sheet` last in a cell)"
+            pump.pump(0.05 if deadline is None else max(0.0, min(0.05, deadline - now)))
+            tick()
+        pump.pump(0)
+        if line is not None:
+            line.show(_progress_text(job, time.monotonic() - start))
+        return job.runs
 
     def save_figure(self, path: str | os.PathLike, on_done: Callable[[FigureJob], None] | None = None) -> FigureJob:
         """Saves the 3D view as PNG (the element's ``toBlob()``); the file is written once the browser answers."""
@@ -195,6 +302,8 @@ class Sheet(anywidget.AnyWidget):
         if job is None:
             return
         kind = content.get("type")
+        if kind in ("sweep-started", "sweep-progress", "sweep-done"):
+            job.started = True
         if kind == "sweep-progress":
             job.finished = int(content.get("finished") or 0)
             job.total = content.get("total")

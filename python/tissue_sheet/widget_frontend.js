@@ -77,6 +77,8 @@ const __tissueSheetWidget = (() => {
         sheet.addEventListener('sweep-progress', onProgress);
         try {
           showProgress(0, 1, 'sweep: starting');
+          // A view answers: a cell waiting in Python (sheet.sweep(spec)) knows the sheet is shown.
+          model.send({ type: 'sweep-started', id });
           const out = await sheet.sweep(spec);
           showProgress(out.completed + out.skipped, out.completed + out.skipped, `sweep: ${out.completed} runs done${out.aborted ? ' (aborted)' : ''}`);
           model.send({ type: 'sweep-done', id, runsCsv: out.runsCsv, aggregateCsv: out.aggregateCsv, completed: out.completed, aborted: out.aborted });
