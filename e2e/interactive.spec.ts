@@ -4,6 +4,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
 import { readCsvTable } from '../src/core/sweep/csv';
+import { readRunsCsv } from '../src/core/sweep/runner';
 
 /**
  * Issue 15 on Debian's Chromium: the pipeline in its worker keeps the page's main thread free
@@ -116,13 +117,13 @@ test.describe('the app stays responsive', () => {
     });
     await page.locator('[data-sweep="run"]').click();
     await expect(page.locator('#sweep')).toHaveAttribute('data-state', 'cancelled', { timeout: 60_000 });
-    const kept = readCsvTable(await downloadText(page, '[data-sweep="runs-csv"]')).rows;
+    const kept = readRunsCsv(await downloadText(page, '[data-sweep="runs-csv"]')).rows;
     expect(kept.length).toBeGreaterThanOrEqual(2);
     expect(kept.length).toBeLessThan(6);
 
     await page.locator('[data-sweep="resume"]').click();
     await expect(page.locator('#sweep')).toHaveAttribute('data-state', 'done', { timeout: 120_000 });
-    const all = readCsvTable(await downloadText(page, '[data-sweep="runs-csv"]'));
+    const all = readRunsCsv(await downloadText(page, '[data-sweep="runs-csv"]'));
     expect(all.rows).toHaveLength(6);
     // The kept rows are the first ones of the file, unchanged.
     expect(all.rows.slice(0, kept.length)).toEqual(kept);
@@ -172,7 +173,7 @@ test.describe('<tissue-sheet>.sweep()', () => {
       stdio: 'pipe',
       timeout: 150_000,
     });
-    const cliRuns = readCsvTable(readFileSync(join(dir, 'out', 'runs.csv'), 'utf8'));
+    const cliRuns = readRunsCsv(readFileSync(join(dir, 'out', 'runs.csv'), 'utf8'));
     const cliAggregate = readFileSync(join(dir, 'out', 'aggregate.csv'), 'utf8');
 
     console.log(

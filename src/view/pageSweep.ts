@@ -16,11 +16,15 @@
  */
 import { checkClosedFeasible, checkFeasible, ConfigError, isClosedConfig, makeGrid, validateAnyConfig, type AnyConfig, type Config } from '../core/config';
 import {
+  aggregateColumns,
   aggregateRows,
   aggregateToCsv,
   baseColumns,
   expandSweep,
+  fileHeader,
   formatCsvRow,
+  geometryColumns,
+  geometryValues,
   meanSd,
   parseCsv,
   planResume,
@@ -93,7 +97,12 @@ export interface SweepPlan {
   runs: Run[];
   header: string[];
   summary: string[];
-  /** Summary columns each grid point fills. */
+  /** Base geometry columns (units.ts), and each grid point's values. */
+  geometry: string[];
+  geometryValues: Map<string, Record<string, string | number | boolean>>;
+  /** Columns holding text. */
+  text: Set<string>;
+  /** Geometry and summary columns each grid point fills. */
   filled: Map<string, Set<string>>;
   configs: Map<string, AnyConfig>;
 }
@@ -116,8 +125,21 @@ function makePlan(input: unknown, maxRuns?: number): SweepPlan {
   const configs = new Map<string, AnyConfig>();
   for (const run of runs) if (!configs.has(run.pointKey)) configs.set(run.pointKey, pointConfig(run));
   const summary = sweepColumns(configs.values());
-  const filled = new Map([...configs].map(([key, config]) => [key, new Set(summaryColumns(config))]));
-  return { spec, fields, runs: seededOrder(runs), header: [...baseColumns(fields), ...summary], summary, filled, configs };
+  const geometry = geometryColumns(configs.values(), fields);
+  const values = new Map([...configs].map(([key, config]) => [key, geometryValues(config, fields)]));
+  const filled = new Map([...configs].map(([key, config]) => [key, new Set([...Object.keys(values.get(key)!), ...summaryColumns(config)])]));
+  return {
+    spec,
+    fields,
+    runs: seededOrder(runs),
+    header: [...baseColumns(fields), ...geometry.columns, ...summary],
+    summary,
+    geometry: geometry.columns,
+    geometryValues: values,
+    text: new Set([...TEXT_COLUMNS, ...geometry.text]),
+    filled,
+    configs,
+  };
 }
 
 /**
@@ -147,7 +169,7 @@ function pointConfig(run: Run): AnyConfig {
 export async function sweepInPage(input: unknown, options: PageSweepOptions = {}): Promise<PageSweepResult> {
   const plan = planSweep(input, options.maxRuns);
   const { spec, fields, runs, header, summary, filled } = plan;
-  const resumed = planResume(options.resumeCsv ?? '', { header, fields, runs, filledColumns: (run) => filled.get(run.pointKey)!, textColumns: TEXT_COLUMNS });
+  const resumed = planResume(options.resumeCsv ?? '', { header, fields, runs, filledColumns: (run) => filled.get(run.pointKey)!, textColumns: plan.text });
   let csv = resumed.cleanText;
   const rows = [...resumed.rows];
   // Each run's row by its key: a progress event names its run, whose row is already appended.
@@ -160,7 +182,7 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
     result = await runSweep({
       runs,
       fields,
-      summaryColumns: summary,
+      summaryColumns: [...plan.geometry, ...summary],
       existingCsv: csv,
       signal: options.signal,
       append: (text) => {
@@ -172,11 +194,15 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
         rows.push(row);
         rowByKey.set(row.key, row);
       },
-      runner: async (config) => {
+      runner: async (config, run) => {
         const valid = validateAnyConfig(config);
         const inputs = await runInputs(valid);
-        // Only the summary is kept: no label images cross from the worker.
-        return sweepSummary((await runner.run(valid, { signal: options.signal, views: false, ...inputs })).result);
+        // Only the summary is kept: no label images cross from the worker. The row carries the
+        // run's base geometry beside it, as the CLI's does.
+        return {
+          ...plan.geometryValues.get(run.pointKey)!,
+          ...sweepSummary((await runner.run(valid, { signal: options.signal, views: false, ...inputs })).result),
+        };
       },
       onProgress: (p) => {
         if (p.phase === 'start' || (p.phase === 'error' && isAbort(p.error))) return;
@@ -200,18 +226,14 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
   } finally {
     releasePipelineRunner(runner);
   }
-  const aggregate = aggregateRows(
-    rows,
-    fields,
-    summary.filter((c) => !TEXT_COLUMNS.has(c)),
-  );
+  const aggregate = aggregateRows(rows, fields, aggregateColumns(summary, TEXT_COLUMNS));
   return {
     spec,
     fields,
     header,
     runs: rows,
     aggregate,
-    runsCsv: csv === '' ? formatCsvRow(header) : csv,
+    runsCsv: csv === '' ? formatCsvRow(fileHeader(header)) : csv,
     aggregateCsv: aggregateToCsv(aggregate),
     completed: result?.completed ?? rows.length - resumed.rows.length,
     skipped: resumed.rows.length,

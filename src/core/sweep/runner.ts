@@ -29,6 +29,7 @@
  * too, in `runs` order, so no finished run is lost.
  */
 import { flattenSummary, formatCsvRow, readCsvTable } from './csv';
+import { fileHeader, plainColumn } from './units';
 import type { Config, SweepRun } from './expand';
 import { valueText } from './expand';
 
@@ -148,9 +149,21 @@ export function runRow<C extends Config>(run: SweepRun<C>, fields: readonly stri
   return runCells(run, fields, summary, header).row;
 }
 
+/**
+ * A runs.csv's table with the plain column names (units removed from the header: units.ts), as
+ * the program's rows use them.
+ */
+export function readRunsCsv(text: string): ReturnType<typeof readCsvTable> {
+  const table = readCsvTable(text);
+  if (table.header.length === 0) return table;
+  const plain = table.header.map(plainColumn);
+  const rows = table.rows.map((row) => Object.fromEntries(table.header.map((h, k) => [plain[k], row[h]])));
+  return { ...table, header: plain, rows };
+}
+
 export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, S>): Promise<RunSweepResult<C>> {
   const { runs, fields, runner } = options;
-  const existing = readCsvTable(options.existingCsv ?? '');
+  const existing = readRunsCsv(options.existingCsv ?? '');
   let header: string[] | null = existing.header.length > 0 ? existing.header : null;
   if (header) {
     const missing = baseColumns(fields).filter((c) => !header!.includes(c));
@@ -197,7 +210,7 @@ export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, 
         if (!header) {
           const summaryColumns = options.summaryColumns ?? Object.keys(flattenSummary(summary)).filter((c) => !baseColumns(fields).includes(c));
           header = [...baseColumns(fields), ...summaryColumns];
-          text += formatCsvRow(header);
+          text += formatCsvRow(fileHeader(header));
         }
         const { cells, row } = runCells(run, fields, summary, header);
         text += formatCsvRow(cells);
