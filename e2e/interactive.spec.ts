@@ -189,6 +189,30 @@ test.describe('<tissue-sheet>.sweep()', () => {
     expect(Math.max(0, ...(inPage.longTasks as number[]))).toBeLessThan(50);
   });
 
+  test("spreads a Voronoi k x ratio grid over a pool of Web Workers with the CLI's reuse and the CLI's rows", async ({ page }) => {
+    // 2 Voronoi k x 2 ratios x 3 realizations: 3 Lloyd runs (one per realization), each serving
+    // both k and both ratios on one worker.
+    const grid = { ...spec, vary: { 'lloyd.maxIterations': [0, 2], 'sheet.surfaceRatio': [1.5, 2.5] }, realizations: 3 };
+    const cores = await page.evaluate(() => navigator.hardwareConcurrency);
+    const inPage = await sweep(page, { spec: grid, workers: 2 });
+    const dir = mkdtempSync(join(tmpdir(), 'tissue-sheet-sweep-pool-'));
+    writeFileSync(join(dir, 'spec.json'), JSON.stringify(grid));
+    execFileSync('xvfb-run', ['-a', process.execPath, 'tests/cli/fromSource.mjs', 'sweep', join(dir, 'spec.json'), '--out', join(dir, 'out')], {
+      stdio: 'pipe',
+      timeout: 150_000,
+    });
+    console.log(`pool sweep: ${(inPage.runs as unknown[]).length} runs on ${inPage.workers} workers (${cores} cores) in ${Math.round(inPage.ms as number)} ms`);
+    expect(inPage.workers).toBe(2);
+    // By default the pool leaves one core to the page.
+    const byDefault = await sweep(page, { spec: grid });
+    expect(byDefault.workers).toBe(Math.max(1, Math.min(cores - 1, 8, 3)));
+    expect(byDefault.runsCsv).toBe(inPage.runsCsv);
+    expect(inPage.runsCsv).toBe(readFileSync(join(dir, 'out', 'runs.csv'), 'utf8'));
+    expect(inPage.aggregateCsv).toBe(readFileSync(join(dir, 'out', 'aggregate.csv'), 'utf8'));
+    expect((inPage.progress as { hasRow: boolean }[]).filter((p) => p.hasRow)).toHaveLength(12);
+    expect(Math.max(0, ...(inPage.longTasks as number[]))).toBeLessThan(50);
+  });
+
   test('aborting keeps the finished runs; resuming from their runs.csv completes the same sweep', async ({ page }) => {
     const full = await sweep(page, { spec });
     const cut = await sweep(page, { spec, abortAfter: 1 });

@@ -105,6 +105,7 @@ describe('runSweep with tasks finishing in any order', () => {
   async function sweep(concurrency: number, shuffle: (n: number) => number): Promise<string> {
     let file = '';
     let appends = 0;
+    let announced = 0;
     await runSweep({
       runs,
       fields,
@@ -116,6 +117,16 @@ describe('runSweep with tasks finishing in any order', () => {
       },
       runner: async (_config, run) => summary(run),
       concurrency,
+      // Every run's 'done' comes once its row is in the file, however long the row waited for
+      // the runs before it (the page shows the row of each 'done').
+      onProgress: (p) => {
+        if (p.phase === 'done')
+          expect(
+            readCsvTable(file).rows.map((r) => r.key),
+            p.run.key,
+          ).toContain(p.run.key);
+        if (p.phase === 'done') announced++;
+      },
       tasks: {
         key: (run) => `${run.config.k}#${run.realization}`,
         before: (a, b) => a.realization - b.realization,
@@ -130,6 +141,7 @@ describe('runSweep with tasks finishing in any order', () => {
       },
     });
     expect(appends).toBe(runs.length);
+    expect(announced).toBe(runs.length);
     return file;
   }
 

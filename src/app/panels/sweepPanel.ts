@@ -290,6 +290,7 @@ export class SweepPanel {
       this.root.dataset.finished = String(done);
       this.root.dataset.done = String(done);
       this.root.dataset.state = result.aborted ? 'cancelled' : 'done';
+      this.root.dataset.workers = String(result.workers);
       const rejected =
         result.rejected.length > 0
           ? ` ${result.rejected.length} rows of the loaded runs.csv were not valid for this spec and were computed again (first: line ${result.rejected[0].line}, ${result.rejected[0].reason}).`
@@ -297,7 +298,7 @@ export class SweepPanel {
       this.status(
         result.aborted
           ? `Sweep cancelled: ${done} of ${total} runs kept; Resume computes the other ${total - done}.${rejected}`
-          : `Sweep done: ${done} runs (${result.completed} computed, ${result.skipped} loaded).${rejected}`,
+          : `Sweep done: ${done} runs (${result.completed} computed on ${result.workers} worker${result.workers === 1 ? '' : 's'}, ${result.skipped} loaded).${rejected}`,
       );
     } catch (error) {
       if (isAbort(error)) {

@@ -201,6 +201,8 @@ export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, 
   const ready = new Map<number, { run: SweepRun<C>; summary: S } | null>();
   let cursor = 0;
   let writes: Promise<void> = Promise.resolve();
+  /** The 'done' progress of each finished run, given once its row is appended. */
+  const announcements = new Map<string, () => void>();
   const writeRows = (items: { run: SweepRun<C>; summary: S }[]): Promise<void> => {
     if (items.length === 0) return writes;
     // One append per row (the header with the first), as a caller reading each append expects.
@@ -216,6 +218,11 @@ export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, 
         text += formatCsvRow(cells);
         await options.append(text);
         rows.push(row);
+        // 'done' once the run's row is in the file (rows go out in run order, so a finished
+        // run may wait here for an earlier one): a listener reading the file then finds it.
+        const announce = announcements.get(run.key);
+        announcements.delete(run.key);
+        announce?.();
       }
     });
     return writes;
@@ -289,14 +296,9 @@ export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, 
           if (!pending.delete(run.key)) throw new Error(`run ${run.key}: reported twice or not in its task`);
           finished++;
           completed++;
-          // 'done' once the run's row is in the file (rows go out in run order, so a row may wait
-          // for an earlier run): a listener reading the file then finds it.
           const done: SweepProgress<C> = { phase: 'done', run, finished, total, skipped, elapsedMs: Date.now() - t0 };
+          announcements.set(run.key, () => options.onProgress?.(done));
           written = settle(run, summary);
-          written.then(
-            () => options.onProgress?.(done),
-            () => {},
-          );
         });
         await written;
         if (pending.size > 0) throw new Error(`a sweep task ended without ${pending.size} of its runs`);
