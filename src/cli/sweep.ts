@@ -148,16 +148,14 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
         summaryColumns: [...layout.geometry, ...summary],
         existingCsv: plan.cleanText,
         append: (text) => appendFileSync(csvPath, text),
-        runner: async (config, run) => ({
-          ...layout.geometryOf(run),
-          ...sweepSummary((await runner.run(validateAnyConfig(config), { ...inputs.get(run.pointKey), signal, views: false })).result),
-        }),
+        // Each row carries its run's base geometry beside what the run measured.
+        runValues: layout.geometryOf,
+        runner: async (config, run) =>
+          sweepSummary((await runner.run(validateAnyConfig(config), { ...inputs.get(run.pointKey), signal, views: false })).result),
         tasks: {
           key: layout.reuseGroup,
           before: (a, b) => firstOfChain.get(chainOf(a))! - firstOfChain.get(chainOf(b))! || iterationsOf(a) - iterationsOf(b),
-          run: async (task, reportRun) => {
-            // Each row carries its run's base geometry beside what the run measured.
-            const done = (run: Run, summary: Record<string, unknown>) => reportRun(run, { ...layout.geometryOf(run), ...summary });
+          run: async (task, done) => {
             if (!pool?.usable || !onThreads(task[0])) return runHere(task, done);
             const byKey = new Map(task.map((run) => [run.key, run]));
             const reported = new Set<string>();

@@ -227,6 +227,8 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
       existingCsv: csv,
       signal: options.signal,
       concurrency: size,
+      // The row carries the run's base geometry beside its summary, as the CLI's does.
+      runValues: (run) => plan.geometryValues.get(run.pointKey)!,
       append: (text) => {
         csv += text;
         const records = parseCsv(text).records;
@@ -246,10 +248,9 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
             for (const run of order) {
               const valid = validateAnyConfig(run.config);
               const inputs = await runInputs(valid);
-              // Only the summary is kept: no label images cross from the worker. The row carries
-              // the run's base geometry beside it, as the CLI's does.
+              // Only the summary is kept: no label images cross from the worker.
               const output = await runner.run(valid, { signal: options.signal, views: false, ...inputs });
-              report(run, { ...plan.geometryValues.get(run.pointKey)!, ...sweepSummary(output.result) });
+              report(run, sweepSummary(output.result));
             }
           } finally {
             idle.push(runner);

@@ -89,7 +89,14 @@ export function aggregateRows(rows: readonly Record<string, string>[], fields: r
     for (const f of fields) point[f] = g[0][f] ?? '';
     const stats: Record<string, ColumnStats> = {};
     for (const c of numeric) {
-      stats[c] = meanSd(g.map((r) => (r[c] === undefined || r[c] === '' || !isNumeric(r[c]) ? NaN : Number(r[c]))));
+      // Number() of a cell that is not a number (text, "NaN") is NaN, left out as missing; a
+      // blank cell would read as 0, so it is NaN too.
+      stats[c] = meanSd(
+        g.map((r) => {
+          const cell = r[c];
+          return cell === undefined || cell.trim() === '' ? NaN : Number(cell);
+        }),
+      );
     }
     points.push({ point, runs: g.length, stats });
   }

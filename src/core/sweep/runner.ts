@@ -28,7 +28,7 @@
  * When the sweep stops early (an error, an abort) the finished rows still waiting are appended
  * too, in `runs` order, so no finished run is lost.
  */
-import { flattenSummary, formatCsvRow, readCsvTable } from './csv';
+import { csvField, flattenSummary, formatCsvRow, readCsvTable } from './csv';
 import { fileHeader, plainColumn } from './units';
 import type { Config, SweepRun } from './expand';
 import { valueText } from './expand';
@@ -62,6 +62,12 @@ export interface RunSweepOptions<C extends Config, S> {
   existingCsv?: string;
   truncate?: (length: number) => void | Promise<void>;
   summaryColumns?: string[];
+  /**
+   * Values a run's row carries beside its summary (e.g. its base geometry), by column; they
+   * take their columns' places in the header (summaryColumns) without being copied into the
+   * summary.
+   */
+  runValues?: (run: SweepRun<C>) => Readonly<Record<string, unknown>>;
   onProgress?: (p: SweepProgress<C>) => void;
   onError?: 'throw' | 'skip';
   concurrency?: number;
@@ -124,24 +130,53 @@ export function runCells<C extends Config>(
   fields: readonly string[],
   summary: unknown,
   header: readonly string[],
-): { cells: unknown[]; row: Record<string, string> } {
-  const flat = flattenSummary(summary);
+  values?: Readonly<Record<string, unknown>>,
+): { cells: unknown[]; row: Record<string, string>; line: string } {
+  const flat = isFlatSummary(summary) ? summary : flattenSummary(summary);
   const base = new Map<string, unknown>([
     ['key', run.key],
     ['realization', run.realization],
     ['seed', run.seed],
   ]);
   for (const f of fields) base.set(f, valueText(run.point[f]));
-  const known = new Set(header);
-  const extra = Object.keys(flat).find((c) => !known.has(c) && !base.has(c));
-  if (extra !== undefined) throw new Error(`run ${run.key}: its summary has a column "${extra}" that the sweep's header lacks`);
+  if (values) for (const [k, v] of Object.entries(values)) base.set(k, v);
+  const known = headerSet(header);
+  for (const c in flat) {
+    if (!known.has(c) && !base.has(c)) throw new Error(`run ${run.key}: its summary has a column "${c}" that the sweep's header lacks`);
+  }
   const cells = header.map((h) => (base.has(h) ? base.get(h) : Object.prototype.hasOwnProperty.call(flat, h) ? flat[h] : undefined));
   const row: Record<string, string> = {};
-  header.forEach((h, k) => {
+  // The record's text from the same conversions (a number's text is its CSV field as it is:
+  // String(n) never needs quotes), so each number is turned into text once.
+  let line = '';
+  for (let k = 0; k < header.length; k++) {
     const v = cells[k];
-    row[h] = v === null || v === undefined ? '' : typeof v === 'string' ? v : typeof v === 'object' ? JSON.stringify(v) : String(v);
-  });
-  return { cells, row };
+    const text = v === null || v === undefined ? '' : typeof v === 'string' ? v : typeof v === 'object' ? JSON.stringify(v) : String(v);
+    row[header[k]] = text;
+    const field = typeof v === 'number' || typeof v === 'bigint' || typeof v === 'boolean' || text === '' ? text : csvField(v);
+    line += k === 0 ? field : `,${field}`;
+  }
+  return { cells, row, line: `${line}\r\n` };
+}
+
+/** Each header's column names as a set, made once per header (runCells runs once per run). */
+const headerSets = new WeakMap<readonly string[], Set<string>>();
+function headerSet(header: readonly string[]): Set<string> {
+  let set = headerSets.get(header);
+  if (!set) headerSets.set(header, (set = new Set(header)));
+  return set;
+}
+
+/** Marks a summary that is already flat (column -> value), so runCells uses it as it is. */
+export const FLAT_SUMMARY: unique symbol = Symbol('flat sweep summary');
+
+/** A flat summary (column -> number or text), marked so that it is not flattened again. */
+export function flatSummary(values: Record<string, unknown>): Record<string, unknown> {
+  return Object.defineProperty(values, FLAT_SUMMARY, { value: true, enumerable: false });
+}
+
+function isFlatSummary(summary: unknown): summary is Record<string, unknown> {
+  return typeof summary === 'object' && summary !== null && (summary as { [FLAT_SUMMARY]?: boolean })[FLAT_SUMMARY] === true;
 }
 
 /** The text cells of one run's row (see runCells). */
@@ -214,8 +249,8 @@ export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, 
           header = [...baseColumns(fields), ...summaryColumns];
           text += formatCsvRow(fileHeader(header));
         }
-        const { cells, row } = runCells(run, fields, summary, header);
-        text += formatCsvRow(cells);
+        const { row, line } = runCells(run, fields, summary, header, options.runValues?.(run));
+        text += line;
         await options.append(text);
         rows.push(row);
         // 'done' once the run's row is in the file (rows go out in run order, so a finished
