@@ -301,7 +301,7 @@ export class TissueSheetElement extends HTMLElement {
    * A parameter sweep with the CLI's spec (`{ base, vary, realizations, seed, seedMode }`,
    * docs/sweep.md), validated as the CLI does (a bad spec rejects with a SweepSpecError naming
    * the field). Resolves with the rows of the CLI's runs.csv and its aggregate (mean, sd, se, n
-   * per grid point and column), plus both files' text. A `sweep-progress` event follows every
+   * per grid point and aggregated metric), plus both files' text. A `sweep-progress` event follows every
    * finished run. The runs are spread over a pool of Web Workers (`workers`, default the
    * browser's cores less one, at least 1, at most 8), each continuing one realization's Lloyd run through its Voronoi k and ratios, as
    * the CLI does. Aborting `signal` stops after the runs in flight and resolves with the runs

@@ -56,7 +56,7 @@ export interface TissueSheetSweepOptions {
 
 /**
  * What `sweep()` resolves with: runs.csv's `header` and rows (`runs`, text cells, resumed ones
- * first), the CLI's `aggregate` (mean, sd, se, n per grid point and numeric column), both files'
+ * first), the CLI's `aggregate` (mean, sd, se, n per grid point and aggregated metric, docs/sweep.md "Aggregates"), both files'
  * text, how many runs were `completed` and `skipped`, whether the signal `aborted` it, and how
  * many pipeline `workers` (Web Workers) the runs were spread over.
  */
