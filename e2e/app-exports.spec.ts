@@ -87,8 +87,8 @@ test('exports download files that parse and match the on-screen numbers', async 
   expect(sweep.map((r) => r['sheet.surfaceRatio'])).toEqual(['1', '1.5', '2']);
   // The CLI's runs.csv columns: one % per adjacency method. On this software renderer the
   // engine is the exact one (engine "auto"), so the exact method's columns are the filled ones.
-  expect(Number(sweep[0]['exact.percentScutoids'])).toBe(0);
-  expect(Number(sweep[2]['exact.percentScutoids'])).toBeGreaterThan(Number(sweep[0]['exact.percentScutoids']));
+  expect(Number(sweep[0]['exact.percentScutoids_pct'])).toBe(0);
+  expect(Number(sweep[2]['exact.percentScutoids_pct'])).toBeGreaterThan(Number(sweep[0]['exact.percentScutoids_pct']));
 });
 
 test('a URL round trip reproduces the result, and reopening restores the last session', async ({ page, browser }) => {

@@ -47,6 +47,11 @@ test('reference curves: the shipped set after a ratio sweep, a user CSV with its
   // The chart's own points are still the runs' three ratios.
   await expect(page.locator('#chart-sweep')).toHaveAttribute('data-points', '3');
 
+  // The shipped points carry SD and n = 20: each has its 95 % CI error bar.
+  const bars = async () => Number(await page.locator('#chart-sweep').getAttribute('data-reference-error-bars'));
+  await expect.poll(bars).toBeGreaterThan(3);
+  const shippedBars = await bars();
+
   // A user's CSV: its curve is added with its source.
   await load.setInputFiles({
     ...csv([`paper,My digitised curve,data,surfaceRatio,"${USER_SOURCE}",1,0,,`, `paper,My digitised curve,data,surfaceRatio,"${USER_SOURCE}",2,55.5,4.2,20`]),
@@ -57,18 +62,25 @@ test('reference curves: the shipped set after a ratio sweep, a user CSV with its
   await expect(sources).toHaveCount(2);
   await expect(sources.nth(1)).toContainText(USER_SOURCE);
   await expect(alert).toBeHidden();
+  // Error bars: the point with SD 4.2 and n 20 gets its 95 % CI (t(0.975, 19) = 2.093:
+  // 55.5 ± 1.97), the point without has none, and the notes say which curve has them.
+  await expect.poll(bars).toBe(shippedBars + 1);
+  await expect(notes).toContainText('My digitised curve: error bars (95 % CI of the mean, from SD and n) on 1 of 2 points');
+  await expect(notes).toContainText('tissue-sheet, Voronoi 4: error bars are the 95 % CI of the mean');
+  await load.setInputFiles({ ...csv([`bare,Bare curve,data,surfaceRatio,"${USER_SOURCE}",1.5,20,,`]), name: 'bare.csv' });
+  await expect(notes).toContainText('Bare curve: no error bars (its file gives no SD and n ≥ 2 for its points)');
+  expect(await bars()).toBe(shippedBars + 1);
 
   // A bad file: a specific message in role=alert, and what was shown stays.
   await load.setInputFiles({ ...csv([`bad,Bad,data,surfaceRatio,"${USER_SOURCE}",1,150,,`]), name: 'bad.csv' });
   await expect(alert).toBeVisible();
   await expect(alert).toContainText('bad.csv: line 2, column percent: 150 is outside 0..100');
-  await expect(overlay).toHaveAttribute('data-drawn', '2');
-  await expect(sources).toHaveCount(2);
+  await expect(overlay).toHaveAttribute('data-drawn', '3');
 
   // A curve over another quantity is not drawn, and the page says why.
   await load.setInputFiles({ ...csv([`byk,By k,data,voronoiK,"${USER_SOURCE}",1,10,,`]), name: 'by-k.csv' });
   await expect(notes).toContainText('by-k.csv: no curve drawn (x is voronoiK, the sweep varies surfaceRatio (1))');
-  await expect(overlay).toHaveAttribute('data-drawn', '2');
+  await expect(overlay).toHaveAttribute('data-drawn', '3');
 
   // The downloads hold the runs only.
   const download = page.waitForEvent('download');

@@ -57,7 +57,7 @@ for (const [name, config] of [
     const header = lines[0].split(',');
     expect(lines).toHaveLength(3);
     for (const method of ['labels', 'exact']) {
-      const column = header.indexOf(`${method}.percentScutoids`);
+      const column = header.indexOf(`${method}.percentScutoids_pct`);
       expect(column, method).toBeGreaterThan(0);
       for (const line of lines.slice(1)) expect(Number(line.split(',')[column]), `${method}: ${line}`).toBeGreaterThanOrEqual(0);
     }

@@ -4,6 +4,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
 import { readCsvTable } from '../src/core/sweep/csv';
+import { readRunsCsv } from '../src/core/sweep/runner';
 
 /**
  * Issue 15 on Debian's Chromium: the pipeline in its worker keeps the page's main thread free
@@ -116,13 +117,13 @@ test.describe('the app stays responsive', () => {
     });
     await page.locator('[data-sweep="run"]').click();
     await expect(page.locator('#sweep')).toHaveAttribute('data-state', 'cancelled', { timeout: 60_000 });
-    const kept = readCsvTable(await downloadText(page, '[data-sweep="runs-csv"]')).rows;
+    const kept = readRunsCsv(await downloadText(page, '[data-sweep="runs-csv"]')).rows;
     expect(kept.length).toBeGreaterThanOrEqual(2);
     expect(kept.length).toBeLessThan(6);
 
     await page.locator('[data-sweep="resume"]').click();
     await expect(page.locator('#sweep')).toHaveAttribute('data-state', 'done', { timeout: 120_000 });
-    const all = readCsvTable(await downloadText(page, '[data-sweep="runs-csv"]'));
+    const all = readRunsCsv(await downloadText(page, '[data-sweep="runs-csv"]'));
     expect(all.rows).toHaveLength(6);
     // The kept rows are the first ones of the file, unchanged.
     expect(all.rows.slice(0, kept.length)).toEqual(kept);
@@ -172,7 +173,7 @@ test.describe('<tissue-sheet>.sweep()', () => {
       stdio: 'pipe',
       timeout: 150_000,
     });
-    const cliRuns = readCsvTable(readFileSync(join(dir, 'out', 'runs.csv'), 'utf8'));
+    const cliRuns = readRunsCsv(readFileSync(join(dir, 'out', 'runs.csv'), 'utf8'));
     const cliAggregate = readFileSync(join(dir, 'out', 'aggregate.csv'), 'utf8');
 
     console.log(
@@ -185,6 +186,30 @@ test.describe('<tissue-sheet>.sweep()', () => {
     expect((inPage.aggregate as { points: unknown[] }).points).toHaveLength(2);
     expect((inPage.progress as { hasRow: boolean }[]).filter((p) => p.hasRow)).toHaveLength(4);
     expect(inPage.aborted).toBe(false);
+    expect(Math.max(0, ...(inPage.longTasks as number[]))).toBeLessThan(50);
+  });
+
+  test("spreads a Voronoi k x ratio grid over a pool of Web Workers with the CLI's reuse and the CLI's rows", async ({ page }) => {
+    // 2 Voronoi k x 2 ratios x 3 realizations: 3 Lloyd runs (one per realization), each serving
+    // both k and both ratios on one worker.
+    const grid = { ...spec, vary: { 'lloyd.maxIterations': [0, 2], 'sheet.surfaceRatio': [1.5, 2.5] }, realizations: 3 };
+    const cores = await page.evaluate(() => navigator.hardwareConcurrency);
+    const inPage = await sweep(page, { spec: grid, workers: 2 });
+    const dir = mkdtempSync(join(tmpdir(), 'tissue-sheet-sweep-pool-'));
+    writeFileSync(join(dir, 'spec.json'), JSON.stringify(grid));
+    execFileSync('xvfb-run', ['-a', process.execPath, 'tests/cli/fromSource.mjs', 'sweep', join(dir, 'spec.json'), '--out', join(dir, 'out')], {
+      stdio: 'pipe',
+      timeout: 150_000,
+    });
+    console.log(`pool sweep: ${(inPage.runs as unknown[]).length} runs on ${inPage.workers} workers (${cores} cores) in ${Math.round(inPage.ms as number)} ms`);
+    expect(inPage.workers).toBe(2);
+    // By default the pool leaves one core to the page.
+    const byDefault = await sweep(page, { spec: grid });
+    expect(byDefault.workers).toBe(Math.max(1, Math.min(cores - 1, 8, 3)));
+    expect(byDefault.runsCsv).toBe(inPage.runsCsv);
+    expect(inPage.runsCsv).toBe(readFileSync(join(dir, 'out', 'runs.csv'), 'utf8'));
+    expect(inPage.aggregateCsv).toBe(readFileSync(join(dir, 'out', 'aggregate.csv'), 'utf8'));
+    expect((inPage.progress as { hasRow: boolean }[]).filter((p) => p.hasRow)).toHaveLength(12);
     expect(Math.max(0, ...(inPage.longTasks as number[]))).toBeLessThan(50);
   });
 

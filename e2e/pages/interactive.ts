@@ -14,7 +14,7 @@ const longTasks: number[] = [];
 new PerformanceObserver((list) => list.getEntries().forEach((entry) => longTasks.push(entry.duration))).observe({ type: 'longtask' });
 
 /** Runs `spec`; with `abortAfter`, aborts once that many runs have finished. */
-async function sweep(input: { spec: unknown; abortAfter?: number; resume?: string }) {
+async function sweep(input: { spec: unknown; abortAfter?: number; resume?: string; workers?: number }) {
   const controller = new AbortController();
   const progress: TissueSheetSweepProgressDetail[] = [];
   const listener = (event: Event) => {
@@ -26,7 +26,11 @@ async function sweep(input: { spec: unknown; abortAfter?: number; resume?: strin
   longTasks.length = 0;
   const started = performance.now();
   try {
-    const result = await element.sweep(input.spec, { signal: controller.signal, ...(input.resume ? { resume: input.resume } : {}) });
+    const result = await element.sweep(input.spec, {
+      signal: controller.signal,
+      ...(input.resume ? { resume: input.resume } : {}),
+      ...(input.workers ? { workers: input.workers } : {}),
+    });
     return {
       ...result,
       ms: performance.now() - started,

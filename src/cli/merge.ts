@@ -13,15 +13,15 @@
  * - Runs that no DIR holds are reported; the aggregate then covers the runs present (its n says
  *   so), and `tissue-sheet sweep SPEC --out DIR` on the merged directory computes the rest.
  */
-import { existsSync, lstatSync, mkdirSync, readFileSync, realpathSync } from 'node:fs';
+import { existsSync, lstatSync, mkdirSync, realpathSync } from 'node:fs';
 import { join, resolve } from 'node:path';
-import { formatCsvRow, planResume, ResumeError, sortRowsByRuns, validateSweepSpec } from '../core/sweep';
+import { fileHeader, formatCsvRow, planResume, ResumeError, sortRowsByRuns, validateSweepSpec } from '../core/sweep';
 import { version } from '../version';
 import { InputError } from './errors';
 import { lockDirectory } from './lock';
 import { checkOutDir, writeFileAtomic } from './output';
 import { readJsonFile } from './prepare';
-import { gitCommit, sweepLayout, writeAggregates } from './sweepFiles';
+import { gitCommit, readRunsFile, sweepLayout, writeAggregates } from './sweepFiles';
 
 const USAGE = 'usage: tissue-sheet merge DIR... --out DIR [--force]';
 
@@ -126,13 +126,14 @@ export async function mergeCommand(args: string[], log: (line: string) => void):
   let rejected = 0;
   for (const { dir } of records) {
     const path = join(dir, 'runs.csv');
-    if (!existsSync(path)) {
+    const text = readRunsFile(path);
+    if (text === null) {
       log(`warning: ${path}: missing; that directory adds no runs`);
       continue;
     }
     let plan;
     try {
-      plan = planResume(readFileSync(path, 'utf8'), layout.resume, path);
+      plan = planResume(text, layout.resume, path);
     } catch (error) {
       if (error instanceof ResumeError) throw new InputError(error.message);
       throw error;
@@ -162,7 +163,10 @@ export async function mergeCommand(args: string[], log: (line: string) => void):
   mkdirSync(options.out, { recursive: true });
   const release = lockDirectory(options.out, log);
   try {
-    writeFileAtomic(join(options.out, 'runs.csv'), formatCsvRow(layout.header) + rows.map((r) => formatCsvRow(layout.header.map((h) => r[h]))).join(''));
+    writeFileAtomic(
+      join(options.out, 'runs.csv'),
+      formatCsvRow(fileHeader(layout.header)) + rows.map((r) => formatCsvRow(layout.header.map((h) => r[h]))).join(''),
+    );
     writeAggregates(options.out, rows, layout, log);
     const renderers = [...new Set(records.map((r) => String(r.record.renderer)))];
     writeFileAtomic(

@@ -11,7 +11,7 @@
  * Rows are appended as runs finish; aggregate.csv/json and sweep.json are written atomically.
  * Ctrl-C stops after the current run (exit 130); rerunning the same command resumes.
  */
-import { appendFileSync, existsSync, mkdirSync, readFileSync } from 'node:fs';
+import { appendFileSync, mkdirSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { ConfigError, isClosedConfig, validateAnyConfig, type AnyConfig } from '../core/config';
 import { parseShard, planResume, ResumeError, runSweep, shardRuns, SweepSpecError, validateSweepSpec, type Shard } from '../core/sweep';
@@ -27,7 +27,7 @@ import { checkOutDir, writeFileAtomic } from './output';
 import { checkRunnable, computeBudget, loadInputs, readJsonFile, type RunInputs } from './prepare';
 import { Sources } from './sources';
 import { defaultWorkers, SweepThreadLost, SweepWorkers } from './sweepWorkers';
-import { gitCommit, sweepLayout, writeAggregates, type Run } from './sweepFiles';
+import { gitCommit, readRunsFile, sweepLayout, writeAggregates, type Run } from './sweepFiles';
 
 export async function sweepCommand(options: CliOptions, signal: AbortSignal, log: (line: string) => void): Promise<void> {
   const started = new Date().toISOString();
@@ -73,7 +73,7 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
     record({ runs: runs.length });
 
     const csvPath = join(options.out, 'runs.csv');
-    const existing = existsSync(csvPath) ? readFileSync(csvPath, 'utf8') : '';
+    const existing = readRunsFile(csvPath) ?? '';
     let plan;
     try {
       plan = planResume(existing, { ...layout.resume, runs }, csvPath);
@@ -145,9 +145,11 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
       result = await runSweep<AnyConfig & Record<string, unknown>, Record<string, unknown>>({
         runs,
         fields,
-        summaryColumns: summary,
+        summaryColumns: [...layout.geometry, ...summary],
         existingCsv: plan.cleanText,
         append: (text) => appendFileSync(csvPath, text),
+        // Each row carries its run's base geometry beside what the run measured.
+        runValues: layout.geometryOf,
         runner: async (config, run) =>
           sweepSummary((await runner.run(validateAnyConfig(config), { ...inputs.get(run.pointKey), signal, views: false })).result),
         tasks: {

@@ -5,16 +5,20 @@
  * exactly as the unsharded sweep's.
  */
 import { execFileSync } from 'node:child_process';
+import { lstatSync, readFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { validateAnyConfig, type AnyConfig } from '../core/config';
 import {
+  aggregateColumns,
   aggregateRows,
   aggregateToCsv,
   aggregateToJson,
   baseColumns,
   expandSweep,
   flintstonesToCsv,
+  geometryColumns,
+  geometryValues,
   orderForReuse,
   sortRowsByRuns,
   summaryColumns,
@@ -27,6 +31,7 @@ import {
   type ValidSweepSpec,
 } from '../core/sweep';
 import { seededKey } from '../run/index';
+import { InputError } from './errors';
 import { writeFileAtomic } from './output';
 
 export type Run = SweepRun<AnyConfig & Record<string, unknown>>;
@@ -37,8 +42,12 @@ export interface SweepLayout {
   readonly runs: Run[];
   /** Every run in the order rows are written (runs sharing a seeded surface together). */
   readonly ordered: Run[];
-  /** Summary columns of runs.csv (the union over the grid). */
+  /** Summary columns of runs.csv (the union over the grid): what a run measured. */
   readonly summary: string[];
+  /** The base geometry columns (config paths that are not varied: units.ts), before the summary. */
+  readonly geometry: string[];
+  /** A run's geometry values (by plain column name), added to its summary. */
+  readonly geometryOf: (run: Run) => Record<string, string | number | boolean>;
   readonly header: string[];
   /** Runs with the same group share a relaxed seeded surface (SheetRunner reuses it). */
   readonly reuseGroup: (run: Run) => string;
@@ -56,8 +65,10 @@ export function sweepLayout(spec: ValidSweepSpec, pointConfig: (run: Run) => Any
   for (const run of runs) if (!configs.has(run.pointKey)) configs.set(run.pointKey, pointConfig(run));
   // Every column a point may fill (the engine, and so the methods, can depend on the renderer).
   const summary = sweepColumns(configs.values());
-  const header = [...baseColumns(fields), ...summary];
-  const filled = new Map([...configs].map(([key, config]) => [key, new Set(summaryColumns(config))]));
+  const geometry = geometryColumns(configs.values(), fields);
+  const header = [...baseColumns(fields), ...geometry.columns, ...summary];
+  const values = new Map([...configs].map(([key, config]) => [key, geometryValues(config, fields)]));
+  const filled = new Map([...configs].map(([key, config]) => [key, new Set([...Object.keys(values.get(key)!), ...summaryColumns(config)])]));
   // Seeded keys once per grid point and realization seed, not once per run.
   const keys = new Map<string, string>();
   const reuseGroup = (run: Run): string => {
@@ -72,9 +83,11 @@ export function sweepLayout(spec: ValidSweepSpec, pointConfig: (run: Run) => Any
     runs,
     ordered,
     summary,
+    geometry: geometry.columns,
+    geometryOf: (run) => values.get(run.pointKey)!,
     header,
     reuseGroup,
-    resume: { header, fields, runs, filledColumns: (run) => filled.get(run.pointKey)!, textColumns: TEXT_COLUMNS },
+    resume: { header, fields, runs, filledColumns: (run) => filled.get(run.pointKey)!, textColumns: new Set([...TEXT_COLUMNS, ...geometry.text]) },
   };
 }
 
@@ -90,7 +103,7 @@ export function writeAggregates(
   log: (line: string) => void,
 ): { flintstones: number } {
   const sorted = sortRowsByRuns(rows, layout.ordered);
-  const numeric = layout.summary.filter((c) => !TEXT_COLUMNS.has(c));
+  const numeric = aggregateColumns(layout.summary, TEXT_COLUMNS);
   const aggregate = aggregateRows(sorted, layout.fields, numeric);
   for (const point of aggregate.points) {
     const partial = Object.entries(point.stats).filter(([, s]) => s.n > 0 && s.missing > 0);
@@ -117,6 +130,23 @@ export function writeAggregates(
   writeFileAtomic(join(out, 'aggregate.json'), JSON.stringify({ points: aggregateToJson(aggregate), flintstones: fits }, null, 2) + '\n');
   if (fitted.length > 0) writeFileAtomic(join(out, 'flintstones.csv'), flintstonesToCsv(fits, layout.fields));
   return { flintstones: fitted.length };
+}
+
+/**
+ * The text of a sweep directory's runs.csv, or null when there is none. Anything but a regular
+ * file there (a directory, a device) is refused by name (exit 2), never read.
+ */
+export function readRunsFile(path: string): string | null {
+  let stat;
+  try {
+    stat = lstatSync(path);
+  } catch {
+    return null;
+  }
+  if (stat.isSymbolicLink()) throw new InputError(`${path}: is a symbolic link, which is never followed; remove it`);
+  if (stat.isDirectory()) throw new InputError(`${path}: is a directory, not a runs file; move it away (a sweep writes its rows to this path)`);
+  if (!stat.isFile()) throw new InputError(`${path}: is not a regular file; move it away (a sweep writes its rows to this path)`);
+  return readFileSync(path, 'utf8');
 }
 
 /** The git commit of the checkout the CLI runs from, when it is one. */

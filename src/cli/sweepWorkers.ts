@@ -19,7 +19,7 @@ import { availableParallelism } from 'node:os';
 import { pathToFileURL } from 'node:url';
 import { isMainThread, parentPort, Worker, workerData } from 'node:worker_threads';
 import { ConfigError, validateAnyConfig } from '../core/config';
-import { flattenSummary } from '../core/sweep';
+import { flatSummary, flattenSummary } from '../core/sweep';
 import type { GpuCapabilities, GpuContext } from '../gpu/context';
 import { SheetRunner, sweepSummary } from '../run/index';
 import { InputError } from './errors';
@@ -50,9 +50,12 @@ type FromWorker =
    * A run's summary, flattened (flattenSummary): its values, and the number of its key list
    * (each distinct list is sent once per thread, with the first run that has it).
    */
-  | { type: 'done'; id: number; key: string; layout: number; keys?: string[]; numbers: Float64Array; others: [number, unknown][] }
+  | DoneMessage
+  /** The summaries of a task's runs, in the order they finished, in one message (fewer messages cost less than many). */
+  | { type: 'dones'; id: number; items: DoneMessage[] }
   | { type: 'failed'; id: number; error: SerializedError }
   | { type: 'finished'; id: number };
+type DoneMessage = { type: 'done'; id: number; key: string; layout: number; keys?: string[]; numbers: Float64Array; others: [number, unknown][] };
 
 /** A thread failed or exited under a task: its runs not reported yet can be computed elsewhere. */
 export class SweepThreadLost extends Error {
@@ -154,6 +157,10 @@ export class SweepWorkers {
   }
 
   private receive(slot: Slot, message: FromWorker): void {
+    if (message.type === 'dones') {
+      for (const item of message.items) this.receive(slot, item);
+      return;
+    }
     if (message.type === 'done' && message.keys) slot.layouts.set(message.layout, message.keys);
     const current = slot.current;
     if (!current || current.id !== message.id) return;
@@ -164,7 +171,8 @@ export class SweepWorkers {
         const summary: Record<string, unknown> = {};
         for (let k = 0; k < keys.length; k++) summary[keys[k]] = message.numbers[k];
         for (const [k, value] of message.others) summary[keys[k]] = value;
-        current.done(message.key, summary);
+        // Already flat: the row is made from it as it is (no second copy per run).
+        current.done(message.key, flatSummary(summary));
       } catch (error) {
         // The thread goes on with its task; its messages for it are ignored from now on.
         slot.reserved = true;
@@ -263,24 +271,38 @@ function startWorker(setup: WorkerSetup): void {
         // Fewer Lloyd iterations first: one Lloyd run then serves every Voronoi k of the task.
         const order = runs.map((run, k) => ({ run, k, config: validateAnyConfig(run.config) }));
         order.sort((a, b) => a.config.lloyd.maxIterations - b.config.lloyd.maxIterations || a.k - b.k);
-        for (const { run, config } of order) {
-          const output = await runner.run(config, { ...inputs.get(run.pointKey), signal, views: false });
-          // Flat values cross faster than the nested summary (a structured clone per key).
-          const flat = flattenSummary(sweepSummary(output.result));
-          const keys = Object.keys(flat);
-          const signature = keys.join('\n');
-          let layout = layouts.get(signature);
-          const known = layout !== undefined;
-          if (layout === undefined) layouts.set(signature, (layout = layouts.size));
-          // Numbers in a transferred Float64Array (cloning a list of values costs per value), the rest apart.
-          const numbers = new Float64Array(keys.length);
-          const others: [number, unknown][] = [];
-          keys.forEach((k, n) => {
-            const value = flat[k];
-            if (typeof value === 'number') numbers[n] = value;
-            else others.push([n, value]);
-          });
-          port.postMessage({ type: 'done', id, key: run.key, layout, ...(known ? {} : { keys }), numbers, others } satisfies FromWorker, [numbers.buffer]);
+        // A task's summaries go out together when it ends, or as they are when it fails.
+        const batch: DoneMessage[] = [];
+        const flush = () => {
+          if (batch.length > 0)
+            port.postMessage(
+              { type: 'dones', id, items: batch } satisfies FromWorker,
+              batch.map((item) => item.numbers.buffer as ArrayBuffer),
+            );
+          batch.length = 0;
+        };
+        try {
+          for (const { run, config } of order) {
+            const output = await runner.run(config, { ...inputs.get(run.pointKey), signal, views: false });
+            // Flat values cross faster than the nested summary (a structured clone per key).
+            const flat = flattenSummary(sweepSummary(output.result));
+            const keys = Object.keys(flat);
+            const signature = keys.join('\n');
+            let layout = layouts.get(signature);
+            const known = layout !== undefined;
+            if (layout === undefined) layouts.set(signature, (layout = layouts.size));
+            // Numbers in a transferred Float64Array (cloning a list of values costs per value), the rest apart.
+            const numbers = new Float64Array(keys.length);
+            const others: [number, unknown][] = [];
+            keys.forEach((k, n) => {
+              const value = flat[k];
+              if (typeof value === 'number') numbers[n] = value;
+              else others.push([n, value]);
+            });
+            batch.push({ type: 'done', id, key: run.key, layout, ...(known ? {} : { keys }), numbers, others });
+          }
+        } finally {
+          flush();
         }
         send({ type: 'finished', id });
       } catch (error) {

@@ -301,18 +301,21 @@ export class TissueSheetElement extends HTMLElement {
    * A parameter sweep with the CLI's spec (`{ base, vary, realizations, seed, seedMode }`,
    * docs/sweep.md), validated as the CLI does (a bad spec rejects with a SweepSpecError naming
    * the field). Resolves with the rows of the CLI's runs.csv and its aggregate (mean, sd, se, n
-   * per grid point and column), plus both files' text. A `sweep-progress` event follows every
-   * finished run. Aborting `signal` stops after the run in flight and resolves with the runs
+   * per grid point and aggregated metric), plus both files' text. A `sweep-progress` event follows every
+   * finished run. The runs are spread over a pool of Web Workers (`workers`, default the
+   * browser's cores less one, at least 1, at most 8), each continuing one realization's Lloyd run through its Voronoi k and ratios, as
+   * the CLI does. Aborting `signal` stops after the runs in flight and resolves with the runs
    * finished so far (`aborted: true`); `resume` (a runs.csv of the same spec) skips its runs.
    */
   async sweep(spec: unknown, options: TissueSheetSweepOptions = {}): Promise<TissueSheetSweepResult> {
     const result = await sweepInPage(spec, {
       ...(options.signal ? { signal: options.signal } : {}),
       ...(options.resume ? { resumeCsv: options.resume } : {}),
+      ...(options.workers !== undefined ? { workers: options.workers } : {}),
       onProgress: (p) => this.emit<TissueSheetSweepProgressDetail>('sweep-progress', p),
     });
-    const { runs, aggregate, runsCsv, aggregateCsv, completed, skipped, aborted, header } = result;
-    return { runs, aggregate, runsCsv, aggregateCsv, completed, skipped, aborted, header };
+    const { runs, aggregate, runsCsv, aggregateCsv, completed, skipped, aborted, header, workers } = result;
+    return { runs, aggregate, runsCsv, aggregateCsv, completed, skipped, aborted, header, workers };
   }
 
   /** The last result as the documented JSON object (a copy); throws before the first result. */

@@ -50,14 +50,20 @@ export interface TissueSheetSweepOptions {
   signal?: AbortSignal;
   /** runs.csv of an earlier run of the same spec: its runs are kept, the others computed. */
   resume?: string;
+  /** Web Workers to spread the runs over (1 to 8); default: the browser's cores less one for the page, at least 1. */
+  workers?: number;
 }
 
 /**
  * What `sweep()` resolves with: runs.csv's `header` and rows (`runs`, text cells, resumed ones
- * first), the CLI's `aggregate` (mean, sd, se, n per grid point and numeric column), both files'
- * text, how many runs were `completed` and `skipped`, and whether the signal `aborted` it.
+ * first), the CLI's `aggregate` (mean, sd, se, n per grid point and aggregated metric, docs/sweep.md "Aggregates"), both files'
+ * text, how many runs were `completed` and `skipped`, whether the signal `aborted` it, and how
+ * many pipeline `workers` (Web Workers) the runs were spread over.
  */
-export type TissueSheetSweepResult = Pick<PageSweepResult, 'header' | 'runs' | 'aggregate' | 'runsCsv' | 'aggregateCsv' | 'completed' | 'skipped' | 'aborted'>;
+export type TissueSheetSweepResult = Pick<
+  PageSweepResult,
+  'header' | 'runs' | 'aggregate' | 'runsCsv' | 'aggregateCsv' | 'completed' | 'skipped' | 'aborted' | 'workers'
+>;
 
 /**
  * `cell-hover`: the cell under the pointer in the 3D view (at most one per animation frame, only

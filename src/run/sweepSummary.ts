@@ -19,10 +19,13 @@ export function sweepSummary(result: SheetResult): Record<string, unknown> {
     });
     summary[analysis.method] = {
       percentScutoids: s.percentScutoids,
-      meanTransitions: s.meanTransitions,
-      meanNeighbours3D: s.meanNeighbours3D,
+      scutoids: s.scutoids,
       validCells: s.validCells,
       excludedCells: s.excludedCells,
+      meanTransitions: s.meanTransitions,
+      meanWon: s.meanWon,
+      meanLost: s.meanLost,
+      meanNeighbours3D: s.meanNeighbours3D,
       ...perSurface,
     };
   }

@@ -47,7 +47,11 @@ export function createPipelineRunner(): WorkerSheetRunner {
 
 /** Idle runners of sweeps and movies, kept for the next one (see the module's comment). */
 const idleRunners: WorkerSheetRunner[] = [];
-const MAX_IDLE_RUNNERS = 1;
+/**
+ * As many as a sweep's pool takes by default (pageSweep.ts: the cores less one, at most 8), so
+ * that the end of a sweep terminates no worker (each termination costs the main thread a task).
+ */
+const MAX_IDLE_RUNNERS = Math.max(1, Math.min(8, ((typeof navigator !== 'undefined' && navigator.hardwareConcurrency) || 2) - 1));
 
 /** A pipeline runner of its own for a sweep or a movie; give it back with releasePipelineRunner. */
 export function acquirePipelineRunner(): WorkerSheetRunner {

@@ -12,15 +12,20 @@
  * - a previous runs.csv of the same spec (a download) resumes the sweep: planResume keeps its
  *   valid rows (bad ones are reported and computed again), only the missing runs are computed;
  * - cancelling (the signal) keeps every finished run: the result then has `aborted: true`.
- * The pipeline runs in a worker of the sweep's own (acquirePipelineRunner), given back at the end.
+ * The pipeline runs on a pool of workers of the sweep's own (acquirePipelineRunner, see
+ * defaultPageWorkers), given back at the end; each takes one realization's Lloyd run (chainKey).
  */
 import { checkClosedFeasible, checkFeasible, ConfigError, isClosedConfig, makeGrid, validateAnyConfig, type AnyConfig, type Config } from '../core/config';
 import {
+  aggregateColumns,
   aggregateRows,
   aggregateToCsv,
   baseColumns,
   expandSweep,
+  fileHeader,
   formatCsvRow,
+  geometryColumns,
+  geometryValues,
   meanSd,
   parseCsv,
   planResume,
@@ -38,6 +43,7 @@ import {
   type ValidSweepSpec,
 } from '../core/sweep';
 import { seededKey, sweepSummary, type WorkerSheetRunner } from '../run';
+import { chainKey } from '../run/runSheet';
 import { tQuantile975 } from '../core/analysis/realizations';
 import { acquirePipelineRunner, isAbort, releasePipelineRunner, runInputs } from './pageRunner';
 
@@ -65,6 +71,22 @@ export interface PageSweepOptions {
   /** Largest number of runs accepted (validateSweepSpec's default otherwise). */
   maxRuns?: number;
   onProgress?: (progress: PageSweepProgress) => void;
+  /** Pipeline workers to spread the runs over; default defaultPageWorkers(). */
+  workers?: number;
+}
+
+/** At most this many pipeline workers for one sweep: each holds its own pipeline and surfaces. */
+export const MAX_PAGE_WORKERS = 8;
+
+/**
+ * The page's default number of sweep workers: the browser's cores (hardwareConcurrency) less one
+ * for the page itself, at least 1, at most MAX_PAGE_WORKERS. As many busy workers as cores
+ * starve the main thread (the app's own pipeline worker is there too): its tasks then run
+ * past 50 ms in wall time.
+ */
+export function defaultPageWorkers(): number {
+  const cores = typeof navigator !== 'undefined' && Number.isInteger(navigator.hardwareConcurrency) ? navigator.hardwareConcurrency : 2;
+  return Math.max(1, Math.min(MAX_PAGE_WORKERS, cores - 1));
 }
 
 export interface PageSweepResult {
@@ -84,6 +106,8 @@ export interface PageSweepResult {
   rejected: RejectedRow[];
   /** True when the signal stopped the sweep: `runs` holds the runs finished until then. */
   aborted: boolean;
+  /** Pipeline workers the runs were spread over. */
+  workers: number;
 }
 
 /** Everything fixed before the first run: the spec, its runs in run order, the header. */
@@ -93,7 +117,12 @@ export interface SweepPlan {
   runs: Run[];
   header: string[];
   summary: string[];
-  /** Summary columns each grid point fills. */
+  /** Base geometry columns (units.ts), and each grid point's values. */
+  geometry: string[];
+  geometryValues: Map<string, Record<string, string | number | boolean>>;
+  /** Columns holding text. */
+  text: Set<string>;
+  /** Geometry and summary columns each grid point fills. */
   filled: Map<string, Set<string>>;
   configs: Map<string, AnyConfig>;
 }
@@ -116,8 +145,21 @@ function makePlan(input: unknown, maxRuns?: number): SweepPlan {
   const configs = new Map<string, AnyConfig>();
   for (const run of runs) if (!configs.has(run.pointKey)) configs.set(run.pointKey, pointConfig(run));
   const summary = sweepColumns(configs.values());
-  const filled = new Map([...configs].map(([key, config]) => [key, new Set(summaryColumns(config))]));
-  return { spec, fields, runs: seededOrder(runs), header: [...baseColumns(fields), ...summary], summary, filled, configs };
+  const geometry = geometryColumns(configs.values(), fields);
+  const values = new Map([...configs].map(([key, config]) => [key, geometryValues(config, fields)]));
+  const filled = new Map([...configs].map(([key, config]) => [key, new Set([...Object.keys(values.get(key)!), ...summaryColumns(config)])]));
+  return {
+    spec,
+    fields,
+    runs: seededOrder(runs),
+    header: [...baseColumns(fields), ...geometry.columns, ...summary],
+    summary,
+    geometry: geometry.columns,
+    geometryValues: values,
+    text: new Set([...TEXT_COLUMNS, ...geometry.text]),
+    filled,
+    configs,
+  };
 }
 
 /**
@@ -147,22 +189,46 @@ function pointConfig(run: Run): AnyConfig {
 export async function sweepInPage(input: unknown, options: PageSweepOptions = {}): Promise<PageSweepResult> {
   const plan = planSweep(input, options.maxRuns);
   const { spec, fields, runs, header, summary, filled } = plan;
-  const resumed = planResume(options.resumeCsv ?? '', { header, fields, runs, filledColumns: (run) => filled.get(run.pointKey)!, textColumns: TEXT_COLUMNS });
+  const resumed = planResume(options.resumeCsv ?? '', { header, fields, runs, filledColumns: (run) => filled.get(run.pointKey)!, textColumns: plan.text });
   let csv = resumed.cleanText;
   const rows = [...resumed.rows];
   // Each run's row by its key: a progress event names its run, whose row is already appended.
   const rowByKey = new Map<string, Record<string, string>>();
   const started = performance.now();
-  const runner: WorkerSheetRunner = acquirePipelineRunner();
+  // A pool of pipeline workers, one task at a time each. A task is one Lloyd run of one
+  // realization (the runs sharing chainKey: every Voronoi k and every sheet.* value of it), run
+  // in order of Lloyd iterations on one worker, whose SheetRunner continues the Lloyd run from one
+  // Voronoi k to the next and relaxes each seeded surface once for every ratio or thickness: the
+  // CLI's reuse, with the same numbers (each equals the grid point computed alone). Rows are
+  // written in run order whatever order the workers finish in (runSweep), so runs.csv is the CLI's.
+  const done = new Set(resumed.rows.map((row) => row.key));
+  const chains = new Map<string, string>();
+  const chainOf = (run: Run): string => {
+    const id = `${run.pointKey}#${run.seed}`;
+    let key = chains.get(id);
+    if (key === undefined) chains.set(id, (key = chainKey({ ...plan.configs.get(run.pointKey)!, seed: run.seed })));
+    return key;
+  };
+  const tasks = new Set(runs.filter((run) => !done.has(run.key)).map(chainOf)).size;
+  const asked = options.workers ?? defaultPageWorkers();
+  if (!Number.isInteger(asked) || asked < 1 || asked > MAX_PAGE_WORKERS)
+    throw new RangeError(`sweep workers: ${asked} is not a whole number from 1 to ${MAX_PAGE_WORKERS}`);
+  const size = Math.max(1, Math.min(asked, tasks));
+  const idle: WorkerSheetRunner[] = Array.from({ length: size }, acquirePipelineRunner);
+  const pool = [...idle];
+  const iterationsOf = (run: Run) => plan.configs.get(run.pointKey)!.lloyd.maxIterations;
   let aborted = false;
   let result: Awaited<ReturnType<typeof runSweep>> | null = null;
   try {
-    result = await runSweep({
+    result = await runSweep<AnyConfig & Record<string, unknown>, Record<string, unknown>>({
       runs,
       fields,
-      summaryColumns: summary,
+      summaryColumns: [...plan.geometry, ...summary],
       existingCsv: csv,
       signal: options.signal,
+      concurrency: size,
+      // The row carries the run's base geometry beside its summary, as the CLI's does.
+      runValues: (run) => plan.geometryValues.get(run.pointKey)!,
       append: (text) => {
         csv += text;
         const records = parseCsv(text).records;
@@ -172,11 +238,24 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
         rows.push(row);
         rowByKey.set(row.key, row);
       },
-      runner: async (config) => {
-        const valid = validateAnyConfig(config);
-        const inputs = await runInputs(valid);
-        // Only the summary is kept: no label images cross from the worker.
-        return sweepSummary((await runner.run(valid, { signal: options.signal, views: false, ...inputs })).result);
+      runner: () => Promise.reject(new Error('page sweep: runs go through tasks')),
+      tasks: {
+        key: chainOf,
+        run: async (task, report) => {
+          const runner = idle.pop()!;
+          try {
+            const order = [...task].sort((a, b) => iterationsOf(a) - iterationsOf(b));
+            for (const run of order) {
+              const valid = validateAnyConfig(run.config);
+              const inputs = await runInputs(valid);
+              // Only the summary is kept: no label images cross from the worker.
+              const output = await runner.run(valid, { signal: options.signal, views: false, ...inputs });
+              report(run, sweepSummary(output.result));
+            }
+          } finally {
+            idle.push(runner);
+          }
+        },
       },
       onProgress: (p) => {
         if (p.phase === 'start' || (p.phase === 'error' && isAbort(p.error))) return;
@@ -198,25 +277,22 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
     if (!(isAbort(error) && options.signal?.aborted)) throw error;
     aborted = true;
   } finally {
-    releasePipelineRunner(runner);
+    for (const runner of pool) releasePipelineRunner(runner);
   }
-  const aggregate = aggregateRows(
-    rows,
-    fields,
-    summary.filter((c) => !TEXT_COLUMNS.has(c)),
-  );
+  const aggregate = aggregateRows(rows, fields, aggregateColumns(summary, TEXT_COLUMNS));
   return {
     spec,
     fields,
     header,
     runs: rows,
     aggregate,
-    runsCsv: csv === '' ? formatCsvRow(header) : csv,
+    runsCsv: csv === '' ? formatCsvRow(fileHeader(header)) : csv,
     aggregateCsv: aggregateToCsv(aggregate),
     completed: result?.completed ?? rows.length - resumed.rows.length,
     skipped: resumed.rows.length,
     rejected: resumed.rejected,
     aborted,
+    workers: size,
   };
 }
 

@@ -136,8 +136,12 @@ describe('aggregation', () => {
     expect(agg.points[0].stats.pct.sd).toBeCloseTo(Math.SQRT2 * 5);
     expect(agg.points[1].stats.pct).toEqual({ mean: 50, sd: NaN, se: NaN, n: 1, missing: 1 });
     const csv = readCsvTable(aggregateToCsv(agg));
-    expect(csv.header).toEqual(['s', 'runs', 'pct.mean', 'pct.sd', 'pct.se', 'pct.n']);
+    expect(csv.header).toEqual(['s', 'runs', 'pct.mean', 'pct.sd', 'pct.ci95low', 'pct.ci95high', 'pct.n']);
     expect(csv.rows[0]['pct.mean']).toBe('15');
+    // 95 % CI of the mean by its definition: mean ± t(0.975, n − 1)·sd/√n; t(0.975, 1) = 12.7062 (tables).
+    expect(Number(csv.rows[0]['pct.ci95low'])).toBeCloseTo(15 - 12.7062 * 5, 2);
+    expect(Number(csv.rows[0]['pct.ci95high'])).toBeCloseTo(15 + 12.7062 * 5, 2);
+    expect(csv.rows[1]['pct.ci95low']).toBe('');
     const json = aggregateToJson(agg) as { stats: { pct: { sd: number | null } } }[];
     expect(json[1].stats.pct.sd).toBeNull();
     expect(JSON.parse(JSON.stringify(json))).toEqual(json);

@@ -16,7 +16,7 @@ import { checkRunnable, computeBudget, loadInputs, readJsonFile } from '../../sr
 import { Sources } from '../../src/cli/sources';
 import { sweepLayout } from '../../src/cli/sweepFiles';
 import { validateAnyConfig } from '../../src/core/config';
-import { formatCsvRow, parseShard, planResume, ResumeError, validateSweepSpec, type ValidSweepSpec } from '../../src/core/sweep';
+import { fileHeader, formatCsvRow, parseShard, planResume, ResumeError, validateSweepSpec, type ValidSweepSpec } from '../../src/core/sweep';
 
 const dir = mkdtempSync(join(tmpdir(), 'tissue-sheet-corpus-'));
 const file = (name: string, data: string | Buffer) => {
@@ -129,7 +129,7 @@ describe('bad input corpus: runs.csv rows', () => {
       if (!layout.resume.filledColumns(run).has(h) || h.startsWith('labels.')) return '';
       return '1';
     });
-  const header = formatCsvRow(layout.header);
+  const header = formatCsvRow(fileHeader(layout.header));
   // A good row of run 1, then the corpus row (run 0 with one thing changed).
   const rejected = (cells: string[]) => planResume(header + formatCsvRow(good(layout.runs[1])) + formatCsvRow(cells), layout.resume).rejected;
   const edit = (column: string, value: string) => good().map((c, k) => (layout.header[k] === column ? value : c));
@@ -161,7 +161,7 @@ describe('bad input corpus: runs.csv rows', () => {
   }
   it('refuses a runs.csv of another spec or version (exit 2, naming the file and the column)', async () => {
     await expectRefused(() => planResume('key,realization,seed\r\n', layout.resume, 'out/runs.csv'), /out\/runs\.csv: written for another spec or version/);
-    await expectRefused(() => planResume(header.replace('finalEnergy', 'energy'), layout.resume, 'out/runs.csv'), /column \d+ is "energy"/);
+    await expectRefused(() => planResume(header.replace('finalEnergy_um4', 'energy_um4'), layout.resume, 'out/runs.csv'), /column \d+ is "energy_um4"/);
   });
 });
 

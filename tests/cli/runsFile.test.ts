@@ -145,11 +145,13 @@ describe('aggregate', () => {
     const agg = aggregateRows(rows, ['s'], ['pct', 'only2']);
     expect(agg.points[0].stats.only2.n).toBe(0);
     const csv = readCsvTable(aggregateToCsv(agg));
-    expect(csv.header).toEqual(['s', 'runs', 'pct.mean', 'pct.sd', 'pct.se', 'pct.n', 'only2.mean', 'only2.sd', 'only2.se', 'only2.n']);
+    const stats = ['mean', 'sd', 'ci95low', 'ci95high', 'n'];
+    expect(csv.header).toEqual(['s', 'runs', ...stats.map((s) => `pct.${s}`), ...stats.map((s) => `only2.${s}`)]);
     expect(csv.rows[0]['only2.mean']).toBe('');
     expect(csv.rows[0]['only2.n']).toBe('0');
+    expect(csv.rows[0]['only2.ci95low']).toBe('');
     expect(csv.rows[1]['only2.mean']).toBe('4');
     expect(csv.rows[1]['pct.sd']).toBe('');
-    expect(Number(csv.rows[0]['pct.se'])).toBeCloseTo(Math.sqrt(200) / Math.sqrt(2));
+    expect(Number(csv.rows[0]['pct.sd'])).toBeCloseTo(Math.sqrt(200));
   });
 });

@@ -4,7 +4,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
 import { validateAnyConfig } from '../../src/core/config';
-import { expandSweep, readCsvTable, runRow, runSweep, validateSweepSpec, variedFields, type SweepRun } from '../../src/core/sweep';
+import { expandSweep, geometryValues, readCsvTable, readRunsCsv, runRow, runSweep, validateSweepSpec, variedFields, type SweepRun } from '../../src/core/sweep';
 import { createHeadlessContext } from '../../src/node/headless';
 import { SheetRunner, sweepSummary } from '../../src/run/index';
 
@@ -66,7 +66,7 @@ describe('sweep --workers N', () => {
     const out = join(dir, 'mixed');
     const r = cli(['sweep', mixedPath, '--out', out, '--workers', '2']);
     expect(r.status, r.stderr).toBe(0);
-    const table = readCsvTable(read(out, 'runs.csv'));
+    const table = readRunsCsv(read(out, 'runs.csv'));
     const runs = expandSweep(validateSweepSpec(mixed));
     const fields = variedFields(validateSweepSpec(mixed));
     const byKey = new Map(table.rows.map((row) => [row.key, row]));
@@ -76,7 +76,9 @@ describe('sweep --workers N', () => {
       for (const run of runs) {
         const { result } = await new SheetRunner(context).run(validateAnyConfig(run.config), { views: false });
         engines.add(result.engine.name);
-        expect(byKey.get(run.key), run.key).toEqual(runRow(run, fields, sweepSummary(result), table.header));
+        // The row: the run's base geometry (units.ts) and its summary, computed alone.
+        const summary = { ...geometryValues(validateAnyConfig(run.config), fields), ...sweepSummary(result) };
+        expect(byKey.get(run.key), run.key).toEqual(runRow(run, fields, summary, table.header));
       }
       expect([...engines].sort()).toEqual(['exact', 'gpu']);
     } finally {
@@ -103,6 +105,7 @@ describe('runSweep with tasks finishing in any order', () => {
   async function sweep(concurrency: number, shuffle: (n: number) => number): Promise<string> {
     let file = '';
     let appends = 0;
+    let announced = 0;
     await runSweep({
       runs,
       fields,
@@ -114,6 +117,16 @@ describe('runSweep with tasks finishing in any order', () => {
       },
       runner: async (_config, run) => summary(run),
       concurrency,
+      // Every run's 'done' comes once its row is in the file, however long the row waited for
+      // the runs before it (the page shows the row of each 'done').
+      onProgress: (p) => {
+        if (p.phase === 'done')
+          expect(
+            readCsvTable(file).rows.map((r) => r.key),
+            p.run.key,
+          ).toContain(p.run.key);
+        if (p.phase === 'done') announced++;
+      },
       tasks: {
         key: (run) => `${run.config.k}#${run.realization}`,
         before: (a, b) => a.realization - b.realization,
@@ -128,6 +141,7 @@ describe('runSweep with tasks finishing in any order', () => {
       },
     });
     expect(appends).toBe(runs.length);
+    expect(announced).toBe(runs.length);
     return file;
   }
 

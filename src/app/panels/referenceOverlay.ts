@@ -11,6 +11,7 @@
  */
 import {
   configDifferences,
+  describeIntervals,
   overlayFor,
   quantityOfField,
   readReferenceFile,
@@ -151,6 +152,8 @@ export class ReferenceOverlay {
       curve.points.forEach(numberOf);
       return { curve, sourceNumber: numberOf };
     });
+    // Each drawn curve: whether it has error bars, and why not.
+    for (const { curve } of drawn) notes.push(describeIntervals(curve));
     this.chart.setReference(series);
     this.root.querySelector<HTMLElement>('[data-reference="notes"]')!.textContent = notes.join(' ');
     const sources = this.root.querySelector<HTMLElement>('[data-reference="sources"]')!;

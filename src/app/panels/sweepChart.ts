@@ -7,12 +7,15 @@
  * Reference curves (src/core/reference, chosen by referenceOverlay.ts) are drawn over it dashed,
  * each with its own legend entry (label and kind); the legend value of a reference point is its
  * percent, SD and n when given, and the number of its source in the Sources list under the chart.
+ * A reference point whose file gives an SD and n ≥ 2 gets an error bar: the 95 % CI of its mean
+ * (referenceInterval, the runs' own interval), drawn as a whisker on the live chart and in the
+ * figure; `data-reference-error-bars` counts the whiskers drawn.
  * They share the x axis and nothing else: points(), and so every export, hold the runs only.
  */
 import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
 import { meanInterval } from '../../view/pageSweep';
-import type { ReferenceCurve, ReferencePoint } from '../../core/reference';
+import { referenceInterval, type ReferenceCurve, type ReferencePoint } from '../../core/reference';
 import type { ChartSeries, ChartSpec } from '../model/chartSvg';
 
 const COLORS: Record<string, string> = { exact: '#1f5fa8', labels: '#c0392b' };
@@ -46,6 +49,8 @@ export class SweepChart {
   private shape = '';
   /** The x values on screen (legend values read them: setData keeps the series' closures). */
   private xs: number[] = [];
+  /** Reference error bars on screen (the draw hook reads them: setData keeps the hook). */
+  private whiskers: { x: number; low: number; high: number; color: string }[] = [];
 
   constructor(private readonly root: HTMLElement) {}
 
@@ -127,12 +132,10 @@ export class SweepChart {
         color: REFERENCE_COLORS[k % REFERENCE_COLORS.length],
         style: curve.kind === 'data' ? 'points' : 'line',
         dashed: true,
-        points: curve.points.map((p) => ({
-          x: p.x,
-          y: p.percent,
-          low: p.sd !== null ? Math.max(0, p.percent - p.sd) : null,
-          high: p.sd !== null ? Math.min(100, p.percent + p.sd) : null,
-        })),
+        points: curve.points.map((p) => {
+          const interval = referenceInterval(p);
+          return { x: p.x, y: p.percent, low: interval?.low ?? null, high: interval?.high ?? null };
+        }),
       });
       for (const point of curve.points) {
         const line = `[${sourceNumber(point)}] ${point.source}`;
@@ -151,7 +154,10 @@ export class SweepChart {
       notes: [
         `n = ${nLo === nHi ? nLo : `${nLo}–${nHi}`} realizations per point; line: the mean; band: 95 % confidence interval of the mean (Student's t), clamped to 0–100 %.`,
         ...(this.reference.length
-          ? ['Dashed: reference curves; their error bars are ± SD where the source gives one.', ...sources.map((line) => `Source ${line}`)]
+          ? [
+              "Dashed: reference curves; their error bars are the 95 % confidence interval of the mean (Student's t from the source's SD and n), where the source gives both; points without are drawn without.",
+              ...sources.map((line) => `Source ${line}`),
+            ]
           : []),
       ],
     };
@@ -164,6 +170,30 @@ export class SweepChart {
     if (hi > lo) return [lo, hi];
     const pad = Math.max(0.5, Math.abs(lo) * 0.1);
     return [lo - pad, hi + pad];
+  }
+
+  /** Reference error bars: a vertical line from the CI's low to its high, with caps. */
+  private drawWhiskers(u: uPlot): void {
+    const ctx = u.ctx;
+    const cap = 4 * uPlot.pxRatio;
+    ctx.save();
+    ctx.lineWidth = uPlot.pxRatio;
+    for (const w of this.whiskers) {
+      const x = u.valToPos(w.x, 'x', true);
+      if (x < u.bbox.left || x > u.bbox.left + u.bbox.width) continue;
+      const top = u.valToPos(w.high, 'y', true);
+      const bottom = u.valToPos(w.low, 'y', true);
+      ctx.strokeStyle = w.color;
+      ctx.beginPath();
+      ctx.moveTo(x, top);
+      ctx.lineTo(x, bottom);
+      ctx.moveTo(x - cap, top);
+      ctx.lineTo(x + cap, top);
+      ctx.moveTo(x - cap, bottom);
+      ctx.lineTo(x + cap, bottom);
+      ctx.stroke();
+    }
+    ctx.restore();
   }
 
   private draw(): void {
@@ -192,15 +222,27 @@ export class SweepChart {
       );
       bands.push({ series: [at + 1, at + 2], fill: `${color}22` });
     }
+    const whiskers: typeof this.whiskers = [];
     this.reference.forEach(({ curve, sourceNumber }, k) => {
       const color = REFERENCE_COLORS[k % REFERENCE_COLORS.length];
       const byX = new Map(curve.points.map((p) => [p.x, p]));
       data.push(xs.map((x) => byX.get(x)?.percent ?? null));
+      for (const point of curve.points) {
+        const interval = referenceInterval(point);
+        if (interval) whiskers.push({ x: point.x, ...interval, color });
+      }
       const value = (_u: uPlot, _v: number | null, _series: number, index: number | null) => {
         const point = index === null ? undefined : byX.get(this.xs[index]);
         if (!point) return '';
-        const spread = [point.sd !== null ? `SD ${point.sd.toFixed(1)}` : '', point.n !== null ? `n ${point.n}` : ''].filter(Boolean).join(', ');
-        return `${point.percent.toFixed(1)} %${spread ? ` (${spread})` : ''} [source ${sourceNumber(point)}]`;
+        const interval = referenceInterval(point);
+        const spread = [
+          point.sd !== null ? `SD ${point.sd.toFixed(1)}` : '',
+          point.n !== null ? `n ${point.n}` : '',
+          interval ? `95 % CI ${interval.low.toFixed(1)}–${interval.high.toFixed(1)}` : 'no CI',
+        ]
+          .filter(Boolean)
+          .join(', ');
+        return `${point.percent.toFixed(1)} % (${spread}) [source ${sourceNumber(point)}]`;
       };
       series.push({
         label: `${curve.label} (${curve.kind})`,
@@ -212,6 +254,8 @@ export class SweepChart {
         value,
       });
     });
+    this.whiskers = whiskers;
+    this.root.dataset.referenceErrorBars = String(whiskers.length);
     this.root.dataset.points = String(runXs.length);
     const shape = series.map((s) => s.label).join('\n');
     if (this.plot && this.shape === shape) {
@@ -233,6 +277,7 @@ export class SweepChart {
         },
         series,
         bands,
+        hooks: { draw: [(u) => this.drawWhiskers(u)] },
       },
       data as uPlot.AlignedData,
       this.root,

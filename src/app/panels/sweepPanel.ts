@@ -13,7 +13,7 @@
  * (referenceOverlay.ts); they are never part of the downloads.
  */
 import { validateConfigDraft, type ConfigDraft as Config } from '../../core/config';
-import { readCsvTable, FLINTSTONES_RATIO, sweepFlintstones } from '../../core/sweep';
+import { readRunsCsv, FLINTSTONES_RATIO, sweepFlintstones } from '../../core/sweep';
 import { computeContext, isAbort } from '../../view/pageRunner';
 import { methodsOnRenderer } from '../../core/config/analysisMethods';
 import { planSweep, sweepInPage, type SweepPlan } from '../../view/pageSweep';
@@ -262,7 +262,7 @@ export class SweepPanel {
     }
     this.spec = spec;
     this.chartFor(plan, spec);
-    this.chart.add(readCsvTable(resumeCsv).rows);
+    this.chart.add(readRunsCsv(resumeCsv).rows);
     this.setBusy(true);
     delete this.root.dataset.done;
     this.root.dataset.state = 'running';
@@ -290,6 +290,7 @@ export class SweepPanel {
       this.root.dataset.finished = String(done);
       this.root.dataset.done = String(done);
       this.root.dataset.state = result.aborted ? 'cancelled' : 'done';
+      this.root.dataset.workers = String(result.workers);
       const rejected =
         result.rejected.length > 0
           ? ` ${result.rejected.length} rows of the loaded runs.csv were not valid for this spec and were computed again (first: line ${result.rejected[0].line}, ${result.rejected[0].reason}).`
@@ -297,7 +298,7 @@ export class SweepPanel {
       this.status(
         result.aborted
           ? `Sweep cancelled: ${done} of ${total} runs kept; Resume computes the other ${total - done}.${rejected}`
-          : `Sweep done: ${done} runs (${result.completed} computed, ${result.skipped} loaded).${rejected}`,
+          : `Sweep done: ${done} runs (${result.completed} computed on ${result.workers} worker${result.workers === 1 ? '' : 's'}, ${result.skipped} loaded).${rejected}`,
       );
     } catch (error) {
       if (isAbort(error)) {
@@ -320,7 +321,7 @@ export class SweepPanel {
   private setBusy(busy: boolean): void {
     this.button('cancel').disabled = !busy;
     this.button('run').disabled = busy;
-    const done = readCsvTable(this.runsCsv).rows.length;
+    const done = readRunsCsv(this.runsCsv).rows.length;
     let total = 0;
     try {
       total = this.spec ? planSweep(this.spec).runs.length : 0;
@@ -335,7 +336,7 @@ export class SweepPanel {
   /** The sweep chart or the Flintstones fit as a figure file, with the sweep's provenance. */
   private async figure(kind: 'svg' | 'png', which: 'chart' | 'fit'): Promise<void> {
     try {
-      const rows = readCsvTable(this.runsCsv).rows;
+      const rows = readRunsCsv(this.runsCsv).rows;
       const paths = [...new Set(rows.map((row) => row.centroidPath).filter(Boolean))];
       const engine = paths.length === 0 ? 'unknown' : paths.map((p) => (/exact engine/.test(p) ? 'exact engine' : `GPU, centroid path ${p}`)).join(', ');
       const spec = this.spec as { base?: { seed?: number }; seed?: number } | null;
@@ -387,7 +388,7 @@ export class SweepPanel {
       this.aggregateCsv = '';
       this.showSpecInForm(spec);
       this.chartFor(plan, spec);
-      const rows = readCsvTable(csv).rows;
+      const rows = readRunsCsv(csv).rows;
       this.chart.add(rows);
       this.root.dataset.done = String(rows.length);
       this.status(`Loaded a sweep of ${plan.runs.length} runs with ${rows.length} rows in its runs.csv; Resume checks them and computes the rest.`);

@@ -2,6 +2,7 @@
 export * from './format';
 export * from './referenceCsv';
 export * from './match';
+export * from './interval';
 import { parseReferenceJson, ReferenceError, type ReferenceDocument } from './format';
 import { parseReferenceCsv } from './referenceCsv';
 

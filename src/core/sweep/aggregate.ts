@@ -9,11 +9,20 @@
  * deviation (n - 1 denominator), se = sd / sqrt(n); `missing` = rows of the group whose cell is
  * empty, not a number, NaN or infinite. mean is NaN when n = 0 (written empty, with n = 0, so
  * "no data" is never presented as a value), sd and se NaN when n < 2.
- * - CSV: the varied fields, `runs` (rows in the group), then `<column>.mean`, `.sd`, `.se`, `.n`
- *   for each numeric column; NaN statistics are written as empty cells.
- * - JSON: `[{ point, runs, stats: { column: { mean, sd, se, n, missing } } }]`, NaN as null.
+ * - CSV (`aggregateToCsv`): the varied fields, `runs` (rows in the group), then per column only
+ *   the statistics that mean something for it (`csvStatistics`): the run-level metrics of a
+ *   method (% scutoids, scutoids, valid cells, mean transitions, won, lost, 3D neighbours) get
+ *   mean, sd, the 95 % confidence interval of the mean (mean ± t(0.975, n − 1)·sd/√n, not
+ *   clamped) and n; a surface's mean sides gets mean and sd; a polygon fraction its mean (the
+ *   distribution over realizations); every other column (iterations, the CVT energy, excluded
+ *   cells = cells − valid cells) is left to runs.csv. A header cell is `<column>.<statistic>`
+ *   with the column's unit last (`exact.percentScutoids.mean_pct`, units.ts); NaN statistics
+ *   are written as empty cells.
+ * - JSON: `[{ point, runs, stats: { column: { mean, sd, se, n, missing, ci95 } } }]`, NaN as null.
  */
+import { tQuantile975 } from '../analysis/realizations';
 import { formatCsv } from './csv';
+import { columnUnit, fileColumn } from './units';
 
 export const RESERVED_COLUMNS = ['key', 'realization', 'seed'] as const;
 
@@ -80,7 +89,14 @@ export function aggregateRows(rows: readonly Record<string, string>[], fields: r
     for (const f of fields) point[f] = g[0][f] ?? '';
     const stats: Record<string, ColumnStats> = {};
     for (const c of numeric) {
-      stats[c] = meanSd(g.map((r) => (r[c] === undefined || r[c] === '' || !isNumeric(r[c]) ? NaN : Number(r[c]))));
+      // Number() of a cell that is not a number (text, "NaN") is NaN, left out as missing; a
+      // blank cell would read as 0, so it is NaN too.
+      stats[c] = meanSd(
+        g.map((r) => {
+          const cell = r[c];
+          return cell === undefined || cell.trim() === '' ? NaN : Number(cell);
+        }),
+      );
     }
     points.push({ point, runs: g.length, stats });
   }
@@ -89,12 +105,54 @@ export function aggregateRows(rows: readonly Record<string, string>[], fields: r
 
 const orEmpty = (x: number): number | string => (Number.isFinite(x) ? x : '');
 
+/** The 95 % confidence interval of the mean (t distribution, not clamped); NaN when n < 2. */
+export function ci95(stats: ColumnStats): [number, number] {
+  if (stats.n < 2 || !Number.isFinite(stats.se)) return [NaN, NaN];
+  const half = tQuantile975(stats.n - 1) * stats.se;
+  return [stats.mean - half, stats.mean + half];
+}
+
+export type CsvStatistic = 'mean' | 'sd' | 'ci95low' | 'ci95high' | 'n';
+
+/** The statistics aggregate.csv writes for a column (see the module comment); none: not written. */
+export function csvStatistics(column: string): readonly CsvStatistic[] {
+  const metric = /^(?:labels|exact)\.([^.]+)$/.exec(column)?.[1];
+  if (metric !== undefined) {
+    return ['percentScutoids', 'scutoids', 'validCells', 'meanTransitions', 'meanWon', 'meanLost', 'meanNeighbours3D'].includes(metric)
+      ? ['mean', 'sd', 'ci95low', 'ci95high', 'n']
+      : [];
+  }
+  if (/^(?:labels|exact)\.[^.]+\.meanSides$/.test(column)) return ['mean', 'sd'];
+  if (/^(?:labels|exact)\.[^.]+\.polygons\.[^.]+$/.test(column)) return ['mean'];
+  // A column of another kind (a caller's own numbers): all of them.
+  return /^(?:iterations|finalEnergy)$|^(?:labels|exact)\./.test(column) ? [] : ['mean', 'sd', 'ci95low', 'ci95high', 'n'];
+}
+
+/** The summary columns worth aggregating (numeric, with a statistic in csvStatistics). */
+export function aggregateColumns(summary: readonly string[], text: ReadonlySet<string>): string[] {
+  return summary.filter((c) => !text.has(c) && csvStatistics(c).length > 0);
+}
+
+/** `<column>.<statistic>`, with the column's unit last (n has none). */
+export function statisticColumn(column: string, statistic: CsvStatistic): string {
+  const unit = statistic === 'n' ? null : columnUnit(column);
+  return unit === null ? `${column}.${statistic}` : `${column}.${statistic}_${unit}`;
+}
+
+function statisticValue(stats: ColumnStats, statistic: CsvStatistic): number | string {
+  if (statistic === 'n') return stats.n;
+  if (statistic === 'mean') return orEmpty(stats.mean);
+  if (statistic === 'sd') return orEmpty(stats.sd);
+  return orEmpty(ci95(stats)[statistic === 'ci95low' ? 0 : 1]);
+}
+
 export function aggregateToCsv(agg: Aggregate): string {
-  const header = [...agg.fields, 'runs', ...agg.columns.flatMap((c) => [`${c}.mean`, `${c}.sd`, `${c}.se`, `${c}.n`])];
+  const written = agg.columns.map((c) => ({ column: c, statistics: csvStatistics(c) })).filter((w) => w.statistics.length > 0);
+  const header = [...agg.fields.map(fileColumn), 'runs', ...written.flatMap(({ column, statistics }) => statistics.map((s) => statisticColumn(column, s)))];
   const rows = agg.points.map((p) => [
     ...agg.fields.map((f) => p.point[f]),
     p.runs,
-    ...agg.columns.flatMap((c) => [orEmpty(p.stats[c].mean), orEmpty(p.stats[c].sd), orEmpty(p.stats[c].se), p.stats[c].n]),
+    ...written.flatMap(({ column, statistics }) => statistics.map((s) => statisticValue(p.stats[column], s))),
   ]);
   return formatCsv(header, rows);
 }
@@ -106,7 +164,10 @@ export function aggregateToJson(agg: Aggregate): unknown {
     point: p.point,
     runs: p.runs,
     stats: Object.fromEntries(
-      Object.entries(p.stats).map(([c, s]) => [c, { mean: clean(s.mean), sd: clean(s.sd), se: clean(s.se), n: s.n, missing: s.missing }]),
+      Object.entries(p.stats).map(([c, s]) => [
+        c,
+        { mean: clean(s.mean), sd: clean(s.sd), se: clean(s.se), n: s.n, missing: s.missing, ci95: ci95(s).map(clean) },
+      ]),
     ),
   }));
 }

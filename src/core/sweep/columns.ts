@@ -9,7 +9,8 @@
  * pipeline computes its analyses from: "labels" unless sheet.adjacency is "exact", "exact"
  * unless it is "labels", on every surface; only "exact" when the engine policy picks the exact
  * CPU engine): `<method>.percentScutoids`,
- * `.meanTransitions`, `.meanNeighbours3D`, `.validCells`, `.excludedCells`, and per surface of
+ * `.scutoids`, `.validCells`, `.excludedCells`, `.meanTransitions`, `.meanWon`, `.meanLost`,
+ * `.meanNeighbours3D`, and per surface of
  * the stack (seeded, "layer k" without its space, other) `<method>.<surface>.meanSides` and
  * `<method>.<surface>.polygons.<3..10+>`. A CLI test checks a real run's summary against this.
  */
@@ -20,7 +21,16 @@ import { sheetOffsets } from '../sheetGeometry';
 export const TOP_COLUMNS = ['iterations', 'finalEnergy', 'centroidPath'] as const;
 /** Summary columns holding text; every other summary column holds a number ("NaN" included). */
 export const TEXT_COLUMNS: ReadonlySet<string> = new Set(['centroidPath']);
-export const METHOD_METRICS = ['percentScutoids', 'meanTransitions', 'meanNeighbours3D', 'validCells', 'excludedCells'] as const;
+export const METHOD_METRICS = [
+  'percentScutoids',
+  'scutoids',
+  'validCells',
+  'excludedCells',
+  'meanTransitions',
+  'meanWon',
+  'meanLost',
+  'meanNeighbours3D',
+] as const;
 export const METHODS = ADJACENCY_METHODS;
 
 /**

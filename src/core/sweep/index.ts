@@ -8,3 +8,4 @@ export * from './aggregate';
 export * from './runner';
 export * from './shard';
 export * from './flintstones';
+export * from './units';

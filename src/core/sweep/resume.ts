@@ -16,6 +16,7 @@
 import { formatCsvRow, parseCsv } from './csv';
 import type { Config, SweepRun } from './expand';
 import { valueText } from './expand';
+import { fileHeader } from './units';
 
 export class ResumeError extends Error {
   override name = 'ResumeError';
@@ -51,18 +52,28 @@ export interface ResumeSpec<C extends Config> {
 const isNumberText = (cell: string): boolean => cell === 'NaN' || (cell.trim() === cell && cell !== '' && !Number.isNaN(Number(cell)));
 
 export function planResume<C extends Config>(text: string, spec: ResumeSpec<C>, fileName = 'runs.csv'): ResumePlan {
-  const headerText = formatCsvRow(spec.header);
+  // The file's header carries units (units.ts); rows keep the plain names of spec.header.
+  const written = fileHeader(spec.header);
+  const headerText = formatCsvRow(written);
   if (text === '') return { rows: [], rejected: [], rewrite: true, cleanText: headerText };
   const parsed = parseCsv(text);
   const [header, ...records] = parsed.records;
-  if (!header || header.length !== spec.header.length || header.some((h, k) => h !== spec.header[k])) {
-    const k = header ? spec.header.findIndex((h, i) => header[i] !== h) : 0;
+  if (!header || header.length !== written.length || header.some((h, k) => h !== written[k])) {
+    const move = `give a new --out directory, or move ${fileName} away to start over`;
+    // Before units and the geometry columns a header had no unit suffix at all (this version's
+    // always has finalEnergy_um4).
+    if (header && header[0] === 'key' && header.includes('finalEnergy')) {
+      throw new ResumeError(
+        `${fileName}: written by an older tissue-sheet (its header has no units, base geometry or scutoid counts), so its rows cannot be mixed with this version's; ${move}`,
+      );
+    }
+    const k = header ? written.findIndex((h, i) => header[i] !== h) : 0;
     const detail = !header
       ? 'it has no complete header line'
       : k === -1
-        ? `it has ${header.length} columns, this spec writes ${spec.header.length}`
-        : `column ${k + 1} is ${JSON.stringify(header[k] ?? '')}, this spec writes ${JSON.stringify(spec.header[k])}`;
-    throw new ResumeError(`${fileName}: written for another spec or version (${detail}); give a new --out directory, or move ${fileName} away to start over`);
+        ? `it has ${header.length} columns, this spec writes ${written.length}`
+        : `column ${k + 1} is ${JSON.stringify(header[k] ?? '')}, this spec writes ${JSON.stringify(written[k])}`;
+    throw new ResumeError(`${fileName}: written for another spec or version (${detail}); ${move}`);
   }
   const byKey = new Map(spec.runs.map((r) => [r.key, r]));
   const firstLine = new Map<string, number>();

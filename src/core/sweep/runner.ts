@@ -28,7 +28,8 @@
  * When the sweep stops early (an error, an abort) the finished rows still waiting are appended
  * too, in `runs` order, so no finished run is lost.
  */
-import { flattenSummary, formatCsvRow, readCsvTable } from './csv';
+import { csvField, flattenSummary, formatCsvRow, readCsvTable } from './csv';
+import { fileHeader, plainColumn } from './units';
 import type { Config, SweepRun } from './expand';
 import { valueText } from './expand';
 
@@ -61,6 +62,12 @@ export interface RunSweepOptions<C extends Config, S> {
   existingCsv?: string;
   truncate?: (length: number) => void | Promise<void>;
   summaryColumns?: string[];
+  /**
+   * Values a run's row carries beside its summary (e.g. its base geometry), by column; they
+   * take their columns' places in the header (summaryColumns) without being copied into the
+   * summary.
+   */
+  runValues?: (run: SweepRun<C>) => Readonly<Record<string, unknown>>;
   onProgress?: (p: SweepProgress<C>) => void;
   onError?: 'throw' | 'skip';
   concurrency?: number;
@@ -123,24 +130,53 @@ export function runCells<C extends Config>(
   fields: readonly string[],
   summary: unknown,
   header: readonly string[],
-): { cells: unknown[]; row: Record<string, string> } {
-  const flat = flattenSummary(summary);
+  values?: Readonly<Record<string, unknown>>,
+): { cells: unknown[]; row: Record<string, string>; line: string } {
+  const flat = isFlatSummary(summary) ? summary : flattenSummary(summary);
   const base = new Map<string, unknown>([
     ['key', run.key],
     ['realization', run.realization],
     ['seed', run.seed],
   ]);
   for (const f of fields) base.set(f, valueText(run.point[f]));
-  const known = new Set(header);
-  const extra = Object.keys(flat).find((c) => !known.has(c) && !base.has(c));
-  if (extra !== undefined) throw new Error(`run ${run.key}: its summary has a column "${extra}" that the sweep's header lacks`);
+  if (values) for (const [k, v] of Object.entries(values)) base.set(k, v);
+  const known = headerSet(header);
+  for (const c in flat) {
+    if (!known.has(c) && !base.has(c)) throw new Error(`run ${run.key}: its summary has a column "${c}" that the sweep's header lacks`);
+  }
   const cells = header.map((h) => (base.has(h) ? base.get(h) : Object.prototype.hasOwnProperty.call(flat, h) ? flat[h] : undefined));
   const row: Record<string, string> = {};
-  header.forEach((h, k) => {
+  // The record's text from the same conversions (a number's text is its CSV field as it is:
+  // String(n) never needs quotes), so each number is turned into text once.
+  let line = '';
+  for (let k = 0; k < header.length; k++) {
     const v = cells[k];
-    row[h] = v === null || v === undefined ? '' : typeof v === 'string' ? v : typeof v === 'object' ? JSON.stringify(v) : String(v);
-  });
-  return { cells, row };
+    const text = v === null || v === undefined ? '' : typeof v === 'string' ? v : typeof v === 'object' ? JSON.stringify(v) : String(v);
+    row[header[k]] = text;
+    const field = typeof v === 'number' || typeof v === 'bigint' || typeof v === 'boolean' || text === '' ? text : csvField(v);
+    line += k === 0 ? field : `,${field}`;
+  }
+  return { cells, row, line: `${line}\r\n` };
+}
+
+/** Each header's column names as a set, made once per header (runCells runs once per run). */
+const headerSets = new WeakMap<readonly string[], Set<string>>();
+function headerSet(header: readonly string[]): Set<string> {
+  let set = headerSets.get(header);
+  if (!set) headerSets.set(header, (set = new Set(header)));
+  return set;
+}
+
+/** Marks a summary that is already flat (column -> value), so runCells uses it as it is. */
+export const FLAT_SUMMARY: unique symbol = Symbol('flat sweep summary');
+
+/** A flat summary (column -> number or text), marked so that it is not flattened again. */
+export function flatSummary(values: Record<string, unknown>): Record<string, unknown> {
+  return Object.defineProperty(values, FLAT_SUMMARY, { value: true, enumerable: false });
+}
+
+function isFlatSummary(summary: unknown): summary is Record<string, unknown> {
+  return typeof summary === 'object' && summary !== null && (summary as { [FLAT_SUMMARY]?: boolean })[FLAT_SUMMARY] === true;
 }
 
 /** The text cells of one run's row (see runCells). */
@@ -148,9 +184,21 @@ export function runRow<C extends Config>(run: SweepRun<C>, fields: readonly stri
   return runCells(run, fields, summary, header).row;
 }
 
+/**
+ * A runs.csv's table with the plain column names (units removed from the header: units.ts), as
+ * the program's rows use them.
+ */
+export function readRunsCsv(text: string): ReturnType<typeof readCsvTable> {
+  const table = readCsvTable(text);
+  if (table.header.length === 0) return table;
+  const plain = table.header.map(plainColumn);
+  const rows = table.rows.map((row) => Object.fromEntries(table.header.map((h, k) => [plain[k], row[h]])));
+  return { ...table, header: plain, rows };
+}
+
 export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, S>): Promise<RunSweepResult<C>> {
   const { runs, fields, runner } = options;
-  const existing = readCsvTable(options.existingCsv ?? '');
+  const existing = readRunsCsv(options.existingCsv ?? '');
   let header: string[] | null = existing.header.length > 0 ? existing.header : null;
   if (header) {
     const missing = baseColumns(fields).filter((c) => !header!.includes(c));
@@ -188,6 +236,8 @@ export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, 
   const ready = new Map<number, { run: SweepRun<C>; summary: S } | null>();
   let cursor = 0;
   let writes: Promise<void> = Promise.resolve();
+  /** The 'done' progress of each finished run, given once its row is appended. */
+  const announcements = new Map<string, () => void>();
   const writeRows = (items: { run: SweepRun<C>; summary: S }[]): Promise<void> => {
     if (items.length === 0) return writes;
     // One append per row (the header with the first), as a caller reading each append expects.
@@ -197,12 +247,17 @@ export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, 
         if (!header) {
           const summaryColumns = options.summaryColumns ?? Object.keys(flattenSummary(summary)).filter((c) => !baseColumns(fields).includes(c));
           header = [...baseColumns(fields), ...summaryColumns];
-          text += formatCsvRow(header);
+          text += formatCsvRow(fileHeader(header));
         }
-        const { cells, row } = runCells(run, fields, summary, header);
-        text += formatCsvRow(cells);
+        const { row, line } = runCells(run, fields, summary, header, options.runValues?.(run));
+        text += line;
         await options.append(text);
         rows.push(row);
+        // 'done' once the run's row is in the file (rows go out in run order, so a finished
+        // run may wait here for an earlier one): a listener reading the file then finds it.
+        const announce = announcements.get(run.key);
+        announcements.delete(run.key);
+        announce?.();
       }
     });
     return writes;
@@ -276,14 +331,9 @@ export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, 
           if (!pending.delete(run.key)) throw new Error(`run ${run.key}: reported twice or not in its task`);
           finished++;
           completed++;
-          // 'done' once the run's row is in the file (rows go out in run order, so a row may wait
-          // for an earlier run): a listener reading the file then finds it.
           const done: SweepProgress<C> = { phase: 'done', run, finished, total, skipped, elapsedMs: Date.now() - t0 };
+          announcements.set(run.key, () => options.onProgress?.(done));
           written = settle(run, summary);
-          written.then(
-            () => options.onProgress?.(done),
-            () => {},
-          );
         });
         await written;
         if (pending.size > 0) throw new Error(`a sweep task ended without ${pending.size} of its runs`);
