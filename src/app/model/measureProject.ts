@@ -61,11 +61,14 @@ export function readMeasuredSection(data: unknown, file: string): MeasuredSectio
   return d as unknown as MeasuredSection;
 }
 
-/** The summary numbers a re-measurement must give again (the screen's headline and counts). */
+/**
+ * Whether a re-measurement gives the saved numbers: the whole summary of the first analysis
+ * (headline, counts, per-surface distributions: files in another order differ there), compared
+ * as JSON (a saved result has null where a fresh one has NaN).
+ */
 export function sameMeasurement(a: unknown, b: unknown): boolean {
-  const summary = (r: unknown) => (r as { analyses?: { summary?: Record<string, unknown> }[] }).analyses?.[0]?.summary;
+  const summary = (r: unknown) => (r as { analyses?: { summary?: unknown }[] } | null)?.analyses?.[0]?.summary;
   const x = summary(a);
   const y = summary(b);
-  if (!x || !y) return false;
-  return ['percentScutoids', 'scutoids', 'validCells', 'cells', 'meanTransitions'].every((key) => x[key] === y[key]);
+  return x !== undefined && y !== undefined && JSON.stringify(x) === JSON.stringify(y);
 }

@@ -174,10 +174,12 @@ export class VolumePanel {
     try {
       this.view ??= new VolumeView(this.$('#volume-view'));
       this.view.show(result, surfaces);
-      this.view.canvas.onclick = (event) => void this.pick(event.clientX, event.clientY);
+      this.view.canvas.onclick = (event) => {
+        if (this.view?.canvas.dataset.dragged !== 'true') void this.pick(event.clientX, event.clientY);
+      };
     } catch (error) {
       this.viewError = (error as Error).message;
-      this.$('#volume-view').textContent = `The 3D view needs WebGL2 (${this.viewError}); the statistics below are complete.`;
+      this.$('#volume-view').textContent = `The 3D view is not available here (${this.viewError}); the statistics below are complete.`;
     }
     await nextTask();
     if (request !== this.request) return;
@@ -213,8 +215,8 @@ export class VolumePanel {
 
   private async pick(clientX: number, clientY: number): Promise<void> {
     const shown = this.shown;
-    const hit = this.view?.pick(clientX, clientY);
-    if (!shown || !this.view) return;
+    const hit = await this.view?.pick(clientX, clientY);
+    if (!shown || !this.view || shown !== this.shown) return;
     if (!hit) {
       this.view.setSelected(-1);
       this.$('#volume-cell').textContent = 'No cell there.';
