@@ -131,11 +131,11 @@ test.describe('measure a volume in the app', () => {
     // The CLI's numbers, measured and model (same seed, same realizations).
     const s = cli.analyses[0].summary;
     expect(await dataValue(page, '#volume-measured-percent')).toBe(s.percentScutoids);
-    expect(await dataValue(page, '#volume-summary tr[data-key="validCells"] td')).toBe(s.validCells);
-    expect(await dataValue(page, '#volume-summary tr[data-key="meanTransitions"] td')).toBe(s.meanTransitions);
+    expect(await dataValue(page, '#volume-summary tr[data-key="validCells"] td:nth-of-type(1)')).toBe(s.validCells);
+    expect(await dataValue(page, '#volume-summary tr[data-key="meanTransitions"] td:nth-of-type(1)')).toBe(s.meanTransitions);
     const model = cli.comparison!.model;
     expect(await dataValue(page, '#volume-model-percent')).toBe(model.percentScutoids.mean);
-    const modelCell = page.locator('#volume-summary tr[data-key="percentScutoids"] td').nth(1);
+    const modelCell = page.locator('#volume-summary tr[data-key="percentScutoids"] td:nth-of-type(2)');
     expect(Number(await modelCell.getAttribute('data-low'))).toBe(model.percentScutoids.ci95[0]);
     expect(Number(await modelCell.getAttribute('data-high'))).toBe(model.percentScutoids.ci95[1]);
     await expect(page.locator('#volume-summary th').nth(2)).toContainText('n = 3');
@@ -189,10 +189,11 @@ test.describe('measure a volume in the app', () => {
       expect(row.neighbour_labels_basal).toBe(cell.neighbours[0].join(' '));
       expect(row.neighbour_labels_apical).toBe(cell.neighbours[1].join(' '));
       expect(Number(row.transitions)).toBe(cell.transitions);
-      expect(Number(row.volume_um3)).toBeCloseTo(cell.volume, 3);
+      expect(Number(row.volume_um3)).toBe(cell.volume);
+      expect(Number(row.area_um2_basal)).toBe(cell.areas[0]);
     });
     const validRows = rows.filter((r) => r.valid === '1');
-    expect(validRows.length).toBe(await dataValue(page, '#volume-summary tr[data-key="validCells"] td'));
+    expect(validRows.length).toBe(await dataValue(page, '#volume-summary tr[data-key="validCells"] td:nth-of-type(1)'));
     expect((100 * validRows.filter((r) => r.scutoid === '1').length) / validRows.length).toBeCloseTo(await dataValue(page, '#volume-measured-percent'), 9);
     const svg = await downloaded(page, '#volume-figure-svg');
     expect(svg.name).toBe('tissue-sheet-measured-volume.svg');

@@ -52,10 +52,10 @@ describe("a measured volume's exports", () => {
         cell.transitions,
         cell.neighbours3D,
       ]);
-      expect(Math.abs(Number(row[col('volume_um3')]) - cell.volume)).toBeLessThanOrEqual(5e-4);
-      expect(Math.abs(Number(row[col('area_um2_apical')]) - cell.areas[1])).toBeLessThanOrEqual(5e-4);
+      expect(Number(row[col('volume_um3')])).toBe(cell.volume);
+      expect([Number(row[col('area_um2_basal')]), Number(row[col('area_um2_apical')])]).toEqual(cell.areas);
       if (cell.height === null) expect(row[col('height_um')]).toBe('');
-      else expect(Math.abs(Number(row[col('height_um')]) - cell.height)).toBeLessThanOrEqual(5e-5);
+      else expect(Number(row[col('height_um')])).toBe(cell.height);
       expect(row[col('neighbour_labels_basal')].split(' ').filter(Boolean).map(Number)).toEqual(cell.neighbours[0]);
       expect(row[col('neighbour_labels_apical')].split(' ').filter(Boolean).map(Number)).toEqual(cell.neighbours[1]);
       expect(row[col('lateral_neighbour_labels')].split(' ').filter(Boolean).map(Number)).toEqual(cell.lateralNeighbours);

@@ -3,13 +3,11 @@
  * the page shows when a cell is picked: valid (and why not), scutoid, sides, area (µm²) and
  * neighbour labels on the basal and apical surfaces, neighbours won and lost from basal to
  * apical, transitions, 3D neighbours, volume (µm³), height (µm) and lateral neighbours.
- * Provenance comment lines first (read with pandas `comment="#"`): version, the file, voxel size
+ * Numbers at full precision (they read back equal to the JSON's). Provenance comment lines first (read with pandas `comment="#"`): version, the file, voxel size
  * and where it came from, which background each surface faces, minimum contacts, the method.
  */
 import { formatCsv } from '../../core/sweep';
 import type { VolumeComparison, VolumeMeasuredResult } from '../../core/measure';
-
-const round = (value: number, digits: number) => Math.round(value * 10 ** digits) / 10 ** digits;
 
 export function volumeCellCsv(result: VolumeMeasuredResult, comparison: VolumeComparison | null = null): string {
   const header = [
@@ -42,10 +40,10 @@ export function volumeCellCsv(result: VolumeMeasuredResult, comparison: VolumeCo
     cell.lost,
     cell.transitions,
     cell.neighbours3D,
-    round(cell.volume, 3),
-    cell.height === null ? '' : round(cell.height, 4),
-    round(cell.areas[0], 3),
-    round(cell.areas[1], 3),
+    cell.volume,
+    cell.height === null ? '' : cell.height,
+    cell.areas[0],
+    cell.areas[1],
     cell.neighbours[0].join(' '),
     cell.neighbours[1].join(' '),
     cell.lateralNeighbours.join(' '),

@@ -254,8 +254,9 @@ export class VolumePanel {
       .cellShape(id)
       .then((shape) => {
         if (this.shown === shown && box.dataset.label === String(cell.label)) {
-          view.setShape(shape);
+          // Counted before the shape's buffers are handed to the drawing worker.
           box.dataset.shape = String(shape.indices.length / 3);
+          view.setShape(shape);
         }
       })
       .catch(() => undefined);
