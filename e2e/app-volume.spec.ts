@@ -104,7 +104,7 @@ test.describe('measure a volume in the app', () => {
     inputs = makeVolume(mkdtempSync(join(tmpdir(), 'tissue-sheet-volume-')));
   });
 
-  test('a 3D TIFF: voxel size asked, measured in a worker as the CLI does, picked, exported, kept in the project', async ({ page }) => {
+  test('a 3D TIFF: voxel size asked, measured in a worker as the CLI does, picked, exported, kept in the project', async ({ page }, testInfo) => {
     const cli = inputs.cli;
     expect(cli.comparison).not.toBeNull();
     expect(cli.analyses[0].summary.validCells).toBeGreaterThan(10);
@@ -145,6 +145,7 @@ test.describe('measure a volume in the app', () => {
     // Pick the cell in the middle of the basal view: its neighbours on both sides and its shape.
     const canvas = page.locator('#volume-canvas');
     const box = (await canvas.boundingBox())!;
+    const frames = Number(await canvas.getAttribute('data-frames'));
     await canvas.click({ position: { x: box.width / 6, y: box.height / 2 } });
     const info = page.locator('#volume-cell');
     await expect(info).toHaveAttribute('data-label', /\d+/);
@@ -156,8 +157,8 @@ test.describe('measure a volume in the app', () => {
     await expect(info).toContainText(`neighbours ${record.neighbours[1].join(', ')}.`);
     await expect(info).toHaveAttribute('data-shape', /^[1-9]\d*$/, { timeout: 30_000 });
     // The picked cell is drawn white in the basal view (drawn in a worker: read from a screenshot).
-    const frames = Number(await canvas.getAttribute('data-frames'));
     await expect.poll(async () => Number(await canvas.getAttribute('data-frames'))).toBeGreaterThan(frames);
+    await page.waitForTimeout(300);
     const shot = (await canvas.screenshot()).toString('base64');
     const white = await page.evaluate(async (b64) => {
       const bitmap = await createImageBitmap(new Blob([Uint8Array.from(atob(b64), (c) => c.charCodeAt(0))], { type: 'image/png' }));
@@ -169,6 +170,7 @@ test.describe('measure a volume in the app', () => {
       return n;
     }, shot);
     expect(white).toBeGreaterThan(20);
+    await page.locator('#measure').screenshot({ path: process.env.VOLUME_SHOT ?? testInfo.outputPath('volume-panel.png') });
 
     // Exports: the JSON is the CLI's document; the CSV equals it and the screen; the figure carries provenance.
     const json = JSON.parse((await downloaded(page, '#volume-json')).text) as VolumeMeasuredResult;
