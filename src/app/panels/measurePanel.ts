@@ -1,6 +1,8 @@
 /**
  * "Measure a tissue" (docs/app.md): label images dropped anywhere on the page, or chosen with
- * the file picker — two or more PNG/TIFF layers (basal first) or one 3D TIFF — are measured in a
+ * the file picker — two or more PNG/TIFF layers (basal first; each file's layer can be
+ * reassigned, layerAssign.ts), or one 3D TIFF (a label volume: volumePanel.ts; or its pages as
+ * layers) — are measured in a
  * worker (src/view/measureClient.ts: decoding and counting never run on the main thread), drawn
  * with the simulated surfaces' side colours with cell picking, and their statistics shown
  * beside the best-matching Voronoi model's (the CLI's --compare). Options: pixel size, periodic
