@@ -117,7 +117,11 @@ test.describe('measure a volume in the app', () => {
     await expect(alert).toContainText('type the voxel size (µm) in the X, Y and Z fields above');
     await expect(page.locator('#volume-voxel-x')).toBeFocused();
     await expect(page.locator('#volume-results')).toBeHidden();
+    // One axis alone is refused, naming the fields.
     await type(page, '#volume-voxel-x', '0.5');
+    await page.locator('#measure-again').click();
+    await expect(alert).toContainText('voxel size (µm): give all three of X, Y and Z as numbers > 0 (got 0.5, empty, empty)');
+    await expect(page.locator('#volume-results')).toBeHidden();
     await type(page, '#volume-voxel-y', '0.5');
     await type(page, '#volume-voxel-z', '0.75');
     await page.locator('#measure-again').click();
