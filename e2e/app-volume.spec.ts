@@ -5,6 +5,7 @@ import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
 import type { MeasuredResult, VolumeMeasuredResult } from '../src/core/measure';
 import { parseCsv } from '../src/core/sweep';
+import { readPngText } from '../src/app/model/pngText';
 import { png16, randomSites, rasterizeVoronoi } from '../tests/measure/images';
 import { writeTiff } from '../tests/measure/tiffWriter';
 import { labelData, permutedLabels, shellVolume, volumePages } from '../tests/measure/volumes';
@@ -206,6 +207,13 @@ test.describe('measure a volume in the app', () => {
     expect(svg.text).toContain('tissue-sheet measured volume beside the model of the same geometry');
     expect(svg.text).toMatch(/width="\d+(\.\d+)?mm"/);
     expect(svg.text).toContain('95 % CI');
+
+    const [viewPng] = await Promise.all([page.waitForEvent('download'), page.locator('#volume-view-png').click()]);
+    const pngBytes = new Uint8Array(readFileSync((await viewPng.path())!));
+    expect([...pngBytes.subarray(1, 4)]).toEqual([0x50, 0x4e, 0x47]);
+    const text = readPngText(pngBytes);
+    expect(text['tissue-sheet:method']).toContain('contact curves in');
+    expect(text.Description).toContain(`picked cell ${picked}`);
 
     // Kept in the project file; a fresh page opening it shows the same volume and numbers.
     const project = await downloaded(page, '[data-export="project"]');

@@ -9,11 +9,14 @@ export type ToVolumeRenderer =
   | { readonly type: 'orbit'; readonly orbit: Orbit }
   | { readonly type: 'select'; readonly cell: number }
   | { readonly type: 'shape'; readonly shape: CellShape | null }
-  | { readonly type: 'pick'; readonly request: number; readonly x: number; readonly y: number };
+  | { readonly type: 'pick'; readonly request: number; readonly x: number; readonly y: number }
+  /** The three views as a PNG, drawn afresh. */
+  | { readonly type: 'png'; readonly request: number };
 
 export type FromVolumeRenderer =
   | { readonly type: 'shown'; readonly orbit: Orbit }
   | { readonly type: 'picked'; readonly request: number; readonly hit: { readonly cell: number; readonly surface: number } | null }
+  | { readonly type: 'png'; readonly request: number; readonly png: Blob }
   /** After each frame drawn (tests and the page wait for it). */
   | { readonly type: 'drawn'; readonly frame: number }
   | { readonly type: 'error'; readonly message: string };

@@ -13,6 +13,7 @@ interface RenderWorkerScope {
 }
 const scope = self as unknown as RenderWorkerScope;
 let renderer: VolumeRenderer | null = null;
+let canvas: OffscreenCanvas | null = null;
 let scheduled = false;
 let frame = 0;
 
@@ -33,6 +34,7 @@ self.onmessage = (event: MessageEvent<ToVolumeRenderer>) => {
   const data = event.data;
   try {
     if (data.type === 'init') {
+      canvas = data.canvas;
       renderer = new VolumeRenderer(data.canvas);
       renderer.setSize(data.width, data.height);
       return;
@@ -45,6 +47,14 @@ self.onmessage = (event: MessageEvent<ToVolumeRenderer>) => {
     else if (data.type === 'shape') renderer.setShape(data.shape);
     else if (data.type === 'pick') {
       scope.postMessage({ type: 'picked', request: data.request, hit: renderer.pick(data.x, data.y) });
+      return;
+    } else if (data.type === 'png') {
+      renderer.render();
+      const request = data.request;
+      void canvas!.convertToBlob({ type: 'image/png' }).then(
+        (png) => scope.postMessage({ type: 'png', request, png }),
+        (error: unknown) => scope.postMessage({ type: 'error', message: `the 3D view could not be saved: ${String(error)}` }),
+      );
       return;
     }
     draw();

@@ -13,6 +13,7 @@ import { MeasureFileError } from '../../view/measureClient';
 import { VolumeClient } from '../../view/volumeClient';
 import type { VolumeRequestOptions } from '../../view/volumeProtocol';
 import type { DrawnSurface } from '../../view/volumeSurfaces';
+import { withPngText } from '../model/pngText';
 import { volumeCellCsv } from '../model/volumeCsv';
 import { geometryText, intervalText, volumeFigure } from '../model/volumeFigure';
 import { VolumeView } from '../view/volumeView';
@@ -50,6 +51,7 @@ export const VOLUME_RESULTS = `
       <button type="button" id="volume-cells-csv" title="One row per cell: valid, scutoid, sides, areas, neighbours on both surfaces, volume, height, lateral neighbours">Per-cell CSV</button>
       <button type="button" id="volume-figure-svg" title="Measured and model polygon distributions with the statistics, at the width chosen under the exports">Figure SVG</button>
       <button type="button" id="volume-figure-png" title="The same figure as PNG, at the DPI and width chosen under the exports">Figure PNG</button>
+      <button type="button" id="volume-view-png" title="The 3D view as drawn (basal, apical, picked cell), with its provenance in the PNG's text">3D view PNG</button>
     </div>
   </div>`;
 
@@ -88,6 +90,7 @@ export class VolumePanel {
       () => this.shown && download('measured-volume-cells.csv', volumeCellCsv(this.shown.result, this.shown.comparison), 'text/csv'),
     );
     for (const kind of ['svg', 'png'] as const) this.$(`#volume-figure-${kind}`).addEventListener('click', () => void this.figure(kind));
+    this.$('#volume-view-png').addEventListener('click', () => void this.viewPng());
   }
 
   private $<T extends HTMLElement = HTMLElement>(selector: string): T {
@@ -266,6 +269,29 @@ export class VolumePanel {
     const shown = this.shown!;
     const result = { ...shown.result, comparison: shown.comparison };
     return JSON.stringify(result, null, result.cells.length > 5000 ? undefined : 2) + '\n';
+  }
+
+  /** The 3D view as a PNG, its provenance in tEXt chunks (version, file, voxel size, method, picked cell). */
+  private async viewPng(): Promise<void> {
+    const shown = this.shown;
+    if (!shown || !this.view) {
+      this.report.alert(`Nothing to save: ${this.viewError ? `the 3D view is not available here (${this.viewError})` : 'no volume is shown'}.`);
+      return;
+    }
+    const png = new Uint8Array(await (await this.view.png()).arrayBuffer());
+    const { files, voxelSize: v } = shown.result.inputs;
+    const picked = this.$('#volume-cell').dataset.label;
+    const tagged = withPngText(png, [
+      ['Software', `tissue-sheet ${shown.result.software.version}`],
+      [
+        'Description',
+        `tissue-sheet measured volume in 3D: basal surface (left), apical surface (middle), picked cell (right); ${files[0].name}, voxel ${v.x} x ${v.y} x ${v.z} µm (${v.source}); cells coloured by their sides on each surface, scutoids striped, cells left out faded${picked ? `; picked cell ${picked} (white, non-neighbours darkened)` : ''}`,
+      ],
+      ['tissue-sheet:version', shown.result.software.version],
+      ['tissue-sheet:method', 'measured: contact curves in µm on the voxel surfaces'],
+      ['tissue-sheet:config', JSON.stringify({ inputs: shown.result.inputs })],
+    ]);
+    download('tissue-sheet-measured-volume-3d.png', new Blob([tagged as BlobPart], { type: 'image/png' }));
   }
 
   private async figure(kind: 'svg' | 'png'): Promise<void> {

@@ -15,6 +15,7 @@ export class VolumeView {
   private readonly worker: Worker;
   private orbit: Orbit | null = null;
   private picks = new Map<number, (hit: { cell: number; surface: number } | null) => void>();
+  private pngs = new Map<number, (png: Blob) => void>();
   private request = 0;
   /** Frames the worker has drawn (data-frames on the canvas: tests wait for a new one). */
   private frames = 0;
@@ -82,6 +83,15 @@ export class VolumeView {
     });
   }
 
+  /** The three views as a PNG (basal, apical, picked cell), drawn afresh in the worker. */
+  png(): Promise<Blob> {
+    const request = ++this.request;
+    return new Promise((resolve) => {
+      this.pngs.set(request, resolve);
+      this.post({ type: 'png', request });
+    });
+  }
+
   private size(): { width: number; height: number } {
     return { width: Math.max(3, this.canvas.clientWidth || 900), height: Math.max(1, this.canvas.clientHeight || 320) };
   }
@@ -95,6 +105,9 @@ export class VolumeView {
     else if (data.type === 'picked') {
       this.picks.get(data.request)?.(data.hit);
       this.picks.delete(data.request);
+    } else if (data.type === 'png') {
+      this.pngs.get(data.request)?.(data.png);
+      this.pngs.delete(data.request);
     } else if (data.type === 'drawn') this.canvas.dataset.frames = String(++this.frames);
     else this.canvas.dataset.error = data.message;
   }
