@@ -7,6 +7,7 @@ import { compareVolume, measureVolume, type SurfaceMesh, type VolumeComparison, 
 import { parseCsv } from '../../src/core/sweep';
 import { volumeCellCsv } from '../../src/app/model/volumeCsv';
 import { intervalText, volumeFigure } from '../../src/app/model/volumeFigure';
+import { checkStoredComparison } from '../../src/app/model/measureProject';
 import { writeTiff } from '../measure/tiffWriter';
 import { labelData, permutedLabels, tubeVolume, volumePages } from '../measure/volumes';
 
@@ -81,5 +82,26 @@ describe("a measured volume's exports", () => {
     expect(notes).toContain('n = 3 realizations');
     expect(notes).toContain('an open piece: the fitted tube');
     expect(intervalText({ mean: 2, ci95: [Number.NaN, Number.NaN] }, 1)).toBe('2.0 (one realization, no CI)');
+  });
+
+  it('a comparison kept in a project file is checked before it is shown: the real one passes, a tampered one is refused naming the field', () => {
+    const stored = JSON.parse(JSON.stringify(comparison)) as Record<string, unknown>;
+    expect(() => checkStoredComparison(stored, 'volume', 'c')).not.toThrow();
+    expect(() => checkStoredComparison(null, 'volume', 'c')).not.toThrow();
+    // A JSON copy with one field edited (undefined: removed), as a person editing the file would.
+    const tampered = (path: string, value: unknown) => {
+      const copy = JSON.parse(JSON.stringify(comparison)) as Record<string, unknown>;
+      const keys = path.split('.');
+      const parent = keys.slice(0, -1).reduce((o, k) => o[k] as Record<string, unknown>, copy);
+      if (value === undefined) delete parent[keys[keys.length - 1]];
+      else parent[keys[keys.length - 1]] = value;
+      return () => checkStoredComparison(copy, 'volume', 'c');
+    };
+    expect(tampered('model.percentScutoids.mean', '12')).toThrow('c.model.percentScutoids.mean: expected a number');
+    expect(tampered('model.transitions.ci95', [1])).toThrow('c.model.transitions.ci95: expected two numbers');
+    expect(tampered('geometry.kind', 'blob')).toThrow('c.geometry.kind');
+    expect(tampered('bestK', 99)).toThrow('c.candidates: expected a list with the best k (99)');
+    expect(tampered('summary', undefined)).toThrow('c.summary.perSurface');
+    expect(() => checkStoredComparison([], 'layers', 'c')).toThrow('c: expected the model comparison or null');
   });
 });

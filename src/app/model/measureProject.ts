@@ -58,6 +58,7 @@ export function readMeasuredSection(data: unknown, file: string): MeasuredSectio
   }
   if (typeof d.result !== 'object' || d.result === null) throw new Error(`${where}.result: expected the measured result.`);
   if (d.note !== null && typeof d.note !== 'string') throw new Error(`${where}.note: expected a string or null.`);
+  checkStoredComparison(d.comparison, d.mode, `${where}.comparison`);
   return d as unknown as MeasuredSection;
 }
 
@@ -71,4 +72,56 @@ export function sameMeasurement(a: unknown, b: unknown): boolean {
   const x = summary(a);
   const y = summary(b);
   return x !== undefined && y !== undefined && JSON.stringify(x) === JSON.stringify(y);
+}
+
+/** The value at a dotted path ("model.percentScutoids.mean"), or undefined. */
+function at(value: unknown, path: string): unknown {
+  let v = value;
+  for (const key of path.split('.')) {
+    if (typeof v !== 'object' || v === null || !Object.prototype.hasOwnProperty.call(v, key)) return undefined;
+    v = (v as Record<string, unknown>)[key];
+  }
+  return v;
+}
+
+const isNumbers = (v: unknown, nulls = false) => Array.isArray(v) && v.every((x) => typeof x === 'number' || (nulls && x === null));
+
+/**
+ * Checks a stored model comparison (untrusted, shown as saved without re-running the model):
+ * every field the page reads has its type, else a one-line error naming it. null: no comparison.
+ */
+export function checkStoredComparison(value: unknown, mode: 'layers' | 'volume', where: string): void {
+  if (value === null) return;
+  if (typeof value !== 'object' || Array.isArray(value)) throw new Error(`${where}: expected the model comparison or null.`);
+  const numbers = ['bestK', 'realizations', 'seed', 'cells', 'meanPercentScutoids', 'sdPercentScutoids', 'surfaceRatio'];
+  if (mode === 'volume') {
+    numbers.push('geometry.seededCells', 'geometry.thickness.mean', 'geometry.thickness.sd');
+    for (const m of ['percentScutoids', 'transitions', 'neighbours3D']) {
+      numbers.push(`model.${m}.mean`);
+      const ci = at(value, `model.${m}.ci95`);
+      if (!isNumbers(ci, true) || (ci as unknown[]).length !== 2) throw new Error(`${where}.model.${m}.ci95: expected two numbers (or null).`);
+    }
+    const kind = at(value, 'geometry.kind');
+    if (kind === 'tube') numbers.push('geometry.innerRadius', 'geometry.outerRadius', 'geometry.length');
+    else if (kind === 'mesh')
+      numbers.push('geometry.seeded.triangles', 'geometry.other.triangles', 'geometry.projection.alongNormal', 'geometry.projection.parallel');
+    else throw new Error(`${where}.geometry.kind: expected "tube" or "mesh".`);
+    const seeded = at(value, 'geometry.seededLayer');
+    if (seeded !== 'basal' && seeded !== 'apical') throw new Error(`${where}.geometry.seededLayer: expected "basal" or "apical".`);
+  }
+  for (const path of numbers) if (typeof at(value, path) !== 'number') throw new Error(`${where}.${path}: expected a number.`);
+  const bestK = at(value, 'bestK') as number;
+  const candidates = at(value, 'candidates');
+  if (!Array.isArray(candidates) || !Number.isInteger(bestK) || bestK < 1 || bestK > candidates.length) {
+    throw new Error(`${where}.candidates: expected a list with the best k (${bestK}) in it.`);
+  }
+  candidates.forEach((c, k) => {
+    if (!isNumbers(at(c, 'polygonDistribution'), true) || typeof at(c, 'distance') !== 'number') {
+      throw new Error(`${where}.candidates[${k}]: expected { polygonDistribution: numbers, distance: number }.`);
+    }
+  });
+  const perSurface = at(value, 'summary.perSurface');
+  if (!Array.isArray(perSurface) || !perSurface.every((s) => isNumbers(at(s, 'polygonDistribution'), true))) {
+    throw new Error(`${where}.summary.perSurface: expected one record per surface with its polygon distribution.`);
+  }
 }
