@@ -21,6 +21,7 @@ import { exactVoronoi } from '../../core/exact';
 import { rasterizeCells } from '../../core/exactEngine';
 import type { Grid } from '../../core/grid';
 import type { LabelImage, SheetOutput, SheetResult } from '../../run';
+import { savedSections } from './projectSections';
 
 export const PROJECT_FORMAT = 'tissue-sheet-project';
 export const PROJECT_FORMAT_VERSION = 1;
@@ -56,6 +57,8 @@ export interface ProjectFile {
   result: SheetResult;
   labelImages: StoredImage[];
   view: ViewState;
+  /** Other parts of the page (projectSections.ts), e.g. `measured`: the measured tissue. */
+  sections?: Record<string, unknown>;
 }
 
 export function projectJson(output: SheetOutput, view: ViewState): string {
@@ -72,12 +75,13 @@ export function projectJson(output: SheetOutput, view: ViewState): string {
       ...(image.positions ? { positions: toBase64(new Uint8Array(image.positions.buffer, image.positions.byteOffset, image.positions.byteLength)) } : {}),
     })),
     view,
+    sections: savedSections(),
   };
   return JSON.stringify(file);
 }
 
 export type OpenedFile =
-  | { kind: 'project'; output: SheetOutput; view: ViewState }
+  | { kind: 'project'; output: SheetOutput; view: ViewState; sections?: unknown }
   | { kind: 'result'; output: SheetOutput; drawnFrom: 'cells' }
   | { kind: 'result-rerun'; result: SheetResult };
 
@@ -98,7 +102,7 @@ export function openFile(text: string, name: string): OpenedFile {
       throw new Error(`${name}: labelImages: expected ${result.surfaces.length + 1} images, one per surface of the result.`);
     }
     const labelImages = data.labelImages.map((image, k) => readImage(image, result.cells.length, `${name}: labelImages[${k}]`));
-    return { kind: 'project', output: { result, labelImages }, view: readView(data.view, labelImages.length, `${name}: view`) };
+    return { kind: 'project', output: { result, labelImages }, view: readView(data.view, labelImages.length, `${name}: view`), sections: data.sections };
   }
   const result = checkResult(data, name);
   if (result.closed !== undefined) return { kind: 'result-rerun', result };

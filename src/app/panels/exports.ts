@@ -12,6 +12,7 @@ import { cellsPly } from '../model/ply';
 import { cellsVtk } from '../model/vtk';
 import { unrolledSvg } from '../model/svg';
 import { openFile, projectJson, type OpenedFile, type ViewState } from '../model/project';
+import { openSections, prepareSections } from '../model/projectSections';
 import { figurePng, figureSize } from '../view/figure';
 import type { SheetView3D } from '../../view/sheetView3d';
 import type { ViewStack } from '../../view/stack';
@@ -98,7 +99,9 @@ export function bindExports(root: HTMLElement, sources: ExportSources): void {
     if (!chosen) return;
     try {
       if (chosen.size > 256 * 1024 * 1024) throw new Error(`${chosen.name}: ${chosen.size} bytes; a project or result file over 256 MiB is refused.`);
-      await sources.onOpen(openFile(await chosen.text(), chosen.name), chosen.name);
+      const opened = openFile(await chosen.text(), chosen.name);
+      await sources.onOpen(opened, chosen.name);
+      if (opened.kind === 'project') await openSections(opened.sections, chosen.name);
     } catch (error) {
       sources.onError((error as Error).message);
     }
@@ -129,14 +132,16 @@ export function bindExports(root: HTMLElement, sources: ExportSources): void {
       const png = await figurePng(stack, sources.view(), { dpi, widthMm: Number(more.width.value) });
       download(`${baseName(stack)}-figure-${dpi}dpi.png`, new Blob([png as BlobPart], { type: 'image/png' }));
     },
-    project: () =>
+    project: async () => {
+      await prepareSections();
       withStack((s) =>
         download(
           `${baseName(s)}.tissue-sheet.json`,
           projectJson({ result: s.result, labelImages: s.surfaces.map((surface) => surface.image) }, sources.viewState()),
           'application/json',
         ),
-      ),
+      );
+    },
     sweep: () => {
       const csv = sources.sweepCsv();
       if (!csv) throw new Error('Run a sweep first: there is no sweep CSV yet.');

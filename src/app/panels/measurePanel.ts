@@ -1,13 +1,15 @@
 /**
  * "Measure a tissue" (docs/app.md): label images dropped anywhere on the page, or chosen with
- * the file picker — two or more PNG/TIFF layers (basal first) or one 3D TIFF — are measured in a
+ * the file picker — two or more PNG/TIFF layers (basal first; each file's layer can be
+ * reassigned, layerAssign.ts), or one 3D TIFF (a label volume: volumePanel.ts; or its pages as
+ * layers) — are measured in a
  * worker (src/view/measureClient.ts: decoding and counting never run on the main thread), drawn
  * with the simulated surfaces' side colours with cell picking, and their statistics shown
  * beside the best-matching Voronoi model's (the CLI's --compare). Options: pixel size, periodic
  * x, min contact, model realizations. A bad file shows a role="alert" line naming the file and
  * the problem; what is already shown stays.
  */
-import type { MeasuredResult, ModelComparison } from '../../core/measure';
+import type { MeasuredResult, ModelComparison, VolumeComparison } from '../../core/measure';
 import { downloadChart } from './chartExports';
 import { download } from './exports';
 import { measuredCellCsv } from '../model/measuredCsv';
@@ -16,6 +18,8 @@ import type { LayerPicture } from '../../view/measurePicture';
 import type { MeasureRequestOptions } from '../../view/measureProtocol';
 import { MeasureLayers } from '../view/measureLayers';
 import { MeasureChart, renderHeadline, summaryTable } from './measureStats';
+import { LayerAssign } from './layerAssign';
+import { VOLUME_OPTIONS, VOLUME_RESULTS, VolumePanel } from './volumePanel';
 import './measurePanel.css';
 
 const TEMPLATE = `
@@ -41,10 +45,11 @@ const TEMPLATE = `
     <button type="button" id="measure-cells-csv" disabled title="One row per cell: valid, scutoid, sides, areas and neighbours per layer, won, lost, transitions">Per-cell CSV</button>
     <button type="button" id="measure-figure-svg" disabled title="The measured-vs-model polygon distributions as SVG, at the width chosen under the exports">Comparison SVG</button>
     <button type="button" id="measure-figure-png" disabled title="The measured-vs-model polygon distributions as PNG, at the DPI and width chosen under the exports">Comparison PNG</button>
-  </div>
+  </div>${VOLUME_OPTIONS}
   <p id="measure-status" class="small" role="status" aria-live="polite"></p>
-  <div id="measure-alert" class="alert measure-alert" role="alert" hidden><p class="message"></p><button type="button" data-dismiss>Dismiss</button></div>
+  <div id="measure-alert" class="alert measure-alert" role="alert" hidden><p class="message"></p><button type="button" data-dismiss>Dismiss</button></div>${VOLUME_RESULTS}
   <div id="measure-results" hidden>
+    <div id="measure-layer-files" hidden></div>
     <p class="headline"><output id="measured-percent">–</output> scutoids measured;
       model <output id="model-percent">–</output> <span id="model-caption" class="small"></span></p>
     <p id="measure-sides" role="status"></p>
@@ -70,6 +75,8 @@ export class MeasurePanel {
   private readonly client = new MeasureClient();
   private readonly layers: MeasureLayers;
   private readonly chart: MeasureChart;
+  readonly volume: VolumePanel;
+  private readonly assign: LayerAssign;
   /** The files of the latest attempt (Measure again, Reverse), basal first. */
   private files: File[] = [];
   private result: MeasuredResult | null = null;
@@ -80,6 +87,12 @@ export class MeasurePanel {
     root.innerHTML = TEMPLATE;
     this.layers = new MeasureLayers(this.$('#measure-layers'), this.$('#measure-cell'));
     this.chart = new MeasureChart(this.$('#measure-chart'));
+    this.volume = new VolumePanel(root, {
+      status: (text) => this.status(text),
+      alert: (message) => this.alert(message),
+      state: (state) => (this.root.dataset.state = state),
+    });
+    this.assign = new LayerAssign(this.$('#measure-layer-files'), (files) => void this.measure(files));
     const input = this.$<HTMLInputElement>('#measure-files');
     input.addEventListener('change', () => {
       if (input.files && input.files.length > 0) void this.measure([...input.files]);
@@ -96,6 +109,22 @@ export class MeasurePanel {
 
   private $<T extends HTMLElement = HTMLElement>(selector: string): T {
     return this.root.querySelector<T>(selector)!;
+  }
+
+  /** What is shown, for the project file (measureProject.ts): the files in layer order, the result and the comparison. */
+  shownTissue(): { mode: 'layers' | 'volume'; files: File[]; result: unknown; comparison: unknown; note: string | null } | null {
+    if (this.root.dataset.mode === 'volume' && this.volume.shown) {
+      const v = this.volume.shown;
+      return { mode: 'volume', files: this.files, result: v.result, comparison: v.comparison, note: v.note };
+    }
+    if (this.root.dataset.mode === 'layers' && this.result)
+      return { mode: 'layers', files: this.files, result: this.result, comparison: this.comparison, note: null };
+    return null;
+  }
+
+  /** The card's option fields (id -> value, or checked for checkboxes), to keep and restore. */
+  fields(): HTMLInputElement[] {
+    return [...this.root.querySelectorAll<HTMLInputElement>('.measure-options input:not([type=file]), .measure-options select')].filter((f) => f.id);
   }
 
   /** Files dropped anywhere on the page (except on another file input, which takes its own). */
@@ -151,7 +180,11 @@ export class MeasurePanel {
     };
   }
 
-  async measure(files: File[]): Promise<void> {
+  /**
+   * Measures `files` (basal first). `stored`: a comparison kept in a project file, shown as
+   * saved instead of running the model again (measureProject.ts).
+   */
+  async measure(files: File[], stored?: { comparison: unknown; note: string | null }): Promise<void> {
     if (files.length === 0) return;
     this.files = files;
     for (const id of ['#measure-again', '#measure-reverse']) this.$<HTMLButtonElement>(id).disabled = false;
@@ -163,11 +196,29 @@ export class MeasurePanel {
       return;
     }
     this.$('#measure-alert').hidden = true;
+    if (this.volume.takesVolume(files)) {
+      let volumeOptions;
+      try {
+        volumeOptions = this.volume.options({ minContact: options.minContact, realizations: options.realizations, seed: options.seed });
+      } catch (error) {
+        this.alert((error as Error).message);
+        return;
+      }
+      this.$('#measure-results').hidden = true;
+      this.$<HTMLButtonElement>('#measure-reverse').disabled = true;
+      return this.volume.measure(
+        files[0],
+        volumeOptions,
+        stored ? { comparison: stored.comparison as VolumeComparison | null, note: stored.note ?? '' } : undefined,
+      );
+    }
+    this.$('#volume-results').hidden = true;
+    this.root.dataset.mode = 'layers';
     this.root.dataset.state = 'measuring';
     this.status(`Measuring ${files.map((f) => f.name).join(', ')} (basal first)…`);
     let measured: Promise<void> = Promise.resolve();
     try {
-      await this.client.measure(files, options, {
+      await this.client.measure(files, stored ? { ...options, realizations: 0 } : options, {
         onProgress: (line) => this.status(line),
         onMeasured: (result, pictures) => {
           measured = this.showMeasured(result, pictures);
@@ -177,6 +228,7 @@ export class MeasurePanel {
         },
       });
       await measured;
+      if (stored) await this.showComparison(stored.comparison as ModelComparison | null, stored.note);
     } catch (error) {
       if (error instanceof MeasureFileError && error.message.startsWith('superseded')) return;
       this.alert(inPageWords(error instanceof Error ? error.message : String(error)));
@@ -192,6 +244,7 @@ export class MeasurePanel {
     this.$<HTMLButtonElement>('#measure-json').disabled = false;
     for (const id of ['#measure-figure-svg', '#measure-figure-png', '#measure-cells-csv']) this.$<HTMLButtonElement>(id).disabled = false;
     this.$('#measure-results').hidden = false;
+    this.assign.show(this.files);
     renderHeadline(this.root, result, null, null);
     this.$('#measure-info').textContent = describe(result);
     this.sides(result);
@@ -235,7 +288,7 @@ export class MeasurePanel {
     const first = layers[0];
     const last = layers[layers.length - 1];
     const s = result.surfaceRatio.value;
-    const taken = `Taken as basal: ${first.file}${result.inputs.files.length === 1 ? ` (page ${first.page + 1})` : ''}; as apical: ${last.file}${result.inputs.files.length === 1 ? ` (page ${last.page + 1})` : ''} (the first file is basal, in the order given; Reverse layer order swaps them).`;
+    const taken = `Taken as basal: ${first.file}${result.inputs.files.length === 1 ? ` (page ${first.page + 1})` : ''}; as apical: ${last.file}${result.inputs.files.length === 1 ? ` (page ${last.page + 1})` : ''} (the first file is basal, in the order given; the layer pickers above, or Reverse layer order, reassign them).`;
     // The file names contradict the order (a file dialog hands files over alphabetically).
     const named = (/apical/i.test(first.file) && !/basal/i.test(first.file)) || (/basal/i.test(last.file) && !/apical/i.test(last.file));
     const below = s < 1;

@@ -40,6 +40,20 @@ export interface MeasureVolumeOptions {
    * the model of a closed shell runs on (compareVolume).
    */
   readonly onSurfaceMeshes?: (meshes: { lumen: SurfaceMesh; outer: SurfaceMesh; spacing: number }) => void;
+  /**
+   * Called once measured with the classified voxels (dense ids and classes): what the page's
+   * worker keeps to draw the surfaces and a picked cell's shape (src/view/volumeSurfaces.ts).
+   */
+  readonly onVoxels?: (voxels: ClassifiedVolume) => void;
+}
+
+/** The classified voxels of a measured volume, with its dimensions and voxel size (µm). */
+export interface ClassifiedVolume {
+  readonly classes: VoxelClasses;
+  readonly width: number;
+  readonly height: number;
+  readonly depth: number;
+  readonly voxelSize: { readonly x: number; readonly y: number; readonly z: number };
 }
 
 const now = () => performance.now();
@@ -106,6 +120,7 @@ export function measureVolume(file: LabelFileInput, options: MeasureVolumeOption
     const mesh = (inMask: (c: number) => boolean) => maskSurfaceMesh(classes.classes, W, H, D, voxelSize, inMask, spacing);
     options.onSurfaceMeshes({ lumen: mesh((c) => c === LUMEN), outer: mesh((c) => c !== OUTSIDE), spacing });
   }
+  options.onVoxels?.({ classes, width: W, height: H, depth: D, voxelSize: { x: voxelSize.x, y: voxelSize.y, z: voxelSize.z } });
   return { ...result, timings: { readMs, classifyMs, contactsMs, analysisMs, totalMs: now() - start } };
 }
 

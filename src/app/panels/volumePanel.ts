@@ -1,0 +1,335 @@
+/**
+ * "Measure a volume" inside the measure card (docs/app.md): one 3D label TIFF (a cyst, an
+ * organoid, a gland cut by the volume) measured in a worker by the CLI's own core
+ * (`tissue-sheet measure --volume --compare`: src/view/volumeWorker.ts), its basal and apical
+ * surfaces drawn in 3D with the model's legend (volumeView.ts), a picked cell's neighbours on
+ * both sides and its 3D shape, the model of the same geometry's statistics beside the measured
+ * ones (mean and 95 % CI), and the exports: per-cell CSV, figure (SVG/PNG), JSON, each with its
+ * provenance. The voxel size comes from the file's metadata or from the X, Y, Z fields; never
+ * assumed: without either the page asks for it.
+ */
+import type { VolumeComparison, VolumeMeasuredResult } from '../../core/measure';
+import { MeasureFileError } from '../../view/measureClient';
+import { VolumeClient } from '../../view/volumeClient';
+import type { VolumeRequestOptions } from '../../view/volumeProtocol';
+import type { DrawnSurface } from '../../view/volumeSurfaces';
+import { withPngText } from '../model/pngText';
+import { volumeCellCsv } from '../model/volumeCsv';
+import { geometryText, intervalText, volumeFigure } from '../model/volumeFigure';
+import { VolumeView } from '../view/volumeView';
+import { downloadChart } from './chartExports';
+import { download } from './exports';
+import { volumeTable } from './volumeStats';
+
+export const VOLUME_OPTIONS = `
+  <fieldset class="measure-options volume-options">
+    <legend>One 3D TIFF</legend>
+    <label title="A 3D segmentation (one label per cell through the depth) or a stack of 2D layers (one page per depth)">is
+      <select id="measure-tiff-as"><option value="volume" selected>a label volume (3D segmentation)</option><option value="layers">layers (one page per depth, basal first)</option></select></label>
+    <span title="Voxel edge along the image width, height, and between pages, in micrometres; empty: from the TIFF metadata (ImageJ or OME)">Voxel size (µm)
+      <label>X <input id="volume-voxel-x" type="number" min="0" step="any" placeholder="from the file" /></label>
+      <label>Y <input id="volume-voxel-y" type="number" min="0" step="any" placeholder="from the file" /></label>
+      <label>Z <input id="volume-voxel-z" type="number" min="0" step="any" placeholder="from the file" /></label></span>
+    <label title="Biologists' convention: the apical side faces the lumen">Apical side faces
+      <select id="volume-apical"><option value="lumen" selected>the lumen</option><option value="outside">the outside</option></select></label>
+    <label title="Voxels with this label are lumen, not a cell">Lumen label <input id="volume-lumen-label" type="number" min="1" step="1" placeholder="none" /></label>
+    <label title="Keep a scutoid only where an intercalating quartet confirms it (the lab's filter)"><input id="volume-quartets" type="checkbox" /> quartet filter</label>
+  </fieldset>`;
+
+export const VOLUME_RESULTS = `
+  <div id="volume-results" hidden>
+    <p class="headline"><output id="volume-measured-percent">–</output> scutoids measured;
+      model of the same geometry <output id="volume-model-percent">–</output></p>
+    <p id="volume-info" class="small"></p>
+    <div id="volume-view" class="volume-view"></div>
+    <p class="small">Left: basal surface; middle: apical surface (one camera: drag to turn both); right: the picked cell's 3D shape. Legend as the model's views: cells coloured by their sides on that surface, scutoids striped, cells left out faded, the picked cell white; while a cell is picked, cells that are not its neighbours on that surface are darkened.</p>
+    <div id="volume-cell" class="small" aria-live="polite"></div>
+    <div id="volume-summary-box" class="table-box"></div>
+    <p id="volume-model" class="small"></p>
+    <div class="measure-options">
+      <button type="button" id="volume-json" title="The measured volume with its model, as tissue-sheet measure --volume --compare writes it">Volume JSON</button>
+      <button type="button" id="volume-cells-csv" title="One row per cell: valid, scutoid, sides, areas, neighbours on both surfaces, volume, height, lateral neighbours">Per-cell CSV</button>
+      <button type="button" id="volume-figure-svg" title="Measured and model polygon distributions with the statistics, at the width chosen under the exports">Figure SVG</button>
+      <button type="button" id="volume-figure-png" title="The same figure as PNG, at the DPI and width chosen under the exports">Figure PNG</button>
+      <button type="button" id="volume-view-png" title="The 3D view as drawn (basal, apical, picked cell), with its provenance in the PNG's text">3D view PNG</button>
+    </div>
+  </div>`;
+
+/** The core's messages name the CLI's options; the page names its fields. */
+export function volumeWords(message: string): string {
+  return message
+    .replace(/give --voxel-size X,Y,Z in µm/g, 'type the voxel size (µm) in the X, Y and Z fields above')
+    .replace(/--voxel-size( [\d.,]+)?/g, 'the voxel size fields')
+    .replace(/--lumen-label N/g, 'a lumen label (the field above)')
+    .replace(/--lumen-label/g, 'the lumen label field')
+    .replace(/--min-contact/g, 'the min contact field')
+    .replace(/--apical outside/g, 'apical side faces the outside');
+}
+
+/** Everything a measured volume is, as kept in a project file (measureProject.ts). */
+export interface ShownVolume {
+  readonly result: VolumeMeasuredResult;
+  readonly comparison: VolumeComparison | null;
+  readonly note: string;
+}
+
+export class VolumePanel {
+  private readonly client = new VolumeClient();
+  private view: VolumeView | null = null;
+  private viewError: string | null = null;
+  shown: ShownVolume | null = null;
+  private request = 0;
+
+  constructor(
+    private readonly root: HTMLElement,
+    private readonly report: { status(text: string): void; alert(message: string): void; state(state: string): void },
+  ) {
+    this.$('#volume-json').addEventListener('click', () => this.shown && download('measured-volume.json', this.json(), 'application/json'));
+    this.$('#volume-cells-csv').addEventListener(
+      'click',
+      () => this.shown && download('measured-volume-cells.csv', volumeCellCsv(this.shown.result, this.shown.comparison), 'text/csv'),
+    );
+    for (const kind of ['svg', 'png'] as const) this.$(`#volume-figure-${kind}`).addEventListener('click', () => void this.figure(kind));
+    this.$('#volume-view-png').addEventListener('click', () => void this.viewPng());
+  }
+
+  private $<T extends HTMLElement = HTMLElement>(selector: string): T {
+    return this.root.querySelector<T>(selector)!;
+  }
+
+  /** Whether a single TIFF is to be measured as a volume (the "One 3D TIFF is" choice). */
+  takesVolume(files: readonly File[]): boolean {
+    return files.length === 1 && /\.tiff?$/i.test(files[0].name) && this.$<HTMLSelectElement>('#measure-tiff-as').value === 'volume';
+  }
+
+  /** The volume fields, checked; a bad one is reported naming the field. */
+  options(shared: { minContact?: number; realizations: number; seed: number }): VolumeRequestOptions {
+    const value = (id: string) => this.$<HTMLInputElement>(id).value.trim();
+    const axes = (['x', 'y', 'z'] as const).map((a) => value(`#volume-voxel-${a}`));
+    let voxelSize: VolumeRequestOptions['voxelSize'];
+    if (axes.some((a) => a !== '')) {
+      const numbers = axes.map(Number);
+      if (axes.some((a) => a === '') || numbers.some((n) => !(n > 0 && Number.isFinite(n)))) {
+        throw new MeasureFileError(
+          'voxel size',
+          `voxel size (µm): give all three of X, Y and Z as numbers > 0 (got ${axes.map((a) => a || 'empty').join(', ')})`,
+        );
+      }
+      voxelSize = { x: numbers[0], y: numbers[1], z: numbers[2] };
+    }
+    const lumen = value('#volume-lumen-label');
+    if (lumen !== '' && !(Number.isInteger(Number(lumen)) && Number(lumen) >= 1 && Number(lumen) < 2 ** 32)) {
+      throw new MeasureFileError('lumen label', `lumen label: ${lumen} is not a whole number from 1 to ${2 ** 32 - 1}`);
+    }
+    return {
+      voxelSize,
+      apical: this.$<HTMLSelectElement>('#volume-apical').value === 'outside' ? 'outside' : 'lumen',
+      lumenLabel: lumen === '' ? undefined : Number(lumen),
+      quartetFilter: this.$<HTMLInputElement>('#volume-quartets').checked,
+      minContact: shared.minContact,
+      realizations: shared.realizations,
+      seed: shared.seed,
+    };
+  }
+
+  /** Measures one 3D TIFF; `stored`: the comparison kept in a project (not re-run). */
+  async measure(file: File, options: VolumeRequestOptions, stored?: { comparison: VolumeComparison | null; note: string }): Promise<void> {
+    const request = ++this.request;
+    this.report.state('measuring');
+    this.report.status(`Measuring ${file.name} as a label volume (in a worker)…`);
+    let drawn: Promise<void> = Promise.resolve();
+    try {
+      await this.client.measure(file, stored ? { ...options, realizations: 0 } : options, {
+        onProgress: (line) => this.report.status(volumeWords(line)),
+        onMeasured: (result, surfaces) => {
+          drawn = this.showMeasured(result, surfaces, request);
+        },
+        onCompared: (comparison, note) => {
+          void drawn.then(() => request === this.request && this.showComparison(comparison, note));
+        },
+      });
+      await drawn;
+      if (stored && request === this.request) this.showComparison(stored.comparison, stored.note, true);
+    } catch (error) {
+      if (error instanceof MeasureFileError && error.message.startsWith('superseded')) return;
+      const message = volumeWords(error instanceof Error ? error.message : String(error));
+      this.report.alert(message);
+      if (/voxel size/.test(message) && !options.voxelSize) this.$<HTMLInputElement>('#volume-voxel-x').focus();
+      this.report.status(this.shown ? 'Not measured; the previous volume is still shown.' : 'Not measured.');
+      this.report.state(this.shown ? 'shown' : 'error');
+    }
+  }
+
+  private async showMeasured(result: VolumeMeasuredResult, surfaces: DrawnSurface[], request: number): Promise<void> {
+    if (request !== this.request) return;
+    this.shown = { result, comparison: null, note: '' };
+    this.$('#volume-results').hidden = false;
+    this.root.dataset.mode = 'volume';
+    const s = result.analyses[0].summary;
+    const measured = this.$('#volume-measured-percent');
+    measured.textContent = `${s.percentScutoids.toFixed(1)} %`;
+    measured.dataset.value = String(s.percentScutoids);
+    this.$('#volume-model-percent').textContent = 'comparing…';
+    this.$('#volume-info').textContent = describeVolume(result);
+    this.$('#volume-cell').textContent = 'Click a cell on either surface to pick it.';
+    await nextTask();
+    if (request !== this.request) return;
+    try {
+      this.view ??= new VolumeView(this.$('#volume-view'));
+      this.view.show(result, surfaces);
+      this.view.canvas.onclick = (event) => {
+        if (this.view?.canvas.dataset.dragged !== 'true') void this.pick(event.clientX, event.clientY);
+      };
+    } catch (error) {
+      this.viewError = (error as Error).message;
+      this.$('#volume-view').textContent = `The 3D view is not available here (${this.viewError}); the statistics below are complete.`;
+    }
+    await nextTask();
+    if (request !== this.request) return;
+    this.$('#volume-summary-box').replaceChildren(volumeTable(result, null, 'comparing…'));
+    this.$('#volume-model').textContent = '';
+    this.report.state('measured');
+    this.report.status(`Measured ${result.inputs.files[0].name} in ${(result.timings.totalMs / 1000).toFixed(2)} s (in a worker).`);
+  }
+
+  private showComparison(comparison: VolumeComparison | null, note: string, fromProject = false): void {
+    if (!this.shown) return;
+    this.shown = { ...this.shown, comparison, note };
+    const model = this.$('#volume-model-percent');
+    if (comparison) {
+      model.textContent = `${intervalText(comparison.model.percentScutoids, 1)} %`;
+      model.dataset.value = String(comparison.model.percentScutoids.mean);
+      model.dataset.bestK = String(comparison.bestK);
+    } else {
+      model.textContent = note || 'not asked (model realizations 0)';
+      model.dataset.value = '';
+    }
+    this.$('#volume-summary-box').replaceChildren(volumeTable(this.shown.result, comparison, note || 'not asked (model realizations 0)'));
+    this.$('#volume-model').textContent = comparison
+      ? `Model of the same geometry: ${geometryText(comparison)}; Voronoi ${comparison.bestK} matches the ${comparison.geometry.seededLayer} polygon distribution best (L1 ${comparison.candidates[comparison.bestK - 1].distance.toFixed(3)}), seed ${comparison.seed}.${fromProject ? ' (As saved in the project; not re-run.)' : ''}`
+      : '';
+    this.report.state('compared');
+    this.report.status(
+      comparison
+        ? `Measured and compared: the model gives ${intervalText(comparison.model.percentScutoids, 1)} % scutoids, measured ${this.shown.result.analyses[0].summary.percentScutoids.toFixed(1)} %.`
+        : `Measured; ${note || 'no model (model realizations 0)'}.`,
+    );
+  }
+
+  private async pick(clientX: number, clientY: number): Promise<void> {
+    const shown = this.shown;
+    const hit = await this.view?.pick(clientX, clientY);
+    if (!shown || !this.view || shown !== this.shown) return;
+    if (!hit) {
+      this.view.setSelected(-1);
+      this.$('#volume-cell').textContent = 'No cell there.';
+      delete this.$('#volume-cell').dataset.label;
+      return;
+    }
+    this.select(hit.cell);
+  }
+
+  /** Picks cell `id` (0-based): drawn white, described, its shape asked of the worker. */
+  select(id: number): void {
+    const shown = this.shown;
+    if (!shown || !this.view) return;
+    const cell = shown.result.cells[id];
+    this.view.setSelected(id);
+    const box = this.$('#volume-cell');
+    box.dataset.label = String(cell.label);
+    const lines = [
+      `Cell ${cell.label}: ${cell.valid ? 'valid' : `left out (${cell.exclusion?.reason ?? 'not valid'})`}, ${cell.scutoid ? 'a scutoid' : 'not a scutoid'}; volume ${cell.volume.toFixed(1)} µm³, height ${cell.height === null ? '–' : `${cell.height.toFixed(2)} µm`}.`,
+      ...shown.result.inputs.layers.map(
+        (layer, k) =>
+          `${layer.name} (faces the ${layer.faces}): ${cell.sides[k]} sides, ${cell.areas[k].toFixed(1)} µm², neighbours ${cell.neighbours[k].join(', ') || 'none'}.`,
+      ),
+      `From basal to apical: won ${cell.won}, lost ${cell.lost} (transitions ${cell.transitions}); 3D neighbours ${cell.neighbours3D}; lateral neighbours ${cell.lateralNeighbours.join(', ') || 'none'}.`,
+    ];
+    box.replaceChildren(
+      ...lines.map((text) => {
+        const p = document.createElement('p');
+        p.textContent = text;
+        return p;
+      }),
+    );
+    const view = this.view;
+    void this.client
+      .cellShape(id)
+      .then((shape) => {
+        if (this.shown === shown && box.dataset.label === String(cell.label)) {
+          // Counted before the shape's buffers are handed to the drawing worker.
+          box.dataset.shape = String(shape.indices.length / 3);
+          view.setShape(shape);
+        }
+      })
+      .catch(() => undefined);
+  }
+
+  private json(): string {
+    const shown = this.shown!;
+    const result = { ...shown.result, comparison: shown.comparison };
+    return JSON.stringify(result, null, result.cells.length > 5000 ? undefined : 2) + '\n';
+  }
+
+  /** The 3D view as a PNG, its provenance in tEXt chunks (version, file, voxel size, method, picked cell). */
+  private async viewPng(): Promise<void> {
+    const shown = this.shown;
+    if (!shown || !this.view) {
+      this.report.alert(`Nothing to save: ${this.viewError ? `the 3D view is not available here (${this.viewError})` : 'no volume is shown'}.`);
+      return;
+    }
+    const png = new Uint8Array(await (await this.view.png()).arrayBuffer());
+    const { files, voxelSize: v } = shown.result.inputs;
+    const picked = this.$('#volume-cell').dataset.label;
+    const tagged = withPngText(png, [
+      ['Software', `tissue-sheet ${shown.result.software.version}`],
+      [
+        'Description',
+        `tissue-sheet measured volume in 3D: basal surface (left), apical surface (middle), picked cell (right); ${files[0].name}, voxel ${v.x} x ${v.y} x ${v.z} µm (${v.source}); cells coloured by their sides on each surface, scutoids striped, cells left out faded${picked ? `; picked cell ${picked} (white, non-neighbours darkened)` : ''}`,
+      ],
+      ['tissue-sheet:version', shown.result.software.version],
+      ['tissue-sheet:method', 'measured: contact curves in µm on the voxel surfaces'],
+      ['tissue-sheet:config', JSON.stringify({ inputs: shown.result.inputs })],
+    ]);
+    download('tissue-sheet-measured-volume-3d.png', new Blob([tagged as BlobPart], { type: 'image/png' }));
+  }
+
+  private async figure(kind: 'svg' | 'png'): Promise<void> {
+    const shown = this.shown;
+    if (!shown) return;
+    try {
+      await downloadChart(kind, 'tissue-sheet-measured-volume', volumeFigure(shown.result, shown.comparison), {
+        what: 'tissue-sheet measured volume beside the model of the same geometry',
+        engine: shown.comparison
+          ? `measured: voxel surfaces of ${shown.result.inputs.files[0].name}; model: exact CPU Voronoi (compareVolume, ${shown.comparison.geometry.kind})`
+          : `measured: voxel surfaces of ${shown.result.inputs.files[0].name}`,
+        method: shown.comparison ? 'measured: contact curves in µm on the voxel surfaces; model: exact' : 'contact curves in µm on the voxel surfaces',
+        seed: shown.comparison?.seed ?? '',
+        config: {
+          inputs: shown.result.inputs,
+          model: shown.comparison
+            ? { realizations: shown.comparison.realizations, seed: shown.comparison.seed, bestK: shown.comparison.bestK, geometry: shown.comparison.geometry }
+            : null,
+        },
+      });
+    } catch (error) {
+      this.report.alert((error as Error).message);
+    }
+  }
+}
+
+const nextTask = () => new Promise<void>((resolve) => setTimeout(resolve, 0));
+
+function describeVolume(result: VolumeMeasuredResult): string {
+  const s = result.analyses[0].summary;
+  const { volume: d, voxelSize: v, layers, background: b } = result.inputs;
+  const warnings = result.warnings.length ? ` Warnings: ${result.warnings.map(volumeWords).join('; ')}.` : '';
+  return (
+    `${result.inputs.files[0].name}: ${d.width} x ${d.height} x ${d.depth} voxels, ${d.bitsPerSample}-bit, ${d.labels} cells, ${s.validCells} valid ` +
+    `(${result.exclusions.touchesFaces} touch a face of the volume, ${result.exclusions.missing} miss the lumen or the outside); ` +
+    `voxel ${v.x} x ${v.y} x ${v.z} µm (${v.source === 'option' ? 'typed in the page' : `from the ${v.source === 'ome' ? 'OME-XML' : 'ImageJ'} metadata`}); ` +
+    `${b.lumenReachesFaces ? 'an open piece (the lumen reaches a face of the volume)' : 'a closed shell'}; ` +
+    layers.map((l) => `${l.name}: faces the ${l.faces}, ${l.cells} cells, ${l.area.toFixed(0)} µm², min contact ${l.minContact.toPrecision(3)} µm`).join('; ') +
+    `.${warnings}`
+  );
+}

@@ -1,0 +1,96 @@
+/**
+ * The page's side of the volume-measuring worker (volumeWorker.ts): reads the chosen file
+ * (File -> ArrayBuffer, asynchronously), hands it to the worker, reports progress, the measured
+ * volume with its drawn surfaces, then the model; asks for a picked cell's 3D shape. A newer
+ * measurement supersedes an older one (its late messages are ignored).
+ */
+import type { VolumeComparison, VolumeMeasuredResult } from '../core/measure';
+import { MAX_MEASURE_FILE_BYTES, MeasureFileError } from './measureClient';
+import type { FromVolumeWorker, ToVolumeWorker, VolumeRequestOptions } from './volumeProtocol';
+import type { CellShape, DrawnSurface } from './volumeSurfaces';
+
+export interface VolumeCallbacks {
+  onProgress?(line: string): void;
+  onMeasured?(result: VolumeMeasuredResult, surfaces: DrawnSurface[]): void;
+  onCompared?(comparison: VolumeComparison | null, note: string): void;
+}
+
+export class VolumeClient {
+  private worker: Worker | null = null;
+  private latest = 0;
+
+  constructor(private readonly createWorker: () => Worker = () => new Worker(new URL('./volumeWorker.ts', import.meta.url), { type: 'module' })) {}
+
+  /** Measures one 3D TIFF; resolves once the result (and the model, when asked) has been delivered. */
+  async measure(file: File, options: VolumeRequestOptions, callbacks: VolumeCallbacks = {}): Promise<void> {
+    const id = ++this.latest;
+    if (file.size > MAX_MEASURE_FILE_BYTES) throw new MeasureFileError(file.name, `${file.name}: ${file.size} bytes is over the limit of 1 GiB per file`);
+    const bytes = await file.arrayBuffer();
+    if (id !== this.latest) throw new MeasureFileError(null, 'superseded by a newer measurement');
+    const message: ToVolumeWorker = { type: 'measure', id, file: { name: file.name, bytes }, options };
+    return this.exchange(id, message, [bytes], (data, done) => {
+      if (data.type === 'progress') callbacks.onProgress?.(data.line);
+      else if (data.type === 'measured') {
+        callbacks.onMeasured?.(data.result, data.surfaces);
+        if (options.realizations <= 0) done();
+      } else if (data.type === 'compared') {
+        callbacks.onCompared?.(data.comparison, data.note);
+        done();
+      }
+    });
+  }
+
+  /** The 3D shape of a cell (0-based id) of the volume measured last. */
+  async cellShape(cell: number): Promise<CellShape> {
+    const id = ++this.latest;
+    let shape: CellShape | null = null;
+    await this.exchange(id, { type: 'cell', id, cell }, [], (data, done) => {
+      if (data.type === 'cell') {
+        shape = data.shape;
+        done();
+      }
+    });
+    return shape!;
+  }
+
+  private exchange(
+    id: number,
+    message: ToVolumeWorker,
+    transfer: Transferable[],
+    handle: (data: Exclude<FromVolumeWorker, { type: 'error' }>, done: () => void) => void,
+  ): Promise<void> {
+    const worker = (this.worker ??= this.createWorker());
+    return new Promise<void>((resolve, reject) => {
+      const stop = () => {
+        worker.removeEventListener('message', listen);
+        worker.removeEventListener('error', crashed);
+      };
+      const listen = (event: MessageEvent<FromVolumeWorker>) => {
+        const data = event.data;
+        if (data.id !== id) return;
+        if (id !== this.latest) {
+          stop();
+          reject(new MeasureFileError(null, 'superseded by a newer measurement'));
+        } else if (data.type === 'error') {
+          stop();
+          reject(new MeasureFileError(data.file, data.message));
+        } else
+          handle(data, () => {
+            stop();
+            resolve();
+          });
+      };
+      // A worker that cannot start, or dies (e.g. out of memory), fails the request and is replaced next time.
+      const crashed = (event: ErrorEvent) => {
+        event.preventDefault();
+        worker.terminate();
+        if (this.worker === worker) this.worker = null;
+        stop();
+        reject(new MeasureFileError(null, `the volume-measuring worker stopped (${event.message || 'no details'})`));
+      };
+      worker.addEventListener('message', listen);
+      worker.addEventListener('error', crashed);
+      worker.postMessage(message, transfer);
+    });
+  }
+}
