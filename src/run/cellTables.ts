@@ -24,7 +24,6 @@
  * the adjacency the pipeline keeps for reuse.
  */
 import type { SurfaceAdjacency } from '../core/analysis';
-import { toCsr } from '../core/analysis';
 import type { CellStatistics } from '../core/analysis/scutoids';
 import type { AnalysisRecord, CellStatisticsRecord } from '../core/analysis/record';
 import type { CellRecord, SheetResult } from './result';
@@ -102,13 +101,13 @@ export function cellTable(
   placeAll?: (position: Float64Array, coordinates: Float64Array) => void,
 ): CellTable {
   const n = surface.count;
-  const { offsets, neighbours, lengths } = toCsr(surface.adjacency);
+  const { offsets, neighbours, lengths } = surface;
   const position = new Float64Array(3 * n);
   const coordinates = new Float64Array(2 * n);
   const touchesBorder = new Uint8Array(n);
   if (placeAll) placeAll(position, coordinates);
   for (let id = 0; id < n; id++) {
-    touchesBorder[id] = surface.touchesBorder[id] === 1 ? 1 : 0;
+    touchesBorder[id] = surface.border[id] !== 0 ? 1 : 0;
     if (placeAll) continue;
     const place = placement(id);
     position[3 * id] = place.position[0];

@@ -58,13 +58,6 @@ export interface Labeller<Layer, Projected> {
   dispose(): void;
 }
 
-/** A surface's neighbours from its label image: CSR with contact lengths (µm) per contact. */
-export interface LabelSurfaceAdjacency extends SurfaceAdjacency {
-  readonly adjacency: { readonly offsets: Int32Array; readonly neighbours: Int32Array; readonly lengths: Float64Array };
-  readonly areas: Float64Array;
-  readonly touchesBorder: Uint8Array;
-}
-
 /** Where a cell's site lies, for its record. */
 export interface CellPlacement {
   /** Site position in 3D, µm. */
@@ -101,7 +94,7 @@ export interface SurfaceFamily<C extends AnyConfig, Geometry, Sites, Layer exten
   exactLabels(geometry: Geometry, layer: Layer, projected: Projected): Int32Array;
   labelImage(geometry: Geometry, layer: Layer, labels: Int32Array): LabelImage;
   /** Neighbours, contact lengths (µm), areas and border contacts from a layer's label image. */
-  labelAdjacency(config: C, geometry: Geometry, layer: Layer, labels: Int32Array, count: number): LabelSurfaceAdjacency;
+  labelAdjacency(config: C, geometry: Geometry, layer: Layer, labels: Int32Array, count: number): SurfaceAdjacency;
   /** The shortest contact (µm) the labels method counts on each layer, and the value reported. */
   minContactLengths(config: C, geometry: Geometry, layers: Layer[]): { reported: number; perLayer: number[] };
   /** The protocol's invalid cells beyond those touching an open end of the stack (lab: any validity layer), or null. */

@@ -30,7 +30,7 @@ function check(name: string, surface: MeshSurface, sites: Float64Array, count: n
     }
   }
   const area = surfaceArea({ positions: Float32Array.from(surface.positions), indices: Uint32Array.from(surface.indices) });
-  const sum = rvd.areas.reduce((s, v) => s + v, 0);
+  const sum = rvd.adjacency.areas.reduce((s, v) => s + v, 0);
   console.log(
     `${name}: ${surface.indices.length / 3} triangles, ${count} cells: ${cmp.same}/${count} neighbour sets equal the dense per-triangle reference (${(100 * cmp.fraction).toFixed(2)} %), differ ${JSON.stringify(cmp.differ)}; max |Δlength| ${maxLength.toExponential(2)} µm over ${pairs / 2} contacts; Σ areas / area - 1 = ${(sum / rvd.surfaceArea - 1).toExponential(2)}; ${rvd.stats.ms.toFixed(0)} ms ${JSON.stringify(rvd.stats)}`,
   );

@@ -9,7 +9,7 @@
  * All positions are in texel units and all lengths/areas in µm (µm²), per src/core/grid.ts.
  */
 import { distanceSquared, type Grid, wrapCoordinate } from '../../src/core/grid';
-import type { LabelAdjacency } from '../../src/core/labels';
+import type { SurfaceAdjacency } from '../../src/core/analysis/adjacency';
 import { type LloydMove, moveSitesToCentroids } from '../../src/core/lloydUpdate';
 
 // ---------------------------------------------------------------------------------------------
@@ -193,7 +193,7 @@ export function cvtEnergy(grid: Grid, sums: ArrayLike<number>): number {
 }
 
 /** Shared boundary length (µm) between cells a and b, 0 if they are not neighbours. */
-export function sharedLength(adjacency: LabelAdjacency, a: number, b: number): number {
+export function sharedLength(adjacency: Pick<SurfaceAdjacency, 'offsets' | 'neighbours' | 'lengths'>, a: number, b: number): number {
   let lo = adjacency.offsets[a];
   let hi = adjacency.offsets[a + 1] - 1;
   while (lo <= hi) {

@@ -1,10 +1,10 @@
 /**
  * Exact neighbours on a closed surface: the restricted Voronoi diagram (RVD) of sites on a
  * triangle mesh or on the analytic ellipsoid / sphere, with true contact lengths in µm and
- * cell areas in µm² — the fields `SurfaceAdjacency` takes (src/core/analysis).
+ * cell areas in µm², as the adjacency record (`SurfaceAdjacency`, src/core/analysis/adjacency.ts;
+ * `border` all 0: a closed surface has no open edge).
  *
- *   restrictedVoronoi(surface, sites, count, options?) → { count, adjacency, areas,
- *     touchesBorder, stats }
+ *   restrictedVoronoi(surface, sites, count, options?) → { count, adjacency, surfaceArea, stats }
  *
  * - Mesh: restrictedMesh.ts (geogram's per-seed triangle clipping, radius of security,
  *   coverage repair for cells in several pieces).
@@ -15,12 +15,12 @@
  * radius-of-security proof uses that); on a mesh they may be anywhere (the cells are the
  * surface points nearest to each site). A contact is a neighbour when its length exceeds
  * `lengthTolerance` (default 1e-9 × sqrt(area / count), i.e. rounding level): the result is
- * the exact diagram, no minimum contact length applied — `filterShortContacts` does that.
+ * the exact diagram, no minimum contact length applied — `withMinBoundaryLength` does that.
  */
-import type { CsrAdjacency } from '../analysis/adjacency';
+import type { SurfaceAdjacency } from '../analysis/adjacency';
 import { ellipsoidArea } from './conicArc';
 import { KdTree3 } from './kdTree';
-import { ContactRecorder, type RestrictedAdjacency } from './restrictedContacts';
+import { ContactRecorder } from './restrictedContacts';
 import { EllipsoidRestrictedVoronoi, type EllipsoidRvdStats } from './restrictedEllipsoid';
 import { MeshRestrictedVoronoi, type MeshRvdStats } from './restrictedMesh';
 import { checkRestrictedSurface, type RestrictedSurface } from './restrictedSurface';
@@ -39,11 +39,8 @@ export interface RestrictedVoronoiOptions {
 
 export interface RestrictedVoronoi {
   readonly count: number;
-  readonly adjacency: RestrictedAdjacency & CsrAdjacency;
-  /** Cell areas on the surface, µm². */
-  readonly areas: Float64Array;
-  /** All 0: a closed surface has no border. */
-  readonly touchesBorder: Uint8Array;
+  /** Neighbours, contact lengths (µm), cell areas on the surface (µm²); no border (closed). */
+  readonly adjacency: SurfaceAdjacency;
   /** Mesh only: per site, the triangle its cell started in (-1: none); a hint for the next layer. */
   readonly startTriangles?: Int32Array;
   /** Surface area, µm² (sum of triangle areas, or the ellipsoid's). */
@@ -99,9 +96,9 @@ export function restrictedVoronoi(
     startTriangles = rvd.startTriangles;
     stats = { method: 'mesh', mesh: rvd.stats, ms: 0 };
   }
-  const adjacency = recorder.finish(tolerance);
+  const adjacency: SurfaceAdjacency = { count, ...recorder.finish(tolerance), areas, border: new Uint8Array(count) };
   stats.ms = performance.now() - start;
-  return { count, adjacency, areas, touchesBorder: new Uint8Array(count), surfaceArea, stats, ...(startTriangles ? { startTriangles } : {}) };
+  return { count, adjacency, surfaceArea, stats, ...(startTriangles ? { startTriangles } : {}) };
 }
 
 function meshArea(p: ArrayLike<number>, t: ArrayLike<number>): number {

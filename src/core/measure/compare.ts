@@ -12,7 +12,7 @@
  *   layer j scaled around the tube by 1 + (s - 1) j / (K - 1) (the sites keep their unrolled
  *   position: radial projection), exact adjacency, open-border cells excluded.
  */
-import { analyzeSurfaces, surfaceFromExact, type ScutoidSummary } from '../analysis';
+import { analyzeSurfaces, type ScutoidSummary } from '../analysis';
 import { exactVoronoi } from '../exact';
 import type { Grid } from '../grid';
 import { placeSites } from '../sites';
@@ -98,7 +98,7 @@ export function compareWithModel(options: CompareOptions): ModelComparison {
     atK.push(sites.slice());
     const mean = new Array<number>(options.distribution.length).fill(0);
     for (const s of sites) {
-      const summary = analyzeSurfaces([surfaceFromExact(exactVoronoi(grid, s))]).summary;
+      const summary = analyzeSurfaces([exactVoronoi(grid, s).adjacency]).summary;
       summary.perSurface[0].polygonDistribution.forEach((f, c) => (mean[c] += (Number.isNaN(f) ? 0 : f) / realizations));
     }
     candidates.push({ k, polygonDistribution: mean, distance: l1Distance(options.distribution, mean) });
@@ -116,7 +116,7 @@ export function compareWithModel(options: CompareOptions): ModelComparison {
     const surfaces = [];
     for (let j = 0; j < layers; j++) {
       const ratio = 1 + ((s - 1) * j) / (layers - 1);
-      surfaces.push(surfaceFromExact(exactVoronoi({ ...grid, texelX: pixelSize * ratio }, siteSet), `ratio ${ratio}`));
+      surfaces.push({ ...exactVoronoi({ ...grid, texelX: pixelSize * ratio }, siteSet).adjacency, label: `ratio ${ratio}` });
     }
     const summary = analyzeSurfaces(surfaces).summary;
     firstSummary ??= summary;

@@ -180,7 +180,7 @@ export function lloydStepOnMesh(mesh: PreparedMesh, sites: Float64Array): Float6
 export function meshSurface(mesh: PreparedMesh, sites: Float64Array, label: string): SurfaceAdjacency {
   const count = sites.length / 3;
   const rvd = restrictedVoronoi({ kind: 'mesh', positions: mesh.positions, indices: mesh.indices, triangleNeighbours: mesh.neighbours }, sites, count);
-  return { count, adjacency: rvd.adjacency, areas: rvd.areas, touchesBorder: rvd.touchesBorder, label };
+  return { ...rvd.adjacency, label };
 }
 
 /**
