@@ -1,7 +1,10 @@
 /**
  * Exact Voronoi diagram of sites on a planar-family grid (plane or tube), computed with
- * d3-delaunay. This is the CPU reference the GPU passes are checked against, and the exact
- * (threshold-free) source of adjacency for the analysis.
+ * d3-delaunay, with every cell's polygon: what the views draw (cell polygons, exact label
+ * images), the measure comparison and the lab protocol's default surfaces use. The exact
+ * engine (src/core/exactEngine) computes the same adjacency record without the polygons and is
+ * tested against this independent implementation cell by cell; the test oracles proper live in
+ * tests/oracles.
  *
  * Definitions and conventions:
  * - Sites are given in texel units (see `grid.ts`): interleaved x, y; x in [0, width),

@@ -2,6 +2,7 @@ import { describe, expect, it } from 'vitest';
 import { distanceSquared, wrapDelta, type Grid } from '../../src/core/grid';
 import { BORDER_X_END, BORDER_X_START, BORDER_Y_END, BORDER_Y_START } from '../../src/core/border';
 import { accumulateCentroidRows, labelAdjacency } from '../../src/core/labels';
+import { moveSitesToCentroids } from '../../src/core/lloydUpdate';
 import { bruteForceLabels, centroidSites, cvtEnergy, reduceCentroids, sharedLength } from '../oracles/labels';
 import { Random } from '../../src/core/random';
 
@@ -194,6 +195,28 @@ describe('reduceCentroids and the Lloyd move', () => {
       expect(energy).toBeLessThanOrEqual(previous * (1 + 1e-9));
       previous = energy;
       sites = centroidSites(g, sites, sums).sites;
+    }
+  });
+
+  it('moveSitesToCentroids moves every site as the definition does (the oracle centroidSites)', () => {
+    let seed = 40;
+    for (const g of grids) {
+      for (const omega of [1, 1.7]) {
+        const sites = randomSites(g, 30, seed++);
+        const l = bruteForceLabels(g, sites);
+        l[0] = -1;
+        const sums = reduceCentroids(g, l, sites, null);
+        sums.fill(0, 4 * 7, 4 * 8); // site 7: an empty cell, stays put
+        const expected = centroidSites(g, sites, sums, omega);
+        const moved = sites.slice();
+        const move = moveSitesToCentroids(g, moved, sums, 30, omega, { energy: 0, maxDisplacement: 0, maxDisplacementTexels: 0, emptyCells: 0 });
+        for (let k = 0; k < moved.length; k++) expect(moved[k]).toBeCloseTo(expected.sites[k], 4);
+        expect([moved[14], moved[15]]).toEqual([sites[14], sites[15]]);
+        expect(move.emptyCells).toBe(expected.move.emptyCells);
+        expect(move.energy).toBeCloseTo(expected.move.energy, 6);
+        expect(move.maxDisplacement).toBeCloseTo(expected.move.maxDisplacement, 4);
+        expect(move.maxDisplacementTexels).toBeCloseTo(expected.move.maxDisplacementTexels, 4);
+      }
     }
   });
 

@@ -5,7 +5,8 @@
  * Why the heat method: a Voronoi diagram of s sites on a mesh needs s distance fields; the
  * heat method reduces each to two sparse solves with matrices that do not depend on the
  * source, so both are factored once (SparseCholesky) and every site then costs two pairs of
- * triangular solves plus O(F) work. This is the CPU reference for the GPU cube-map Voronoi.
+ * triangular solves plus O(F) work. The result's optional geodesic comparison
+ * (src/run/closedRecord.ts) sets the GPU cube-map Voronoi against it.
  *
  * Steps (per source set):
  *  1. heat flow  (M + t L) u = δ_sources, t = h² (h = mean edge length, Crane's choice);
