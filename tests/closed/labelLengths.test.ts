@@ -12,13 +12,13 @@ import { cubeLabelAdjacency } from '../../src/core/closed/geometry';
 import { cubeBruteForceLabels } from '../oracles/cubeMap';
 import { randomSequentialSites } from '../../src/core/closed/randomSequentialSites';
 import { restrictedVoronoi } from '../../src/core/closed/restrictedVoronoi';
-import { sphereSurface, type EllipsoidSurface } from '../../src/core/closed/restrictedSurface';
+import { sphereSurface, type EllipsoidGeometry } from '../../src/core/closed/restrictedSurface';
 import { sampleSurface } from '../../src/core/cubemap/sample';
 import { contactAgreement } from '../oracles/contactAgreement';
 
 const count = 200;
 
-function measure(surface: EllipsoidSurface, n: number, seed: number) {
+function measure(surface: EllipsoidGeometry, n: number, seed: number) {
   const { a, b, c } = surface;
   const exactArea = restrictedVoronoi(surface, new Float64Array([a, 0, 0]), 1).surfaceArea;
   const diameter = Math.sqrt(exactArea / count);
@@ -41,7 +41,7 @@ function measure(surface: EllipsoidSurface, n: number, seed: number) {
   };
 }
 
-const surfaces: [string, EllipsoidSurface][] = [
+const surfaces: [string, EllipsoidGeometry][] = [
   ['sphere R 50', sphereSurface(50)],
   ['ellipsoid 90:45:45', { kind: 'ellipsoid', a: 90, b: 45, c: 45 }],
 ];

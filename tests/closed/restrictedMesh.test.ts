@@ -3,18 +3,18 @@ import { isSymmetric } from '../../src/core/analysis/adjacency';
 import { offsetClosedSurface } from '../../src/core/closed/closedOffset';
 import { randomSequentialSites } from '../../src/core/closed/randomSequentialSites';
 import { restrictedVoronoi } from '../../src/core/closed/restrictedVoronoi';
-import type { MeshSurface } from '../../src/core/closed/restrictedSurface';
+import type { MeshGeometry } from '../../src/core/closed/restrictedSurface';
 import { surfaceArea } from '../../src/core/mesh/types';
 import { loadShipped } from '../mesh/helpers';
 import { compareNeighbourSets, meshContactsReference, neighbourLists } from './restrictedReference';
 
 /** A shipped mesh scaled to µm. */
-function shipped(file: string, scale: number): MeshSurface {
+function shipped(file: string, scale: number): MeshGeometry {
   const mesh = loadShipped(file);
   return { kind: 'mesh', positions: Float64Array.from(mesh.positions, (v) => v * scale), indices: mesh.indices };
 }
 
-function check(name: string, surface: MeshSurface, sites: Float64Array, count: number) {
+function check(name: string, surface: MeshGeometry, sites: Float64Array, count: number) {
   const rvd = restrictedVoronoi(surface, sites, count);
   const ref = meshContactsReference(surface.positions, surface.indices, sites, count);
   const cmp = compareNeighbourSets(rvd.adjacency, neighbourLists(ref, 1e-6));
@@ -54,7 +54,7 @@ describe('restricted Voronoi on a triangle mesh', () => {
     const seeded = randomSequentialSites(surface, 200, 5, 9);
     check('egg-chamber.ply ×40', surface, seeded.positions, 200);
     const outer = offsetClosedSurface(surface, seeded.positions, seeded.normals, 200, 10, 'normal');
-    const plain = check('egg-chamber.ply ×40, +10 µm', outer.surface as MeshSurface, outer.sites, 200);
+    const plain = check('egg-chamber.ply ×40, +10 µm', outer.surface as MeshGeometry, outer.sites, 200);
     // Start triangles from the basal diagram (same topology) give the same diagram.
     const basal = restrictedVoronoi(surface, seeded.positions, 200);
     const hinted = restrictedVoronoi(outer.surface, outer.sites, 200, { startTriangles: basal.startTriangles });

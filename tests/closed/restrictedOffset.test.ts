@@ -4,7 +4,7 @@ import { offsetClosedSurface } from '../../src/core/closed/closedOffset';
 import { ellipsoidArea } from '../../src/core/closed/conicArc';
 import { randomSequentialSites } from '../../src/core/closed/randomSequentialSites';
 import { restrictedVoronoi } from '../../src/core/closed/restrictedVoronoi';
-import type { MeshSurface } from '../../src/core/closed/restrictedSurface';
+import type { MeshGeometry } from '../../src/core/closed/restrictedSurface';
 import { closestPointOnEllipsoid } from '../../src/core/cubemap/sample';
 import { vertexNormals } from '../../src/core/mesh/types';
 import { createRandom } from '../../src/core/random';
@@ -68,7 +68,7 @@ describe('offset surfaces of the stack', () => {
     expect(Array.from(sphere.sites)).toEqual([25, 0, 0]);
     const mesh = loadShipped('organoid.ply');
     const normals = vertexNormals(mesh); // today's rule (geometry image normals)
-    const moved = offsetClosedSurface({ kind: 'mesh', positions: mesh.positions, indices: mesh.indices }, [], [], 0, 0.1, 'normal').surface as MeshSurface;
+    const moved = offsetClosedSurface({ kind: 'mesh', positions: mesh.positions, indices: mesh.indices }, [], [], 0, 0.1, 'normal').surface as MeshGeometry;
     let worst = 0;
     for (let k = 0; k < mesh.positions.length; k++) worst = Math.max(worst, Math.abs(moved.positions[k] - (mesh.positions[k] + 0.1 * normals[k])));
     expect(worst).toBeLessThan(1e-6);
@@ -86,7 +86,7 @@ describe('offset surfaces of the stack', () => {
     const basal = randomSequentialSites({ kind: 'ellipsoid', a, b, c }, count, 4, 6);
     const outer = offsetClosedSurface({ kind: 'ellipsoid', a, b, c }, basal.positions, basal.normals, count, t, 'normal', { maxDeviation: 0.01 });
     expect(outer.representation).toBe('triangulated');
-    const m = outer.surface as MeshSurface;
+    const m = outer.surface as MeshGeometry;
     // Distance to the base ellipsoid is t at the vertices (exact) and within t ± deviation at
     // the triangles' centroids and edge midpoints.
     let worstVertex = 0,

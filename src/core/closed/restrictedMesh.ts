@@ -25,7 +25,7 @@
  */
 import { KdTree3 } from './kdTree';
 import type { ContactRecorder } from './restrictedContacts';
-import { triangleNeighbours, type MeshSurface } from './restrictedSurface';
+import { triangleNeighbours, type MeshGeometry } from './restrictedSurface';
 
 const MAX_POLYGON = 512;
 const INITIAL_CANDIDATES = 24;
@@ -77,7 +77,7 @@ export class MeshRestrictedVoronoi {
   readonly stats: MeshRvdStats;
 
   constructor(
-    surface: MeshSurface,
+    surface: MeshGeometry,
     private readonly sites: Float64Array,
     private readonly count: number,
     private readonly siteTree: KdTree3,
