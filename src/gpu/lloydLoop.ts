@@ -64,7 +64,7 @@ export abstract class LloydLoop {
       energy: move.energy,
       maxDisplacement: move.maxDisplacement,
       jumpFloodPasses: this.lastPasses,
-      jumpFloodMs: this.lastFloodMs,
+      diagramMs: this.lastFloodMs,
       centroidMs,
     };
     this.iterations.push(record);

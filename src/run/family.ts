@@ -10,15 +10,20 @@ import type { EngineChoice } from './enginePolicy';
 import type { ClosedSurfaceRecord, GridRecord, LabelImage } from './result';
 
 /** What a caller can hand the pipeline besides the config. */
-export interface RunCallbacks {
+/** What a host decoded for the run (the pipeline reads no file and fetches nothing). */
+export interface RunInputs {
+  /** A decoded grayscale image for `density.kind = "image"`. */
+  densityImage?: GrayImage;
+  /** The mesh file for `surface.kind = "mesh"` (read by the CLI, or a user's File in the browser). */
+  meshFile?: MeshFile;
+}
+
+/** runSheet's options: the decoded inputs, and how the run reports progress and what it returns. */
+export interface RunOptions extends RunInputs {
   /** Called after each Lloyd iteration. */
   onIteration?(record: IterationRecord, maxIterations: number): void;
   /** Aborting stops the run between iterations with an AbortError; nothing is half-written. */
   signal?: AbortSignal;
-  /** A decoded grayscale image for `density.kind = "image"`. */
-  densityImage?: GrayImage;
-  /** The mesh file itself (e.g. a user's File read in the browser) instead of reading surface.src. */
-  meshFile?: MeshFile;
   /**
    * false: the caller needs the result only, not the label images for views (a sweep): a worker
    * then sends none back, and lazily drawn images are never drawn.
@@ -77,7 +82,7 @@ export interface CellPlacement {
 export interface SurfaceFamily<C extends AnyConfig, Geometry, Sites, Layer extends StackLayer, Projected> {
   readonly name: SurfaceFamilyName;
   /** Checks what can be checked before any work, then builds the seeded surface. */
-  prepare(config: C, callbacks: RunCallbacks): Promise<Geometry>;
+  prepare(config: C, inputs: RunInputs): Promise<Geometry>;
   /** Checks the sheet (offsets, thickness) against the prepared surface; throws ConfigError. */
   checkSheet(config: C, geometry: Geometry): void;
   /** Places the initial sites and sets up Lloyd on the chosen engine. */

@@ -19,7 +19,7 @@ import type { EngineChoice } from './enginePolicy';
 import type { GpuContext } from '../gpu/context';
 import { CcvtEngine } from '../gpu/engine';
 import { LloydRun } from '../gpu/lloyd';
-import type { Labeller, RunCallbacks, SurfaceFamily } from './family';
+import type { Labeller, RunInputs, SurfaceFamily } from './family';
 import { relaxation } from './relax';
 
 /** A plane or tube, unrolled: its texel grid and the density per texel. */
@@ -41,10 +41,10 @@ type PlanarSites = Float32Array;
 export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, StackSurface, PlanarSites> = {
   name: 'planar grid',
 
-  async prepare(config, callbacks: RunCallbacks) {
+  async prepare(config, inputs: RunInputs) {
     const grid = makeGrid(config);
     checkFeasible(config, grid);
-    const { densityImage } = callbacks;
+    const { densityImage } = inputs;
     return { grid, density: densityField(config.density, grid, densityImage), ...(densityImage ? { densityImage } : {}) };
   },
 

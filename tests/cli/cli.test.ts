@@ -62,7 +62,7 @@ describe('tissue-sheet run', () => {
       const result = JSON.parse(readFileSync(out, 'utf8'));
       delete result.timings;
       for (const record of result.lloyd.iterations) {
-        delete record.jumpFloodMs;
+        delete record.diagramMs;
         delete record.centroidMs;
       }
       return result;

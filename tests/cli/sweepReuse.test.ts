@@ -31,7 +31,7 @@ const config = (maxIterations: number, surfaceRatio: number, extra: Record<strin
 function comparable(result: SheetResult): unknown {
   const { timings: _timings, ...rest } = result;
   return JSON.parse(
-    JSON.stringify({ ...rest, lloyd: { ...rest.lloyd, iterations: rest.lloyd.iterations.map(({ jumpFloodMs: _j, centroidMs: _c, ...r }) => r) } }),
+    JSON.stringify({ ...rest, lloyd: { ...rest.lloyd, iterations: rest.lloyd.iterations.map(({ diagramMs: _d, centroidMs: _c, ...r }) => r) } }),
   );
 }
 

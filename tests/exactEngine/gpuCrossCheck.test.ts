@@ -36,7 +36,7 @@ describe('GPU and exact engines from the same initial sites', () => {
       const exact = new ExactLloydRun(grid, exactSites, options);
       while (!exact.done) exact.step();
       expect(exact.iterations.map((r) => Object.keys(r).sort())).toEqual(
-        exact.iterations.map(() => ['centroidMs', 'energy', 'iteration', 'jumpFloodMs', 'jumpFloodPasses', 'maxDisplacement']),
+        exact.iterations.map(() => ['centroidMs', 'diagramMs', 'energy', 'iteration', 'jumpFloodPasses', 'maxDisplacement']),
       );
 
       let squared = 0;
