@@ -24,6 +24,7 @@ import { ContactRecorder } from './restrictedContacts';
 import { EllipsoidRestrictedVoronoi, type EllipsoidRvdStats } from './restrictedEllipsoid';
 import { MeshRestrictedVoronoi, type MeshRvdStats } from './restrictedMesh';
 import { checkRestrictedSurface, type RestrictedSurface } from './restrictedSurface';
+import { meshArea } from '../mesh/types';
 
 export interface RestrictedVoronoiOptions {
   /** Contacts at or below this length (µm) are rounding, not neighbours. */
@@ -99,21 +100,4 @@ export function restrictedVoronoi(
   const adjacency: SurfaceAdjacency = { count, ...recorder.finish(tolerance), areas, border: new Uint8Array(count) };
   stats.ms = performance.now() - start;
   return { count, adjacency, surfaceArea, stats, ...(startTriangles ? { startTriangles } : {}) };
-}
-
-function meshArea(p: ArrayLike<number>, t: ArrayLike<number>): number {
-  let s = 0;
-  for (let f = 0; f < t.length; f += 3) {
-    const a = 3 * t[f],
-      b = 3 * t[f + 1],
-      c = 3 * t[f + 2];
-    const ux = p[b] - p[a],
-      uy = p[b + 1] - p[a + 1],
-      uz = p[b + 2] - p[a + 2];
-    const vx = p[c] - p[a],
-      vy = p[c + 1] - p[a + 1],
-      vz = p[c + 2] - p[a + 2];
-    s += 0.5 * Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
-  }
-  return s;
 }

@@ -19,7 +19,7 @@
  * L_ii = -Σ_j L_ij; M is the lumped (barycentric) mass: a third of the incident triangle areas.
  */
 import { csrAddDiagonal, csrFromTriplets, SparseCholesky, type CsrMatrix } from './sparse';
-import { meanEdgeLength, type TriangleMesh } from './types';
+import { meanEdgeLength, triangleArea, type TriangleMesh } from './types';
 
 /** Cotangent of the angle at vertex o of triangle (o, a, b). */
 function cotAt(p: Float32Array, o: number, a: number, b: number): number {
@@ -82,18 +82,9 @@ export function lumpedMass(mesh: TriangleMesh): Float64Array {
   const p = mesh.positions,
     t = mesh.indices;
   const m = new Float64Array(p.length / 3);
-  for (let f = 0; f < t.length; f += 3) {
-    const a = 3 * t[f],
-      b = 3 * t[f + 1],
-      c = 3 * t[f + 2];
-    const ux = p[b] - p[a],
-      uy = p[b + 1] - p[a + 1],
-      uz = p[b + 2] - p[a + 2];
-    const vx = p[c] - p[a],
-      vy = p[c + 1] - p[a + 1],
-      vz = p[c + 2] - p[a + 2];
-    const area = 0.5 * Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
-    for (let k = 0; k < 3; k++) m[t[f + k]] += area / 3;
+  for (let f = 0; f < t.length / 3; f++) {
+    const area = triangleArea(p, t, f);
+    for (let k = 0; k < 3; k++) m[t[3 * f + k]] += area / 3;
   }
   return m;
 }
