@@ -15,7 +15,7 @@
  */
 import { addDifference, differenceSize, isCanonical, newDifference } from '../core/analysis/sortedSets';
 import { analyzeLabStack, invalidOnAnySurface, neighbourSet, type ScutoidAnalysis, type SurfaceAdjacency, type SurfaceSummary } from '../core/analysis';
-import { summarizeCells, summarizeSurface } from '../core/analysis/scutoids';
+import { cellArrays, summarizeCells, summarizeSurface } from '../core/analysis/scutoids';
 
 /** Neighbour sets of one surface as CSR: each cell's ids ascending, once, without the cell. */
 interface Sets {
@@ -133,12 +133,7 @@ function finish(state: Carried, stack: SurfaceAdjacency[], invalid: Uint8Array):
 
   const valid = new Uint8Array(count);
   for (let i = 0; i < count; i++) valid[i] = excluded[i] ? 0 : 1;
-  const won = new Int32Array(count);
-  const lost = new Int32Array(count);
-  const transitions = new Int32Array(count);
-  const neighbours3D = new Int32Array(count);
-  const changed = new Uint8Array(count);
-  const scutoid = new Uint8Array(count);
+  const { won, lost, transitions, neighbours3D, changed, scutoid } = cellArrays(count);
   const labWon = new Int32Array(count);
   const labLost = new Int32Array(count);
   for (let i = 0; i < count; i++) {

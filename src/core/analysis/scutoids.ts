@@ -189,12 +189,7 @@ export function analyzeSurfaces(surfaces: SurfaceAdjacency[], options: AnalysisO
     valid[i] = border ? 0 : 1;
   }
 
-  const won = new Int32Array(count);
-  const lost = new Int32Array(count);
-  const transitions = new Int32Array(count);
-  const neighbours3D = new Int32Array(count);
-  const changed = new Uint8Array(count);
-  const scutoid = new Uint8Array(count);
+  const { won, lost, transitions, neighbours3D, changed, scutoid } = cellArrays(count);
   // The union of a cell's sets over the surfaces, merged in two scratch lists.
   let largest = 0;
   for (const set of sets) for (let i = 0; i < count; i++) largest = Math.max(largest, set.offsets[i + 1] - set.offsets[i]);
@@ -233,6 +228,18 @@ export function analyzeSurfaces(surfaces: SurfaceAdjacency[], options: AnalysisO
   for (let i = 0; i < count; i++) validCells += valid[i];
   const perSurface = surfaces.map((s, k) => summarizeSurface(s, sets[k], sides[k], valid, validCells, options));
   return summarizeCells({ valid, sides, won, lost, transitions, neighbours3D, changed, scutoid }, perSurface);
+}
+
+/** The per-cell arrays of CellStatistics that an analysis fills (validity and sides come first). */
+export function cellArrays(count: number): Omit<CellStatistics, 'valid' | 'sides'> {
+  return {
+    won: new Int32Array(count),
+    lost: new Int32Array(count),
+    transitions: new Int32Array(count),
+    neighbours3D: new Int32Array(count),
+    changed: new Uint8Array(count),
+    scutoid: new Uint8Array(count),
+  };
 }
 
 /**
