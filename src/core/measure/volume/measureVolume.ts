@@ -151,8 +151,8 @@ function assemble(
   const areas = tallies.map((t) => t.area.slice(1));
   const reaches = tallies.map((t) => Uint8Array.from({ length: n }, (_, i) => (t.counts[3 * i + 3] + t.counts[3 * i + 4] + t.counts[3 * i + 5] > 0 ? 1 : 0)));
 
-  const minContacts = [0, 1].map((k) => {
-    if (options.minContact !== undefined) return options.minContact;
+  // Area and number of the cells that reach surface k.
+  const reaching = [0, 1].map((k) => {
     let area = 0;
     let count = 0;
     for (let i = 0; i < n; i++) {
@@ -160,6 +160,11 @@ function assemble(
       area += areas[k][i];
       count++;
     }
+    return { area, count };
+  });
+  const minContacts = [0, 1].map((k) => {
+    if (options.minContact !== undefined) return options.minContact;
+    const { area, count } = reaching[k];
     return count > 0 ? labMinBoundaryLength(area, count) : 0;
   });
 
@@ -259,13 +264,7 @@ function assemble(
   }
 
   const layers: VolumeSurfaceRecord[] = [0, 1].map((k) => {
-    let area = 0;
-    let count = 0;
-    for (let i = 0; i < n; i++) {
-      if (!reaches[k][i]) continue;
-      area += areas[k][i];
-      count++;
-    }
+    const { area, count } = reaching[k];
     return {
       name: LAYER_NAMES[k],
       faces: layerClass[k] === OUTSIDE ? 'outside' : 'lumen',
