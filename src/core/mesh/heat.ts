@@ -19,7 +19,7 @@
  * L_ii = -Σ_j L_ij; M is the lumped (barycentric) mass: a third of the incident triangle areas.
  */
 import { csrAddDiagonal, csrFromTriplets, SparseCholesky, type CsrMatrix } from './sparse';
-import { meanEdgeLength, triangleArea, type TriangleMesh } from './types';
+import { meanEdgeLength, triangleArea, triangleCross, type TriangleMesh } from './types';
 
 /** Cotangent of the angle at vertex o of triangle (o, a, b). */
 function cotAt(p: Float32Array, o: number, a: number, b: number): number {
@@ -132,20 +132,13 @@ export class HeatGeodesics {
     const nf = t.length / 3;
     this.cots = new Float64Array(3 * nf);
     this.faceData = new Float64Array(4 * nf);
+    const cross = new Float64Array(3);
     for (let f = 0; f < nf; f++) {
       const [a, b, c] = [t[3 * f], t[3 * f + 1], t[3 * f + 2]];
       this.cots[3 * f] = cotAt(p, a, b, c);
       this.cots[3 * f + 1] = cotAt(p, b, c, a);
       this.cots[3 * f + 2] = cotAt(p, c, a, b);
-      const ux = p[3 * b] - p[3 * a],
-        uy = p[3 * b + 1] - p[3 * a + 1],
-        uz = p[3 * b + 2] - p[3 * a + 2];
-      const vx = p[3 * c] - p[3 * a],
-        vy = p[3 * c + 1] - p[3 * a + 1],
-        vz = p[3 * c + 2] - p[3 * a + 2];
-      const nx = uy * vz - uz * vy,
-        ny = uz * vx - ux * vz,
-        nz = ux * vy - uy * vx;
+      const [nx, ny, nz] = triangleCross(p, t, f, cross);
       const twiceArea = Math.hypot(nx, ny, nz) || 1e-300;
       this.faceData.set([1 / twiceArea, nx / twiceArea, ny / twiceArea, nz / twiceArea], 4 * f);
     }
