@@ -87,7 +87,11 @@ export function meshArea(p: ArrayLike<number>, t: ArrayLike<number>): number {
 export function faceAreas(mesh: TriangleMesh): Float64Array {
   const { positions: p, indices: t } = mesh;
   const out = new Float64Array(t.length / 3);
-  for (let f = 0; f < out.length; f++) out[f] = triangleArea(p, t, f);
+  for (let f = 0; f < out.length; f++) {
+    // sqrt of the squares, not hypot: the areas every mesh result was computed with (the last bit differs).
+    const [x, y, z] = triangleCross(p, t, f, crossScratch);
+    out[f] = 0.5 * Math.sqrt(x * x + y * y + z * z);
+  }
   return out;
 }
 
