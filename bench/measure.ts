@@ -145,7 +145,7 @@ export async function measure(
       });
       while (!profiled.done) profiled.step();
       const later = profiled.iterations.slice(1);
-      const warmJumpFloodMs = median(later.map((r) => r.jumpFloodMs));
+      const warmJumpFloodMs = median(later.map((r) => r.diagramMs));
       const centroidMs = median(later.map((r) => r.centroidMs));
       const warmPasses = later.reduce((sum, r) => sum + r.jumpFloodPasses, 0) / later.length;
       let warmMislabeled: number | undefined;
@@ -190,7 +190,7 @@ export async function measure(
         lloydIterationMs,
         perIteration: {
           iterationMs: stepTimes,
-          jumpFloodMs: profiled.iterations.map((r) => r.jumpFloodMs),
+          jumpFloodMs: profiled.iterations.map((r) => r.diagramMs),
           jumpFloodPasses: profiled.iterations.map((r) => r.jumpFloodPasses),
           centroidMs: profiled.iterations.map((r) => r.centroidMs),
         },

@@ -12,7 +12,7 @@
 import { offsetClosedSurface } from '../src/core/closed/closedOffset';
 import { randomSequentialSites } from '../src/core/closed/randomSequentialSites';
 import { restrictedVoronoi } from '../src/core/closed/restrictedVoronoi';
-import { triangleNeighbours, type MeshSurface, type RestrictedSurface } from '../src/core/closed/restrictedSurface';
+import { triangleNeighbours, type MeshGeometry, type RestrictedSurface } from '../src/core/closed/restrictedSurface';
 import { icosphere } from '../src/core/mesh/generate';
 
 function option(name: string, fallback: number): number {
@@ -34,7 +34,7 @@ for (let v = 0; v < positions.length; v += 3) {
   positions[v + 1] = (b * ico.positions[v + 1]) / l;
   positions[v + 2] = (c * ico.positions[v + 2]) / l;
 }
-const mesh: MeshSurface = { kind: 'mesh', positions, indices: ico.indices };
+const mesh: MeshGeometry = { kind: 'mesh', positions, indices: ico.indices };
 const analytic: RestrictedSurface = { kind: 'ellipsoid', a, b, c };
 const spacing = 0.7 * Math.sqrt(43000 / cells);
 const sitesMesh = randomSequentialSites(mesh, cells, spacing, 1);
@@ -53,7 +53,7 @@ function time(label: string, run: () => void): void {
 
 console.log(`${cells} RSA cells (min spacing ${spacing.toFixed(2)} µm); mesh: ${ico.indices.length / 3} triangles`);
 time(`mesh RVD, ${ico.indices.length / 3} triangles (triangle neighbours built inside)`, () => restrictedVoronoi(mesh, sitesMesh.positions, cells));
-const prepared: MeshSurface = { ...mesh, triangleNeighbours: triangleNeighbours(mesh.indices, positions.length / 3) };
+const prepared: MeshGeometry = { ...mesh, triangleNeighbours: triangleNeighbours(mesh.indices, positions.length / 3) };
 time('mesh RVD, triangle neighbours given', () => restrictedVoronoi(prepared, sitesMesh.positions, cells));
 time('analytic ellipsoid RVD', () => restrictedVoronoi(analytic, sitesAnalytic.positions, cells));
 const layers = [0, 2, 4, 6, 8, 10].map((t) => offsetClosedSurface(prepared, sitesMesh.positions, sitesMesh.normals, cells, t, 'normal'));

@@ -1,5 +1,5 @@
 import { readFileSync } from 'node:fs';
-import { PNG } from 'pngjs';
+import { decode } from 'fast-png';
 import { expect, test, type Page } from '@playwright/test';
 import { waitForRun } from './appHelpers';
 import { SIDE_COLORS } from '../src/view/sideColors';
@@ -40,8 +40,8 @@ test('a sphere is drawn per fragment: lit pixels are legend colours, the cell a 
   const result = await resultOf(page);
   const canvas = page.locator('#view3d');
   const box = (await canvas.boundingBox())!;
-  const png = PNG.sync.read(await canvas.screenshot());
-  const at = (x: number, y: number) => [0, 1, 2].map((c) => png.data[4 * (y * png.width + x) + c]);
+  const png = decode(await canvas.screenshot()); // 8-bit RGB or RGBA
+  const at = (x: number, y: number) => [0, 1, 2].map((c) => png.data[png.channels * (y * png.width + x) + c]);
   const background = at(2, 2);
   const isBackground = (rgb: number[]) => rgb.every((v, k) => Math.abs(v - background[k]) <= 6);
   const isDark = (rgb: number[]) => Math.max(...rgb) < 90;

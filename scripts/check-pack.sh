@@ -4,7 +4,7 @@
 #   - no dev dependency came along (tsx, vite, ...), and the packed code imports every runtime
 #     dependency;
 #   - `import('tissue-sheet')` and `import('tissue-sheet/node')` work in Node, and the main
-#     entry (and `tissue-sheet/element`) statically import no Node built-in, gl or pngjs;
+#     entry (and `tissue-sheet/element`) statically import no Node built-in or gl;
 #   - a consumer's TypeScript typechecks against the declarations ("moduleResolution": "nodenext");
 #   - `npx tissue-sheet run` computes a small sheet;
 #   - with gl's native module hidden, then gl itself hidden, the CLI exits 3 with one line
@@ -51,7 +51,7 @@ step "import the library in Node"
 node -e "import('tissue-sheet').then((m) => { console.log('tissue-sheet: runSheet', typeof m.runSheet, '| validateConfig', typeof m.validateConfig, '| runSweep', typeof m.runSweep); if (typeof m.runSheet !== 'function') process.exit(1); })"
 node -e "import('tissue-sheet/node').then((m) => { console.log('tissue-sheet/node: createHeadlessContext', typeof m.createHeadlessContext); if (typeof m.createHeadlessContext !== 'function') process.exit(1); })"
 
-step "the main entry is browser-safe: no Node built-in, gl or pngjs in its static imports"
+step "the main entry is browser-safe: no Node built-in or gl in its static imports"
 cat > browser-safe.cjs <<'EOF'
 const fs = require('fs'), path = require('path');
 const root = path.resolve('node_modules/tissue-sheet/dist/esm'), seen = new Set(), bad = [];
@@ -60,7 +60,7 @@ const visit = (file) => {
   seen.add(file);
   for (const [, spec] of fs.readFileSync(file, 'utf8').matchAll(/^(?:import|export)\s[^'";]*['"]([^'"]+)['"]/gm)) {
     if (spec.startsWith('.')) visit(path.resolve(path.dirname(file), spec));
-    else if (/^node:|^(gl|pngjs)(\/|$)/.test(spec)) bad.push(`${path.relative(root, file)} imports ${spec}`);
+    else if (/^node:|^gl(\/|$)/.test(spec)) bad.push(`${path.relative(root, file)} imports ${spec}`);
   }
 };
 visit(path.join(root, process.argv[2]));

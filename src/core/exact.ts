@@ -1,7 +1,10 @@
 /**
  * Exact Voronoi diagram of sites on a planar-family grid (plane or tube), computed with
- * d3-delaunay. This is the CPU reference the GPU passes are checked against, and the exact
- * (threshold-free) source of adjacency for the analysis.
+ * d3-delaunay, with every cell's polygon: what the views draw (cell polygons, exact label
+ * images), the measure comparison and the lab protocol's default surfaces use. The exact
+ * engine (src/core/exactEngine) computes the same adjacency record without the polygons and is
+ * tested against this independent implementation cell by cell; the test oracles proper live in
+ * tests/oracles.
  *
  * Definitions and conventions:
  * - Sites are given in texel units (see `grid.ts`): interleaved x, y; x in [0, width),
@@ -25,11 +28,11 @@
  *   µm (summed over every copy it is shared with). A cell is never listed as its own neighbour:
  *   when the domain is so small that a cell touches its own periodic copy, the shared length is
  *   reported in `selfContact` instead (0 otherwise).
- * - `borderSides`: bit mask of the open domain edges the cell touches with an edge of positive
+ * - `border`: bit mask of the open domain edges the cell touches with an edge of positive
  *   length, in core/border.ts's convention: BORDER_Y_START (y = 0), BORDER_Y_END (y = height),
  *   BORDER_X_START (x = 0), BORDER_X_END (x = width); x bits only when x is open, y bits only
- *   when y is open. `touchesBorder` = borderSides != 0. For a tube
- *   (periodic x, open y) this is "touches an open end of the tube".
+ *   when y is open. For a tube (periodic x, open y) a non-zero mask is "touches an open end of
+ *   the tube".
  * - `edgeCount`: number of polygon edges of positive length shared with other cells (copies
  *   included, self-copies included); equal to the neighbour count except in tiny periodic
  *   domains where a cell shares several edges with the same site.
@@ -40,9 +43,7 @@ import { BORDER_X_END, BORDER_X_START, BORDER_Y_END, BORDER_Y_START } from './bo
 import { Delaunay } from 'd3-delaunay';
 import type { Grid } from './grid';
 import { wrapCoordinate } from './grid';
-import type { CsrAdjacency } from './analysis/adjacency';
-
-export type { CsrAdjacency } from './analysis/adjacency';
+import type { SurfaceAdjacency } from './analysis/adjacency';
 
 export interface ExactCell {
   /** Site id. */
@@ -63,23 +64,18 @@ export interface ExactCell {
   readonly selfContact: number;
   /** Number of positive-length edges shared with other cells (including copies). */
   readonly edgeCount: number;
-  /** Bit mask of touched open edges: 1 = y=0, 2 = y=height, 4 = x=0, 8 = x=width. */
-  readonly borderSides: number;
-  readonly touchesBorder: boolean;
+  /** BORDER_* bits of the open edges the cell touches (src/core/border.ts). */
+  readonly border: number;
 }
 
 export interface ExactVoronoi {
   readonly grid: Grid;
   readonly count: number;
   readonly cells: ExactCell[];
-  /** The same neighbours and lengths as a CSR adjacency (input for the analysis). */
-  readonly adjacency: CsrAdjacency;
-  /** Areas in µm². */
-  readonly areas: Float64Array;
+  /** The cells' neighbours, contact lengths, areas and border bits: the analysis input. */
+  readonly adjacency: SurfaceAdjacency;
   /** Centroids in texel units, interleaved x, y, wrapped into the domain. */
   readonly centroids: Float64Array;
-  /** 1 where the cell touches an open edge of the domain. */
-  readonly touchesBorder: Uint8Array;
 }
 
 /** Exact Voronoi diagram of `sites` (interleaved x, y in texel units) on `grid`. */
@@ -95,16 +91,12 @@ export function exactVoronoi(grid: Grid, sites: Float32Array | Float64Array | Ar
     cells.push(ring ? measuredCell(grid, copies, delaunay, i, ring) : emptyCell(grid, i, px[i], py[i]));
   }
 
-  const areas = new Float64Array(n);
   const centroids = new Float64Array(2 * n);
-  const touches = new Uint8Array(n);
   for (const cell of cells) {
-    areas[cell.id] = cell.area;
     centroids[2 * cell.id] = cell.centroidX;
     centroids[2 * cell.id + 1] = cell.centroidY;
-    touches[cell.id] = cell.touchesBorder ? 1 : 0;
   }
-  return { grid, count: n, cells, adjacency: csrAdjacency(cells), areas, centroids, touchesBorder: touches };
+  return { grid, count: n, cells, adjacency: adjacencyOf(cells), centroids };
 }
 
 /** The sites in µm and their periodic copies, ready for the triangulation. */
@@ -191,8 +183,7 @@ function emptyCell(grid: Grid, i: number, xi: number, yi: number): ExactCell {
     lengths: new Float64Array(0),
     selfContact: 0,
     edgeCount: 0,
-    borderSides: 0,
-    touchesBorder: false,
+    border: 0,
   };
 }
 
@@ -219,8 +210,7 @@ function measuredCell(grid: Grid, copies: PeriodicCopies, delaunay: Delaunay<unk
     lengths: Float64Array.from(ids.map((id) => contacts.lengthById.get(id)!)),
     selfContact: contacts.selfContact,
     edgeCount: contacts.edgeCount,
-    borderSides: contacts.borderSides,
-    touchesBorder: contacts.borderSides !== 0,
+    border: contacts.border,
   };
 }
 
@@ -264,18 +254,18 @@ interface Contacts {
   lengthById: Map<number, number>;
   selfContact: number;
   edgeCount: number;
-  borderSides: number;
+  border: number;
 }
 
 /**
  * Step 4: walks the cell's edges: an edge on the clip box marks an open domain edge (bits of
- * borderSides), any other edge is shared with the site across it, whose length is added to that
+ * border), any other edge is shared with the site across it, whose length is added to that
  * site's contact (or to selfContact when it is a copy of the cell's own site).
  */
 function contactLengths(grid: Grid, copies: PeriodicCopies, candidates: number[], i: number, ring: Ring): Contacts {
   const { box, eps, n } = copies;
   const { vx, vy, m } = ring;
-  const contacts: Contacts = { lengthById: new Map<number, number>(), selfContact: 0, edgeCount: 0, borderSides: 0 };
+  const contacts: Contacts = { lengthById: new Map<number, number>(), selfContact: 0, edgeCount: 0, border: 0 };
   for (let k = 0; k < m; k++) {
     const ax = vx[k];
     const ay = vy[k];
@@ -285,7 +275,7 @@ function contactLengths(grid: Grid, copies: PeriodicCopies, candidates: number[]
     if (len <= eps) continue;
     const border = clipBoxSide(grid, box, eps, ax, ay, bx, by);
     if (border !== null) {
-      contacts.borderSides |= border;
+      contacts.border |= border;
       continue;
     }
     const best = siteAcrossEdge(copies, candidates, i, (ax + bx) / 2, (ay + by) / 2);
@@ -336,9 +326,15 @@ function siteAcrossEdge(copies: PeriodicCopies, candidates: number[], i: number,
   return best;
 }
 
-/** Step 5: every cell's neighbours and contact lengths in one CSR adjacency. */
-function csrAdjacency(cells: readonly ExactCell[]): CsrAdjacency {
+/** Step 5: every cell's neighbours, contact lengths, area and border bits in one adjacency record. */
+function adjacencyOf(cells: readonly ExactCell[]): SurfaceAdjacency {
   const n = cells.length;
+  const areas = new Float64Array(n);
+  const border = new Uint8Array(n);
+  for (const cell of cells) {
+    areas[cell.id] = cell.area;
+    border[cell.id] = cell.border;
+  }
   const offsets = new Int32Array(n + 1);
   for (let i = 0; i < n; i++) offsets[i + 1] = offsets[i] + cells[i].neighbours.length;
   const neighbours = new Int32Array(offsets[n]);
@@ -347,7 +343,7 @@ function csrAdjacency(cells: readonly ExactCell[]): CsrAdjacency {
     neighbours.set(cells[i].neighbours, offsets[i]);
     lengths.set(cells[i].lengths, offsets[i]);
   }
-  return { offsets, neighbours, lengths };
+  return { count: n, offsets, neighbours, lengths, areas, border };
 }
 
 /** True when the point (texel units) lies inside the cell polygon (texel units), tried at every periodic image. */

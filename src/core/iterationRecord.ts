@@ -7,8 +7,8 @@ export interface IterationRecord {
   readonly maxDisplacement: number;
   /** Jump-flood passes that labelled the sites of this iteration (0 for the exact engine). */
   readonly jumpFloodPasses: number;
-  /** GPU: the jump flood, ms; exact engine: triangulating and walking the cells, ms. */
-  readonly jumpFloodMs: number;
+  /** Building the Voronoi diagram of the iteration's sites, ms: GPU, the jump flood; exact engine, triangulating and walking the cells. */
+  readonly diagramMs: number;
   /** GPU: the centroid sums, ms; exact engine: integrating the cells and moving the sites, ms. */
   readonly centroidMs: number;
 }

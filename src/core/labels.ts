@@ -8,6 +8,7 @@
  * All positions are in texel units and all lengths/areas in µm (µm²), per grid.ts. The CPU
  * references the tests check the GPU passes against live in tests/oracles/labels.ts.
  */
+import type { SurfaceAdjacency } from './analysis/adjacency';
 import { BORDER_X_END, BORDER_X_START, BORDER_Y_END, BORDER_Y_START } from './border';
 import { type Grid, wrapDelta } from './grid';
 
@@ -86,36 +87,14 @@ function addRun(grid: Grid, sums: Float64Array, id: number, j: number, siteY: nu
 // Adjacency
 // ---------------------------------------------------------------------------------------------
 
-// Bits of LabelAdjacency.borderSides: which open domain edges a cell owns texels on (core/border.ts).
-export { BORDER_X_END, BORDER_X_START, BORDER_Y_END, BORDER_Y_START } from './border';
-
-/** Cell adjacency from a label image, in compressed sparse rows. */
-export interface LabelAdjacency {
-  readonly count: number;
-  /** Neighbours of cell c are neighbours[offsets[c] .. offsets[c+1]), ascending ids. */
-  readonly offsets: Int32Array;
-  readonly neighbours: Int32Array;
-  /**
-   * Shared boundary length in µm, parallel to `neighbours` (symmetric: a->b equals b->a),
-   * without the staircase bias: sqrt(Lx² + Ly²) of the boundary's texel edges (see
-   * labelAdjacency). Apply thresholds in µm to these.
-   */
-  readonly lengths: Float64Array;
-  /**
-   * The staircase: the plain sum of the shared texel edges in µm, parallel to `neighbours`;
-   * 1 to 1.41 (on average 4/π) times the true length of a straight contact. Only for rules
-   * defined in counted pixel edges (the lab's 6 px); never compare it with a length in µm.
-   */
-  readonly staircaseLengths: Float64Array;
-  /** Texels per cell. */
-  readonly texels: Int32Array;
-  /** Cell area in µm² (texels x texelX x texelY). */
-  readonly area: Float64Array;
-  /** 1 if the cell owns a texel on an open edge of the domain (any BORDER_* bit), else 0. */
-  readonly touchesBorder: Uint8Array;
-  /** BORDER_* bits per cell. */
-  readonly borderSides: Uint8Array;
-}
+/**
+ * Which contact length a label adjacency reports:
+ * - 'true': without the staircase bias (see labelAdjacency); apply thresholds in µm to these.
+ * - 'staircase': the plain sum of the shared texel edges in µm, 1 to 1.41 (on average 4/π)
+ *   times the true length of a straight contact. Only for rules defined in counted pixel edges
+ *   (the lab's 6 px); never compare it with a length in µm.
+ */
+export type ContactLength = 'true' | 'staircase';
 
 /**
  * Every pair of edge-adjacent texels (4-neighbourhood, across periodic seams too) with different
@@ -123,7 +102,7 @@ export interface LabelAdjacency {
  * in x, texelX for a pair one above the other. Texels labelled -1 belong to no cell.
  *
  * Contact length: the texel edges between two cells form a staircase, and summing them
- * (`staircaseLengths`) measures a straight contact at angle φ to the x axis as
+ * (the 'staircase' length) measures a straight contact at angle φ to the x axis as
  * L (|cos φ| + |sin φ|), 1 to 1.41 times too long (4/π on average). The edges are summed per
  * direction instead: Lx (the horizontal edges, between texels one above the other) and Ly (the
  * vertical ones), and the length is sqrt(Lx² + Ly²). A digitized straight segment is a
@@ -138,18 +117,21 @@ export interface LabelAdjacency {
  * true length and at least 1/sqrt(2) of their staircase. Measured against exact contact
  * lengths: tests/core/labelLengths.test.ts.
  *
+ * The record (src/core/analysis/adjacency.ts): rows ascending; areas = texels x texelX x texelY;
+ * border = the BORDER_* bits of the open edges a cell owns texels on (src/core/border.ts).
+ *
  * Pairs are encoded as sortable numbers ((a·count + b)·2 + orientation, a < b), sorted, and
  * run-length summed; two passes size every array first, so the loops over texels allocate
  * nothing. Memory is proportional to the boundary, not to the grid.
  */
-export function labelAdjacency(grid: Grid, labels: ArrayLike<number>, count: number): LabelAdjacency {
+export function labelAdjacency(grid: Grid, labels: ArrayLike<number>, count: number, length: ContactLength = 'true', label?: string): SurfaceAdjacency {
   const { width, height, texelX, texelY, periodicX, periodicY } = grid;
   if (labels.length !== width * height) throw new Error(`labelAdjacency: ${labels.length} labels for ${width * height} texels`);
   if (2 * count * count > Number.MAX_SAFE_INTEGER) throw new Error(`labelAdjacency: ${count} cells is too many to encode pairs`);
 
   // Pass 1: texels per cell and border sides.
   const texels = new Int32Array(count);
-  const borderSides = new Uint8Array(count);
+  const border = new Uint8Array(count);
   for (let j = 0; j < height; j++) {
     for (let i = 0; i < width; i++) {
       const a = labels[j * width + i];
@@ -157,12 +139,12 @@ export function labelAdjacency(grid: Grid, labels: ArrayLike<number>, count: num
       if (a >= count || !Number.isInteger(a)) throw new Error(`labelAdjacency: label ${a} at texel (${i}, ${j}) is not a cell id 0..${count - 1}`);
       texels[a]++;
       if (!periodicX) {
-        if (i === 0) borderSides[a] |= BORDER_X_START;
-        if (i === width - 1) borderSides[a] |= BORDER_X_END;
+        if (i === 0) border[a] |= BORDER_X_START;
+        if (i === width - 1) border[a] |= BORDER_X_END;
       }
       if (!periodicY) {
-        if (j === 0) borderSides[a] |= BORDER_Y_START;
-        if (j === height - 1) borderSides[a] |= BORDER_Y_END;
+        if (j === 0) border[a] |= BORDER_Y_START;
+        if (j === height - 1) border[a] |= BORDER_Y_END;
       }
     }
   }
@@ -192,15 +174,8 @@ export function labelAdjacency(grid: Grid, labels: ArrayLike<number>, count: num
     const horizontal = alongY * texelX;
     rows.add(a, b, Math.sqrt(vertical * vertical + horizontal * horizontal), vertical + horizontal);
   });
-  const { neighbours, lengths, staircaseLengths } = rows;
-
-  const area = new Float64Array(count);
-  const touchesBorder = new Uint8Array(count);
-  for (let c = 0; c < count; c++) {
-    area[c] = texels[c] * texelX * texelY;
-    touchesBorder[c] = borderSides[c] !== 0 ? 1 : 0;
-  }
-  return { count, offsets, neighbours, lengths, staircaseLengths, texels, area, touchesBorder, borderSides };
+  const areas = Float64Array.from(texels, (t) => t * texelX * texelY);
+  return { count, offsets, neighbours: rows.neighbours, lengths: length === 'true' ? rows.lengths : rows.staircaseLengths, areas, border, label };
 }
 
 /** Label of the texel to the right (wrapping on a periodic x), or -1 past an open edge. */

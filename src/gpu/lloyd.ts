@@ -111,7 +111,7 @@ export class GpuLloydRun<Sites = unknown> implements LloydIterations {
       energy: move.energy,
       maxDisplacement: move.maxDisplacement,
       jumpFloodPasses: this.lastPasses,
-      jumpFloodMs: this.lastFloodMs,
+      diagramMs: this.lastFloodMs,
       centroidMs,
     };
     this.iterations.push(record);

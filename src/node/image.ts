@@ -1,10 +1,11 @@
 /**
  * Reads a density image from disk (Node only: the browser decodes images itself).
  *
- * PNG only, because pngjs is pure JavaScript and dependable everywhere the CLI runs; other
- * formats are refused with a message rather than misread. Luminance uses the Rec. 709 luma
- * weights applied to the stored (gamma-encoded) 8-bit values, i.e. what an image editor's
- * "grayscale" shows; alpha is ignored, so transparent pixels count with their colour.
+ * PNG only, decoded by fast-png (pure JavaScript, the one PNG decoder on the Node side: the
+ * measured label images use it too); other formats are refused with a message rather than
+ * misread. Luminance uses the Rec. 709 luma weights applied to the stored (gamma-encoded)
+ * values scaled to [0, 1] (8- and 16-bit, grey, palette or colour), i.e. what an image
+ * editor's "grayscale" shows; alpha is ignored, so transparent pixels count with their colour.
  *
  * Untrusted input: the header (IHDR: width, height, bit depth, colour type) is read and bounded
  * before anything is decoded or allocated, so a 48 KB file declaring 20000 x 20000 pixels is
@@ -12,11 +13,10 @@
  * ends before its IEND chunk is refused as truncated instead of decoding as black.
  */
 import { closeSync, fstatSync, openSync, readSync, statSync } from 'node:fs';
-import { PNG } from 'pngjs';
+import { decode, type DecodedPng } from 'fast-png';
 import type { GrayImage } from '../core/density';
-
-const PNG_SIGNATURE = [0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a];
 import { MAX_IMAGE_PIXELS, MAX_PNG_BYTES } from '../core/inputLimits';
+import { readPngIhdr, type PngHeader } from '../core/pngHeader';
 
 // The limits every host shares (core/inputLimits.ts): 8192 x 8192 pixels, 256 MiB.
 export { MAX_IMAGE_PIXELS, MAX_PNG_BYTES };
@@ -25,31 +25,13 @@ export class ImageError extends Error {
   override name = 'ImageError';
 }
 
-export interface PngHeader {
-  width: number;
-  height: number;
-  bitDepth: number;
-  colorType: number;
-}
-
-const VALID_DEPTHS: Record<number, number[]> = { 0: [1, 2, 4, 8, 16], 2: [8, 16], 3: [1, 2, 4, 8], 4: [8, 16], 6: [8, 16] };
-
 /** Reads and checks the IHDR chunk (the first 33 bytes); throws ImageError naming the file. */
 export function readPngHeader(bytes: Uint8Array, name = 'image', maxPixels = MAX_IMAGE_PIXELS): PngHeader {
   if (bytes.length === 0) throw new ImageError(`density image ${name}: the file is empty; give a PNG file`);
-  if (bytes.length < 8 || PNG_SIGNATURE.some((b, k) => bytes[k] !== b)) {
-    throw new ImageError(`density image ${name}: not a PNG file; convert it to PNG (grayscale or RGB)`);
-  }
-  const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
-  const type = bytes.length >= 16 ? String.fromCharCode(...bytes.subarray(12, 16)) : '';
-  if (bytes.length < 33 || type !== 'IHDR' || view.getUint32(8) !== 13) {
-    throw new ImageError(`density image ${name}: truncated or corrupt PNG (no IHDR header); re-export it`);
-  }
-  const header = { width: view.getUint32(16), height: view.getUint32(20), bitDepth: bytes[24], colorType: bytes[25] };
-  if (header.width === 0 || header.height === 0)
-    throw new ImageError(`density image ${name}: declares ${header.width} x ${header.height} pixels; re-export it`);
-  if (!VALID_DEPTHS[header.colorType]?.includes(header.bitDepth)) {
-    throw new ImageError(`density image ${name}: invalid PNG (colour type ${header.colorType} with bit depth ${header.bitDepth}); re-export it`);
+  const header = readPngIhdr(bytes);
+  if ('problem' in header) {
+    const hint = header.problem === 'not a PNG file' ? 'convert it to PNG (grayscale or RGB)' : 're-export it';
+    throw new ImageError(`density image ${name}: ${header.problem}; ${hint}`);
   }
   if (header.width * header.height > maxPixels) {
     throw new ImageError(
@@ -99,23 +81,47 @@ export function readImageFile(path: string): Uint8Array {
 export function decodeGrayPng(bytes: Uint8Array, name = 'image', maxPixels = MAX_IMAGE_PIXELS): GrayImage {
   readPngHeader(bytes, name, maxPixels);
   if (!endsWithIend(bytes)) throw new ImageError(`density image ${name}: truncated PNG (it ends before its IEND chunk); re-export it`);
-  let png: PNG;
+  let png: DecodedPng;
   try {
-    // pngjs expands every colour type and bit depth to 8-bit RGBA.
-    png = PNG.sync.read(Buffer.from(bytes.buffer, bytes.byteOffset, bytes.byteLength));
+    png = decode(bytes);
   } catch (error) {
     throw new ImageError(`density image ${name}: corrupt PNG (${(error as Error).message}); re-export it`);
   }
-  const { width, height, data } = png;
+  const { width, height } = png;
   const luminance = new Float32Array(width * height);
-  for (let k = 0; k < width * height; k++) {
-    const r = data[4 * k];
-    const g = data[4 * k + 1];
-    const b = data[4 * k + 2];
-    // The weights sum to 1 only up to rounding: clamp so white is exactly <= 1.
-    luminance[k] = Math.min(1, (0.2126 * r + 0.7152 * g + 0.0722 * b) / 255);
+  const rgb = new Float64Array(3);
+  for (let y = 0; y < height; y++) {
+    for (let x = 0; x < width; x++) {
+      pixelRgb(png, x, y, rgb);
+      // The weights sum to 1 only up to rounding: clamp so white is exactly <= 1.
+      luminance[y * width + x] = Math.min(1, 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]);
+    }
   }
   return { width, height, luminance };
+}
+
+/**
+ * The colour of pixel (x, y) in [0, 1]³ from fast-png's decoded data: samples of `depth` bits,
+ * `channels` per pixel (grey, grey + alpha, RGB, RGBA, or a palette index), rows packed to
+ * whole bytes below 8 bits.
+ */
+function pixelRgb(png: DecodedPng, x: number, y: number, out: Float64Array): void {
+  const { width, depth, channels, data, palette } = png;
+  let first: number; // the pixel's first sample, raw
+  if (depth >= 8) first = data[(y * width + x) * channels];
+  else {
+    const rowBytes = Math.ceil((depth * channels * width) / 8);
+    const bit = x * depth * channels;
+    first = (data[y * rowBytes + (bit >> 3)] >> (8 - depth - (bit & 7))) & ((1 << depth) - 1);
+  }
+  if (palette) {
+    const colour = palette[first] ?? [0, 0, 0];
+    for (let c = 0; c < 3; c++) out[c] = colour[c] / 255;
+    return;
+  }
+  const max = 2 ** depth - 1;
+  if (channels < 3) out.fill(first / max);
+  else for (let c = 0; c < 3; c++) out[c] = data[(y * width + x) * channels + c] / max;
 }
 
 /** The last chunk of a complete PNG is IEND (length 0, type "IEND", CRC): its last 12 bytes. */

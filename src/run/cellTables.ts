@@ -24,7 +24,6 @@
  * the adjacency the pipeline keeps for reuse.
  */
 import type { SurfaceAdjacency } from '../core/analysis';
-import { toCsr } from '../core/analysis';
 import type { CellStatistics } from '../core/analysis/scutoids';
 import type { AnalysisRecord, CellStatisticsRecord } from '../core/analysis/record';
 import type { CellRecord, SheetResult } from './result';
@@ -95,12 +94,12 @@ type Column = Float64Array | Int32Array | Uint8Array;
 /** Columns of a surface's cells from its adjacency, `placeAll` filling the position and surface columns. */
 export function cellTable(surface: SurfaceAdjacency, placeAll: (position: Float64Array, coordinates: Float64Array) => void): CellTable {
   const n = surface.count;
-  const { offsets, neighbours, lengths } = toCsr(surface.adjacency);
+  const { offsets, neighbours, lengths } = surface;
   const position = new Float64Array(3 * n);
   const coordinates = new Float64Array(2 * n);
   const touchesBorder = new Uint8Array(n);
   placeAll(position, coordinates);
-  for (let id = 0; id < n; id++) touchesBorder[id] = surface.touchesBorder[id] === 1 ? 1 : 0;
+  for (let id = 0; id < n; id++) touchesBorder[id] = surface.border[id] !== 0 ? 1 : 0;
   const total = offsets[n];
   // The adjacency's own arrays where they already have the columns' type and length (the exact
   // method's), else copies: no second copy of a million cells' contacts.

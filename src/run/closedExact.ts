@@ -28,7 +28,7 @@ export function closedExactAdjacency(
   const base = baseSurface(config, surface);
   const layer = offset === 0 ? { surface: base, sites: sites.positions } : offsetClosedSurface(base, sites.positions, sites.normals, sites.count, offset, mode);
   const rvd = restrictedVoronoi(layer.surface, layer.sites, sites.count);
-  return { count: rvd.count, adjacency: rvd.adjacency, areas: rvd.areas, touchesBorder: rvd.touchesBorder, label };
+  return { ...rvd.adjacency, label };
 }
 
 function baseSurface(config: ClosedConfig, surface: ClosedSurface): RestrictedSurface {

@@ -3,7 +3,7 @@ import { meshCurvatureRadii } from '../core/closed/geometry';
 import { ellipsoidProjector, meshProjector, sphereProjector, type ClosedProjector } from '../core/closed/projector';
 import { sampleSurface, type CubeGeometryImage } from '../core/cubemap/sample';
 import { prepareMesh, type PreparedMesh } from './closedMesh';
-import type { RunCallbacks } from './family';
+import type { RunInputs } from './family';
 
 /** A closed surface ready for Lloyd: its geometry image and closest-point projector. */
 export interface ClosedSurface {
@@ -18,12 +18,12 @@ export interface ClosedSurface {
 }
 
 /** Samples (or checks and parameterizes the loaded mesh of) the closed surface of `config` on its cube map. */
-export async function prepareClosedSurface(config: ClosedConfig, callbacks: RunCallbacks = {}): Promise<ClosedSurface> {
+export async function prepareClosedSurface(config: ClosedConfig, inputs: RunInputs = {}): Promise<ClosedSurface> {
   const { surface } = config;
   const n = makeCubeGrid(config).n;
   if (surface.kind === 'mesh') {
     // The pipeline reads no file: the host (CLI, page, worker, a library user) loads it.
-    const file = callbacks.meshFile;
+    const file = inputs.meshFile;
     if (!file) {
       throw new ConfigError(
         'surface.src',

@@ -1,4 +1,4 @@
-import { labMinBoundaryLength, surfaceFromLabels } from '../core/analysis';
+import { labMinBoundaryLength } from '../core/analysis';
 import { checkClosedFeasible, checkClosedSheet, makeCubeGrid, type ClosedConfig } from '../core/config';
 import { sheetOffsets } from '../core/sheetGeometry';
 import { KdTree3 } from '../core/closed/kdTree';
@@ -123,8 +123,7 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
     positions: layer.sample.position,
   }),
 
-  labelAdjacency: (_config, geometry, layer, labels, count) =>
-    surfaceFromLabels(cubeLabelAdjacency(layer.sample, labels, count, geometry.neighbours), layer.name),
+  labelAdjacency: (_config, geometry, layer, labels, count) => cubeLabelAdjacency(layer.sample, labels, count, geometry.neighbours, 'true', layer.name),
 
   // True contact lengths: the same thresholds for both methods, per surface.
   minContactLengths(config, geometry, layers) {

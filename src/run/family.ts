@@ -9,15 +9,20 @@ import type { EngineChoice } from './enginePolicy';
 import type { ClosedSurfaceRecord, GridRecord, LabelImage } from './result';
 
 /** What a caller can hand the pipeline besides the config. */
-export interface RunCallbacks {
+/** What a host decoded for the run (the pipeline reads no file and fetches nothing). */
+export interface RunInputs {
+  /** A decoded grayscale image for `density.kind = "image"`. */
+  densityImage?: GrayImage;
+  /** The mesh file for `surface.kind = "mesh"` (read by the CLI, or a user's File in the browser). */
+  meshFile?: MeshFile;
+}
+
+/** runSheet's options: the decoded inputs, and how the run reports progress and what it returns. */
+export interface RunOptions extends RunInputs {
   /** Called after each Lloyd iteration. */
   onIteration?(record: IterationRecord, maxIterations: number): void;
   /** Aborting stops the run between iterations with an AbortError; nothing is half-written. */
   signal?: AbortSignal;
-  /** A decoded grayscale image for `density.kind = "image"`. */
-  densityImage?: GrayImage;
-  /** The mesh file itself (e.g. a user's File read in the browser) instead of reading surface.src. */
-  meshFile?: MeshFile;
   /**
    * false: the caller needs the result only, not the label images for views (a sweep): a worker
    * then sends none back, and lazily drawn images are never drawn.
@@ -59,13 +64,6 @@ export interface Labeller<Layer, Projected> {
   dispose(): void;
 }
 
-/** A surface's neighbours from its label image: CSR with contact lengths (µm) per contact. */
-export interface LabelSurfaceAdjacency extends SurfaceAdjacency {
-  readonly adjacency: { readonly offsets: Int32Array; readonly neighbours: Int32Array; readonly lengths: Float64Array };
-  readonly areas: Float64Array;
-  readonly touchesBorder: Uint8Array;
-}
-
 /**
  * A surface family: how one layout of geometry image (a planar grid for planes and tubes, a
  * cube map for closed surfaces) is sampled, relaxed, stacked and measured. The pipeline
@@ -77,7 +75,7 @@ export interface LabelSurfaceAdjacency extends SurfaceAdjacency {
 export interface SurfaceFamily<C extends AnyConfig, Geometry, Sites, Layer extends StackLayer, Projected> {
   readonly name: SurfaceFamilyName;
   /** Checks what can be checked before any work, then builds the seeded surface. */
-  prepare(config: C, callbacks: RunCallbacks): Promise<Geometry>;
+  prepare(config: C, inputs: RunInputs): Promise<Geometry>;
   /** Checks the sheet (offsets, thickness) against the prepared surface; throws ConfigError. */
   checkSheet(config: C, geometry: Geometry): void;
   /** Places the initial sites and sets up Lloyd on the chosen engine. */
@@ -95,7 +93,7 @@ export interface SurfaceFamily<C extends AnyConfig, Geometry, Sites, Layer exten
   /** A layer's label image less its labels: its name, grid and (closed surfaces) texel positions. */
   labelFrame(geometry: Geometry, layer: Layer): Omit<LabelImage, 'labels'>;
   /** Neighbours, contact lengths (µm), areas and border contacts from a layer's label image. */
-  labelAdjacency(config: C, geometry: Geometry, layer: Layer, labels: Int32Array, count: number): LabelSurfaceAdjacency;
+  labelAdjacency(config: C, geometry: Geometry, layer: Layer, labels: Int32Array, count: number): SurfaceAdjacency;
   /** The shortest contact (µm) a method counts on each layer and the value reported, or null: every contact counts. */
   minContactLengths(config: C, geometry: Geometry, layers: Layer[], method: 'labels' | 'exact'): { reported: number; perLayer: number[] } | null;
   /** The protocol's invalid cells beyond those touching an open end of the stack (lab: any validity layer), or null. */

@@ -3,7 +3,7 @@
  * Consumers never reach into src/gpu or each other; they take the pipeline, its context
  * factories and its result types from here.
  */
-export { runSheet, SheetRunner, seededKey, type RunCallbacks } from './runSheet';
+export { runSheet, SheetRunner, seededKey, type RunInputs, type RunOptions } from './runSheet';
 export { sweepSummary } from './sweepSummary';
 export {
   analysisCellRecordsOf,

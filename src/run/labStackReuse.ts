@@ -8,15 +8,14 @@
  * next instead of recomputed from the seeded surface, and each layer's summary (polygons, Lewis,
  * Aboav-Weaire) is computed once per valid set.
  *
- * Layers are recognized by identity (the same adjacency object: planarFamily keeps one per
- * seeded surface and grid). The carried state only moves forward: a stack that is not the
+ * Layers are recognized by identity (the same `neighbours` array of the adjacency record, which
+ * a relabelled copy shares: planarFamily keeps one record per seeded surface and grid). The carried state only moves forward: a stack that is not the
  * carried prefix plus more layers starts it again from its first surface. The state is kept per
  * first surface in a WeakMap, so it lives as long as the seeded surface's layers do.
  */
-import { addDifference, differenceSize, isCanonical, mean, newDifference } from '../core/analysis/sortedSets';
-import { analyzeLabStack, invalidOnAnySurface, neighbourSet, toCsr, type ScutoidAnalysis, type SurfaceAdjacency, type SurfaceSummary } from '../core/analysis';
-import { adjacencyCount, type AdjacencyInput } from '../core/analysis/adjacency';
-import { summarizeSurface } from '../core/analysis/scutoids';
+import { addDifference, differenceSize, isCanonical, newDifference } from '../core/analysis/sortedSets';
+import { analyzeLabStack, invalidOnAnySurface, neighbourSet, type ScutoidAnalysis, type SurfaceAdjacency, type SurfaceSummary } from '../core/analysis';
+import { cellArrays, summarizeCells, summarizeSurface } from '../core/analysis/scutoids';
 
 /** Neighbour sets of one surface as CSR: each cell's ids ascending, once, without the cell. */
 interface Sets {
@@ -26,8 +25,8 @@ interface Sets {
 
 interface Carried {
   readonly count: number;
-  /** Adjacency objects of the layers folded in, first surface first. */
-  readonly layers: AdjacencyInput[];
+  /** The layers folded in (their `neighbours` arrays), first surface first. */
+  readonly layers: Int32Array[];
   /** Neighbour sets of the first and of the last folded layer. */
   readonly first: Sets;
   last: Sets;
@@ -41,46 +40,45 @@ interface Carried {
   /** Side counts per folded layer. */
   readonly sides: Int32Array[];
   /** Per-surface summaries by adjacency object, for one valid set. */
-  readonly summaries: Map<AdjacencyInput, { areas: unknown; sides: unknown; excluded: Uint8Array; summary: SurfaceSummary }>;
+  readonly summaries: Map<Int32Array, { areas: unknown; sides: unknown; excluded: Uint8Array; summary: SurfaceSummary }>;
 }
 
-const carried = new WeakMap<AdjacencyInput, Carried>();
-const canonical = new WeakMap<AdjacencyInput, Sets>();
+const carried = new WeakMap<Int32Array, Carried>();
+const canonical = new WeakMap<Int32Array, Sets>();
 
 /** analyzeLabStack(stack, invalid), carrying the shared layers' sums between calls. */
 export function analyzeLabStackReusing(stack: SurfaceAdjacency[], invalid: Uint8Array): ScutoidAnalysis {
-  if (stack.length < 2 || stack.some((s) => s.count !== stack[0].count || adjacencyCount(s.adjacency) !== s.count)) return analyzeLabStack(stack, invalid);
+  if (stack.length < 2 || stack.some((s) => s.count !== stack[0].count || s.offsets.length !== s.count + 1)) return analyzeLabStack(stack, invalid);
   const count = stack[0].count;
   // The prefix every stack of the sweep shares: all surfaces but the last (its outer surface).
   const prefix = stack.length - 1;
-  let state = carried.get(stack[0].adjacency);
+  let state = carried.get(stack[0].neighbours);
   const matches =
-    state !== undefined && state.count === count && state.layers.length <= prefix && state.layers.every((layer, k) => layer === stack[k].adjacency);
+    state !== undefined && state.count === count && state.layers.length <= prefix && state.layers.every((layer, k) => layer === stack[k].neighbours);
   if (!state || !matches) {
     state = start(stack[0], count);
-    carried.set(stack[0].adjacency, state);
+    carried.set(stack[0].neighbours, state);
   }
   for (let k = state.layers.length; k < prefix; k++) fold(state, stack[k]);
   return finish(state, stack, invalid);
 }
 
-/** The surface's neighbour sets (neighbourSet of every cell), once per adjacency object. */
+/** The surface's neighbour sets (neighbourSet of every cell), once per record. */
 function setsOf(surface: SurfaceAdjacency): Sets {
-  const kept = canonical.get(surface.adjacency);
+  const kept = canonical.get(surface.neighbours);
   if (kept) return kept;
-  const csr = toCsr(surface.adjacency);
-  const count = csr.offsets.length - 1;
+  const count = surface.count;
   let sets: Sets;
-  if (isCanonical(csr)) sets = { offsets: csr.offsets, ids: csr.neighbours };
+  if (isCanonical(surface)) sets = { offsets: surface.offsets, ids: surface.neighbours };
   else {
-    const lists = Array.from({ length: count }, (_, i) => neighbourSet(csr, i));
+    const lists = Array.from({ length: count }, (_, i) => neighbourSet(surface, i));
     const offsets = new Int32Array(count + 1);
     for (let i = 0; i < count; i++) offsets[i + 1] = offsets[i] + lists[i].length;
     const ids = new Int32Array(offsets[count]);
     lists.forEach((list, i) => ids.set(list, offsets[i]));
     sets = { offsets, ids };
   }
-  canonical.set(surface.adjacency, sets);
+  canonical.set(surface.neighbours, sets);
   return sets;
 }
 
@@ -94,7 +92,7 @@ function start(surface: SurfaceAdjacency, count: number): Carried {
   const first = setsOf(surface);
   return {
     count,
-    layers: [surface.adjacency],
+    layers: [surface.neighbours],
     first,
     last: first,
     transitions: new Int32Array(count),
@@ -122,7 +120,7 @@ function fold(state: Carried, surface: SurfaceAdjacency): void {
     addDifference(b.ids, b0, b1, a.ids, a0, a1, state.won[i]);
   }
   state.last = b;
-  state.layers.push(surface.adjacency);
+  state.layers.push(surface.neighbours);
   state.sides.push(sidesOf(surface, b, state.count));
 }
 
@@ -135,12 +133,7 @@ function finish(state: Carried, stack: SurfaceAdjacency[], invalid: Uint8Array):
 
   const valid = new Uint8Array(count);
   for (let i = 0; i < count; i++) valid[i] = excluded[i] ? 0 : 1;
-  const won = new Int32Array(count);
-  const lost = new Int32Array(count);
-  const transitions = new Int32Array(count);
-  const neighbours3D = new Int32Array(count);
-  const changed = new Uint8Array(count);
-  const scutoid = new Uint8Array(count);
+  const { won, lost, transitions, neighbours3D, changed, scutoid } = cellArrays(count);
   const labWon = new Int32Array(count);
   const labLost = new Int32Array(count);
   for (let i = 0; i < count; i++) {
@@ -166,22 +159,7 @@ function finish(state: Carried, stack: SurfaceAdjacency[], invalid: Uint8Array):
   }
 
   let validCells = 0;
-  let scutoids = 0;
-  let ends = 0;
-  let sumT = 0;
-  let sumWon = 0;
-  let sumLost = 0;
-  let sum3D = 0;
-  for (let i = 0; i < count; i++) {
-    if (!valid[i]) continue;
-    validCells++;
-    scutoids += scutoid[i];
-    if (won[i] + lost[i] > 0) ends++;
-    sumT += transitions[i];
-    sumWon += labWon[i];
-    sumLost += labLost[i];
-    sum3D += neighbours3D[i];
-  }
+  for (let i = 0; i < count; i++) validCells += valid[i];
 
   // Carried side counts, except where a surface brings its own (`sides`).
   const sides = stack.map((surface, k) =>
@@ -190,23 +168,8 @@ function finish(state: Carried, stack: SurfaceAdjacency[], invalid: Uint8Array):
   const perSurface = stack.map((surface, k) =>
     surfaceSummary(state, surface, k === stack.length - 1 ? last : k === 0 ? first : setsOf(surface), sides[k], excluded, valid, validCells),
   );
-  return {
-    cells: { valid, sides, won, lost, transitions, neighbours3D, changed, scutoid },
-    summary: {
-      cells: count,
-      validCells,
-      excludedCells: count - validCells,
-      surfaces: stack.length,
-      scutoids,
-      percentScutoids: mean(100 * scutoids, validCells),
-      percentScutoidsEnds: mean(100 * ends, validCells),
-      meanTransitions: mean(sumT, validCells),
-      meanWon: mean(sumWon, validCells),
-      meanLost: mean(sumLost, validCells),
-      meanNeighbours3D: mean(sum3D, validCells),
-      perSurface,
-    },
-  };
+  // Means of won and lost the lab's way (accumulated over the layers), as analyzeLabStack gives.
+  return summarizeCells({ valid, sides, won, lost, transitions, neighbours3D, changed, scutoid }, perSurface, { won: labWon, lost: labLost });
 }
 
 /**
@@ -224,12 +187,12 @@ function surfaceSummary(
   valid: Uint8Array,
   validCells: number,
 ): SurfaceSummary {
-  const kept = state.summaries.get(surface.adjacency);
+  const kept = state.summaries.get(surface.neighbours);
   if (kept && kept.areas === surface.areas && kept.sides === surface.sides && sameBytes(kept.excluded, excluded)) {
     return kept.summary.label === surface.label ? kept.summary : { ...kept.summary, label: surface.label };
   }
-  const summary = summarizeSurface({ ...surface, touchesBorder: excluded }, sets, sides, valid, validCells, {});
-  state.summaries.set(surface.adjacency, { areas: surface.areas, sides: surface.sides, excluded, summary });
+  const summary = summarizeSurface(surface, sets, sides, valid, validCells, {});
+  state.summaries.set(surface.neighbours, { areas: surface.areas, sides: surface.sides, excluded, summary });
   return summary;
 }
 

@@ -3,7 +3,6 @@ import {
   LAB_PROTOCOL,
   labelContactThresholdTexels,
   labMinBoundaryLength,
-  surfaceFromLabels,
   type LabProtocolSettings,
   type SurfaceAdjacency,
 } from '../core/analysis';
@@ -21,7 +20,7 @@ import type { GpuContext } from '../gpu/context';
 import { GpuEngine } from '../gpu/engine';
 import { gridLayout } from '../gpu/layout';
 import { GpuLloydRun, gridSites } from '../gpu/lloyd';
-import type { Labeller, RunCallbacks, SurfaceFamily } from './family';
+import type { Labeller, RunInputs, SurfaceFamily } from './family';
 import { relaxation } from './relax';
 
 /** A plane or tube, unrolled: its texel grid and the density per texel. */
@@ -43,10 +42,10 @@ type PlanarSites = Float32Array;
 export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, StackSurface, PlanarSites> = {
   name: 'planar grid',
 
-  async prepare(config, callbacks: RunCallbacks) {
+  async prepare(config, inputs: RunInputs) {
     const grid = makeGrid(config);
     checkFeasible(config, grid);
-    const { densityImage } = callbacks;
+    const { densityImage } = inputs;
     return { grid, density: densityField(config.density, grid, densityImage), ...(densityImage ? { densityImage } : {}) };
   },
 
@@ -100,9 +99,8 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
   // Contact lengths without the staircase bias, except under a pixel rule (the lab's 6 px),
   // which counts texel edges: there the staircase is the quantity the rule is about.
   labelAdjacency(config, _geometry, layer, labels, count) {
-    const adjacency = labelAdjacency(layer.grid, labels, count);
     const pixelRule = minContactPixelsOf(config.sheet) !== null;
-    return surfaceFromLabels(pixelRule ? { ...adjacency, lengths: adjacency.staircaseLengths } : adjacency, layer.name);
+    return labelAdjacency(layer.grid, labels, count, pixelRule ? 'staircase' : 'true', layer.name);
   },
 
   // A pixel rule (texel edges, e.g. the lab's 6 px around a 512 px tube) or a length in µm;
@@ -183,7 +181,7 @@ const FINAL_DIAGRAM = 'final diagram';
  * The exact adjacency of the seeded sites projected onto a layer's grid (`projected`: as
  * `project` moves them there), once per seeded surface and grid: the same grid is the same
  * surface in every stack and in the lab validity. exactSurface gives the numbers of
- * surfaceFromExact(exactVoronoi(...)) (tested cell by cell) without the per-cell records. The
+ * exactVoronoi(...).adjacency (tested cell by cell) without the per-cell records. The
  * seeded sites themselves (the seeded surface; a plane's other surface) read the exact Lloyd
  * run's final diagram, already built for them: nothing is triangulated twice.
  */

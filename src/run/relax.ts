@@ -2,7 +2,7 @@ import type { AnyConfig } from '../core/config';
 import type { GpuContext } from '../gpu/context';
 import type { IterationRecord, LloydIterations } from '../core/iterationRecord';
 import type { EngineChoice } from './enginePolicy';
-import type { Relaxation, RunCallbacks, StackLayer, SurfaceFamily } from './family';
+import type { Relaxation, RunOptions, StackLayer, SurfaceFamily } from './family';
 
 /** The converged seeded surface: what every other surface of the sheet is projected from. */
 export interface SeededSurface<Geometry, Sites> {
@@ -30,7 +30,7 @@ export async function relaxSeededSurface<C extends AnyConfig, G, S, L extends St
   config: C,
   context: GpuContext,
   engine: EngineChoice,
-  callbacks: RunCallbacks = {},
+  callbacks: RunOptions = {},
 ): Promise<SeededSurface<G, S>> {
   const start = performance.now();
   const geometry = await family.prepare(config, callbacks);

@@ -147,6 +147,6 @@ export interface SheetOutput {
   readonly result: SheetResult;
   /** [seeded, layers..., other]. */
   readonly labelImages: LabelImage[];
-  /** With RunCallbacks.cellTables: every per-cell list as columns (the result's lists are then empty). */
+  /** With RunOptions.cellTables: every per-cell list as columns (the result's lists are then empty). */
   readonly tables?: ResultCellTables;
 }

@@ -6,13 +6,13 @@ import { cubeMapFamily } from './cubeMapFamily';
 import { chooseEngine } from './enginePolicy';
 import type { IterationRecord } from '../gpu/lloyd';
 import type { EngineChoice } from './enginePolicy';
-import type { Relaxation, RunCallbacks, StackLayer, SurfaceFamily } from './family';
+import type { Relaxation, RunOptions, StackLayer, SurfaceFamily } from './family';
 import { planarFamily } from './planarFamily';
 import { relaxSeededSurface, throwIfAborted, yieldToEventLoop, type SeededSurface } from './relax';
 import type { SheetOutput } from './result';
 import { analyzeStack } from './stack';
 
-export type { RunCallbacks } from './family';
+export type { RunInputs, RunOptions } from './family';
 
 /**
  * The whole computation of one sheet, for every surface: validated config -> surface family
@@ -20,8 +20,8 @@ export type { RunCallbacks } from './family';
  * surface and Lloyd -> projection onto layers and the other surface -> labels -> adjacency ->
  * statistics -> the documented result. Same config, same result.
  */
-export function runSheet(config: AnyConfig, context: GpuContext, callbacks: RunCallbacks = {}): Promise<SheetOutput> {
-  return new SheetRunner(context).run(config, callbacks);
+export function runSheet(config: AnyConfig, context: GpuContext, options: RunOptions = {}): Promise<SheetOutput> {
+  return new SheetRunner(context).run(config, options);
 }
 
 /**
@@ -43,14 +43,14 @@ export class SheetRunner {
   constructor(private readonly context: GpuContext) {}
 
   /** The one place a run's surface family is decided. */
-  run(config: AnyConfig, callbacks: RunCallbacks = {}): Promise<SheetOutput> {
-    return isClosedConfig(config) ? this.runOn(cubeMapFamily, config, callbacks) : this.runOn(planarFamily, config, callbacks);
+  run(config: AnyConfig, options: RunOptions = {}): Promise<SheetOutput> {
+    return isClosedConfig(config) ? this.runOn(cubeMapFamily, config, options) : this.runOn(planarFamily, config, options);
   }
 
   private async runOn<C extends AnyConfig, G, S, L extends StackLayer, P>(
     family: SurfaceFamily<C, G, S, L, P>,
     config: C,
-    callbacks: RunCallbacks,
+    callbacks: RunOptions,
   ): Promise<SheetOutput> {
     const start = performance.now();
     // The engine may depend on sheet.* (auto takes the GPU where labels are asked for): a seeded
@@ -117,7 +117,7 @@ export class SheetRunner {
     family: SurfaceFamily<C, G, S, L, P>,
     config: C,
     engine: EngineChoice,
-    callbacks: RunCallbacks,
+    callbacks: RunOptions,
   ): Promise<SeededSurface<G, S>> {
     const key = `${engine.name}/${chainKey(config)}`;
     const target = config.lloyd.maxIterations;
@@ -170,7 +170,7 @@ class LloydChain<G, S> {
     config: C,
     context: GpuContext,
     engine: EngineChoice,
-    callbacks: RunCallbacks,
+    callbacks: RunOptions,
   ): Promise<LloydChain<G, S>> {
     const start = performance.now();
     const geometry = await family.prepare(config, callbacks);
@@ -187,13 +187,13 @@ class LloydChain<G, S> {
   }
 
   /** Serialized: two runs of one SheetRunner never step the same Lloyd run at once. */
-  advance(target: number, callbacks: RunCallbacks): Promise<SeededSurface<G, S>> {
+  advance(target: number, callbacks: RunOptions): Promise<SeededSurface<G, S>> {
     const next = this.busy.then(() => this.advanceNow(target, callbacks));
     this.busy = next.catch(() => {});
     return next;
   }
 
-  private async advanceNow(target: number, callbacks: RunCallbacks): Promise<SeededSurface<G, S>> {
+  private async advanceNow(target: number, callbacks: RunOptions): Promise<SeededSurface<G, S>> {
     const { relaxation } = this;
     if (relaxation.iterations.length > target) throw new Error(`LloydChain: already past ${target} iterations`);
     const start = performance.now();

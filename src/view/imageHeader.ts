@@ -9,6 +9,8 @@
  * its EOI marker). Anything else is refused, naming the formats that are accepted.
  */
 
+import { hasPngSignature, readPngIhdr } from '../core/pngHeader';
+
 /** Pixels a density image may have in the page: 4096 x 4096 (decoding takes ~12 bytes a pixel). */
 export const PAGE_MAX_IMAGE_PIXELS = 4096 * 4096;
 
@@ -23,8 +25,6 @@ export interface ImageSize {
   height: number;
 }
 
-const PNG_SIGNATURE = [0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a];
-
 /**
  * The image's size from its header, checked against `maxPixels` and for completeness.
  * `what` names the image in errors ("density.src: density image x.png").
@@ -32,7 +32,7 @@ const PNG_SIGNATURE = [0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a];
 export function readImageSize(bytes: Uint8Array, what: string, maxPixels = PAGE_MAX_IMAGE_PIXELS): ImageSize {
   if (bytes.length === 0) throw new ImageHeaderError(`${what}: the file is empty; give a PNG or JPEG image`);
   let size: ImageSize;
-  if (bytes.length >= 8 && PNG_SIGNATURE.every((b, k) => bytes[k] === b)) size = pngSize(bytes, what);
+  if (hasPngSignature(bytes)) size = pngSize(bytes, what);
   else if (bytes.length >= 3 && bytes[0] === 0xff && bytes[1] === 0xd8 && bytes[2] === 0xff) size = jpegSize(bytes, what);
   else throw new ImageHeaderError(`${what}: not a PNG or JPEG image; convert it to PNG`);
   if (size.width === 0 || size.height === 0) throw new ImageHeaderError(`${what}: declares ${size.width} x ${size.height} pixels; re-export it`);
@@ -48,10 +48,9 @@ export function readImageSize(bytes: Uint8Array, what: string, maxPixels = PAGE_
 function pngSize(bytes: Uint8Array, what: string): ImageSize {
   const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
   const typeAt = (at: number) => String.fromCharCode(bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]);
-  if (bytes.length < 33 || view.getUint32(8) !== 13 || typeAt(12) !== 'IHDR') {
-    throw new ImageHeaderError(`${what}: truncated or corrupt PNG (no IHDR header); re-export it`);
-  }
-  const size: ImageSize = { format: 'png', width: view.getUint32(16), height: view.getUint32(20) };
+  const header = readPngIhdr(bytes);
+  if ('problem' in header) throw new ImageHeaderError(`${what}: ${header.problem}; re-export it`);
+  const size: ImageSize = { format: 'png', width: header.width, height: header.height };
   let at = 8;
   let sawData = false;
   while (at + 8 <= bytes.length) {

@@ -20,7 +20,7 @@
 import type { AnyConfig } from '../core/config';
 import type { GrayImage } from '../core/density';
 import { createCanvasContext, WorkerSheetRunner, type ComputeSite, type GpuContext, type IterationRecord, type MeshFile, type SheetOutput } from '../run';
-import type { WorkerRunCallbacks } from '../run/worker/workerRunner';
+import type { WorkerRunOptions } from '../run/worker/workerRunner';
 import { decodeGrayImage } from './densityImage';
 import { meshFileFor } from './meshFiles';
 import { rememberPictures, type PictureRequest } from './workerPictures';
@@ -141,7 +141,7 @@ export async function runInPage(request: RunRequest): Promise<SheetOutput> {
   const runner = pipeline();
   let presented: unknown;
   const pictures = request.pictures ?? { highlightScutoids: true, selected: -1 };
-  const callbacks: WorkerRunCallbacks = { signal, onIteration, ...inputs, ...(pictures ? { present: pictures, onPresented: (p) => (presented = p) } : {}) };
+  const callbacks: WorkerRunOptions = { signal, onIteration, ...inputs, ...(pictures ? { present: pictures, onPresented: (p) => (presented = p) } : {}) };
   try {
     const output = await runner.run(config, callbacks);
     rememberPictures(output, presented);

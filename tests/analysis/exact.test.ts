@@ -25,9 +25,9 @@ describe('exactVoronoi', () => {
     const v = exactVoronoi(g, sites);
 
     it(`${name}: areas sum to the physical domain area`, () => {
-      const total = v.areas.reduce((a, b) => a + b, 0);
+      const total = v.adjacency.areas.reduce((a, b) => a + b, 0);
       expect(total).toBeCloseTo(g.width * g.texelX * g.height * g.texelY, 6);
-      for (const a of v.areas) expect(a).toBeGreaterThan(0);
+      for (const a of v.adjacency.areas) expect(a).toBeGreaterThan(0);
     });
 
     it(`${name}: each centroid lies inside its own cell and inside the domain`, () => {
@@ -73,7 +73,7 @@ describe('exactVoronoi', () => {
       expect(checked).toBeGreaterThan(0.99 * g.width * g.height);
       // pixel-count areas approximate the exact areas (boundary texels only differ)
       let err = 0;
-      for (let s = 0; s < v.count; s++) err += Math.abs(counts[s] - v.areas[s]);
+      for (let s = 0; s < v.count; s++) err += Math.abs(counts[s] - v.adjacency.areas[s]);
       expect(err / (g.width * g.height * g.texelX * g.texelY)).toBeLessThan(0.05);
       // neighbours through a long shared edge are pixel neighbours (4-connectivity), and vice versa mostly
       const pixelPairs = new Set<string>();
@@ -106,12 +106,12 @@ describe('exactVoronoi', () => {
   it('hand case: two sites on a plane split it in halves', () => {
     const g = grid(10, 10, false, false, 2, 1);
     const v = exactVoronoi(g, new Float32Array([2.5, 5, 7.5, 5]));
-    expect(v.areas[0]).toBeCloseTo(100);
-    expect(v.areas[1]).toBeCloseTo(100);
+    expect(v.adjacency.areas[0]).toBeCloseTo(100);
+    expect(v.adjacency.areas[1]).toBeCloseTo(100);
     expect(Array.from(v.cells[0].neighbours)).toEqual([1]);
     expect(v.cells[0].lengths[0]).toBeCloseTo(10); // vertical bisector x = 5, 10 texels of 1 µm
-    expect(v.cells[0].borderSides).toBe(BORDER_Y0 | BORDER_Y1 | BORDER_X0);
-    expect(v.cells[1].borderSides).toBe(BORDER_Y0 | BORDER_Y1 | BORDER_X1);
+    expect(v.cells[0].border).toBe(BORDER_Y0 | BORDER_Y1 | BORDER_X0);
+    expect(v.cells[1].border).toBe(BORDER_Y0 | BORDER_Y1 | BORDER_X1);
     expect(v.cells[0].centroidX).toBeCloseTo(2.5);
     expect(v.cells[0].centroidY).toBeCloseTo(5);
   });
@@ -122,8 +122,8 @@ describe('exactVoronoi', () => {
     // sites at texel (2, 2) and (4, 6): physical (4, 2) and (8, 6); bisector: x + y = 10 (µm)
     const v = exactVoronoi(g, new Float32Array([2, 2, 4, 6]));
     // cell 0 is {x_um + y_um < 10} within [0,20]x[0,10]: triangle area 50 µm²
-    expect(v.areas[0]).toBeCloseTo(50);
-    expect(v.areas[1]).toBeCloseTo(150);
+    expect(v.adjacency.areas[0]).toBeCloseTo(50);
+    expect(v.adjacency.areas[1]).toBeCloseTo(150);
     expect(v.cells[0].lengths[0]).toBeCloseTo(10 * Math.SQRT2);
   });
 
@@ -131,11 +131,11 @@ describe('exactVoronoi', () => {
     const g = grid(20, 10, true, false);
     const v = exactVoronoi(g, new Float32Array([1, 5, 11, 5]));
     // bisectors at x = 6 and x = 16 (= -4): both cells 10 wide, two shared edges each 10 long
-    expect(v.areas[0]).toBeCloseTo(100);
+    expect(v.adjacency.areas[0]).toBeCloseTo(100);
     expect(Array.from(v.cells[0].neighbours)).toEqual([1]);
     expect(v.cells[0].lengths[0]).toBeCloseTo(20);
     expect(v.cells[0].edgeCount).toBe(2);
-    expect(v.cells[0].borderSides).toBe(BORDER_Y0 | BORDER_Y1);
+    expect(v.cells[0].border).toBe(BORDER_Y0 | BORDER_Y1);
     const xs = Array.from(v.cells[0].polygon.filter((_, k) => k % 2 === 0));
     expect(Math.min(...xs)).toBeCloseTo(-4); // unwrapped around the site
     expect(Math.max(...xs)).toBeCloseTo(6);
@@ -143,20 +143,20 @@ describe('exactVoronoi', () => {
 
   it('a domain so small that a cell touches its own copy reports self contact, not a self neighbour', () => {
     const tube = exactVoronoi(grid(8, 10, true, false), new Float32Array([3, 4]));
-    expect(tube.areas[0]).toBeCloseTo(80);
+    expect(tube.adjacency.areas[0]).toBeCloseTo(80);
     expect(tube.cells[0].neighbours.length).toBe(0);
     expect(tube.cells[0].selfContact).toBeCloseTo(20);
-    expect(tube.cells[0].touchesBorder).toBe(true);
+    expect(tube.cells[0].border).not.toBe(0);
     const torus = exactVoronoi(grid(8, 6, true, true), new Float32Array([3, 4, 7, 1]));
-    expect(torus.areas[0] + torus.areas[1]).toBeCloseTo(48);
-    expect(torus.touchesBorder[0]).toBe(0);
+    expect(torus.adjacency.areas[0] + torus.adjacency.areas[1]).toBeCloseTo(48);
+    expect(torus.adjacency.border[0]).toBe(0);
     expect(Array.from(torus.cells[0].neighbours)).toEqual([1]);
   });
 
   it('gives a duplicated site an empty cell and keeps the area sum', () => {
     const g = grid(10, 10, false, false);
     const v = exactVoronoi(g, new Float32Array([2, 2, 2, 2, 7, 7]));
-    expect(v.areas[0] + v.areas[1] + v.areas[2]).toBeCloseTo(100);
-    expect(Math.min(v.areas[0], v.areas[1])).toBe(0);
+    expect(v.adjacency.areas[0] + v.adjacency.areas[1] + v.adjacency.areas[2]).toBeCloseTo(100);
+    expect(Math.min(v.adjacency.areas[0], v.adjacency.areas[1])).toBe(0);
   });
 });

@@ -2,18 +2,17 @@ import { describe, expect, it } from 'vitest';
 import type { Grid } from '../../src/core/grid';
 import { exactVoronoi } from '../../src/core/exact';
 import {
+  adjacencyFromLists,
   analyzeSurfaces,
-  csrFromLists,
-  filterShortContacts,
   isSymmetric,
   labMinBoundaryLength,
   neighbourSet,
   SIDE_CLASSES,
   sideClassIndex,
-  surfaceFromExact,
   withMinBoundaryLength,
   type SurfaceAdjacency,
 } from '../../src/core/analysis';
+import { BORDER_Y_START } from '../../src/core/border';
 import { randomSites } from './helpers';
 
 /** Symmetric adjacency lists from an edge list. */
@@ -38,13 +37,11 @@ const base: [number, number][] = [
   [4, 5],
 ];
 const areas = Float64Array.from([1, 2, 3, 4, 5, 6]);
-const surf = (edges: [number, number][], border: number[], label: string): SurfaceAdjacency => ({
-  count: 6,
-  adjacency: fromEdges(6, edges),
-  areas,
-  touchesBorder: Uint8Array.from([0, 1, 2, 3, 4, 5].map((i) => (border.includes(i) ? 1 : 0))),
-  label,
-});
+const surf = (edges: [number, number][], border: number[], label: string): SurfaceAdjacency => {
+  const lists = fromEdges(6, edges);
+  const lengths = lists.map((list) => list.map(() => 1));
+  return adjacencyFromLists(lists, lengths, areas, Uint8Array.from([0, 1, 2, 3, 4, 5].map((i) => (border.includes(i) ? BORDER_Y_START : 0))), label);
+};
 const S0 = surf(base, [1], 'first'); // cell 1 touches an open end here only
 const S1 = surf([...base, [0, 4]], [], 'layer'); // 0-4 appear in the layer only
 const S2 = surf([...base, [0, 5]], [5], 'last'); // 0-5 appear on the last surface; 5 touches an end here only
@@ -120,12 +117,18 @@ describe('scutoid statistics on a hand-written adjacency', () => {
     expect(valid.aboavWeaire[1].meanNeighbourSides).toBeCloseTo(8 / 3);
   });
 
-  it('accepts CSR and lists alike and ignores self entries and duplicates', () => {
+  it('ignores self entries and duplicates in a row', () => {
     const lists = fromEdges(6, base);
     lists[0].push(0, 1); // self and duplicate
-    const csr = csrFromLists(lists);
-    expect(Array.from(neighbourSet(csr, 0))).toEqual([1, 2, 3]);
-    const a = analyzeSurfaces([{ ...S0, adjacency: csr }, S2]).summary;
+    const messy = adjacencyFromLists(
+      lists,
+      lists.map((list) => list.map(() => 1)),
+      S0.areas,
+      S0.border,
+      S0.label,
+    );
+    expect(Array.from(neighbourSet(messy, 0))).toEqual([1, 2, 3]);
+    const a = analyzeSurfaces([messy, S2]).summary;
     const b = analyzeSurfaces([S0, S2]).summary;
     expect(a).toEqual(b);
   });
@@ -153,7 +156,7 @@ describe('scutoid statistics on exact diagrams', () => {
 
   it('the same sites on both surfaces of a plane give no scutoids', () => {
     const v = exactVoronoi(plane, randomSites(plane, 150, 3, 4));
-    const { summary, cells } = analyzeSurfaces([surfaceFromExact(v), surfaceFromExact(v)]);
+    const { summary, cells } = analyzeSurfaces([v.adjacency, v.adjacency]);
     expect(summary.percentScutoids).toBe(0);
     expect(summary.meanTransitions).toBe(0);
     expect(summary.validCells).toBeGreaterThan(100);
@@ -169,15 +172,14 @@ describe('scutoid statistics on exact diagrams', () => {
   it('filters short contacts symmetrically at the given length', () => {
     const v = exactVoronoi(plane, randomSites(plane, 150, 5, 4));
     const threshold = 6;
-    const f = filterShortContacts(v.adjacency, threshold);
+    const f = withMinBoundaryLength(v.adjacency, threshold);
     expect(isSymmetric(v.adjacency)).toBe(true);
     expect(isSymmetric(f)).toBe(true);
-    const short = Array.from(v.adjacency.lengths!).filter((l) => l < threshold).length;
+    const short = Array.from(v.adjacency.lengths).filter((l) => l < threshold).length;
     expect(short).toBeGreaterThan(0);
     expect(f.neighbours.length).toBe(v.adjacency.neighbours.length - short);
-    for (const l of f.lengths!) expect(l).toBeGreaterThanOrEqual(threshold);
-    const s = withMinBoundaryLength(surfaceFromExact(v), threshold);
-    const { summary } = analyzeSurfaces([surfaceFromExact(v), s]);
+    for (const l of f.lengths) expect(l).toBeGreaterThanOrEqual(threshold);
+    const { summary } = analyzeSurfaces([v.adjacency, f]);
     expect(summary.scutoids).toBeGreaterThan(0); // lost short contacts show up as exchanges
     expect(summary.meanWon).toBe(0);
   });

@@ -7,7 +7,7 @@
 import { mkdirSync, mkdtempSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { PNG } from 'pngjs';
+import { encode } from 'fast-png';
 import { describe, expect, it } from 'vitest';
 import { parseArgs } from '../../src/cli/args';
 import { errorLine, exitCodeFor, InputError } from '../../src/cli/errors';
@@ -169,11 +169,7 @@ describe('bad input corpus: meshes and images', () => {
   const sources = new Sources({ baseDir: dir, allowNetwork: false });
   const mesh = (name: string) => validateAnyConfig({ surface: { kind: 'mesh', src: join(dir, name) }, cells: 24 });
   const image = (name: string) => validateAnyConfig({ ...tube, density: { kind: 'image', src: join(dir, name) } });
-  const png = (w: number, h: number) => {
-    const p = new PNG({ width: w, height: h });
-    p.data.fill(200);
-    return PNG.sync.write(p);
-  };
+  const png = (w: number, h: number) => Buffer.from(encode({ width: w, height: h, data: new Uint8Array(4 * w * h).fill(200), depth: 8, channels: 4 }));
   const meshCases: [string, string, string | Buffer, RegExp][] = [
     ['an empty OBJ', 'empty.obj', '', /empty\.obj/],
     ['an OBJ with a NaN vertex', 'nan.obj', 'v 0 0 0\nv 1 0 0\nv NaN 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n', /nan\.obj/],

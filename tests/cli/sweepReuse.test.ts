@@ -1,7 +1,7 @@
 import { afterAll, describe, expect, it } from 'vitest';
 import { validateAnyConfig, type AnyConfig } from '../../src/core/config';
 import { createHeadlessContext } from '../../src/node/headless';
-import { analyzeLabStack, invalidOnAnySurface, type SurfaceAdjacency } from '../../src/core/analysis';
+import { adjacencyFromLists, analyzeLabStack, invalidOnAnySurface, type SurfaceAdjacency } from '../../src/core/analysis';
 import { exactSurface } from '../../src/core/exactEngine';
 import type { Grid } from '../../src/core/grid';
 import { placeSites } from '../../src/core/sites';
@@ -31,7 +31,7 @@ const config = (maxIterations: number, surfaceRatio: number, extra: Record<strin
 function comparable(result: SheetResult): unknown {
   const { timings: _timings, ...rest } = result;
   return JSON.parse(
-    JSON.stringify({ ...rest, lloyd: { ...rest.lloyd, iterations: rest.lloyd.iterations.map(({ jumpFloodMs: _j, centroidMs: _c, ...r }) => r) } }),
+    JSON.stringify({ ...rest, lloyd: { ...rest.lloyd, iterations: rest.lloyd.iterations.map(({ diagramMs: _d, centroidMs: _c, ...r }) => r) } }),
   );
 }
 
@@ -109,14 +109,21 @@ describe('analyzeLabStackReusing', () => {
     });
     // Neighbour lists that are not ascending (labels adjacency): reversed, one repeated, the cell itself.
     const messy = (surface: SurfaceAdjacency): SurfaceAdjacency => {
-      const csr = surface.adjacency as { offsets: Int32Array; neighbours: Int32Array };
+      const csr = surface;
       const lists = Array.from({ length: surface.count }, (_, i) => {
         const list = Array.from(csr.neighbours.subarray(csr.offsets[i], csr.offsets[i + 1])).reverse();
         return list.length > 0 ? [...list, list[0], i] : list;
       });
       // and side counts of its own on some surfaces
       const sides = surface.label === 'layer 2' || surface.label === 'basal' ? Int32Array.from(lists, (l) => l.length) : undefined;
-      return { ...surface, adjacency: lists, ...(sides ? { sides } : {}) };
+      const messed = adjacencyFromLists(
+        lists,
+        lists.map((list) => list.map(() => 1)),
+        surface.areas,
+        surface.border,
+        surface.label,
+      );
+      return { ...messed, ...(sides ? { sides } : {}) };
     };
     const messyLayers = layers.map(messy);
     for (const k of [3, 6, 2, 12]) {

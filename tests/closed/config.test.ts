@@ -53,7 +53,7 @@ describe('closed surface config', () => {
   });
 });
 
-describe('directionTexel (allocation-free) matches directionToTexel', () => {
+describe('directionTexel (allocation-free) and directionToTexel follow the GL cube-map face rule', () => {
   it('on random directions and on cube edges and corners', async () => {
     const { directionTexel } = await import('../../src/core/closed/projector');
     const { directionTexelReference } = await import('../oracles/cubeMap');
@@ -68,7 +68,15 @@ describe('directionTexel (allocation-free) matches directionToTexel', () => {
       [-1, -1, -1],
     ];
     for (let k = 0; k < 2000; k++) dirs.push([random.next() - 0.5, random.next() - 0.5, random.next() - 0.5]);
-    for (const [x, y, z] of dirs) for (const n of [7, 64]) expect(directionTexel(x, y, z, n)).toBe(directionTexelReference(x, y, z, n));
+    const { directionToTexel, texelIndex } = await import('../../src/core/cubemap/cubemap');
+    for (const [x, y, z] of dirs) {
+      for (const n of [7, 64]) {
+        const expected = directionTexelReference(x, y, z, n);
+        expect(directionTexel(x, y, z, n)).toBe(expected);
+        const t = directionToTexel([x, y, z], n);
+        expect(texelIndex(t.face, t.i, t.j, n)).toBe(expected);
+      }
+    }
   });
 });
 

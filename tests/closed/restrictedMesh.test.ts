@@ -3,18 +3,18 @@ import { isSymmetric } from '../../src/core/analysis/adjacency';
 import { offsetClosedSurface } from '../../src/core/closed/closedOffset';
 import { randomSequentialSites } from '../../src/core/closed/randomSequentialSites';
 import { restrictedVoronoi } from '../../src/core/closed/restrictedVoronoi';
-import type { MeshSurface } from '../../src/core/closed/restrictedSurface';
+import type { MeshGeometry } from '../../src/core/closed/restrictedSurface';
 import { surfaceArea } from '../../src/core/mesh/types';
 import { loadShipped } from '../mesh/helpers';
 import { compareNeighbourSets, meshContactsReference, neighbourLists } from './restrictedReference';
 
 /** A shipped mesh scaled to µm. */
-function shipped(file: string, scale: number): MeshSurface {
+function shipped(file: string, scale: number): MeshGeometry {
   const mesh = loadShipped(file);
   return { kind: 'mesh', positions: Float64Array.from(mesh.positions, (v) => v * scale), indices: mesh.indices };
 }
 
-function check(name: string, surface: MeshSurface, sites: Float64Array, count: number) {
+function check(name: string, surface: MeshGeometry, sites: Float64Array, count: number) {
   const rvd = restrictedVoronoi(surface, sites, count);
   const ref = meshContactsReference(surface.positions, surface.indices, sites, count);
   const cmp = compareNeighbourSets(rvd.adjacency, neighbourLists(ref, 1e-6));
@@ -30,7 +30,7 @@ function check(name: string, surface: MeshSurface, sites: Float64Array, count: n
     }
   }
   const area = surfaceArea({ positions: Float32Array.from(surface.positions), indices: Uint32Array.from(surface.indices) });
-  const sum = rvd.areas.reduce((s, v) => s + v, 0);
+  const sum = rvd.adjacency.areas.reduce((s, v) => s + v, 0);
   console.log(
     `${name}: ${surface.indices.length / 3} triangles, ${count} cells: ${cmp.same}/${count} neighbour sets equal the dense per-triangle reference (${(100 * cmp.fraction).toFixed(2)} %), differ ${JSON.stringify(cmp.differ)}; max |Δlength| ${maxLength.toExponential(2)} µm over ${pairs / 2} contacts; Σ areas / area - 1 = ${(sum / rvd.surfaceArea - 1).toExponential(2)}; ${rvd.stats.ms.toFixed(0)} ms ${JSON.stringify(rvd.stats)}`,
   );
@@ -54,7 +54,7 @@ describe('restricted Voronoi on a triangle mesh', () => {
     const seeded = randomSequentialSites(surface, 200, 5, 9);
     check('egg-chamber.ply ×40', surface, seeded.positions, 200);
     const outer = offsetClosedSurface(surface, seeded.positions, seeded.normals, 200, 10, 'normal');
-    const plain = check('egg-chamber.ply ×40, +10 µm', outer.surface as MeshSurface, outer.sites, 200);
+    const plain = check('egg-chamber.ply ×40, +10 µm', outer.surface as MeshGeometry, outer.sites, 200);
     // Start triangles from the basal diagram (same topology) give the same diagram.
     const basal = restrictedVoronoi(surface, seeded.positions, 200);
     const hinted = restrictedVoronoi(outer.surface, outer.sites, 200, { startTriangles: basal.startTriangles });

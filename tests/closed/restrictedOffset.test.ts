@@ -1,10 +1,10 @@
 import { describe, expect, it } from 'vitest';
-import { analyzeSurfaces, withMinBoundaryLength } from '../../src/core/analysis/scutoids';
+import { analyzeSurfaces, withMinBoundaryLength } from '../../src/core/analysis';
 import { offsetClosedSurface } from '../../src/core/closed/closedOffset';
 import { ellipsoidArea } from '../../src/core/closed/conicArc';
 import { randomSequentialSites } from '../../src/core/closed/randomSequentialSites';
 import { restrictedVoronoi } from '../../src/core/closed/restrictedVoronoi';
-import type { MeshSurface } from '../../src/core/closed/restrictedSurface';
+import type { MeshGeometry } from '../../src/core/closed/restrictedSurface';
 import { closestPointOnEllipsoid } from '../../src/core/cubemap/sample';
 import { vertexNormals } from '../../src/core/mesh/types';
 import { createRandom } from '../../src/core/random';
@@ -59,7 +59,7 @@ describe('offset surfaces of the stack', () => {
     expect(worstNormal).toBeLessThan(1e-8);
     // And the diagram on it is the analytic one: areas add up to the outer ellipsoid's.
     const rvd = restrictedVoronoi(outer.surface, outer.sites, count);
-    expect(Math.abs(rvd.areas.reduce((s, v) => s + v, 0) / ellipsoidArea(a + t, b + t, c + t) - 1)).toBeLessThan(1e-9);
+    expect(Math.abs(rvd.adjacency.areas.reduce((s, v) => s + v, 0) / ellipsoidArea(a + t, b + t, c + t) - 1)).toBeLessThan(1e-9);
   });
 
   it('"normal" on a sphere is the concentric sphere; on a mesh the vertices move along the area-weighted vertex normals', () => {
@@ -68,7 +68,7 @@ describe('offset surfaces of the stack', () => {
     expect(Array.from(sphere.sites)).toEqual([25, 0, 0]);
     const mesh = loadShipped('organoid.ply');
     const normals = vertexNormals(mesh); // today's rule (geometry image normals)
-    const moved = offsetClosedSurface({ kind: 'mesh', positions: mesh.positions, indices: mesh.indices }, [], [], 0, 0.1, 'normal').surface as MeshSurface;
+    const moved = offsetClosedSurface({ kind: 'mesh', positions: mesh.positions, indices: mesh.indices }, [], [], 0, 0.1, 'normal').surface as MeshGeometry;
     let worst = 0;
     for (let k = 0; k < mesh.positions.length; k++) worst = Math.max(worst, Math.abs(moved.positions[k] - (mesh.positions[k] + 0.1 * normals[k])));
     expect(worst).toBeLessThan(1e-6);
@@ -86,7 +86,7 @@ describe('offset surfaces of the stack', () => {
     const basal = randomSequentialSites({ kind: 'ellipsoid', a, b, c }, count, 4, 6);
     const outer = offsetClosedSurface({ kind: 'ellipsoid', a, b, c }, basal.positions, basal.normals, count, t, 'normal', { maxDeviation: 0.01 });
     expect(outer.representation).toBe('triangulated');
-    const m = outer.surface as MeshSurface;
+    const m = outer.surface as MeshGeometry;
     // Distance to the base ellipsoid is t at the vertices (exact) and within t ± deviation at
     // the triangles' centroids and edge midpoints.
     let worstVertex = 0,
@@ -114,7 +114,7 @@ describe('offset surfaces of the stack', () => {
     expect(worstInside).toBeLessThanOrEqual(outer.deviation + 1e-9);
     expect(outer.deviation).toBeLessThanOrEqual(0.01);
     const rvd = restrictedVoronoi(outer.surface, outer.sites, count);
-    expect(Array.from(rvd.areas).every((v) => v > 0)).toBe(true);
+    expect(Array.from(rvd.adjacency.areas).every((v) => v > 0)).toBe(true);
     expect(() => offsetClosedSurface({ kind: 'ellipsoid', a, b, c }, basal.positions, basal.normals, count, -20, 'normal')).toThrow(
       /^sheet\.thickness: .*smallest radius of curvature/,
     );
@@ -126,11 +126,14 @@ describe('the diagrams of a stack feed the analysis', () => {
     const count = 200;
     const basal = randomSequentialSites({ kind: 'ellipsoid', a: 40, b: 40, c: 40 }, count, 3, 8);
     const stack = [0, 10, 20].map((t) => offsetClosedSurface({ kind: 'ellipsoid', a: 40, b: 40, c: 40 }, basal.positions, basal.normals, count, t, 'normal'));
-    const surfaces = stack.map((s) => restrictedVoronoi(s.surface, s.sites, count));
+    const surfaces = stack.map((s) => restrictedVoronoi(s.surface, s.sites, count).adjacency);
     expect(analyzeSurfaces(surfaces).summary.percentScutoids).toBe(0);
     const e = randomSequentialSites({ kind: 'ellipsoid', a: 90, b: 45, c: 45 }, count, 6, 8);
     const outer = offsetClosedSurface({ kind: 'ellipsoid', a: 90, b: 45, c: 45 }, e.positions, e.normals, count, 20, 'axes');
-    const pair = [restrictedVoronoi({ kind: 'ellipsoid', a: 90, b: 45, c: 45 }, e.positions, count), restrictedVoronoi(outer.surface, outer.sites, count)];
+    const pair = [
+      restrictedVoronoi({ kind: 'ellipsoid', a: 90, b: 45, c: 45 }, e.positions, count).adjacency,
+      restrictedVoronoi(outer.surface, outer.sites, count).adjacency,
+    ];
     const min = 0.5;
     const summary = analyzeSurfaces(pair.map((s) => withMinBoundaryLength(s, min))).summary;
     console.log(`ellipsoid 90:45:45, 200 RSA cells, "axes" +20 µm, contacts ≥ ${min} µm: ${summary.percentScutoids.toFixed(1)} % scutoids`);

@@ -1,7 +1,7 @@
 import { mkdtempSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { PNG } from 'pngjs';
+import { encode } from 'fast-png';
 import { describe, expect, it } from 'vitest';
 import type { DensitySpec } from '../../src/core/config';
 import { densityField, type GrayImage } from '../../src/core/density';
@@ -139,7 +139,6 @@ describe('loadGrayImage', () => {
   const dir = mkdtempSync(join(tmpdir(), 'tissue-sheet-image-'));
 
   it('reads a PNG with Rec. 709 luminance, ignoring alpha', () => {
-    const png = new PNG({ width: 3, height: 2 });
     const pixels = [
       [255, 255, 255, 0],
       [0, 0, 0, 255],
@@ -148,9 +147,8 @@ describe('loadGrayImage', () => {
       [0, 0, 255, 255],
       [100, 150, 200, 255],
     ];
-    pixels.forEach((p, k) => png.data.set(p, 4 * k));
     const path = join(dir, 'test.png');
-    writeFileSync(path, PNG.sync.write(png));
+    writeFileSync(path, encode({ width: 3, height: 2, data: Uint8Array.from(pixels.flat()), depth: 8, channels: 4 }));
     const image = loadGrayImage(path);
     expect([image.width, image.height]).toEqual([3, 2]);
     pixels.forEach(([r, g, b], k) => {
@@ -158,6 +156,40 @@ describe('loadGrayImage', () => {
     });
     expect(image.luminance[0]).toBeLessThanOrEqual(1);
     expect(image.luminance[0]).toBeCloseTo(1, 6);
+  });
+
+  it('reads every sample layout as its grey level: 16-bit grey, grey with alpha, palette, 2-bit grey', () => {
+    const cases: [string, Uint8Array, number[]][] = [
+      ['16-bit grey', encode({ width: 3, height: 1, data: Uint16Array.from([0, 32768, 65535]), depth: 16, channels: 1 }), [0, 32768 / 65535, 1]],
+      ['grey + alpha', encode({ width: 2, height: 1, data: Uint8Array.from([51, 0, 204, 255]), depth: 8, channels: 2 }), [0.2, 0.8]],
+      [
+        'palette',
+        encode({
+          width: 3,
+          height: 1,
+          data: Uint8Array.from([2, 0, 1]),
+          depth: 8,
+          channels: 1,
+          palette: [
+            [255, 0, 0],
+            [0, 255, 0],
+            [10, 20, 30],
+          ],
+        }),
+        [(0.2126 * 10 + 0.7152 * 20 + 0.0722 * 30) / 255, 0.2126, 0.7152],
+      ],
+      // 5 pixels of 2 bits in one row (0b00 01 10 11, then 0b01 and padding): levels 0..3 of 3.
+      [
+        '2-bit grey',
+        encode({ width: 5, height: 2, data: Uint8Array.from([0b00011011, 0b01000000, 0b11111111, 0b11000000]), depth: 2, channels: 1 }),
+        [0, 1 / 3, 2 / 3, 1, 1 / 3, 1, 1, 1, 1, 1],
+      ],
+    ];
+    for (const [name, bytes, expected] of cases) {
+      const image = decodeGrayPng(bytes, name);
+      expect(Array.from(image.luminance).length, name).toBe(expected.length);
+      expected.forEach((v, k) => expect(image.luminance[k], `${name} pixel ${k}`).toBeCloseTo(v, 5));
+    }
   });
 
   it('refuses non-PNG and missing files with a clear message', () => {

@@ -51,7 +51,10 @@ function measure(periodicX: boolean, width: number, seed: number) {
     sites[2 * k + 1] = um[2 * k + 1] / grid.texelY;
   }
   const exact = exactVoronoi(grid, sites).adjacency as { offsets: Int32Array; neighbours: Int32Array; lengths: Float64Array };
-  const labels = labelAdjacency(grid, bruteForceLabels(grid, sites), count);
+  const nearest = bruteForceLabels(grid, sites);
+  const staircaseLabels = labelAdjacency(grid, nearest, count, 'staircase');
+  const labels = { ...labelAdjacency(grid, nearest, count), staircaseLengths: staircaseLabels.lengths };
+  expect(staircaseLabels.neighbours).toEqual(labels.neighbours);
   const minLength = labMinBoundaryLength(lengthX * lengthY, count);
   const texel = Math.max(grid.texelX, grid.texelY);
   const unbiased = contactAgreement(labels, exact, count, texel, minLength);

@@ -1,6 +1,8 @@
 import { describe, expect, it } from 'vitest';
 import { distanceSquared, wrapDelta, type Grid } from '../../src/core/grid';
-import { accumulateCentroidRows, BORDER_X_END, BORDER_X_START, BORDER_Y_END, BORDER_Y_START, labelAdjacency, type LabelAdjacency } from '../../src/core/labels';
+import { BORDER_X_END, BORDER_X_START, BORDER_Y_END, BORDER_Y_START } from '../../src/core/border';
+import { accumulateCentroidRows, labelAdjacency } from '../../src/core/labels';
+import { moveSitesToCentroids } from '../../src/core/lloydUpdate';
 import { bruteForceLabels, centroidSites, cvtEnergy, reduceCentroids, sharedLength } from '../oracles/labels';
 import { Random } from '../../src/core/random';
 
@@ -196,6 +198,28 @@ describe('reduceCentroids and the Lloyd move', () => {
     }
   });
 
+  it('moveSitesToCentroids moves every site as the definition does (the oracle centroidSites)', () => {
+    let seed = 40;
+    for (const g of grids) {
+      for (const omega of [1, 1.7]) {
+        const sites = randomSites(g, 30, seed++);
+        const l = bruteForceLabels(g, sites);
+        l[0] = -1;
+        const sums = reduceCentroids(g, l, sites, null);
+        sums.fill(0, 4 * 7, 4 * 8); // site 7: an empty cell, stays put
+        const expected = centroidSites(g, sites, sums, omega);
+        const moved = sites.slice();
+        const move = moveSitesToCentroids(g, moved, sums, 30, omega, { energy: 0, maxDisplacement: 0, maxDisplacementTexels: 0, emptyCells: 0 });
+        for (let k = 0; k < moved.length; k++) expect(moved[k]).toBeCloseTo(expected.sites[k], 4);
+        expect([moved[14], moved[15]]).toEqual([sites[14], sites[15]]);
+        expect(move.emptyCells).toBe(expected.move.emptyCells);
+        expect(move.energy).toBeCloseTo(expected.move.energy, 6);
+        expect(move.maxDisplacement).toBeCloseTo(expected.move.maxDisplacement, 4);
+        expect(move.maxDisplacementTexels).toBeCloseTo(expected.move.maxDisplacementTexels, 4);
+      }
+    }
+  });
+
   it('sums band by band, over runs of equal labels, exactly as texel by texel', () => {
     // Labels with holes (-1) and cells broken into several runs per row, on every grid kind;
     // sites with stride 4 (the engine's site texture), bands of 5 rows.
@@ -244,12 +268,22 @@ function totalBoundary(grid: Grid, labels: Int32Array): number {
   return total;
 }
 
+/** The label adjacency with both contact lengths (the true ones and the staircase) and texels per cell. */
+function bothLengths(grid: Grid, labels: ArrayLike<number>, count: number) {
+  const adjacency = labelAdjacency(grid, labels, count);
+  const staircase = labelAdjacency(grid, labels, count, 'staircase');
+  expect(staircase.neighbours).toEqual(adjacency.neighbours);
+  const texels = Array.from(adjacency.areas, (a) => Math.round(a / (grid.texelX * grid.texelY)));
+  return { ...adjacency, staircaseLengths: staircase.lengths, texels };
+}
+type Both = ReturnType<typeof bothLengths>;
+
 /** The staircase (plain sum of texel edges) between cells a and b. */
-function staircase(adjacency: LabelAdjacency, a: number, b: number): number {
+function staircase(adjacency: Both, a: number, b: number): number {
   return sharedLength({ ...adjacency, lengths: adjacency.staircaseLengths }, a, b);
 }
 
-function checkStructure(adjacency: LabelAdjacency, count: number) {
+function checkStructure(adjacency: Both, count: number) {
   expect(adjacency.offsets.length).toBe(count + 1);
   expect(adjacency.offsets[0]).toBe(0);
   for (let c = 0; c < count; c++) {
@@ -274,11 +308,11 @@ describe('labelAdjacency', () => {
     for (const grid of grids) {
       for (const count of [2, 9, 60]) {
         const labels = bruteForceLabels(grid, randomSites(grid, count, seed++));
-        const adjacency = labelAdjacency(grid, labels, count);
+        const adjacency = bothLengths(grid, labels, count);
         checkStructure(adjacency, count);
         const sum = adjacency.staircaseLengths.reduce((a, b) => a + b, 0);
         expect(sum).toBeCloseTo(2 * totalBoundary(grid, labels), 6);
-        const area = adjacency.area.reduce((a, b) => a + b, 0);
+        const area = adjacency.areas.reduce((a, b) => a + b, 0);
         expect(area).toBeCloseTo(grid.width * grid.texelX * grid.height * grid.texelY, 6);
         expect(adjacency.texels.reduce((a, b) => a + b, 0)).toBe(grid.width * grid.height);
       }
@@ -289,18 +323,18 @@ describe('labelAdjacency', () => {
     // Tube 4 x 3 (x periodic), texels 2 x 5 µm; rows labelled 0, 1, 2 from the y = 0 end.
     const tube: Grid = { width: 4, height: 3, texelX: 2, texelY: 5, periodicX: true, periodicY: false };
     const labels = Int32Array.from([0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2]);
-    const adjacency = labelAdjacency(tube, labels, 3);
+    const adjacency = bothLengths(tube, labels, 3);
     checkStructure(adjacency, 3);
     expect(sharedLength(adjacency, 0, 1)).toBe(8); // 4 texel edges of texelX = 2 µm
     expect(sharedLength(adjacency, 1, 2)).toBe(8);
     expect(sharedLength(adjacency, 0, 2)).toBe(0); // the ends of a tube do not meet
-    expect(Array.from(adjacency.area)).toEqual([40, 40, 40]);
-    expect(Array.from(adjacency.borderSides)).toEqual([BORDER_Y_START, 0, BORDER_Y_END]);
-    expect(Array.from(adjacency.touchesBorder)).toEqual([1, 0, 1]);
+    expect(Array.from(adjacency.areas)).toEqual([40, 40, 40]);
+    expect(Array.from(adjacency.border)).toEqual([BORDER_Y_START, 0, BORDER_Y_END]);
+    expect(Array.from(adjacency.border, (b) => (b ? 1 : 0))).toEqual([1, 0, 1]);
     // Made periodic in y too (a torus), rows 0 and 2 meet across the seam.
     const torus = labelAdjacency({ ...tube, periodicY: true }, labels, 3);
     expect(sharedLength(torus, 0, 2)).toBe(8);
-    expect(Array.from(torus.touchesBorder)).toEqual([0, 0, 0]);
+    expect(Array.from(torus.border)).toEqual([0, 0, 0]);
   });
 
   it('counts both shared edges of two columns on a periodic strip, and open-plane borders', () => {
@@ -313,16 +347,16 @@ describe('labelAdjacency', () => {
     //                      row 0: 0 0 1 1      (cell 4 owns nothing)
     const plane: Grid = { width: 4, height: 3, texelX: 1, texelY: 1, periodicX: false, periodicY: false };
     const labels = Int32Array.from([0, 0, 1, 1, 0, 2, 3, 1, 2, 2, 3, 3]);
-    const adjacency = labelAdjacency(plane, labels, 5);
+    const adjacency = bothLengths(plane, labels, 5);
     checkStructure(adjacency, 5);
-    expect(Array.from(adjacency.borderSides)).toEqual([
+    expect(Array.from(adjacency.border)).toEqual([
       BORDER_X_START | BORDER_Y_START,
       BORDER_X_END | BORDER_Y_START,
       BORDER_X_START | BORDER_Y_END,
       BORDER_X_END | BORDER_Y_END,
       0,
     ]);
-    expect(Array.from(adjacency.touchesBorder)).toEqual([1, 1, 1, 1, 0]);
+    expect(Array.from(adjacency.border, (b) => (b ? 1 : 0))).toEqual([1, 1, 1, 1, 0]);
     expect(sharedLength(adjacency, 0, 1)).toBe(1);
     // (0,1)|(1,1) vertical; (1,0)-(1,1), (0,1)-(0,2) horizontal: a staircase of 3 edges, a
     // diagonal boundary of length sqrt(2² + 1²).
@@ -333,7 +367,7 @@ describe('labelAdjacency', () => {
     expect(sharedLength(adjacency, 1, 3)).toBe(Math.sqrt(5));
     expect(sharedLength(adjacency, 1, 2)).toBe(0); // diagonal only
     expect(sharedLength(adjacency, 0, 3)).toBe(0);
-    expect(Array.from(adjacency.texels)).toEqual([3, 3, 3, 3, 0]);
+    expect(adjacency.texels).toEqual([3, 3, 3, 3, 0]);
     expect(adjacency.offsets[5] - adjacency.offsets[4]).toBe(0);
   });
 

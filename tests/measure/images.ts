@@ -1,6 +1,5 @@
 /** Synthetic label images for the measure tests, and writers for them. */
 import { encode } from 'fast-png';
-import { PNG } from 'pngjs';
 import type { LabelFileInput } from '../../src/core/measure';
 import { MeasureInputError } from '../../src/core/measure';
 
@@ -70,15 +69,9 @@ export function png16(image: LabelImage): Uint8Array {
   return encode({ width: image.width, height: image.height, data: image.data, depth: 16, channels: 1 });
 }
 
-/** 8-bit grey PNG written by pngjs (labels must be < 256). */
+/** 8-bit grey PNG (labels must be < 256). */
 export function png8(image: LabelImage): Uint8Array {
-  const png = new PNG({ width: image.width, height: image.height, colorType: 0, inputColorType: 0, bitDepth: 8 });
-  // pngjs takes RGBA input and writes the grey channel from R for colorType 0.
-  for (let k = 0; k < image.data.length; k++) {
-    png.data[4 * k] = png.data[4 * k + 1] = png.data[4 * k + 2] = image.data[k];
-    png.data[4 * k + 3] = 255;
-  }
-  return new Uint8Array(PNG.sync.write(png, { colorType: 0, inputColorType: 6, bitDepth: 8 }));
+  return encode({ width: image.width, height: image.height, data: Uint8Array.from(image.data), depth: 8, channels: 1 });
 }
 
 /** An in-memory input file. */

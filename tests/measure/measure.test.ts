@@ -123,9 +123,9 @@ describe('measureTissue', () => {
     );
     const reference: SurfaceAdjacency[] = layers.map((l) => {
       const dense = Int32Array.from(l.data, (v) => (v - 500) / 2);
-      const a = labelAdjacency({ width: l.width, height, texelX: 0.8, texelY: 0.8, periodicX: true, periodicY: false }, dense, sites.length);
       // measure counts 4-connected pixel edges (its definition): the staircase lengths.
-      return withMinBoundaryLength({ count: a.count, adjacency: { ...a, lengths: a.staircaseLengths }, areas: a.area, touchesBorder: a.touchesBorder }, 2.5);
+      const a = labelAdjacency({ width: l.width, height, texelX: 0.8, texelY: 0.8, periodicX: true, periodicY: false }, dense, sites.length, 'staircase');
+      return withMinBoundaryLength(a, 2.5);
     });
     const expected = analyzeSurfaces(reference).summary;
     const got = r.analyses[0].summary;

@@ -8,13 +8,13 @@ import {
   inspectVolumeTiff,
   lzwDecodeInto,
   maskSurfaceMesh,
-  meshArea,
   parseVoxelSizeOption,
   prepareMesh,
   quartetFilter,
   randomSitesOnMesh,
   signedVolume,
 } from '../../src/core/measure';
+import { meshArea } from '../../src/core/mesh/types';
 import { createRandom } from '../../src/core/random';
 import { lzwEncode } from './tiffWriter';
 

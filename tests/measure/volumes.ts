@@ -233,7 +233,7 @@ export function shellVolume(spec: ShellSpec): SyntheticVolume {
       scaled[3 * k + 2] = (sites[3 * k + 2] * (c + t)) / c;
     }
     const rvd = restrictedVoronoi({ kind: 'ellipsoid', a: a + t, b: b + t, c: c + t }, scaled, n);
-    if (t === 0 || t === h) areasAt[t === 0 ? 0 : 1] = rvd.areas;
+    if (t === 0 || t === h) areasAt[t === 0 ? 0 : 1] = rvd.adjacency.areas;
     const out = new Map<number, number>();
     const adj = rvd.adjacency;
     for (let i = 0; i < n; i++) {

@@ -3,7 +3,7 @@ import { join } from 'node:path';
 import type { AnyConfig } from '../../src/core/config';
 import { parseMesh } from '../../src/core/mesh/parse';
 import { loadMeshFile } from '../../src/node/meshFile';
-import type { RunCallbacks } from '../../src/run';
+import type { RunInputs } from '../../src/run';
 import type { TriangleMesh } from '../../src/core/mesh/types';
 
 export const MESH_DIR = join(__dirname, '..', '..', 'public', 'meshes');
@@ -18,6 +18,6 @@ export function loadShipped(file: string): TriangleMesh {
 export const GENUS_ZERO_SHIPPED = ['organoid.ply', 'egg-chamber.ply', 'level-set-blob.ply'];
 
 /** What a host hands runSheet for a mesh config: the file, loaded by the Node host's loader (the pipeline reads none). */
-export function meshInputs(config: AnyConfig): RunCallbacks {
+export function meshInputs(config: AnyConfig): RunInputs {
   return config.surface.kind === 'mesh' ? { meshFile: loadMeshFile(config.surface.src) } : {};
 }

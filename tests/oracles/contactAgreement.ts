@@ -9,7 +9,7 @@
  * - Neighbour sets: the minimum contact length applied to both (contacts of at least that
  *   length count), the fraction of cells whose sets are equal.
  */
-import type { CsrAdjacency } from '../../src/core/analysis/adjacency';
+import type { SurfaceAdjacency } from '../../src/core/analysis/adjacency';
 
 export interface ContactAgreement {
   /** Contacts compared for length. */
@@ -22,7 +22,7 @@ export interface ContactAgreement {
   readonly cellAgreement: number;
 }
 
-type Lengths = CsrAdjacency & { lengths: Float64Array };
+type Lengths = Pick<SurfaceAdjacency, 'offsets' | 'neighbours' | 'lengths'>;
 
 /** Length of contact (i, j) in a CSR adjacency, 0 if absent. */
 export function contactLength(adj: Lengths, i: number, j: number): number {

@@ -1,9 +1,8 @@
 /**
  * References (test oracles) for the cube-map passes, from their definitions: the nearest site
  * of every texel by 3D distance (what the cube-map jump flood approximates), and a direction's
- * texel by the cube map's own face rule (what the fast directionTexel computes).
+ * texel by the OpenGL cube-map face rule (what directionTexel and directionToTexel compute).
  */
-import { directionToTexel, texelIndex } from '../../src/core/cubemap/cubemap';
 
 /**
  * Exact nearest-site labels of every texel by 3D distance (ties: smaller id), the reference
@@ -63,8 +62,21 @@ export function cubeBruteForceLabels(position: ArrayLike<number>, sites: ArrayLi
   return out;
 }
 
-/** directionToTexel's atlas index (the reference for directionTexel). */
-export function directionTexelReference(dx: number, dy: number, dz: number, n: number): number {
-  const t = directionToTexel([dx, dy, dz], n);
-  return texelIndex(t.face, t.i, t.j, n);
+/**
+ * The atlas index of a direction's texel, from the OpenGL cube-map table (OpenGL 4.6, table
+ * 8.19): the face is the axis of largest |component| (ties: x before y before z, + before -),
+ * its face coordinates are sc / |ma|, tc / |ma| as the table gives them, texel (i, j) of an
+ * n x n face covers [2i/n - 1, 2(i+1)/n - 1] along sc (the last texel holds 1), and texel
+ * (face, i, j) is stored at (face · n + j) · n + i (src/core/cubemap/cubemap.ts's layout).
+ */
+export function directionTexelReference(x: number, y: number, z: number, n: number): number {
+  const ax = Math.abs(x),
+    ay = Math.abs(y),
+    az = Math.abs(z);
+  let face: number, sc: number, tc: number, ma: number;
+  if (ax >= ay && ax >= az) [face, sc, tc, ma] = x >= 0 ? [0, -z, -y, ax] : [1, z, -y, ax];
+  else if (ay >= az) [face, sc, tc, ma] = y >= 0 ? [2, x, z, ay] : [3, x, -z, ay];
+  else [face, sc, tc, ma] = z >= 0 ? [4, x, -y, az] : [5, -x, -y, az];
+  const cell = (c: number) => Math.min(n - 1, Math.max(0, Math.floor(((c / ma + 1) / 2) * n)));
+  return (face * n + cell(tc)) * n + cell(sc);
 }

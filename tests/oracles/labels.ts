@@ -8,9 +8,24 @@
  *
  * All positions are in texel units and all lengths/areas in µm (µm²), per src/core/grid.ts.
  */
-import { distanceSquared, type Grid, wrapCoordinate } from '../../src/core/grid';
-import type { LabelAdjacency } from '../../src/core/labels';
-import { type LloydMove, moveSitesToCentroids } from '../../src/core/lloydUpdate';
+import type { SurfaceAdjacency } from '../../src/core/analysis/adjacency';
+import type { Grid } from '../../src/core/grid';
+import type { LloydMove } from '../../src/core/lloydUpdate';
+
+// The metric, written here from its definition (src/core/grid.ts has its own): offsets take the
+// nearest periodic image, positions wrap into [0, L) on a periodic axis and clamp to [0, L] on
+// an open one.
+const nearestImage = (d: number, length: number, periodic: boolean) => (periodic ? d - length * Math.round(d / length) : d);
+const placed = (v: number, length: number, periodic: boolean) => {
+  if (!periodic) return Math.min(length, Math.max(0, v));
+  const w = ((v % length) + length) % length;
+  return w >= length ? 0 : w;
+};
+function distanceSquared(grid: Grid, ax: number, ay: number, bx: number, by: number): number {
+  const dx = nearestImage(bx - ax, grid.width, grid.periodicX) * grid.texelX;
+  const dy = nearestImage(by - ay, grid.height, grid.periodicY) * grid.texelY;
+  return dx * dx + dy * dy;
+}
 
 // ---------------------------------------------------------------------------------------------
 // Nearest-site labels
@@ -109,8 +124,8 @@ function bucketSites(sites: Float32Array, count: number, nx: number, ny: number,
   const bucketOf = new Int32Array(count);
   const start = new Int32Array(nx * ny + 1);
   for (let id = 0; id < count; id++) {
-    const x = wrapCoordinate(sites[2 * id], grid.width, grid.periodicX);
-    const y = wrapCoordinate(sites[2 * id + 1], grid.height, grid.periodicY);
+    const x = placed(sites[2 * id], grid.width, grid.periodicX);
+    const y = placed(sites[2 * id + 1], grid.height, grid.periodicY);
     const bx = Math.min(nx - 1, Math.max(0, Math.floor(x / bucketW)));
     const by = Math.min(ny - 1, Math.max(0, Math.floor(y / bucketH)));
     bucketOf[id] = by * nx + bx;
@@ -168,8 +183,8 @@ export function reduceCentroids(grid: Grid, labels: ArrayLike<number>, sites: Fl
 /**
  * The Lloyd move from those sums: each site goes to site + omega·(Σ w·d)/(Σ w), wrapped on
  * periodic axes and clamped on open ones; sites with an empty cell stay put. Returns new
- * positions (in `out` if given; `sites` is not modified) and the move's statistics. This is the
- * same update the GPU loop applies (lloydUpdate.ts), so CPU and GPU runs stay comparable.
+ * positions (in `out` if given; `sites` is not modified) and the move's statistics: the oracle
+ * of the update the GPU loop applies (moveSitesToCentroids, src/core/lloydUpdate.ts).
  */
 export function centroidSites(
   grid: Grid,
@@ -180,8 +195,29 @@ export function centroidSites(
 ): { sites: Float32Array; move: LloydMove } {
   const next = out ?? new Float32Array(sites.length);
   if (next !== sites) next.set(sites);
-  const move: LloydMove = { energy: 0, maxDisplacement: 0, maxDisplacementTexels: 0, emptyCells: 0 };
-  moveSitesToCentroids(grid, next, sums, Math.floor(sites.length / 2), omega, move);
+  const { width, height, texelX, texelY, periodicX, periodicY } = grid;
+  let energy = 0;
+  let largest = 0;
+  let largestTexels = 0;
+  let emptyCells = 0;
+  for (let i = 0; i < Math.floor(sites.length / 2); i++) {
+    const w = sums[4 * i + 2];
+    energy += sums[4 * i + 3];
+    if (!(w > 0)) {
+      emptyCells++;
+      continue;
+    }
+    const x = sites[2 * i];
+    const y = sites[2 * i + 1];
+    next[2 * i] = placed(x + (omega * sums[4 * i]) / w, width, periodicX);
+    next[2 * i + 1] = placed(y + (omega * sums[4 * i + 1]) / w, height, periodicY);
+    // Measured from the stored (float32) position, the one the next iteration starts from.
+    const dx = Math.abs(nearestImage(next[2 * i] - x, width, periodicX));
+    const dy = Math.abs(nearestImage(next[2 * i + 1] - y, height, periodicY));
+    largestTexels = Math.max(largestTexels, dx, dy);
+    largest = Math.max(largest, Math.hypot(dx * texelX, dy * texelY));
+  }
+  const move: LloydMove = { energy: energy * texelX * texelY, maxDisplacement: largest, maxDisplacementTexels: largestTexels, emptyCells };
   return { sites: next, move };
 }
 
@@ -193,7 +229,7 @@ export function cvtEnergy(grid: Grid, sums: ArrayLike<number>): number {
 }
 
 /** Shared boundary length (µm) between cells a and b, 0 if they are not neighbours. */
-export function sharedLength(adjacency: LabelAdjacency, a: number, b: number): number {
+export function sharedLength(adjacency: Pick<SurfaceAdjacency, 'offsets' | 'neighbours' | 'lengths'>, a: number, b: number): number {
   let lo = adjacency.offsets[a];
   let hi = adjacency.offsets[a + 1] - 1;
   while (lo <= hi) {

@@ -7,12 +7,11 @@
  */
 import { Vector3 } from 'three';
 import { ConvexHull } from 'three/examples/jsm/math/ConvexHull.js';
-import type { CsrAdjacency } from '../../src/core/analysis/adjacency';
-import { csrFromLists } from '../../src/core/analysis/adjacency';
 
 export interface SphericalVoronoi {
   readonly count: number;
-  readonly adjacency: CsrAdjacency;
+  /** Neighbours of cell i: neighbours[offsets[i] .. offsets[i + 1]), with the arc lengths (µm). */
+  readonly adjacency: { readonly offsets: Int32Array; readonly neighbours: Int32Array; readonly lengths: Float64Array };
   /** Cell areas on the sphere of the given radius, µm². */
   readonly areas: Float64Array;
   readonly touchesBorder: Uint8Array;
@@ -60,5 +59,8 @@ export function sphericalVoronoi(directions: ArrayLike<number>, count: number, r
       edge = edge.next;
     } while (edge !== face.edge);
   }
-  return { count, adjacency: csrFromLists(lists, lengths), areas, touchesBorder: new Uint8Array(count) };
+  const offsets = new Int32Array(count + 1);
+  for (let i = 0; i < count; i++) offsets[i + 1] = offsets[i] + lists[i].length;
+  const adjacency = { offsets, neighbours: Int32Array.from(lists.flat()), lengths: Float64Array.from(lengths.flat()) };
+  return { count, adjacency, areas, touchesBorder: new Uint8Array(count) };
 }

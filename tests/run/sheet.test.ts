@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { validateConfig, type ConfigInput } from '../../src/core/config';
 import { exactVoronoi } from '../../src/core/exact';
-import { filterShortContacts } from '../../src/core/analysis';
+import { withMinBoundaryLength } from '../../src/core/analysis';
 import { labelAdjacency } from '../../src/core/labels';
 import { chooseEngine } from '../../src/run/enginePolicy';
 import { defaultMinContactLength, planarFamily, type PlanarGeometry } from '../../src/run/planarFamily';
@@ -166,7 +166,7 @@ describe('pixel adjacency against exact adjacency at the default resolution', ()
       const seeded = await relaxSeededSurface(planarFamily, config, context, chooseEngine(config, 'planar grid', context.capabilities));
       const { grid } = seeded.geometry;
       const labels = labelAdjacency(grid, seeded.labels!, config.cells);
-      const pixel = filterShortContacts(labels, defaultMinContactLength(grid, config.cells));
+      const pixel = withMinBoundaryLength(labels, defaultMinContactLength(grid, config.cells));
       const exact = exactVoronoi(grid, seeded.sites).adjacency;
       const p = pairSet(pixel.offsets, pixel.neighbours);
       const e = pairSet(exact.offsets, exact.neighbours);

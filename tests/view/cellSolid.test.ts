@@ -113,7 +113,7 @@ describe('cellSolid on planes and tubes (exact cross-sections)', () => {
     for (let id = 0; id < stack.result.cells.length; id++) {
       const first = surfacePolygons(stack.surfaces[0]).cells[id];
       const other = surfacePolygons(stack.surfaces[last]).cells[id];
-      if (first.touchesBorder || other.touchesBorder) continue;
+      if (first.border || other.border) continue;
       if (first.neighbours.length === other.neighbours.length) continue;
       const solid = cellSolid(stack, id)!;
       expect(solid.sections[0].corners).toBe(first.polygon.length / 2);

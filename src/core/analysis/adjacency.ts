@@ -1,65 +1,80 @@
 /**
- * Cell adjacency as a compressed sparse row (CSR) structure, and the contact-length filter.
+ * The adjacency record: what every adjacency method produces and the only input the analysis
+ * (analyzeSurfaces, the lab protocol) accepts. Typed arrays in the manner of delaunator, one
+ * record per surface of a stack:
  *
- * - `CsrAdjacency`: the neighbours of cell i are `neighbours[offsets[i] .. offsets[i + 1])`;
- *   `lengths` (optional) holds the shared boundary length in µm of each contact, parallel to
- *   `neighbours`. `exactVoronoi` (src/core/exact.ts) and the label-texture adjacency produce it.
- * - `filterShortContacts(adj, minLength)`: drops every contact whose shared boundary is shorter
- *   than `minLength` µm (a contact of length exactly `minLength` is kept). The pixel-based method
- *   of the lab that published the scutoid model ignores shared edges shorter than about 6 px in
- *   a 512 px-around image; `labMinBoundaryLength` converts that to µm for a grid:
- *   `pixels * (grid.width * grid.texelX) / referenceWidth` with pixels = 6, referenceWidth = 512,
- *   i.e. 6 px of an image 512 px around the same circumference (= 6 * texelX when the grid is
- *   512 texels wide). The exact (Delaunay) adjacency needs no threshold; results must say which
- *   one was used.
+ * - the neighbours of cell i are `neighbours[offsets[i] .. offsets[i + 1])` (compressed sparse
+ *   rows); `lengths[k]` is the shared boundary length in µm of contact k (symmetric: a -> b
+ *   equals b -> a). Producers list each row ascending, once, without the cell itself; the
+ *   analysis still deduplicates a row that is not (`neighbourSet`).
+ * - `areas[i]` is the cell's area in µm²; `border[i]` the bits of src/core/border.ts (0 for an
+ *   interior cell; any bit excludes the cell from the statistics).
+ *
+ * Producers: `labelAdjacency` (src/core/labels.ts, a planar label image),
+ * `cubeLabelAdjacency` (src/core/closed/geometry.ts, a cube-map label image), `exactSurface`
+ * (src/core/exactEngine, the exact planar method) and `exactVoronoi` (src/core/exact.ts, the
+ * same diagram with per-cell polygons), `restrictedVoronoi` (src/core/closed, closed surfaces),
+ * and `measure` (src/core/measure: measured layers, and the volume's surfaces).
+ *
+ * The contact-length filter: `withMinBoundaryLength(adj, minLength)` drops every contact whose
+ * shared boundary is shorter than `minLength` µm (a contact of length exactly `minLength` is
+ * kept). The pixel-based method of the lab that published the scutoid model ignores shared
+ * edges shorter than about 6 px in a 512 px-around image; `labMinBoundaryLength` carries that
+ * rule to any sheet. The exact (Delaunay-based) adjacency needs no threshold; results must say
+ * which one was used.
  */
 
-export interface CsrAdjacency {
+export interface SurfaceAdjacency {
+  /** Number of cells, ids 0..count-1 (the same cells on every surface of a stack). */
+  readonly count: number;
   /** count + 1 offsets into `neighbours`. */
-  offsets: Int32Array;
-  /** Neighbour ids. */
-  neighbours: Int32Array;
-  /** Shared boundary length in µm per contact, parallel to `neighbours` (optional). */
-  lengths?: Float64Array;
+  readonly offsets: Int32Array;
+  /** Neighbour ids, per cell ascending, without the cell itself. */
+  readonly neighbours: Int32Array;
+  /** Shared boundary length in µm per contact, parallel to `neighbours`. */
+  readonly lengths: Float64Array;
+  /** Cell areas in µm². */
+  readonly areas: Float64Array;
+  /** BORDER_* bits per cell (src/core/border.ts); 0 for an interior cell. */
+  readonly border: Uint8Array;
+  /** Side counts when they differ from the number of distinct neighbours (default: that number). */
+  readonly sides?: Int32Array;
+  /** The surface's name (e.g. "basal", "apical", "s=1.5"). */
+  readonly label?: string;
 }
 
-/** Either a CSR adjacency or one array of neighbour ids per cell. */
-export type AdjacencyInput = CsrAdjacency | ArrayLike<number>[];
-
-export function isCsr(input: AdjacencyInput): input is CsrAdjacency {
-  return !Array.isArray(input) && (input as CsrAdjacency).offsets instanceof Int32Array;
-}
-
-/** Builds a CSR adjacency from one list of neighbour ids per cell (and optional parallel lengths). */
-export function csrFromLists(lists: ArrayLike<number>[], lengths?: ArrayLike<number>[]): CsrAdjacency {
-  const offsets = new Int32Array(lists.length + 1);
-  for (let i = 0; i < lists.length; i++) offsets[i + 1] = offsets[i] + lists[i].length;
-  const neighbours = new Int32Array(offsets[lists.length]);
-  const flatLengths = lengths ? new Float64Array(offsets[lists.length]) : undefined;
-  for (let i = 0; i < lists.length; i++) {
+/**
+ * The record from one list of neighbour ids per cell and their lengths (parallel lists), for
+ * producers that gather contacts per cell.
+ */
+export function adjacencyFromLists(
+  lists: ArrayLike<number>[],
+  lengths: ArrayLike<number>[],
+  areas: Float64Array,
+  border: Uint8Array,
+  label?: string,
+): SurfaceAdjacency {
+  const count = lists.length;
+  const offsets = new Int32Array(count + 1);
+  for (let i = 0; i < count; i++) offsets[i + 1] = offsets[i] + lists[i].length;
+  const neighbours = new Int32Array(offsets[count]);
+  const flatLengths = new Float64Array(offsets[count]);
+  for (let i = 0; i < count; i++) {
+    if (lengths[i].length !== lists[i].length)
+      throw new Error(`adjacencyFromLists: cell ${i} has ${lists[i].length} neighbours and ${lengths[i].length} lengths`);
     for (let k = 0; k < lists[i].length; k++) {
       neighbours[offsets[i] + k] = lists[i][k];
-      if (flatLengths) flatLengths[offsets[i] + k] = lengths![i][k];
+      flatLengths[offsets[i] + k] = lengths[i][k];
     }
   }
-  return flatLengths ? { offsets, neighbours, lengths: flatLengths } : { offsets, neighbours };
-}
-
-/** Normalizes an adjacency input to CSR (lists are copied, CSR is returned as is). */
-export function toCsr(input: AdjacencyInput): CsrAdjacency {
-  return isCsr(input) ? input : csrFromLists(input);
-}
-
-/** Number of cells described by an adjacency. */
-export function adjacencyCount(input: AdjacencyInput): number {
-  return isCsr(input) ? input.offsets.length - 1 : input.length;
+  return { count, offsets, neighbours, lengths: flatLengths, areas, border, label };
 }
 
 /**
  * Sorted, deduplicated neighbour ids of cell i, without i itself (the form the analysis
  * compares).
  */
-export function neighbourSet(adj: CsrAdjacency, i: number): Int32Array {
+export function neighbourSet(adj: SurfaceAdjacency, i: number): Int32Array {
   const raw = adj.neighbours.slice(adj.offsets[i], adj.offsets[i + 1]).sort();
   let m = 0;
   for (let k = 0; k < raw.length; k++) {
@@ -70,11 +85,13 @@ export function neighbourSet(adj: CsrAdjacency, i: number): Int32Array {
   return raw.subarray(0, m);
 }
 
-/** Drops contacts shorter than `minLength` µm. Requires `lengths`. Keeps the CSR layout. */
-export function filterShortContacts(adj: CsrAdjacency, minLength: number): CsrAdjacency {
+/**
+ * The record without the contacts shorter than `minLength` µm (the rows keep their order). Side
+ * counts follow from the remaining neighbours (an explicit `sides` is dropped).
+ */
+export function withMinBoundaryLength(adj: SurfaceAdjacency, minLength: number): SurfaceAdjacency {
   const lengths = adj.lengths;
-  if (!lengths) throw new Error('filterShortContacts needs shared boundary lengths');
-  const count = adj.offsets.length - 1;
+  const count = adj.count;
   const offsets = new Int32Array(count + 1);
   let total = 0;
   for (let k = 0; k < adj.neighbours.length; k++) if (lengths[k] >= minLength) total++;
@@ -91,7 +108,7 @@ export function filterShortContacts(adj: CsrAdjacency, minLength: number): CsrAd
     }
     offsets[i + 1] = m;
   }
-  return { offsets, neighbours, lengths: kept };
+  return { count, offsets, neighbours, lengths: kept, areas: adj.areas, border: adj.border, label: adj.label };
 }
 
 /**
@@ -111,8 +128,8 @@ export function labMinBoundaryLength(areaUm2: number, cells: number, pixels = LA
   return (pixels * Math.sqrt(areaUm2 / cells)) / LAB_MEAN_CELL_DIAMETER_PIXELS;
 }
 
-/** True when j is in i's list exactly when i is in j's list (with equal lengths when present, within tol). */
-export function isSymmetric(adj: CsrAdjacency, tol = 1e-9): boolean {
+/** True when j is in i's list exactly when i is in j's list (with equal lengths, within tol). */
+export function isSymmetric(adj: Pick<SurfaceAdjacency, 'offsets' | 'neighbours' | 'lengths'>, tol = 1e-9): boolean {
   const count = adj.offsets.length - 1;
   for (let i = 0; i < count; i++) {
     for (let k = adj.offsets[i]; k < adj.offsets[i + 1]; k++) {
@@ -120,7 +137,7 @@ export function isSymmetric(adj: CsrAdjacency, tol = 1e-9): boolean {
       let found = -1;
       for (let q = adj.offsets[j]; q < adj.offsets[j + 1]; q++) if (adj.neighbours[q] === i) found = q;
       if (found < 0) return false;
-      if (adj.lengths && Math.abs(adj.lengths[found] - adj.lengths[k]) > tol * Math.max(1, adj.lengths[k])) return false;
+      if (Math.abs(adj.lengths[found] - adj.lengths[k]) > tol * Math.max(1, adj.lengths[k])) return false;
     }
   }
   return true;

@@ -17,6 +17,8 @@
  *   `referenceWidthPixels` around the seeded surface (the exact method needs no threshold).
  */
 import type { Grid } from '../grid';
+import { BORDER_EXCLUDED } from '../border';
+import type { SurfaceAdjacency } from './adjacency';
 
 export type ProtocolName = 'default' | 'lab';
 
@@ -74,12 +76,18 @@ export function validityRatios(settings: LabProtocolSettings = LAB_PROTOCOL, inw
   return inward ? ratios.map((s) => 1 / s) : ratios;
 }
 
-/** 1 for every cell that touches an open end on any of the surfaces. */
-export function invalidOnAnySurface(surfaces: readonly { touchesBorder: ArrayLike<number> }[], count: number, into = new Uint8Array(count)): Uint8Array {
+/** 1 for every cell that is a border cell (any `border` bit) on any of the surfaces. */
+export function invalidOnAnySurface(surfaces: readonly Pick<SurfaceAdjacency, 'border'>[], count: number, into = new Uint8Array(count)): Uint8Array {
   for (const surface of surfaces) {
-    for (let i = 0; i < count; i++) if (surface.touchesBorder[i]) into[i] = 1;
+    for (let i = 0; i < count; i++) if (surface.border[i] !== 0) into[i] = 1;
   }
   return into;
+}
+
+/** The stack with the same cells excluded on every surface: those marked 1 in `invalid` (BORDER_EXCLUDED). */
+export function excludeInvalid(stack: readonly SurfaceAdjacency[], invalid: Uint8Array): SurfaceAdjacency[] {
+  const border = Uint8Array.from(invalid, (v) => (v ? BORDER_EXCLUDED : 0));
+  return stack.map((s) => ({ ...s, border }));
 }
 
 /**

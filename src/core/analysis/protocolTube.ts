@@ -3,21 +3,21 @@
  *
  * Geometry: the surface at ratio s is the seeded strip with the circumference scaled by s (a grid
  * `width * s` texels around, same texel size and height); a site (x, y) projects radially to
- * (x * s, y). `surfaceOf` turns a grid and projected sites into the analysis input; the default
- * is the reference `surfaceFromExact(exactVoronoi(...))`, and sweeps pass the exact engine's
+ * (x * s, y). `surfaceOf` turns a grid and projected sites into the adjacency record; the
+ * default is `exactVoronoi(...).adjacency` (d3-delaunay), and sweeps pass the exact engine's
  * `exactSurface` (the same numbers, tested cell by cell, several times faster).
  */
 import { isCanonical } from './sortedSets';
 import { exactVoronoi } from '../exact';
 import type { Grid } from '../grid';
-import { neighbourSet, toCsr } from './adjacency';
-import { analyzeSurfaces, surfaceFromExact, type ScutoidAnalysis, type SurfaceAdjacency } from './scutoids';
-import { invalidOnAnySurface, labLayerRatios, LAB_PROTOCOL, validityRatios, type LabProtocolSettings } from './protocol';
+import { neighbourSet, type SurfaceAdjacency } from './adjacency';
+import { analyzeSurfaces, type ScutoidAnalysis } from './scutoids';
+import { excludeInvalid, invalidOnAnySurface, labLayerRatios, LAB_PROTOCOL, validityRatios, type LabProtocolSettings } from './protocol';
 
 export type SurfaceOf = (grid: Grid, sites: ArrayLike<number>, label: string) => SurfaceAdjacency;
 
-/** The reference: exactVoronoi of the projected sites. */
-export const referenceSurface: SurfaceOf = (grid, sites, label) => surfaceFromExact(exactVoronoi(grid, sites), label);
+/** The exact diagram of the projected sites by d3-delaunay (exactVoronoi). */
+export const exactVoronoiSurface: SurfaceOf = (grid, sites, label) => ({ ...exactVoronoi(grid, sites).adjacency, label });
 
 /** The tube surface at ratio s: `width * s` texels around, same height and texel size. */
 export function tubeLayerGrid(grid: Grid, ratio: number): Grid {
@@ -67,7 +67,7 @@ export function analyzeTubeLab(
   sites: ArrayLike<number>,
   apicalRatio: number,
   settings: LabProtocolSettings = LAB_PROTOCOL,
-  surfaceOf: SurfaceOf = referenceSurface,
+  surfaceOf: SurfaceOf = exactVoronoiSurface,
 ): LabTubeAnalysis {
   const count = Math.floor(sites.length / 2);
   const surfaceAt = surfaceCache(grid, sites, surfaceOf);
@@ -75,7 +75,7 @@ export function analyzeTubeLab(
   const stackRatios = labLayerRatios(apicalRatio, settings);
   const stack = stackRatios.map(surfaceAt);
   const invalid = invalidOnAnySurface([...validity.map(surfaceAt), ...stack], count);
-  const masked = stack.map((s) => ({ ...s, touchesBorder: invalid }));
+  const masked = excludeInvalid(stack, invalid);
   const analysis = analyzeSurfaces(masked);
   applyLabTransitions(analysis, masked);
   return { ratio: apicalRatio, stackRatios, validityRatios: validity, invalid, analysis };
@@ -89,7 +89,7 @@ export function labInvalidCells(
   grid: Grid,
   sites: ArrayLike<number>,
   settings: LabProtocolSettings = LAB_PROTOCOL,
-  surfaceOf: SurfaceOf = referenceSurface,
+  surfaceOf: SurfaceOf = exactVoronoiSurface,
 ): Uint8Array {
   const count = Math.floor(sites.length / 2);
   const surfaceAt = surfaceCache(grid, sites, surfaceOf);
@@ -103,7 +103,7 @@ export function labInvalidCells(
  */
 export function analyzeLabStack(stack: SurfaceAdjacency[], invalid: Uint8Array): ScutoidAnalysis {
   const excluded = invalidOnAnySurface(stack, invalid.length, invalid.slice());
-  const masked = stack.map((s) => ({ ...s, touchesBorder: excluded }));
+  const masked = excludeInvalid(stack, excluded);
   const analysis = analyzeSurfaces(masked);
   applyLabTransitions(analysis, masked);
   return analysis;
@@ -112,7 +112,7 @@ export function analyzeLabStack(stack: SurfaceAdjacency[], invalid: Uint8Array):
 /** Lab intercalation count per cell over a stack: |∪ lost| + |∪ won| layer to layer. */
 export function labTransitions(stack: SurfaceAdjacency[]): { won: Int32Array; lost: Int32Array; transitions: Int32Array } {
   const count = stack[0].count;
-  const csr = stack.map((s) => toCsr(s.adjacency));
+  const csr = stack;
   const won = new Int32Array(count);
   const lost = new Int32Array(count);
   const transitions = new Int32Array(count);
@@ -190,7 +190,7 @@ export function labTubeTable(
   sites: ArrayLike<number>,
   ratios: readonly number[],
   settings: LabProtocolSettings = LAB_PROTOCOL,
-  surfaceOf: SurfaceOf = referenceSurface,
+  surfaceOf: SurfaceOf = exactVoronoiSurface,
 ): LabRatioRow[] {
   const count = Math.floor(sites.length / 2);
   const top = Math.max(settings.validityMaxRatio, ...ratios);
@@ -207,7 +207,7 @@ export function labTubeTable(
   // Validity on 1 : step : validityMaxRatio, plus any layer a target stack reaches beyond it.
   const validityTop = Math.max(...targetLayer, Math.round((settings.validityMaxRatio - 1) / settings.layerStep));
   const invalid = invalidOnAnySurface(surfaces.slice(0, validityTop + 1), count);
-  const csr = surfaces.map((s) => toCsr(s.adjacency));
+  const csr = surfaces;
   // exactSurface and exactVoronoi list neighbours ascending, once, never the cell itself: read
   // them in place (no copy per cell and layer); anything else goes through neighbourSet.
   const canonical = csr.map(isCanonical);

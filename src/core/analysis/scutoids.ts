@@ -9,8 +9,8 @@
  * Definitions (matching the released code of the lab that published the scutoid model):
  * - N_k(i): the neighbour set of cell i on surface k: the ids in its adjacency list,
  *   deduplicated, without i itself.
- * - Border cell: a cell that touches an open edge of the domain (`touchesBorder`) on ANY
- *   surface or layer. Border cells are excluded from every statistic below, but they stay in
+ * - Border cell: a cell with a `border` bit (src/core/border.ts: it touches an open edge of the
+ *   domain, or its producer excluded it) on ANY surface or layer. Border cells are excluded from every statistic below, but they stay in
  *   the neighbour sets of other cells (they count as neighbours, and their sides count in
  *   Aboav-Weaire unless `aboavNeighbours: 'valid'`). Valid cell = not a border cell.
  *   `validCells + excludedCells = cells`.
@@ -36,24 +36,7 @@
  * - With no valid cells every mean and percentage is NaN (never 0 by default).
  */
 import { differenceSize, mean, unionInto } from './sortedSets';
-import type { AdjacencyInput, CsrAdjacency } from './adjacency';
-import { adjacencyCount, filterShortContacts, neighbourSet, toCsr } from './adjacency';
-import type { ExactVoronoi } from '../exact';
-
-export interface SurfaceAdjacency {
-  /** Number of cells (same on every surface of a stack). */
-  count: number;
-  /** Neighbours (CSR, optionally with lengths in µm, or one list per cell). */
-  adjacency: AdjacencyInput;
-  /** Cell areas in µm². */
-  areas: Float64Array | ArrayLike<number>;
-  /** 1 where the cell touches an open edge of the domain on this surface. */
-  touchesBorder: Uint8Array | ArrayLike<number>;
-  /** Optional side counts; default: number of distinct neighbours. */
-  sides?: Int32Array | ArrayLike<number>;
-  /** Optional label (e.g. "basal", "apical", "s=1.5"). */
-  label?: string;
-}
+import { neighbourSet, type SurfaceAdjacency } from './adjacency';
 
 export interface AnalysisOptions {
   /** Which neighbours enter Aboav-Weaire: 'all' (default) or only 'valid' cells. */
@@ -143,7 +126,7 @@ export interface ScutoidAnalysis {
  * flat list: cell i's is ids[offsets[i] .. offsets[i + 1]). Segments that are already strictly
  * ascending without the cell (the exact methods') are copied as they are, others sorted.
  */
-function neighbourSets(adj: CsrAdjacency, count: number): { offsets: Int32Array; ids: Int32Array } {
+function neighbourSets(adj: SurfaceAdjacency, count: number): { offsets: Int32Array; ids: Int32Array } {
   const offsets = new Int32Array(count + 1);
   const ids = new Int32Array(adj.offsets[count] - adj.offsets[0]);
   let n = 0;
@@ -171,9 +154,9 @@ function neighbourSets(adj: CsrAdjacency, count: number): { offsets: Int32Array;
 }
 
 /** Neighbours won and lost by cell i between two surfaces (ids). */
-export function neighbourExchange(from: AdjacencyInput, to: AdjacencyInput, i: number): { won: number[]; lost: number[] } {
-  const a = neighbourSet(toCsr(from), i);
-  const b = neighbourSet(toCsr(to), i);
+export function neighbourExchange(from: SurfaceAdjacency, to: SurfaceAdjacency, i: number): { won: number[]; lost: number[] } {
+  const a = neighbourSet(from, i);
+  const b = neighbourSet(to, i);
   const sa = new Set(a);
   const sb = new Set(b);
   return { won: [...b].filter((x) => !sa.has(x)), lost: [...a].filter((x) => !sb.has(x)) };
@@ -183,16 +166,15 @@ export function neighbourExchange(from: AdjacencyInput, to: AdjacencyInput, i: n
 export function analyzeSurfaces(surfaces: SurfaceAdjacency[], options: AnalysisOptions = {}): ScutoidAnalysis {
   if (surfaces.length === 0) throw new Error('analyzeSurfaces needs at least one surface');
   const count = surfaces[0].count;
-  const csr: CsrAdjacency[] = surfaces.map((s) => toCsr(s.adjacency));
   surfaces.forEach((s, k) => {
-    if (s.count !== count || adjacencyCount(s.adjacency) !== count || s.areas.length !== count || s.touchesBorder.length !== count) {
+    if (s.count !== count || s.offsets.length !== count + 1 || s.areas.length !== count || s.border.length !== count) {
       throw new Error(`surface ${k} does not describe ${count} cells`);
     }
   });
   const S = surfaces.length;
 
   // Neighbour sets per surface (flat: no object per cell).
-  const sets = csr.map((adj) => neighbourSets(adj, count));
+  const sets = surfaces.map((adj) => neighbourSets(adj, count));
   const sides: Int32Array[] = surfaces.map((s, k) => {
     const out = new Int32Array(count);
     const o = sets[k].offsets;
@@ -203,16 +185,11 @@ export function analyzeSurfaces(surfaces: SurfaceAdjacency[], options: AnalysisO
   const valid = new Uint8Array(count);
   for (let i = 0; i < count; i++) {
     let border = false;
-    for (const s of surfaces) if (s.touchesBorder[i]) border = true;
+    for (const s of surfaces) if (s.border[i] !== 0) border = true;
     valid[i] = border ? 0 : 1;
   }
 
-  const won = new Int32Array(count);
-  const lost = new Int32Array(count);
-  const transitions = new Int32Array(count);
-  const neighbours3D = new Int32Array(count);
-  const changed = new Uint8Array(count);
-  const scutoid = new Uint8Array(count);
+  const { won, lost, transitions, neighbours3D, changed, scutoid } = cellArrays(count);
   // The union of a cell's sets over the surfaces, merged in two scratch lists.
   let largest = 0;
   for (const set of sets) for (let i = 0; i < count; i++) largest = Math.max(largest, set.offsets[i + 1] - set.offsets[i]);
@@ -248,6 +225,32 @@ export function analyzeSurfaces(surfaces: SurfaceAdjacency[], options: AnalysisO
   }
 
   let validCells = 0;
+  for (let i = 0; i < count; i++) validCells += valid[i];
+  const perSurface = surfaces.map((s, k) => summarizeSurface(s, sets[k], sides[k], valid, validCells, options));
+  return summarizeCells({ valid, sides, won, lost, transitions, neighbours3D, changed, scutoid }, perSurface);
+}
+
+/** The per-cell arrays of CellStatistics that an analysis fills (validity and sides come first). */
+export function cellArrays(count: number): Omit<CellStatistics, 'valid' | 'sides'> {
+  return {
+    won: new Int32Array(count),
+    lost: new Int32Array(count),
+    transitions: new Int32Array(count),
+    neighbours3D: new Int32Array(count),
+    changed: new Uint8Array(count),
+    scutoid: new Uint8Array(count),
+  };
+}
+
+/**
+ * The analysis of per-cell statistics: counts and means over the valid cells. `means` gives the
+ * won and lost counts the means are taken of (the lab protocol's accumulated ones; default the
+ * cells' own, first vs last surface).
+ */
+export function summarizeCells(cells: CellStatistics, perSurface: SurfaceSummary[], means: { won: Int32Array; lost: Int32Array } = cells): ScutoidAnalysis {
+  const { valid, won, lost, transitions, neighbours3D, scutoid } = cells;
+  const count = valid.length;
+  let validCells = 0;
   let scutoids = 0;
   let ends = 0;
   let sumT = 0;
@@ -260,20 +263,17 @@ export function analyzeSurfaces(surfaces: SurfaceAdjacency[], options: AnalysisO
     scutoids += scutoid[i];
     if (won[i] + lost[i] > 0) ends++;
     sumT += transitions[i];
-    sumWon += won[i];
-    sumLost += lost[i];
+    sumWon += means.won[i];
+    sumLost += means.lost[i];
     sum3D += neighbours3D[i];
   }
-
-  const perSurface = surfaces.map((s, k) => summarizeSurface(s, sets[k], sides[k], valid, validCells, options));
-
   return {
-    cells: { valid, sides, won, lost, transitions, neighbours3D, changed, scutoid },
+    cells,
     summary: {
       cells: count,
       validCells,
       excludedCells: count - validCells,
-      surfaces: S,
+      surfaces: cells.sides.length,
       scutoids,
       percentScutoids: mean(100 * scutoids, validCells),
       percentScutoidsEnds: mean(100 * ends, validCells),
@@ -350,32 +350,4 @@ export function summarizeSurface(
       meanNeighbourSides: mean(aboavSums[c], aboavCounts[c]),
     })),
   };
-}
-
-/**
- * The surface with contacts shorter than `minLength` µm removed (see `filterShortContacts`).
- * Side counts are recomputed from the remaining neighbours (an explicit `sides` is dropped).
- */
-export function withMinBoundaryLength(surface: SurfaceAdjacency, minLength: number): SurfaceAdjacency {
-  const adj = toCsr(surface.adjacency);
-  return { ...surface, adjacency: filterShortContacts(adj, minLength), sides: undefined };
-}
-
-/** The analysis input for one label adjacency (a planar grid's or a cube map's label image). */
-export function surfaceFromLabels(
-  a: { count: number; offsets: Int32Array; neighbours: Int32Array; lengths: Float64Array; area: Float64Array; touchesBorder: Uint8Array },
-  label?: string,
-): SurfaceAdjacency & { adjacency: CsrAdjacency & { lengths: Float64Array }; areas: Float64Array; touchesBorder: Uint8Array } {
-  return {
-    count: a.count,
-    adjacency: { offsets: a.offsets, neighbours: a.neighbours, lengths: a.lengths },
-    areas: a.area,
-    touchesBorder: a.touchesBorder,
-    label,
-  };
-}
-
-/** The analysis input for one exact Voronoi diagram. */
-export function surfaceFromExact(v: ExactVoronoi, label?: string): SurfaceAdjacency {
-  return { count: v.count, adjacency: v.adjacency, areas: v.areas, touchesBorder: v.touchesBorder, label };
 }

@@ -1,4 +1,4 @@
-import type { CsrAdjacency } from './adjacency';
+import type { SurfaceAdjacency } from './adjacency';
 
 /**
  * Neighbour sets as ascending ranges of Int32Arrays (a CSR row, sorted and deduplicated): the
@@ -68,8 +68,8 @@ export function newDifference(a: Int32Array, a0: number, a1: number, b: Int32Arr
 }
 
 /** Every list of a CSR adjacency strictly ascending and without the cell itself: already its neighbour sets. */
-export function isCanonical(adj: CsrAdjacency): boolean {
-  const count = adj.offsets.length - 1;
+export function isCanonical(adj: SurfaceAdjacency): boolean {
+  const count = adj.count;
   for (let i = 0; i < count; i++) {
     for (let k = adj.offsets[i]; k < adj.offsets[i + 1]; k++) {
       if (adj.neighbours[k] === i || (k > adj.offsets[i] && adj.neighbours[k] <= adj.neighbours[k - 1])) return false;

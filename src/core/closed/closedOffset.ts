@@ -20,7 +20,7 @@
 import { closestPointOnEllipsoid } from '../cubemap/sample';
 import { icosphere } from '../mesh/generate';
 import { areaWeightedVertexNormals } from '../mesh/types';
-import type { EllipsoidSurface, MeshSurface, RestrictedSurface } from './restrictedSurface';
+import type { EllipsoidGeometry, MeshGeometry, RestrictedSurface } from './restrictedSurface';
 import { triangleNeighbours } from './restrictedSurface';
 
 export type OffsetMode = 'normal' | 'axes';
@@ -108,7 +108,7 @@ function moveAlong(sites: ArrayLike<number>, normals: ArrayLike<number>, count: 
 }
 
 /** The mesh's vertices moved t along their area-weighted normals (t = 0: the mesh itself). */
-export function offsetMesh(mesh: MeshSurface, t: number): MeshSurface {
+export function offsetMesh(mesh: MeshGeometry, t: number): MeshGeometry {
   const neighbours = mesh.triangleNeighbours ?? triangleNeighbours(mesh.indices, mesh.positions.length / 3);
   if (t === 0) return { ...mesh, triangleNeighbours: neighbours };
   const normals = areaWeightedVertexNormals(mesh.positions, mesh.indices);
@@ -118,7 +118,7 @@ export function offsetMesh(mesh: MeshSurface, t: number): MeshSurface {
 }
 
 /** Triangulated parallel surface of an ellipsoid at offset t, and the sites moved onto the exact one. */
-function parallelEllipsoid(surface: EllipsoidSurface, sites: ArrayLike<number>, count: number, t: number, options: OffsetOptions): OffsetSurface {
+function parallelEllipsoid(surface: EllipsoidGeometry, sites: ArrayLike<number>, count: number, t: number, options: OffsetOptions): OffsetSurface {
   const { a, b, c } = surface;
   const lo = Math.min(a, b, c),
     hi = Math.max(a, b, c);
@@ -182,7 +182,7 @@ function parallelEllipsoid(surface: EllipsoidSurface, sites: ArrayLike<number>, 
         ellipsoidNormal(p[0], p[1], p[2], a, b, c, nrm, 3 * i);
         for (let k = 0; k < 3; k++) out[3 * i + k] = p[k] + t * nrm[3 * i + k];
       }
-      const triangulated: MeshSurface = { kind: 'mesh', positions: P, indices: T, triangleNeighbours: mesh.triangleNeighbours };
+      const triangulated: MeshGeometry = { kind: 'mesh', positions: P, indices: T, triangleNeighbours: mesh.triangleNeighbours };
       return { surface: triangulated, sites: out, normals: nrm, representation: 'triangulated', deviation };
     }
     f = roundFrequency(Math.ceil(f * Math.sqrt(deviation / maxDeviation) * 1.05));

@@ -1,9 +1,9 @@
 /**
  * Pure geometry of closed sheets on cube-map geometry images (no GL): initial sites, offset
- * (apical) surfaces, label adjacency across face edges, a brute-force nearest-site reference,
- * and the curvature bound for offsets of a mesh.
+ * (apical) surfaces, label adjacency across face edges, and the curvature bound for offsets of a mesh.
  */
-import { ContactRows, type LabelAdjacency } from '../labels';
+import type { SurfaceAdjacency } from '../analysis/adjacency';
+import { ContactRows, type ContactLength } from '../labels';
 import { texelFromIndex, texelIndex, wrapTexel, type Vec3 } from '../cubemap/cubemap';
 import type { CubeGeometryImage } from '../cubemap/sample';
 import type { TriangleMesh } from '../mesh/types';
@@ -199,21 +199,16 @@ export function offsetSurface(image: CubeGeometryImage, t: number, neighbours = 
 }
 
 /**
- * Cell adjacency of a cube-map label image: the planar LabelAdjacency's fields (lengths without
- * the staircase bias, see cubeLabelAdjacency; areas as sums of the texels' area elements),
- * without border sides: `touchesBorder` is all 0, a closed surface has no open edge.
- */
-export type CubeLabelAdjacency = Omit<LabelAdjacency, 'borderSides'>;
-
-/**
+ * Cell adjacency of a cube-map label image, as the adjacency record (src/core/analysis/adjacency.ts):
+ * areas as sums of the texels' area elements, `border` all 0 (a closed surface has no open edge).
  * Every pair of edge-adjacent texels (4-neighbourhood, across face edges through the edge
  * table) with different labels adds their shared texel edge to both cells' boundary.
  *
- * `staircaseLengths` sums the edges, each estimated as (A_k + A_l) / (2 |p_k - p_l|) (the
+ * The 'staircase' length sums the edges, each estimated as (A_k + A_l) / (2 |p_k - p_l|) (the
  * texels' extent across the line joining their centres): a staircase, 1 to 1.41 times the
  * true length of a contact.
  *
- * `lengths` removes that bias. Each shared texel edge is taken as a 3D vector: it runs along
+ * The 'true' length (the default) removes that bias. Each shared texel edge is taken as a 3D vector: it runs along
  * the parameter line between the two texels (the other axis than the step between them), from
  * the central difference of the texel's wrapped neighbours, and is oriented so that the cell
  * with the smaller id lies on its left (the cube faces' (s, t) frames all have the same
@@ -236,11 +231,12 @@ export function cubeLabelAdjacency(
   labels: ArrayLike<number>,
   count: number,
   neighbours = texelNeighbours(surface.n),
-): CubeLabelAdjacency {
+  length: ContactLength = 'true',
+  label?: string,
+): SurfaceAdjacency {
   const { position: P, area: A } = surface;
   const texelCount = labels.length;
   const perFace = surface.n * surface.n;
-  const texels = new Int32Array(count);
   const area = new Float64Array(count);
   const pairs = new Map<number, number>();
   // Per (pair, face): slot of its summed oriented edge vector in `chords` (x, y, z per slot).
@@ -249,7 +245,6 @@ export function cubeLabelAdjacency(
   for (let k = 0; k < texelCount; k++) {
     const a = labels[k];
     if (a < 0) continue;
-    texels[a]++;
     area[a] += A[k];
     // All 4 neighbours, each undirected texel pair counted once from its smaller index (across
     // a face edge the neighbour's axes are rotated, so "+i and +j only" would miss pairs).
@@ -306,8 +301,8 @@ export function cubeLabelAdjacency(
       b = key % count;
     rows.add(a, b, unbiased.get(key)!, staircase);
   }
-  const { lengths, staircaseLengths } = rows;
-  return { count, offsets, neighbours: rows.neighbours, lengths, staircaseLengths, texels, area, touchesBorder: new Uint8Array(count) };
+  const lengths = length === 'true' ? rows.lengths : rows.staircaseLengths;
+  return { count, offsets, neighbours: rows.neighbours, lengths, areas: area, border: new Uint8Array(count), label };
 }
 
 /**

@@ -18,7 +18,7 @@
  * grid of cells `minSpacing` wide (typed arrays, collisions checked by distance).
  */
 import { createRandom, searchCdf } from '../random';
-import { areaWeightedVertexNormals } from '../mesh/types';
+import { areaWeightedVertexNormals, triangleArea } from '../mesh/types';
 import { ellipsoidArea } from './conicArc';
 import type { RestrictedSurface } from './restrictedSurface';
 
@@ -156,16 +156,7 @@ function meshSampler(P: ArrayLike<number>, T: ArrayLike<number>, random: { next(
   const cdf = new Float64Array(nf);
   let total = 0;
   for (let f = 0; f < nf; f++) {
-    const a = 3 * T[3 * f],
-      b = 3 * T[3 * f + 1],
-      c = 3 * T[3 * f + 2];
-    const ux = P[b] - P[a],
-      uy = P[b + 1] - P[a + 1],
-      uz = P[b + 2] - P[a + 2];
-    const vx = P[c] - P[a],
-      vy = P[c + 1] - P[a + 1],
-      vz = P[c + 2] - P[a + 2];
-    total += 0.5 * Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
+    total += triangleArea(P, T, f);
     cdf[f] = total;
   }
   const N = areaWeightedVertexNormals(P, T);

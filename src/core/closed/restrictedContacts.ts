@@ -1,6 +1,6 @@
 /**
  * Collects the contacts a restricted Voronoi computation finds, cell by cell, and turns them
- * into the symmetric CSR adjacency the analysis takes.
+ * into the symmetric rows of the adjacency record (src/core/analysis/adjacency.ts).
  *
  * Each cell's computation sees its own side of a contact: cell i measures the part of the
  * bisector (i, j) on its boundary, cell j measures the same curve from its side. In exact
@@ -12,13 +12,7 @@
  *
  * Records go into growable typed arrays (amortised doubling, no per-contact objects).
  */
-import type { CsrAdjacency } from '../analysis/adjacency';
-
-export interface RestrictedAdjacency extends CsrAdjacency {
-  offsets: Int32Array;
-  neighbours: Int32Array;
-  lengths: Float64Array;
-}
+import type { SurfaceAdjacency } from '../analysis/adjacency';
 
 export class ContactRecorder {
   private from = new Int32Array(1024);
@@ -81,7 +75,7 @@ export class ContactRecorder {
    * The symmetric adjacency: neighbours sorted per cell, a pair kept when either side saw
    * more than `tolerance` µm, length = mean of the sides that saw it.
    */
-  finish(tolerance: number): RestrictedAdjacency {
+  finish(tolerance: number): Pick<SurfaceAdjacency, 'offsets' | 'neighbours' | 'lengths'> {
     this.flush();
     const n = this.count,
       size = this.size;

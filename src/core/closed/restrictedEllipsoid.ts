@@ -26,7 +26,7 @@
 import { EllipsoidArcIntegrator, ellipsoidArea } from './conicArc';
 import type { KdTree3 } from './kdTree';
 import type { ContactRecorder } from './restrictedContacts';
-import type { EllipsoidSurface } from './restrictedSurface';
+import type { EllipsoidGeometry } from './restrictedSurface';
 
 const INITIAL_CANDIDATES = 20;
 const TWO_PI = 2 * Math.PI;
@@ -64,7 +64,7 @@ export class EllipsoidRestrictedVoronoi {
   readonly stats: EllipsoidRvdStats = { enlargements: 0, maxCandidates: 0 };
 
   constructor(
-    surface: EllipsoidSurface,
+    surface: EllipsoidGeometry,
     private readonly sites: Float64Array,
     private readonly count: number,
     private readonly siteTree: KdTree3,

@@ -25,7 +25,8 @@
  */
 import { KdTree3 } from './kdTree';
 import type { ContactRecorder } from './restrictedContacts';
-import { triangleNeighbours, type MeshSurface } from './restrictedSurface';
+import { triangleNeighbours, type MeshGeometry } from './restrictedSurface';
+import { triangleArea } from '../mesh/types';
 
 const MAX_POLYGON = 512;
 const INITIAL_CANDIDATES = 24;
@@ -77,7 +78,7 @@ export class MeshRestrictedVoronoi {
   readonly stats: MeshRvdStats;
 
   constructor(
-    surface: MeshSurface,
+    surface: MeshGeometry,
     private readonly sites: Float64Array,
     private readonly count: number,
     private readonly siteTree: KdTree3,
@@ -98,13 +99,7 @@ export class MeshRestrictedVoronoi {
         b = 3 * this.T[3 * f + 1],
         c = 3 * this.T[3 * f + 2];
       const P = this.P;
-      const ux = P[b] - P[a],
-        uy = P[b + 1] - P[a + 1],
-        uz = P[b + 2] - P[a + 2];
-      const vx = P[c] - P[a],
-        vy = P[c + 1] - P[a + 1],
-        vz = P[c + 2] - P[a + 2];
-      this.triArea[f] = 0.5 * Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
+      this.triArea[f] = triangleArea(P, this.T, f);
       for (let k = 0; k < 3; k++) centroids[3 * f + k] = (P[a + k] + P[b + k] + P[c + k]) / 3;
     }
     this.centroids = centroids;

@@ -9,14 +9,16 @@
  *   so that the layers of a stack, which share the topology, build it once.
  */
 
-export interface EllipsoidSurface {
+/** The analytic ellipsoid (the config's `EllipsoidSurface` describes it; this is its geometry, µm). */
+export interface EllipsoidGeometry {
   readonly kind: 'ellipsoid';
   readonly a: number;
   readonly b: number;
   readonly c: number;
 }
 
-export interface MeshSurface {
+/** A loaded triangle mesh in µm (the config's `MeshSurface` names its file and scale). */
+export interface MeshGeometry {
   readonly kind: 'mesh';
   readonly positions: ArrayLike<number>;
   readonly indices: ArrayLike<number>;
@@ -24,9 +26,9 @@ export interface MeshSurface {
   readonly triangleNeighbours?: Int32Array;
 }
 
-export type RestrictedSurface = EllipsoidSurface | MeshSurface;
+export type RestrictedSurface = EllipsoidGeometry | MeshGeometry;
 
-export function sphereSurface(radius: number): EllipsoidSurface {
+export function sphereSurface(radius: number): EllipsoidGeometry {
   return { kind: 'ellipsoid', a: radius, b: radius, c: radius };
 }
 

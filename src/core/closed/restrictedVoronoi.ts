@@ -1,10 +1,10 @@
 /**
  * Exact neighbours on a closed surface: the restricted Voronoi diagram (RVD) of sites on a
  * triangle mesh or on the analytic ellipsoid / sphere, with true contact lengths in µm and
- * cell areas in µm² — the fields `SurfaceAdjacency` takes (src/core/analysis).
+ * cell areas in µm², as the adjacency record (`SurfaceAdjacency`, src/core/analysis/adjacency.ts;
+ * `border` all 0: a closed surface has no open edge).
  *
- *   restrictedVoronoi(surface, sites, count, options?) → { count, adjacency, areas,
- *     touchesBorder, stats }
+ *   restrictedVoronoi(surface, sites, count, options?) → { count, adjacency, surfaceArea, stats }
  *
  * - Mesh: restrictedMesh.ts (geogram's per-seed triangle clipping, radius of security,
  *   coverage repair for cells in several pieces).
@@ -15,15 +15,16 @@
  * radius-of-security proof uses that); on a mesh they may be anywhere (the cells are the
  * surface points nearest to each site). A contact is a neighbour when its length exceeds
  * `lengthTolerance` (default 1e-9 × sqrt(area / count), i.e. rounding level): the result is
- * the exact diagram, no minimum contact length applied — `filterShortContacts` does that.
+ * the exact diagram, no minimum contact length applied — `withMinBoundaryLength` does that.
  */
-import type { CsrAdjacency } from '../analysis/adjacency';
+import type { SurfaceAdjacency } from '../analysis/adjacency';
 import { ellipsoidArea } from './conicArc';
 import { KdTree3 } from './kdTree';
-import { ContactRecorder, type RestrictedAdjacency } from './restrictedContacts';
+import { ContactRecorder } from './restrictedContacts';
 import { EllipsoidRestrictedVoronoi, type EllipsoidRvdStats } from './restrictedEllipsoid';
 import { MeshRestrictedVoronoi, type MeshRvdStats } from './restrictedMesh';
 import { checkRestrictedSurface, type RestrictedSurface } from './restrictedSurface';
+import { meshArea } from '../mesh/types';
 
 export interface RestrictedVoronoiOptions {
   /** Contacts at or below this length (µm) are rounding, not neighbours. */
@@ -39,11 +40,8 @@ export interface RestrictedVoronoiOptions {
 
 export interface RestrictedVoronoi {
   readonly count: number;
-  readonly adjacency: RestrictedAdjacency & CsrAdjacency;
-  /** Cell areas on the surface, µm². */
-  readonly areas: Float64Array;
-  /** All 0: a closed surface has no border. */
-  readonly touchesBorder: Uint8Array;
+  /** Neighbours, contact lengths (µm), cell areas on the surface (µm²); no border (closed). */
+  readonly adjacency: SurfaceAdjacency;
   /** Mesh only: per site, the triangle its cell started in (-1: none); a hint for the next layer. */
   readonly startTriangles?: Int32Array;
   /** Surface area, µm² (sum of triangle areas, or the ellipsoid's). */
@@ -99,24 +97,7 @@ export function restrictedVoronoi(
     startTriangles = rvd.startTriangles;
     stats = { method: 'mesh', mesh: rvd.stats, ms: 0 };
   }
-  const adjacency = recorder.finish(tolerance);
+  const adjacency: SurfaceAdjacency = { count, ...recorder.finish(tolerance), areas, border: new Uint8Array(count) };
   stats.ms = performance.now() - start;
-  return { count, adjacency, areas, touchesBorder: new Uint8Array(count), surfaceArea, stats, ...(startTriangles ? { startTriangles } : {}) };
-}
-
-function meshArea(p: ArrayLike<number>, t: ArrayLike<number>): number {
-  let s = 0;
-  for (let f = 0; f < t.length; f += 3) {
-    const a = 3 * t[f],
-      b = 3 * t[f + 1],
-      c = 3 * t[f + 2];
-    const ux = p[b] - p[a],
-      uy = p[b + 1] - p[a + 1],
-      uz = p[b + 2] - p[a + 2];
-    const vx = p[c] - p[a],
-      vy = p[c + 1] - p[a + 1],
-      vz = p[c + 2] - p[a + 2];
-    s += 0.5 * Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
-  }
-  return s;
+  return { count, adjacency, surfaceArea, stats, ...(startTriangles ? { startTriangles } : {}) };
 }

@@ -155,7 +155,7 @@ export class ExactLloydRun implements LloydIterations {
       energy: move.energy,
       maxDisplacement: move.maxDisplacement,
       jumpFloodPasses: 0,
-      jumpFloodMs: built - start,
+      diagramMs: built - start,
       centroidMs: performance.now() - built,
     };
     this.iterations.push(record);

@@ -1,15 +1,16 @@
 /**
- * The analysis input of one surface (neighbours with shared lengths, areas, open-end contacts)
+ * The adjacency record of one surface (neighbours with shared lengths, areas, open-edge bits)
  * straight from the exact engine's cell walk: the same numbers as
- * `surfaceFromExact(exactVoronoi(grid, sites))` (tested cell by cell), without building the
- * per-cell records. Sweeps call it tens of thousands of times; the pipeline may use either.
+ * `exactVoronoi(grid, sites).adjacency` (tested cell by cell), without building the per-cell
+ * records. Sweeps call it tens of thousands of times; the pipeline may use either.
  */
-import type { SurfaceAdjacency } from '../analysis/scutoids';
+import type { SurfaceAdjacency } from '../analysis/adjacency';
+import { BORDER_X_END, BORDER_X_START, BORDER_Y_END, BORDER_Y_START } from '../border';
 import type { Grid } from '../grid';
 import { EDGE_FAR, EDGE_X0, EDGE_X1, EDGE_Y0, EDGE_Y1, PlanarVoronoi } from './planarVoronoi';
 import { PolygonBuffer, polygonMoments } from './polygon';
 
-/** Exact adjacency, areas (µm²) and open-end contacts of the sites (texel units) on `grid`. */
+/** Exact adjacency, areas (µm²) and open-edge bits of the sites (texel units) on `grid`. */
 export function exactSurface(grid: Grid, sites: ArrayLike<number>, label?: string, voronoi?: PlanarVoronoi): SurfaceAdjacency {
   const n = Math.floor(sites.length / 2);
   const v = voronoi ? voronoi.setGrid(grid) : new PlanarVoronoi(grid, n);
@@ -18,7 +19,7 @@ export function exactSurface(grid: Grid, sites: ArrayLike<number>, label?: strin
   const cell = new PolygonBuffer();
   const moments = new Float64Array(4);
   const areas = new Float64Array(n);
-  const touchesBorder = new Uint8Array(n);
+  const border = new Uint8Array(n);
   // Cells are walked in the diagram's spatial order (cache) into a scratch list in that order
   // (start[k] .. start[k + 1] for the k-th cell), then laid out in id order.
   const start = new Int32Array(n + 1);
@@ -28,7 +29,7 @@ export function exactSurface(grid: Grid, sites: ArrayLike<number>, label?: strin
   // Again (rarely) when a cell of a site near a periodic seam was not certified (planarVoronoi.ts).
   do {
     areas.fill(0);
-    touchesBorder.fill(0);
+    border.fill(0);
     for (let k = 0; k < n; k++) {
       const i = v.siteAt(k);
       v.cellAt(k, cell);
@@ -52,8 +53,8 @@ export function exactSurface(grid: Grid, sites: ArrayLike<number>, label?: strin
           const dy = cell.xy[2 * l + 1] - cell.xy[2 * e + 1];
           const length = Math.sqrt(dx * dx + dy * dy);
           if (length <= eps) continue;
-          if (label === EDGE_Y0 || label === EDGE_Y1 || label === EDGE_X0 || label === EDGE_X1) {
-            touchesBorder[i] = 1;
+          if (label < 0) {
+            border[i] |= borderBit(label);
             continue;
           }
           const id = label % n;
@@ -92,5 +93,14 @@ export function exactSurface(grid: Grid, sites: ArrayLike<number>, label?: strin
     neighbours.set(scratchIds.subarray(start[k], start[k + 1]), offsets[i]);
     lengths.set(scratchLengths.subarray(start[k], start[k + 1]), offsets[i]);
   }
-  return { count: n, adjacency: { offsets, neighbours, lengths }, areas, touchesBorder, label };
+  return { count: n, offsets, neighbours, lengths, areas, border, label };
+}
+
+/** The BORDER_* bit of a domain-edge label of the diagram (EDGE_FAR edges are skipped before). */
+function borderBit(label: number): number {
+  if (label === EDGE_Y0) return BORDER_Y_START;
+  if (label === EDGE_Y1) return BORDER_Y_END;
+  if (label === EDGE_X0) return BORDER_X_START;
+  if (label === EDGE_X1) return BORDER_X_END;
+  throw new Error(`exactSurface: unknown edge label ${label}`);
 }

@@ -2,9 +2,9 @@
  * The exact Voronoi diagram of sites on a planar-family grid (plane, tube, torus), rebuilt in
  * place for every Lloyd iteration: one Delaunay triangulation (Triangulation, a port of the
  * Delaunator that d3-delaunay uses, into kept buffers), cells walked around each site's Delaunay
- * fan into reusable buffers. Same definitions as `exactVoronoi` (src/core/exact.ts), which stays
- * the reference and the source of the full cell records; this class is the allocation-free hot
- * path of the exact engine and of sweeps, and is tested against it cell by cell.
+ * fan into reusable buffers. Same definitions as `exactVoronoi` (src/core/exact.ts, d3-delaunay),
+ * the source of the full cell records; this class is the allocation-free hot path of the exact
+ * engine and of sweeps, and is tested against that independent implementation cell by cell.
  *
  * - Physical metric: coordinates are scaled to µm (x * texelX, y * texelY) before triangulating.
  * - Periodic axes: the sites (points 0 .. n-1) and their periodic copies that lie within a margin

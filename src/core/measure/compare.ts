@@ -12,7 +12,7 @@
  *   layer j scaled around the tube by 1 + (s - 1) j / (K - 1) (the sites keep their unrolled
  *   position: radial projection), exact adjacency, open-border cells excluded.
  */
-import { analyzeSurfaces, surfaceFromExact, type ScutoidSummary } from '../analysis';
+import { analyzeSurfaces, type ScutoidSummary } from '../analysis';
 import { exactVoronoi } from '../exact';
 import type { Grid } from '../grid';
 import { placeSites } from '../sites';
@@ -74,6 +74,64 @@ export function l1Distance(a: number[], b: number[]): number {
   return d;
 }
 
+/**
+ * The model's Voronoi k for k = 1..maxK: every realization's sites after k - 1 Lloyd steps
+ * (`step`), the mean of their polygon distributions (`distributionOf`, NaN classes as 0), and
+ * its L1 distance to the measured `target`; the best k is the nearest (the first on a tie).
+ */
+export function searchVoronoiK<S>(
+  target: number[],
+  initial: S[],
+  maxK: number,
+  step: (sites: S) => S,
+  distributionOf: (sites: S) => readonly number[],
+  onProgress?: (line: string) => void,
+): { candidates: ModelCandidate[]; best: ModelCandidate; atK: S[][] } {
+  let sites = initial;
+  const atK: S[][] = [];
+  const candidates: ModelCandidate[] = [];
+  for (let k = 1; k <= maxK; k++) {
+    if (k > 1) sites = sites.map(step);
+    atK.push(sites);
+    const mean = new Array<number>(target.length).fill(0);
+    for (const s of sites) distributionOf(s).forEach((f, c) => (mean[c] += (Number.isNaN(f) ? 0 : f) / initial.length));
+    candidates.push({ k, polygonDistribution: mean, distance: l1Distance(target, mean) });
+    onProgress?.(`model Voronoi ${k}: L1 distance ${candidates[k - 1].distance.toFixed(4)}`);
+  }
+  return { candidates, best: candidates.reduce((a, b) => (b.distance < a.distance ? b : a)), atK };
+}
+
+/**
+ * The comparison record: the model (its sites), the Voronoi k search, and the best model's stack
+ * statistics over the realizations (`summaries`: one analysed stack each).
+ */
+export function modelComparison(
+  model: Pick<ModelComparison, 'cells' | 'realizations' | 'seed' | 'minSpacing' | 'surfaceRatio'>,
+  search: { candidates: ModelCandidate[]; best: ModelCandidate },
+  summaries: ScutoidSummary[],
+): ModelComparison {
+  const percents = summaries.map((s) => s.percentScutoids);
+  const mean = percents.reduce((a, b) => a + b, 0) / percents.length;
+  const sd = percents.length > 1 ? Math.sqrt(percents.reduce((a, b) => a + (b - mean) ** 2, 0) / (percents.length - 1)) : NaN;
+  return {
+    method: 'exact',
+    distance: 'L1 over polygon classes 3..9, 10+',
+    cells: model.cells,
+    realizations: model.realizations,
+    seed: model.seed,
+    minSpacing: model.minSpacing,
+    candidates: search.candidates,
+    bestK: search.best.k,
+    surfaceRatio: model.surfaceRatio,
+    percentScutoids: percents,
+    meanPercentScutoids: mean,
+    sdPercentScutoids: sd,
+    meanTransitions: summaries.map((s) => s.meanTransitions),
+    meanNeighbours3D: summaries.map((s) => s.meanNeighbours3D),
+    summary: summaries[0],
+  };
+}
+
 function lloyd(grid: Grid, sites: Float64Array, iterations: number): Float64Array {
   let current = sites;
   for (let it = 0; it < iterations; it++) current = Float64Array.from(exactVoronoi(grid, current).centroids);
@@ -89,58 +147,25 @@ export function compareWithModel(options: CompareOptions): ModelComparison {
   const minSpacing = (LAB_MIN_SPACING_PIXELS * Math.sqrt(area / cells)) / LAB_CELL_DIAMETER_PIXELS;
 
   // Sites of every realization after k - 1 iterations, advanced one k at a time.
-  const sites: Float64Array[] = [];
-  for (let r = 0; r < realizations; r++) sites.push(Float64Array.from(placeSites(grid, cells, seed + r, minSpacing)));
-  const atK: Float64Array[][] = [];
-  const candidates: ModelCandidate[] = [];
-  for (let k = 1; k <= maxK; k++) {
-    if (k > 1) for (let r = 0; r < realizations; r++) sites[r] = lloyd(grid, sites[r], 1);
-    atK.push(sites.slice());
-    const mean = new Array<number>(options.distribution.length).fill(0);
-    for (const s of sites) {
-      const summary = analyzeSurfaces([surfaceFromExact(exactVoronoi(grid, s))]).summary;
-      summary.perSurface[0].polygonDistribution.forEach((f, c) => (mean[c] += (Number.isNaN(f) ? 0 : f) / realizations));
-    }
-    candidates.push({ k, polygonDistribution: mean, distance: l1Distance(options.distribution, mean) });
-    options.onProgress?.(`model Voronoi ${k}: L1 distance ${candidates[k - 1].distance.toFixed(4)}`);
-  }
-  const best = candidates.reduce((a, b) => (b.distance < a.distance ? b : a));
+  const initial = Array.from({ length: realizations }, (_, r) => Float64Array.from(placeSites(grid, cells, seed + r, minSpacing)));
+  const search = searchVoronoiK<Float64Array>(
+    options.distribution,
+    initial,
+    maxK,
+    (s) => lloyd(grid, s, 1),
+    (s) => analyzeSurfaces([exactVoronoi(grid, s).adjacency]).summary.perSurface[0].polygonDistribution,
+    options.onProgress,
+  );
 
   const layers = Math.max(2, options.layers);
   const s = options.surfaceRatio;
-  const percents: number[] = [];
-  const transitions: number[] = [];
-  const neighbours3D: number[] = [];
-  let firstSummary: ScutoidSummary | null = null;
-  for (const siteSet of atK[best.k - 1]) {
+  const summaries = search.atK[search.best.k - 1].map((siteSet) => {
     const surfaces = [];
     for (let j = 0; j < layers; j++) {
       const ratio = 1 + ((s - 1) * j) / (layers - 1);
-      surfaces.push(surfaceFromExact(exactVoronoi({ ...grid, texelX: pixelSize * ratio }, siteSet), `ratio ${ratio}`));
+      surfaces.push({ ...exactVoronoi({ ...grid, texelX: pixelSize * ratio }, siteSet).adjacency, label: `ratio ${ratio}` });
     }
-    const summary = analyzeSurfaces(surfaces).summary;
-    firstSummary ??= summary;
-    percents.push(summary.percentScutoids);
-    transitions.push(summary.meanTransitions);
-    neighbours3D.push(summary.meanNeighbours3D);
-  }
-  const mean = percents.reduce((a, b) => a + b, 0) / percents.length;
-  const sd = percents.length > 1 ? Math.sqrt(percents.reduce((a, b) => a + (b - mean) ** 2, 0) / (percents.length - 1)) : NaN;
-  return {
-    method: 'exact',
-    distance: 'L1 over polygon classes 3..9, 10+',
-    cells,
-    realizations,
-    seed,
-    minSpacing,
-    candidates,
-    bestK: best.k,
-    surfaceRatio: s,
-    percentScutoids: percents,
-    meanPercentScutoids: mean,
-    sdPercentScutoids: sd,
-    meanTransitions: transitions,
-    meanNeighbours3D: neighbours3D,
-    summary: firstSummary!,
-  };
+    return analyzeSurfaces(surfaces).summary;
+  });
+  return modelComparison({ cells, realizations, seed, minSpacing, surfaceRatio: s }, search, summaries);
 }

@@ -9,16 +9,12 @@
 import { BORDER_X_END, BORDER_X_START, BORDER_Y_END, BORDER_Y_START } from '../border';
 import type { LabelPixels } from './labelImage';
 
-/** Border bits (core/border.ts): which non-periodic image edges a label touches; the top row is y = 0. */
-export const BORDER_TOP = BORDER_Y_START;
-export const BORDER_BOTTOM = BORDER_Y_END;
-export const BORDER_LEFT = BORDER_X_START;
-export const BORDER_RIGHT = BORDER_X_END;
+/** The border bits (core/border.ts) by the image edge they name; the top row is y = 0. */
 export const BORDER_NAMES: ReadonlyArray<[number, string]> = [
-  [BORDER_LEFT, 'left'],
-  [BORDER_RIGHT, 'right'],
-  [BORDER_TOP, 'top'],
-  [BORDER_BOTTOM, 'bottom'],
+  [BORDER_X_START, 'left'],
+  [BORDER_X_END, 'right'],
+  [BORDER_Y_START, 'top'],
+  [BORDER_Y_END, 'bottom'],
 ];
 
 /** Pair key of labels a < b (both < 2^16). */
@@ -80,14 +76,14 @@ export function countContacts(image: LabelPixels, periodicX: boolean): LayerCont
     if (periodicX) {
       if (width > 1 && first !== last && first !== 0 && last !== 0) add(last, first);
     } else {
-      border[first] |= BORDER_LEFT;
-      border[last] |= BORDER_RIGHT;
+      border[first] |= BORDER_X_START;
+      border[last] |= BORDER_X_END;
     }
   }
   if (lastKey >= 0) edges.set(lastKey, (edges.get(lastKey) ?? 0) + lastCount);
   for (let x = 0; x < width; x++) {
-    border[data[x]] |= BORDER_TOP;
-    border[data[(height - 1) * width + x]] |= BORDER_BOTTOM;
+    border[data[x]] |= BORDER_Y_START;
+    border[data[(height - 1) * width + x]] |= BORDER_Y_END;
   }
   border[0] = 0;
   let labels = 0;

@@ -1,20 +1,18 @@
 /**
- * PNG label images, decoded by fast-png (pure JavaScript; keeps a 16-bit grey image as one
- * 16-bit channel, where pngjs would expand it to 16-bit RGBA: four times the memory).
+ * PNG label images, decoded by fast-png (pure JavaScript, the one PNG decoder on the Node side;
+ * it keeps a 16-bit grey image as one 16-bit channel).
  *
- * The header (IHDR, always the first chunk) is read and checked before anything is inflated.
+ * The header (IHDR, always the first chunk: src/core/pngHeader.ts) is read and checked before
+ * anything is inflated.
  * Accepted: 8- or 16-bit grey, 8-bit palette (the index is the label). PNG's pHYs is ignored
  * (editors write 72 or 96 dpi there, not a microscope calibration).
  */
 import { decode } from 'fast-png';
+import { hasPngSignature, readPngIhdr } from '../pngHeader';
 import { MeasureInputError } from './errors';
 import { type LabelFileHeader, type LabelPixels, sizeProblem } from './labelImage';
 
-const SIGNATURE = [0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a];
-
-export function isPng(bytes: Uint8Array): boolean {
-  return bytes.length >= 8 && SIGNATURE.every((b, k) => bytes[k] === b);
-}
+export const isPng = hasPngSignature;
 
 const COLOUR_TYPES: Record<number, string> = {
   0: 'grey',
@@ -26,16 +24,10 @@ const COLOUR_TYPES: Record<number, string> = {
 
 /** The PNG's size and pixel type from its IHDR chunk; throws MeasureInputError when unusable. */
 export function inspectPng(bytes: Uint8Array, file: string): LabelFileHeader {
-  if (bytes.length < 33) throw new MeasureInputError(file, 'truncated PNG (no complete header)');
-  const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
-  const chunk = String.fromCharCode(bytes[12], bytes[13], bytes[14], bytes[15]);
-  if (view.getUint32(8) !== 13 || chunk !== 'IHDR') throw new MeasureInputError(file, 'corrupt PNG (the first chunk is not IHDR)');
-  const width = view.getUint32(16);
-  const height = view.getUint32(20);
-  const depth = bytes[24];
-  const colourType = bytes[25];
+  const header = readPngIhdr(bytes);
+  if ('problem' in header) throw new MeasureInputError(file, header.problem);
+  const { width, height, bitDepth: depth, colorType: colourType } = header;
   const colour = COLOUR_TYPES[colourType];
-  if (colour === undefined) throw new MeasureInputError(file, `corrupt PNG (colour type ${colourType})`);
   if (colourType !== 0 && colourType !== 3) {
     throw new MeasureInputError(file, `unsupported pixel type: ${depth}-bit ${colour}; labels must be one 8- or 16-bit grey channel`);
   }

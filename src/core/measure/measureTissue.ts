@@ -3,7 +3,8 @@
  * contacts, then builds one analysis input per layer over the union of labels and runs the
  * same analysis as a simulated stack (analyzeSurfaces) on it.
  */
-import { analysisRecord, analyzeSurfaces, csrFromLists, labMinBoundaryLength, withMinBoundaryLength, type SurfaceAdjacency } from '../analysis';
+import { adjacencyFromLists, analysisRecord, analyzeSurfaces, labMinBoundaryLength, withMinBoundaryLength, type SurfaceAdjacency } from '../analysis';
+import { BORDER_EXCLUDED } from '../border';
 import { BORDER_NAMES, countContacts, type LayerContacts } from './contacts';
 import { MeasureInputError } from './errors';
 import type { LabelPixels } from './labelImage';
@@ -198,15 +199,15 @@ function layerSurface(c: LayerContacts, name: string, idOf: Int32Array, count: n
     lengths[b].push(edges * p);
   }
   const areas = new Float64Array(count);
-  const touchesBorder = new Uint8Array(count);
+  const border = new Uint8Array(count);
   idOf.forEach((id, label) => {
     if (id < 0) return;
     const pixels = label < c.labelSpace ? c.pixels[label] : 0;
     areas[id] = pixels * p * p;
     // Missing from this layer or touching its open border: left out of the statistics.
-    touchesBorder[id] = pixels === 0 || c.border[label] !== 0 ? 1 : 0;
+    border[id] = pixels === 0 ? BORDER_EXCLUDED : c.border[label];
   });
-  return { count, adjacency: csrFromLists(lists, lengths), areas, touchesBorder, label: name };
+  return adjacencyFromLists(lists, lengths, areas, border, name);
 }
 
 /** Every contact of every cell on one layer, by original label, ascending. */

@@ -5,7 +5,8 @@
  * Why the heat method: a Voronoi diagram of s sites on a mesh needs s distance fields; the
  * heat method reduces each to two sparse solves with matrices that do not depend on the
  * source, so both are factored once (SparseCholesky) and every site then costs two pairs of
- * triangular solves plus O(F) work. This is the CPU reference for the GPU cube-map Voronoi.
+ * triangular solves plus O(F) work. The result's optional geodesic comparison
+ * (src/run/closedRecord.ts) sets the GPU cube-map Voronoi against it.
  *
  * Steps (per source set):
  *  1. heat flow  (M + t L) u = δ_sources, t = h² (h = mean edge length, Crane's choice);
@@ -18,7 +19,7 @@
  * L_ii = -Σ_j L_ij; M is the lumped (barycentric) mass: a third of the incident triangle areas.
  */
 import { csrAddDiagonal, csrFromTriplets, SparseCholesky, type CsrMatrix } from './sparse';
-import { meanEdgeLength, type TriangleMesh } from './types';
+import { meanEdgeLength, triangleArea, triangleCross, type TriangleMesh } from './types';
 
 /** Cotangent of the angle at vertex o of triangle (o, a, b). */
 function cotAt(p: Float32Array, o: number, a: number, b: number): number {
@@ -81,18 +82,9 @@ export function lumpedMass(mesh: TriangleMesh): Float64Array {
   const p = mesh.positions,
     t = mesh.indices;
   const m = new Float64Array(p.length / 3);
-  for (let f = 0; f < t.length; f += 3) {
-    const a = 3 * t[f],
-      b = 3 * t[f + 1],
-      c = 3 * t[f + 2];
-    const ux = p[b] - p[a],
-      uy = p[b + 1] - p[a + 1],
-      uz = p[b + 2] - p[a + 2];
-    const vx = p[c] - p[a],
-      vy = p[c + 1] - p[a + 1],
-      vz = p[c + 2] - p[a + 2];
-    const area = 0.5 * Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
-    for (let k = 0; k < 3; k++) m[t[f + k]] += area / 3;
+  for (let f = 0; f < t.length / 3; f++) {
+    const area = triangleArea(p, t, f);
+    for (let k = 0; k < 3; k++) m[t[3 * f + k]] += area / 3;
   }
   return m;
 }
@@ -140,20 +132,13 @@ export class HeatGeodesics {
     const nf = t.length / 3;
     this.cots = new Float64Array(3 * nf);
     this.faceData = new Float64Array(4 * nf);
+    const cross = new Float64Array(3);
     for (let f = 0; f < nf; f++) {
       const [a, b, c] = [t[3 * f], t[3 * f + 1], t[3 * f + 2]];
       this.cots[3 * f] = cotAt(p, a, b, c);
       this.cots[3 * f + 1] = cotAt(p, b, c, a);
       this.cots[3 * f + 2] = cotAt(p, c, a, b);
-      const ux = p[3 * b] - p[3 * a],
-        uy = p[3 * b + 1] - p[3 * a + 1],
-        uz = p[3 * b + 2] - p[3 * a + 2];
-      const vx = p[3 * c] - p[3 * a],
-        vy = p[3 * c + 1] - p[3 * a + 1],
-        vz = p[3 * c + 2] - p[3 * a + 2];
-      const nx = uy * vz - uz * vy,
-        ny = uz * vx - ux * vz,
-        nz = ux * vy - uy * vx;
+      const [nx, ny, nz] = triangleCross(p, t, f, cross);
       const twiceArea = Math.hypot(nx, ny, nz) || 1e-300;
       this.faceData.set([1 / twiceArea, nx / twiceArea, ny / twiceArea, nz / twiceArea], 4 * f);
     }

@@ -63,7 +63,7 @@ export interface SphericalOptions {
   relaxIterations?: number;
 }
 
-function det3(s: Float64Array, a: number, b: number, c: number): number {
+function det3(s: ArrayLike<number>, a: number, b: number, c: number): number {
   const ax = s[3 * a],
     ay = s[3 * a + 1],
     az = s[3 * a + 2];
@@ -78,18 +78,22 @@ function det3(s: Float64Array, a: number, b: number, c: number): number {
 
 /** Solid angle of the spherical triangle (a, b, c), signed (Van Oosterom & Strackee 1983). */
 export function sphericalTriangleArea(s: ArrayLike<number>, a: number, b: number, c: number): number {
-  const ax = s[3 * a],
-    ay = s[3 * a + 1],
-    az = s[3 * a + 2];
-  const bx = s[3 * b],
-    by = s[3 * b + 1],
-    bz = s[3 * b + 2];
-  const cx = s[3 * c],
-    cy = s[3 * c + 1],
-    cz = s[3 * c + 2];
-  const det = ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx);
-  const den = 1 + ax * bx + ay * by + az * bz + bx * cx + by * cy + bz * cz + cx * ax + cy * ay + cz * az;
-  return 2 * Math.atan2(det, den);
+  const i = 3 * a,
+    j = 3 * b,
+    k = 3 * c;
+  // 1 + a·b + b·c + c·a, summed in this order.
+  const den =
+    1 +
+    s[i] * s[j] +
+    s[i + 1] * s[j + 1] +
+    s[i + 2] * s[j + 2] +
+    s[j] * s[k] +
+    s[j + 1] * s[k + 1] +
+    s[j + 2] * s[k + 2] +
+    s[k] * s[i] +
+    s[k + 1] * s[i + 1] +
+    s[k + 2] * s[i + 2];
+  return 2 * Math.atan2(det3(s, a, b, c), den);
 }
 
 /** Number of triangles with non-positive orientation on the sphere. */

@@ -47,25 +47,50 @@ export function boundingBox(positions: ArrayLike<number>): { min: Vec3; max: Vec
   return { min, max, diagonal };
 }
 
+/**
+ * (b - a) × (c - a) of triangle f (vertex ids at t[3f .. 3f + 2], x, y, z per vertex in `p`),
+ * written into `out` (allocates nothing): along the face normal (counter-clockwise vertices),
+ * twice the triangle's area long.
+ */
+export function triangleCross(p: ArrayLike<number>, t: ArrayLike<number>, f: number, out: Float64Array): Float64Array {
+  const a = 3 * t[3 * f],
+    b = 3 * t[3 * f + 1],
+    c = 3 * t[3 * f + 2];
+  const ux = p[b] - p[a],
+    uy = p[b + 1] - p[a + 1],
+    uz = p[b + 2] - p[a + 2];
+  const vx = p[c] - p[a],
+    vy = p[c + 1] - p[a + 1],
+    vz = p[c + 2] - p[a + 2];
+  out[0] = uy * vz - uz * vy;
+  out[1] = uz * vx - ux * vz;
+  out[2] = ux * vy - uy * vx;
+  return out;
+}
+
+const crossScratch = new Float64Array(3);
+
+/** Area of triangle f (see triangleCross). */
+export function triangleArea(p: ArrayLike<number>, t: ArrayLike<number>, f: number): number {
+  const n = triangleCross(p, t, f, crossScratch);
+  return 0.5 * Math.hypot(n[0], n[1], n[2]);
+}
+
+/** Total area of a triangle mesh (positions x, y, z per vertex, 3 vertex ids per triangle). */
+export function meshArea(p: ArrayLike<number>, t: ArrayLike<number>): number {
+  let s = 0;
+  for (let f = 0; f < t.length / 3; f++) s += triangleArea(p, t, f);
+  return s;
+}
+
 /** Area of every triangle (float64, computed from the float32 positions). */
 export function faceAreas(mesh: TriangleMesh): Float64Array {
   const { positions: p, indices: t } = mesh;
-  const nf = t.length / 3;
-  const out = new Float64Array(nf);
-  for (let f = 0; f < nf; f++) {
-    const a = 3 * t[3 * f],
-      b = 3 * t[3 * f + 1],
-      c = 3 * t[3 * f + 2];
-    const ux = p[b] - p[a],
-      uy = p[b + 1] - p[a + 1],
-      uz = p[b + 2] - p[a + 2];
-    const vx = p[c] - p[a],
-      vy = p[c + 1] - p[a + 1],
-      vz = p[c + 2] - p[a + 2];
-    const cx = uy * vz - uz * vy,
-      cy = uz * vx - ux * vz,
-      cz = ux * vy - uy * vx;
-    out[f] = 0.5 * Math.sqrt(cx * cx + cy * cy + cz * cz);
+  const out = new Float64Array(t.length / 3);
+  for (let f = 0; f < out.length; f++) {
+    // sqrt of the squares, not hypot: the areas every mesh result was computed with (the last bit differs).
+    const [x, y, z] = triangleCross(p, t, f, crossScratch);
+    out[f] = 0.5 * Math.sqrt(x * x + y * y + z * z);
   }
   return out;
 }
@@ -105,23 +130,14 @@ export function vertexNormals(mesh: TriangleMesh): Float32Array {
 export function areaWeightedVertexNormals(positions: ArrayLike<number>, indices: ArrayLike<number>): Float64Array {
   const p = positions;
   const n = new Float64Array(p.length);
-  for (let f = 0; f < indices.length; f += 3) {
-    const a = 3 * indices[f],
-      b = 3 * indices[f + 1],
-      c = 3 * indices[f + 2];
-    const ux = p[b] - p[a],
-      uy = p[b + 1] - p[a + 1],
-      uz = p[b + 2] - p[a + 2];
-    const vx = p[c] - p[a],
-      vy = p[c + 1] - p[a + 1],
-      vz = p[c + 2] - p[a + 2];
-    const cx = uy * vz - uz * vy,
-      cy = uz * vx - ux * vz,
-      cz = ux * vy - uy * vx;
-    for (const i of [a, b, c]) {
-      n[i] += cx;
-      n[i + 1] += cy;
-      n[i + 2] += cz;
+  const cross = new Float64Array(3);
+  for (let f = 0; f < indices.length / 3; f++) {
+    triangleCross(p, indices, f, cross);
+    for (let k = 0; k < 3; k++) {
+      const i = 3 * indices[3 * f + k];
+      n[i] += cross[0];
+      n[i + 1] += cross[1];
+      n[i + 2] += cross[2];
     }
   }
   for (let i = 0; i < n.length; i += 3) {

@@ -3,7 +3,7 @@
  * the project (scripts/make-meshes.ts) and so tests can round-trip every format through the
  * three.js loaders instead of trusting hand-written fixture files.
  */
-import type { TriangleMesh } from './types';
+import { triangleCross, type TriangleMesh } from './types';
 
 const num = (x: number) => {
   const s = x.toPrecision(7);
@@ -53,17 +53,8 @@ export function writePlyBinary(mesh: TriangleMesh): ArrayBuffer {
 function faceNormal(mesh: TriangleMesh, f: number): [number, number, number] {
   const p = mesh.positions,
     t = mesh.indices;
-  const a = 3 * t[3 * f],
-    b = 3 * t[3 * f + 1],
-    c = 3 * t[3 * f + 2];
-  const ux = p[b] - p[a],
-    uy = p[b + 1] - p[a + 1],
-    uz = p[b + 2] - p[a + 2];
-  const vx = p[c] - p[a],
-    vy = p[c + 1] - p[a + 1],
-    vz = p[c + 2] - p[a + 2];
-  const n: [number, number, number] = [uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx];
-  const l = Math.hypot(...n) || 1;
+  const n = triangleCross(p, t, f, new Float64Array(3));
+  const l = Math.hypot(n[0], n[1], n[2]) || 1;
   return [n[0] / l, n[1] / l, n[2] / l];
 }
 

@@ -16,7 +16,7 @@ export type ToWorker =
       readonly config: AnyConfig;
       readonly densityImage?: GrayImage;
       readonly meshFile?: MeshFile;
-      /** false: send the result without label images (see RunCallbacks.views). */
+      /** false: send the result without label images (see RunOptions.views). */
       readonly views?: boolean;
       /** Options of the worker's Presenter (servePipeline.ts); absent: nothing presented. */
       readonly present?: unknown;

@@ -1,6 +1,6 @@
 import { ConfigError, type AnyConfig } from '../../core/config';
 import { GpuCapabilityError, type GpuContext } from '../../gpu/context';
-import type { RunCallbacks } from '../family';
+import type { RunOptions } from '../family';
 import type { SheetOutput } from '../result';
 import { SheetRunner } from '../runSheet';
 import type { FromWorker, SerializedError, ToWorker } from './protocol';
@@ -9,7 +9,7 @@ import type { FromWorker, SerializedError, ToWorker } from './protocol';
 export type ComputeSite = { readonly where: 'worker' } | { readonly where: 'page'; readonly reason: string };
 
 /** A run's callbacks, and what to ask of the worker's Presenter (servePipeline.ts). */
-export interface WorkerRunCallbacks extends RunCallbacks {
+export interface WorkerRunOptions extends RunOptions {
   /** Options for the worker's Presenter; absent: nothing is presented. */
   present?: unknown;
   /** Called before the run resolves with what the worker presented (never on the page fallback). */
@@ -19,7 +19,7 @@ export interface WorkerRunCallbacks extends RunCallbacks {
 interface Pending {
   readonly resolve: (output: SheetOutput) => void;
   readonly reject: (error: unknown) => void;
-  readonly callbacks: WorkerRunCallbacks;
+  readonly callbacks: WorkerRunOptions;
   readonly message: Extract<ToWorker, { type: 'run' }>;
 }
 
@@ -53,7 +53,7 @@ export class WorkerSheetRunner {
     }
   }
 
-  run(config: AnyConfig, callbacks: WorkerRunCallbacks = {}): Promise<SheetOutput> {
+  run(config: AnyConfig, callbacks: WorkerRunOptions = {}): Promise<SheetOutput> {
     if (!this.worker) return this.onPage().run(config, pageCallbacks(callbacks));
     const { signal } = callbacks;
     if (signal?.aborted) return Promise.reject(abortError());
@@ -127,7 +127,7 @@ export class WorkerSheetRunner {
 }
 
 /** The callbacks a SheetRunner on the page takes (nothing is presented there). */
-function pageCallbacks({ present: _present, onPresented: _onPresented, ...callbacks }: WorkerRunCallbacks): RunCallbacks {
+function pageCallbacks({ present: _present, onPresented: _onPresented, ...callbacks }: WorkerRunOptions): RunOptions {
   return callbacks;
 }
 

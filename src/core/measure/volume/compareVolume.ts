@@ -20,9 +20,9 @@
  * restricted Voronoi diagram there. The result says how
  * many sites went each way.
  */
-import { analyzeSurfaces, type ScutoidSummary } from '../../analysis';
+import { analyzeSurfaces } from '../../analysis';
 import { KdTree3 } from '../../closed/kdTree';
-import { compareWithModel, l1Distance, LAB_MIN_SPACING_PIXELS, type ModelCandidate, type ModelComparison } from '../compare';
+import { compareWithModel, LAB_MIN_SPACING_PIXELS, modelComparison, searchVoronoiK, type ModelComparison } from '../compare';
 import { carryAlongNormals, lloydStepOnMesh, meshSurface, prepareMesh, randomSitesOnMesh } from './meshModel';
 import type { SurfaceMesh } from './surfaceMesh';
 import { fitTube, thicknessOf, type TubeGeometry } from './tubeFit';
@@ -113,57 +113,28 @@ export function compareShell(
   const summary = result.analyses[0].summary;
   const distribution = summary.perSurface[inner].polygonDistribution.map((f) => (Number.isNaN(f) ? 0 : f));
 
-  let sites = Array.from({ length: realizations }, (_, r) => randomSitesOnMesh(seeded, cells, minSpacing, seed + r));
-  const atK: Float64Array[][] = [];
-  const candidates: ModelCandidate[] = [];
-  for (let k = 1; k <= maxK; k++) {
-    if (k > 1) sites = sites.map((s) => lloydStepOnMesh(seeded, s));
-    atK.push(sites);
-    const mean = new Array<number>(distribution.length).fill(0);
-    for (const s of sites) {
-      const d = analyzeSurfaces([meshSurface(seeded, s, 'seeded')]).summary.perSurface[0].polygonDistribution;
-      d.forEach((f, c) => (mean[c] += (Number.isNaN(f) ? 0 : f) / realizations));
-    }
-    candidates.push({ k, polygonDistribution: mean, distance: l1Distance(distribution, mean) });
-    options.onProgress?.(`model Voronoi ${k}: L1 distance ${candidates[k - 1].distance.toFixed(4)}`);
-  }
-  const best = candidates.reduce((a, b) => (b.distance < a.distance ? b : a));
-  const percents: number[] = [];
-  const transitions: number[] = [];
-  const neighbours3D: number[] = [];
+  const initial = Array.from({ length: realizations }, (_, r) => randomSitesOnMesh(seeded, cells, minSpacing, seed + r));
+  const search = searchVoronoiK(
+    distribution,
+    initial,
+    maxK,
+    (s) => lloydStepOnMesh(seeded, s),
+    (s) => analyzeSurfaces([meshSurface(seeded, s, 'seeded')]).summary.perSurface[0].polygonDistribution,
+    options.onProgress,
+  );
   let alongNormal = 0;
   let parallel = 0;
-  let first: ScutoidSummary | null = null;
-  for (const s of atK[best.k - 1]) {
+  const summaries = search.atK[search.best.k - 1].map((s) => {
     const carried = carryAlongNormals(seeded, s, other, 1, 3 * reach, thicknessAt);
     alongNormal += carried.alongNormal;
     parallel += carried.parallel;
-    const analysis = analyzeSurfaces([meshSurface(seeded, s, 'lumen side'), meshSurface(other, carried.sites, 'outer side')]).summary;
-    first ??= analysis;
-    percents.push(analysis.percentScutoids);
-    transitions.push(analysis.meanTransitions);
-    neighbours3D.push(analysis.meanNeighbours3D);
-  }
-  const p = interval(percents);
-  const sd = percents.length > 1 ? Math.sqrt(percents.reduce((a, b) => a + (b - p.mean) ** 2, 0) / (percents.length - 1)) : NaN;
+    return analyzeSurfaces([meshSurface(seeded, s, 'lumen side'), meshSurface(other, carried.sites, 'outer side')]).summary;
+  });
+  const stack = modelComparison({ cells, realizations, seed, minSpacing, surfaceRatio: other.area / seeded.area }, search, summaries);
   const meshInfo = (m: SurfaceMesh, prepared: { area: number }) => ({ vertices: m.positions.length / 3, triangles: m.indices.length / 3, area: prepared.area });
   return {
     comparison: {
-      method: 'exact',
-      distance: 'L1 over polygon classes 3..9, 10+',
-      cells,
-      realizations,
-      seed,
-      minSpacing,
-      candidates,
-      bestK: best.k,
-      surfaceRatio: other.area / seeded.area,
-      percentScutoids: percents,
-      meanPercentScutoids: p.mean,
-      sdPercentScutoids: sd,
-      meanTransitions: transitions,
-      meanNeighbours3D: neighbours3D,
-      summary: first!,
+      ...stack,
       geometry: {
         kind: 'mesh',
         seededLayer: layer.name,
@@ -174,7 +145,7 @@ export function compareShell(
         projection: { alongNormal, parallel },
         thickness,
       },
-      model: { percentScutoids: p, transitions: interval(transitions), neighbours3D: interval(neighbours3D) },
+      model: { percentScutoids: interval(stack.percentScutoids), transitions: interval(stack.meanTransitions), neighbours3D: interval(stack.meanNeighbours3D) },
       measured: { percentScutoids: summary.percentScutoids, transitions: summary.meanTransitions, neighbours3D: summary.meanNeighbours3D },
     },
     note: '',

@@ -4,7 +4,8 @@
  * surfaces and the contact curves between cells there (lengths in µm along the curve), then
  * run the same analysis as the layers mode and a simulated stack on [basal, apical].
  */
-import { analysisRecord, analyzeSurfaces, csrFromLists, labMinBoundaryLength, type SurfaceAdjacency } from '../../analysis';
+import { adjacencyFromLists, analysisRecord, analyzeSurfaces, labMinBoundaryLength, type SurfaceAdjacency } from '../../analysis';
+import { BORDER_EXCLUDED } from '../../border';
 import { MeasureInputError } from '../errors';
 import type { LabelFileInput } from '../layerPlan';
 import type { MeasuredAnalysis } from '../measuredResult';
@@ -165,8 +166,8 @@ function assemble(
   const areas = tallies.map((t) => t.area.slice(1));
   const reaches = tallies.map((t) => Uint8Array.from({ length: n }, (_, i) => (t.counts[3 * i + 3] + t.counts[3 * i + 4] + t.counts[3 * i + 5] > 0 ? 1 : 0)));
 
-  const minContacts = [0, 1].map((k) => {
-    if (options.minContact !== undefined) return options.minContact;
+  // Area and number of the cells that reach surface k.
+  const reaching = [0, 1].map((k) => {
     let area = 0;
     let count = 0;
     for (let i = 0; i < n; i++) {
@@ -174,11 +175,17 @@ function assemble(
       area += areas[k][i];
       count++;
     }
+    return { area, count };
+  });
+  const minContacts = [0, 1].map((k) => {
+    if (options.minContact !== undefined) return options.minContact;
+    const { area, count } = reaching[k];
     return count > 0 ? labMinBoundaryLength(area, count) : 0;
   });
 
+  // A cell that misses a surface or is cut by the volume's bounds is left out of the statistics.
   const invalid = new Uint8Array(n);
-  for (let i = 0; i < n; i++) if (!reaches[0][i] || !reaches[1][i] || faces.volumeFaces[i + 1] !== 0) invalid[i] = 1;
+  for (let i = 0; i < n; i++) if (!reaches[0][i] || !reaches[1][i] || faces.volumeFaces[i + 1] !== 0) invalid[i] = BORDER_EXCLUDED;
 
   // Neighbour sets per layer (dense 0-based ids) after min-contact, then the optional quartet filter.
   const lengthOf = curves.map((c) => (a: number, b: number) => c.get(Math.min(a, b) * 2 ** 26 + Math.max(a, b))?.length ?? 0);
@@ -205,7 +212,7 @@ function assemble(
   const surfaces: SurfaceAdjacency[] = [0, 1].map((k) => {
     const lists = sets[k].map((s) => [...s].sort((x, y) => x - y));
     const lengths = lists.map((list, i) => list.map((j) => lengthOf[k](i + 1, j + 1)));
-    return { count: n, adjacency: csrFromLists(lists, lengths), areas: areas[k], touchesBorder: invalid, label: LAYER_NAMES[k] };
+    return adjacencyFromLists(lists, lengths, areas[k], invalid, LAYER_NAMES[k]);
   });
   const analysis = analyzeSurfaces(surfaces);
   const record = analysisRecord('labels', minContacts[0], analysis);
@@ -272,13 +279,7 @@ function assemble(
   }
 
   const layers: VolumeSurfaceRecord[] = [0, 1].map((k) => {
-    let area = 0;
-    let count = 0;
-    for (let i = 0; i < n; i++) {
-      if (!reaches[k][i]) continue;
-      area += areas[k][i];
-      count++;
-    }
+    const { area, count } = reaching[k];
     return {
       name: LAYER_NAMES[k],
       faces: layerClass[k] === OUTSIDE ? 'outside' : 'lumen',

@@ -16,6 +16,7 @@ import { restrictedVoronoi } from '../../closed/restrictedVoronoi';
 import { triangleNeighbours } from '../../closed/restrictedSurface';
 import { createRandom } from '../../random';
 import type { SurfaceMesh } from './surfaceMesh';
+import { triangleCross } from '../../mesh/types';
 
 export interface PreparedMesh {
   readonly positions: Float64Array;
@@ -37,24 +38,14 @@ export function prepareMesh(mesh: SurfaceMesh): PreparedMesh {
   const areas = new Float64Array(nf);
   const normals = new Float64Array(3 * nf);
   let area = 0;
+  const cross = new Float64Array(3);
   for (let f = 0; f < nf; f++) {
-    const a = 3 * t[3 * f],
-      b = 3 * t[3 * f + 1],
-      c = 3 * t[3 * f + 2];
-    const ux = p[b] - p[a],
-      uy = p[b + 1] - p[a + 1],
-      uz = p[b + 2] - p[a + 2];
-    const vx = p[c] - p[a],
-      vy = p[c + 1] - p[a + 1],
-      vz = p[c + 2] - p[a + 2];
-    const nx = uy * vz - uz * vy,
-      ny = uz * vx - ux * vz,
-      nz = ux * vy - uy * vx;
+    const [nx, ny, nz] = triangleCross(p, t, f, cross);
     const len = Math.hypot(nx, ny, nz);
     areas[f] = len / 2;
     area += len / 2;
     if (len > 0) normals.set([nx / len, ny / len, nz / len], 3 * f);
-    for (let k = 0; k < 3; k++) centroids[3 * f + k] = (p[a + k] + p[b + k] + p[c + k]) / 3;
+    for (let k = 0; k < 3; k++) centroids[3 * f + k] = (p[3 * t[3 * f] + k] + p[3 * t[3 * f + 1] + k] + p[3 * t[3 * f + 2] + k]) / 3;
   }
   const g = new BufferGeometry();
   g.setAttribute('position', new BufferAttribute(Float32Array.from(p), 3));
@@ -180,7 +171,7 @@ export function lloydStepOnMesh(mesh: PreparedMesh, sites: Float64Array): Float6
 export function meshSurface(mesh: PreparedMesh, sites: Float64Array, label: string): SurfaceAdjacency {
   const count = sites.length / 3;
   const rvd = restrictedVoronoi({ kind: 'mesh', positions: mesh.positions, indices: mesh.indices, triangleNeighbours: mesh.neighbours }, sites, count);
-  return { count, adjacency: rvd.adjacency, areas: rvd.areas, touchesBorder: rvd.touchesBorder, label };
+  return { ...rvd.adjacency, label };
 }
 
 /**

@@ -188,20 +188,3 @@ export function signedVolume(p: ArrayLike<number>, t: ArrayLike<number>): number
   }
   return v / 6;
 }
-
-export function meshArea(p: ArrayLike<number>, t: ArrayLike<number>): number {
-  let s = 0;
-  for (let f = 0; f < t.length; f += 3) {
-    const a = 3 * t[f];
-    const b = 3 * t[f + 1];
-    const c = 3 * t[f + 2];
-    const ux = p[b] - p[a],
-      uy = p[b + 1] - p[a + 1],
-      uz = p[b + 2] - p[a + 2];
-    const vx = p[c] - p[a],
-      vy = p[c + 1] - p[a + 1],
-      vz = p[c + 2] - p[a + 2];
-    s += 0.5 * Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
-  }
-  return s;
-}
