@@ -7,8 +7,18 @@
 import type { AnyConfig, ConfigInput } from '../core/config';
 import type { GrayImage } from '../core/density';
 import { ConfigError, validateAnyConfig } from '../core/config';
-import type { IterationRecord, MeshFile, SheetOutput, SheetResult, ComputeSite } from '../run';
-import { isAbort, LatestRunner, computeSite as pipelineSite, computeContext, runInPage, sheetOnlyChange, FULL_PICTURES_DELAY_MS } from '../view/pageRunner';
+import type { IterationRecord, MeshFile, SheetOutput, SheetResult, ComputeSite, WorkerSheetRunner } from '../run';
+import {
+  isAbort,
+  LatestRunner,
+  computeSite as pipelineSite,
+  computeContext,
+  runInPage,
+  acquirePipelineRunner,
+  releasePipelineRunner,
+  sheetOnlyChange,
+  FULL_PICTURES_DELAY_MS,
+} from '../view/pageRunner';
 import { sweepInPage } from '../view/pageSweep';
 import type {
   TissueSheetSweepOptions,
@@ -153,7 +163,12 @@ export class TissueSheetElement extends HTMLElement {
   disconnectedCallback(): void {
     this.runner.cancel();
     this.realizationsRun?.abort();
+    if (this.realizationsRunner) releasePipelineRunner(this.realizationsRunner);
+    this.realizationsRunner = null;
   }
+
+  /** The worker the element's realizations run in, kept while connected (their seeded surfaces with it). */
+  private realizationsRunner: WorkerSheetRunner | null = null;
 
   /** Warnings in words (unknown attributes, a fallback to the page), shown under every status. */
   private warnings: string[] = [];
@@ -244,6 +259,7 @@ export class TissueSheetElement extends HTMLElement {
       // The other realizations of the headline start at once in their own worker (issue 27).
       const realizations = startRealizations(config, n, {
         signal: this.runSignal(),
+        runner: (this.realizationsRunner ??= acquirePipelineRunner()),
         inputs: { densityImage: this.image ?? undefined, meshFile: config.surface.kind === 'mesh' ? this.mesh : null },
       });
       const output = await (live ? this.runner.live(request) : this.runner.start(request));

@@ -13,7 +13,7 @@
 import type { AnyConfig } from '../core/config';
 import type { Headline } from '../core/analysis/headline';
 import { headlineOverRealizations, realizationSeeds } from '../core/analysis/realizations';
-import type { SheetOutput } from '../run';
+import type { SheetOutput, WorkerSheetRunner } from '../run';
 import { acquirePipelineRunner, releasePipelineRunner, runInputs, type RunRequest } from './pageRunner';
 
 export interface RealizationsRequest {
@@ -38,17 +38,19 @@ export interface StartedRealizations {
   combine(output: SheetOutput, onProgress?: (done: number, n: number) => void): Promise<Headline | null>;
 }
 
-/** Sends realizations 2..n of `config` to their worker now (nothing when n is 1). */
+/** Sends realizations 2..n of `config` to their worker now (nothing when n is 1); `runner`: the caller's own. */
 export function startRealizations(
   config: AnyConfig,
   n: number,
-  options: { signal?: AbortSignal; inputs?: Pick<RunRequest, 'densityImage' | 'meshFile'> } = {},
+  options: { signal?: AbortSignal; inputs?: Pick<RunRequest, 'densityImage' | 'meshFile'>; runner?: WorkerSheetRunner } = {},
 ): StartedRealizations {
   const { signal } = options;
   const seeds = n > 1 ? realizationSeeds(config.seed, n).slice(1) : [];
   const runs = new Map<number, Promise<Headline | null>>();
   if (seeds.length > 0) {
-    const runner = acquirePipelineRunner();
+    // A caller's own runner (the element keeps one: a run superseded while its realizations are
+    // still being cancelled would otherwise start a worker, and terminate one, per change).
+    const runner = options.runner ?? acquirePipelineRunner();
     const inputs = runInputs(config, options.inputs ?? {});
     for (const seed of seeds) {
       const run = inputs.then((given) => {
@@ -59,7 +61,7 @@ export function startRealizations(
       run.catch(() => undefined); // read by combine, or dropped with a failed first run
       runs.set(seed, run);
     }
-    void Promise.allSettled(runs.values()).then(() => releasePipelineRunner(runner));
+    if (!options.runner) void Promise.allSettled(runs.values()).then(() => releasePipelineRunner(runner));
   }
   return {
     combine: (output, onProgress) => {
