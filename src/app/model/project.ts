@@ -83,12 +83,20 @@ export type OpenedFile =
 
 /** A project file or a CLI result JSON, checked; `name` is used in messages. */
 export function openFile(text: string, name: string): OpenedFile {
-  let data: unknown;
+  return openParsed(parseFileJson(text, name), name);
+}
+
+/** The JSON of an opened file, or a one-line refusal naming it. */
+export function parseFileJson(text: string, name: string): unknown {
   try {
-    data = JSON.parse(text);
+    return JSON.parse(text) as unknown;
   } catch {
     throw new Error(`${name}: not JSON; open a project file (.tissue-sheet.json) or a result JSON written by tissue-sheet run.`);
   }
+}
+
+/** openFile of an already parsed file (a result whose cells came from its side file: model/resultFiles.ts). */
+export function openParsed(data: unknown, name: string): OpenedFile {
   if (!isObject(data)) throw new Error(`${name}: not a tissue-sheet file (a JSON object was expected).`);
   if (data.format === PROJECT_FORMAT) {
     if (data.formatVersion !== PROJECT_FORMAT_VERSION)
