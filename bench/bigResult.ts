@@ -49,7 +49,9 @@ async function picks(page: Page): Promise<number[]> {
     await page.evaluate(() => document.querySelector('#cell-info')!.removeAttribute('data-cell'));
     const started = Date.now();
     await page.mouse.click(box.x + fx * box.width, box.y + fy * box.height);
-    await page.waitForFunction(() => document.querySelector('#cell-info')!.hasAttribute('data-cell'), null, { timeout: 60_000 }).catch(() => console.log(`no cell picked at ${fx}, ${fy}`));
+    await page
+      .waitForFunction(() => document.querySelector('#cell-info')!.hasAttribute('data-cell'), null, { timeout: 60_000 })
+      .catch(() => console.log(`no cell picked at ${fx}, ${fy}`));
     out.push(Date.now() - started);
   }
   return out;
@@ -93,7 +95,9 @@ try {
   const orbitTasks = await page.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks.splice(0));
   const bigPicks = await picks(page);
   console.log(`\nissue 27: a big result in the page (headless Chromium, SwiftShader); ${cells.slice(0, 120)}`);
-  console.log(`open (choose both files -> pictures on screen): ${fmt(openMs)}; longest main-thread task ${fmt(Math.max(0, ...openTasks))} (${openTasks.length} over 50 ms)`);
+  console.log(
+    `open (choose both files -> pictures on screen): ${fmt(openMs)}; longest main-thread task ${fmt(Math.max(0, ...openTasks))} (${openTasks.length} over 50 ms)`,
+  );
   console.log(
     `orbit frame interval: big median ${fmt(quantile(big, 0.5))}, p95 ${fmt(quantile(big, 0.95))} | small default (baseline) median ${fmt(quantile(small, 0.5))}, p95 ${fmt(quantile(small, 0.95))}; longest task while orbiting the big one ${fmt(Math.max(0, ...orbitTasks))}`,
   );

@@ -17,8 +17,7 @@
  * and the configuration through the schema; every refusal is one line naming the field.
  */
 import { validateAnyConfig } from '../../core/config';
-import { exactVoronoi } from '../../core/exact';
-import { rasterizeCells } from '../../core/exactEngine';
+import { exactLabelImage } from '../../view/exactLabels';
 import type { Grid } from '../../core/grid';
 import type { LabelImage, SheetOutput, SheetResult } from '../../run';
 
@@ -125,7 +124,7 @@ export function labelsFromCells(result: SheetResult): LabelImage[] {
       sites[2 * i] = cell.surface[0] / grid.texelX;
       sites[2 * i + 1] = cell.surface[1] / grid.texelY;
     });
-    return { name: surface.name, grid, labels: rasterizeCells(grid, exactVoronoi(grid, sites)) };
+    return { name: surface.name, grid, labels: exactLabelImage(grid, sites) };
   });
 }
 
