@@ -20,9 +20,7 @@ import { rerunNote, type OpenedFile } from './model/project';
 import { renderHeadline, renderResults } from './panels/results';
 import { cellSizeNote, explainRefusal } from './model/refusal';
 import { changedFields, setMeshExtent } from './panels/fields';
-import { realizationsHeadline } from '../view/realizations';
-import { checkRealizations, DEFAULT_REALIZATIONS } from '../core/analysis/realizations';
-import type { Headline } from '../core/analysis/headline';
+import { RealizationsPanel } from './panels/realizationsPanel';
 import { SweepPanel } from './panels/sweepPanel';
 import { mountLloydMovie } from './panels/lloydMovie';
 import { ViewPanel } from './panels/viewPanel';
@@ -52,133 +50,14 @@ let dragging = false;
 let runs = 0;
 const runner = new LatestRunner();
 
-/**
- * The headline over realizations: after a result is on screen (realization 1), the other seeds
- * run in a worker of their own (view/realizations.ts) and the headline becomes their mean with
- * its 95 % CI. Combined headlines are kept by configuration and n, so a redraw or going back to
- * a configuration does not compute them again.
- */
-const realizationsInput = $<HTMLInputElement>('#realizations');
-let realizationsController: AbortController | null = null;
-const combined = new Map<string, Headline>();
-const combinedKey = (stack: ViewStack, n: number) => `${n}|${JSON.stringify(stack.result.config)}`;
-
-/** The number of realizations asked for, or null (and the field marked) when it is not one. */
-function realizationsAsked(): number | null {
-  try {
-    const n = checkRealizations(realizationsInput.value.trim().replace(',', '.'), 'Realizations');
-    realizationsInput.removeAttribute('aria-invalid');
-    return n;
-  } catch (error) {
-    realizationsInput.setAttribute('aria-invalid', 'true');
-    showError((error as Error).message);
-    return null;
-  }
-}
-
-/** `shown` with `headline` as its result's headline (the views and exports read the same stack). */
-function withHeadline(shown: ViewStack, headline: Headline | null): ViewStack {
-  return { ...shown, result: { ...shown.result, headline } };
-}
-
-function stopRealizations(): void {
-  realizationsController?.abort();
-  realizationsController = null;
-}
-
-/** Computes the headline of the result on screen over the realizations asked for. */
-async function startRealizations(output: SheetOutput): Promise<void> {
-  stopRealizations();
-  const shown = stack;
-  if (!shown) return;
-  const n = realizationsAsked();
-  if (n === null) return;
-  const drawn = output.result.headline;
-  const done = (headline: Headline | null) => {
-    if (stack !== shown) return;
-    stack = withHeadline(shown, headline);
-    renderHeadline($('main'), stack, null);
-    document.body.dataset.headline = 'complete';
-  };
-  if (n <= 1 || !drawn) {
-    done(drawn);
-    return;
-  }
-  const known = combined.get(combinedKey(shown, n));
-  if (known) {
-    done(known);
-    return;
-  }
-  const controller = new AbortController();
-  realizationsController = controller;
-  document.body.dataset.headline = 'partial';
-  renderHeadline($('main'), shown, { state: 'running', done: 1, n });
-  cancelButton.disabled = false;
-  try {
-    const headline = await realizationsHeadline({
-      output,
-      n,
-      signal: controller.signal,
-      onProgress: (k, total) => stack === shown && renderHeadline($('main'), shown, { state: 'running', done: k, n: total }),
-    });
-    if (controller.signal.aborted) return;
-    if (headline) {
-      if (combined.size > 32) combined.clear();
-      combined.set(combinedKey(shown, n), headline);
-    }
-    done(headline);
-  } catch (error) {
-    if (stack !== shown) return;
-    const cancelled = isAbort(error) || controller.signal.aborted;
-    renderHeadline($('main'), shown, { state: cancelled ? 'cancelled' : 'failed', n, message: (error as Error)?.message });
-    document.body.dataset.headline = cancelled ? 'cancelled' : 'failed';
-  } finally {
-    if (realizationsController === controller) realizationsController = null;
-    cancelButton.disabled = !runner.running && !realizationsController;
-  }
-}
-
-/**
- * The number of realizations is part of the result on screen: the address carries it
- * (`&realizations=N`) when it is not the default, and a link with it sets the control.
- */
-const REALIZATIONS_PARAM = 'realizations';
-{
-  const fromLink = new URL(location.href).searchParams.get(REALIZATIONS_PARAM);
-  if (fromLink !== null) {
-    try {
-      realizationsInput.value = String(checkRealizations(fromLink, 'realizations (in the link)'));
-    } catch (error) {
-      // After the page's modules are set up (the form exists then).
-      queueMicrotask(() => showError((error as Error).message));
-    }
-  }
-}
-
-function syncRealizationsParam(): void {
-  const url = new URL(location.href);
-  const n = realizationsInput.value.trim();
-  if (n === String(DEFAULT_REALIZATIONS) || realizationsInput.getAttribute('aria-invalid') === 'true') url.searchParams.delete(REALIZATIONS_PARAM);
-  else url.searchParams.set(REALIZATIONS_PARAM, n);
-  if (url.toString() !== location.href) history.replaceState(null, '', url.toString());
-}
-
-realizationsInput.addEventListener('change', () => {
-  syncRealizationsParam();
-  if (!stack) return;
-  const output = {
-    result: { ...stack.result, headline: stack.result.headline ? drawnHeadline(stack.result.headline) : null },
-    labelImages: stack.surfaces.map((s) => s.image),
-  } as SheetOutput;
-  void startRealizations(output);
+const realizations = new RealizationsPanel({
+  input: $<HTMLInputElement>('#realizations'),
+  main: $('main'),
+  shown: () => stack,
+  replace: (next) => (stack = next),
+  onError: (message) => showError(message),
+  onBusy: () => (cancelButton.disabled = !runner.running && !realizations.running),
 });
-
-/** Realization 1's own headline, from a headline over realizations (its counts are realization 1's). */
-function drawnHeadline(h: Headline): Headline {
-  if (h.realizations <= 1) return h;
-  const value = h.realizationValues[0] ?? null;
-  return { ...h, percentScutoids: value, realizations: 1, ci95: null, sd: null, realizationSeeds: h.realizationSeeds.slice(0, 1), realizationValues: [value] };
-}
 
 function setState(state: 'running' | 'done' | 'error' | 'cancelled' | 'no-webgl' | 'waiting' | 'refused'): void {
   document.body.dataset.state = state;
@@ -351,12 +230,10 @@ function showCharts(shown: ViewStack, live: boolean): void {
 async function show(output: SheetOutput, draft: Config, live = false, opened = false): Promise<void> {
   let shown = viewStack(output);
   // A headline over realizations already computed for this configuration and n is shown at once.
-  const n = Number(realizationsInput.value);
-  const known = n > 1 ? combined.get(combinedKey(shown, n)) : undefined;
-  if (known) shown = withHeadline(shown, known);
+  const prepared = realizations.prepare(shown, opened);
+  const { waiting, n } = prepared;
+  shown = prepared.stack;
   stack = shown;
-  const waiting = !known && !opened && n > 1 && (shown.result.headline?.realizations ?? 1) <= 1;
-  document.body.dataset.headline = waiting ? 'partial' : 'complete';
   shownDraft = draft;
   // Which pictures are on screen: a drag's drafts, or full (redrawInFull follows a drag).
   document.body.dataset.pictures = live ? 'draft' : 'full';
@@ -413,7 +290,7 @@ async function run(draft: Config, live = false): Promise<void> {
   }
   sourceQuestion.close();
   clearError();
-  stopRealizations();
+  realizations.stop();
   setState('running');
   markStale();
   cancelButton.disabled = false;
@@ -436,7 +313,7 @@ async function run(draft: Config, live = false): Promise<void> {
     // (during a drag only once it ends: history.replaceState took 5-30 ms per streamed result).
     if (!live || !dragging) {
       saveConfig(input, openedLink);
-      syncRealizationsParam();
+      realizations.syncParam();
     }
     runs += 1;
     document.body.dataset.runs = String(runs);
@@ -445,7 +322,7 @@ async function run(draft: Config, live = false): Promise<void> {
     progress.value = progress.max;
     setState('done');
     markStale();
-    if (!live) void startRealizations(output);
+    if (!live) void realizations.start(output);
   } catch (error) {
     if (isAbort(error)) {
       // A newer run replaced this one, or the user cancelled: the previous result stays.
@@ -478,7 +355,7 @@ async function redrawInFull(): Promise<void> {
     stack = viewStack(output);
     viewPanel.show(stack);
     document.body.dataset.pictures = 'full';
-    void startRealizations(output);
+    void realizations.start(output);
   } catch {
     // The draft pictures stay: they show the same result.
   }
@@ -504,7 +381,7 @@ $('#converge').addEventListener('click', () =>
 );
 cancelButton.addEventListener('click', () => {
   runner.cancel();
-  stopRealizations();
+  realizations.stop();
 });
 $('#share').addEventListener('click', async () => {
   try {

@@ -7,8 +7,18 @@
 import type { AnyConfig, ConfigInput } from '../core/config';
 import type { GrayImage } from '../core/density';
 import { ConfigError, validateAnyConfig } from '../core/config';
-import type { MeshFile, SheetResult, ComputeSite } from '../run';
-import { isAbort, LatestRunner, computeSite as pipelineSite, computeContext } from '../view/pageRunner';
+import type { IterationRecord, MeshFile, SheetOutput, SheetResult, ComputeSite, WorkerSheetRunner } from '../run';
+import {
+  isAbort,
+  LatestRunner,
+  computeSite as pipelineSite,
+  computeContext,
+  runInPage,
+  acquirePipelineRunner,
+  releasePipelineRunner,
+  sheetOnlyChange,
+  FULL_PICTURES_DELAY_MS,
+} from '../view/pageRunner';
 import { sweepInPage } from '../view/pageSweep';
 import type {
   TissueSheetSweepOptions,
@@ -26,7 +36,7 @@ import { trackCellHover } from '../view/cellHover';
 import { byConstruction } from '../core/analysis/byConstruction';
 import { checkRealizations, DEFAULT_REALIZATIONS } from '../core/analysis/realizations';
 import { describeRealizations } from '../core/analysis/headline';
-import { realizationsHeadline } from '../view/realizations';
+import { startRealizations } from '../view/realizations';
 import { checkPageBudget } from '../view/pageBudget';
 import { pendingSources, type ForeignSource } from '../view/sources';
 import { methodCaption, primaryAnalysis, viewStack } from '../view/stack';
@@ -153,7 +163,12 @@ export class TissueSheetElement extends HTMLElement {
   disconnectedCallback(): void {
     this.runner.cancel();
     this.realizationsRun?.abort();
+    if (this.realizationsRunner) releasePipelineRunner(this.realizationsRunner);
+    this.realizationsRunner = null;
   }
+
+  /** The worker the element's realizations run in, kept while connected (their seeded surfaces with it). */
+  private realizationsRunner: WorkerSheetRunner | null = null;
 
   /** Warnings in words (unknown attributes, a fallback to the page), shown under every status. */
   private warnings: string[] = [];
@@ -221,12 +236,17 @@ export class TissueSheetElement extends HTMLElement {
     // A question about an earlier configuration's source does not stay beside an unrelated run.
     this.shadow.querySelector<HTMLElement>('.ask')!.hidden = true;
     this.status(`Running ${config.cells} cells…`);
+    // A change of `sheet.*` only (surface-ratio, thickness) on the result shown takes the app's
+    // slider path (issue 27): the worker's converged seeded surface is reused and draws draft
+    // pictures, so the result event follows in tens of milliseconds; the full pictures of the
+    // same result are drawn once the changes settle (redrawInFull).
+    const live = this.shown !== null && this.shown.image === this.image && this.shown.mesh === this.mesh && sheetOnlyChange(this.shown.config, config);
     try {
-      const output = await this.runner.start({
+      const request = {
         config,
         densityImage: this.image ?? undefined,
         meshFile: config.surface.kind === 'mesh' ? this.mesh : null,
-        onIteration: (record, maxIterations) => {
+        onIteration: (record: IterationRecord, maxIterations: number) => {
           this.status(`Lloyd iteration ${record.iteration} / ${maxIterations}`);
           this.emit<TissueSheetProgressDetail>('progress', {
             iteration: record.iteration,
@@ -235,7 +255,16 @@ export class TissueSheetElement extends HTMLElement {
             maxDisplacement: record.maxDisplacement,
           });
         },
+      };
+      // The other realizations of the headline start at once in their own worker (issue 27).
+      const realizations = startRealizations(config, n, {
+        signal: this.runSignal(),
+        runner: (this.realizationsRunner ??= acquirePipelineRunner()),
+        inputs: { densityImage: this.image ?? undefined, meshFile: config.surface.kind === 'mesh' ? this.mesh : null },
       });
+      const output = await (live ? this.runner.live(request) : this.runner.start(request));
+      this.shown = { config, image: this.image, mesh: this.mesh, output };
+      if (live) this.runner.debounced(FULL_PICTURES_DELAY_MS, () => void this.redrawInFull(output));
       this.noteFallback();
       const stack = viewStack(output);
       try {
@@ -256,13 +285,10 @@ export class TissueSheetElement extends HTMLElement {
       const rule = byConstruction(output.result.config);
       const iterations = output.result.lloyd.iterations.length;
       // The headline over realizations (realization 1 is on screen): the result event carries it.
-      const headline = await realizationsHeadline({
+      const headline = await realizations.combine(
         output,
-        n,
-        inputs: { densityImage: this.image ?? undefined, meshFile: config.surface.kind === 'mesh' ? this.mesh : null },
-        signal: this.runSignal(),
-        onProgress: (done, total) => done < total && this.status(`Realization ${done + 1} of ${total} (seed ${config.seed + done}) for the mean % scutoids…`),
-      });
+        (done, total) => done < total && this.status(`Realization ${done + 1} of ${total} (seed ${config.seed + done}) for the mean % scutoids…`),
+      );
       const result = { ...output.result, headline };
       this.last = result;
       if (headline && headline.realizations > 1 && headline.percentScutoids !== null) {
@@ -289,6 +315,26 @@ export class TissueSheetElement extends HTMLElement {
     } catch (error) {
       if (!isAbort(error)) this.fail(error);
       throw error;
+    }
+  }
+
+  /** The configuration and inputs of the result on screen (a live change is one of `sheet.*` only). */
+  private shown: { config: AnyConfig; image: GrayImage | null; mesh: MeshFile | null; output: SheetOutput } | null = null;
+
+  /**
+   * After live changes have settled: the result on screen fetched again with its full pictures
+   * (the worker's cached seeded surface: the same numbers) and only the 3D view redrawn, as the
+   * app does after a drag.
+   */
+  private async redrawInFull(output: SheetOutput): Promise<void> {
+    if (this.shown?.output !== output || this.runner.running) return;
+    try {
+      const full = await runInPage({ config: output.result.config, densityImage: this.image ?? undefined, meshFile: this.shown.mesh });
+      if (this.shown?.output !== output || this.runner.running) return;
+      this.view?.setStack(viewStack(full));
+      this.view?.acceleratePicking();
+    } catch {
+      // The draft pictures stay: they show the same result.
     }
   }
 

@@ -20,7 +20,19 @@ export interface PreparedMesh {
   readonly image: CubeGeometryImage;
   readonly parameterizationMs: number;
   readonly samplingMs: number;
+  /**
+   * Set when the file's triangles were oriented inward (negative enclosed volume) and were
+   * flipped to point outward: a sentence the result and the page show (issue 26).
+   */
+  readonly reoriented: string | null;
 }
+
+/**
+ * The sizes a mesh may have once scaled to µm (its bounding box's longest side): a file in
+ * other units with the wrong `surface.scale` (metres, nanometres, a model scaled to 1e30) is
+ * refused with a message about its size, not later as a site-placement problem.
+ */
+export const MESH_EXTENT_UM = { min: 1e-3, max: 1e6 } as const;
 
 /**
  * A browser library user's mesh loader: fetches `src` (a URL the caller chose) with the size
@@ -72,7 +84,12 @@ export function prepareMesh(file: MeshFile, surface: MeshSurface, n: number): Pr
     for (let k = 0; k < p.length; k++) p[k] *= surface.scale;
     mesh = { positions: p, indices: mesh.indices };
   }
-  if (signedVolume(mesh) < 0) mesh = flipOrientation(mesh);
+  checkMeshExtent(mesh, name, surface.scale);
+  const inward = signedVolume(mesh) < 0;
+  if (inward) mesh = flipOrientation(mesh);
+  const reoriented = inward
+    ? `${name}: the triangles were oriented inward (normals pointing into the enclosed volume); they were flipped to point outward, so the apical side is the outside as for any closed surface`
+    : null;
   const start = performance.now();
   const parameterization = sphericalParameterization(mesh);
   const parameterizationMs = performance.now() - start;
@@ -84,7 +101,37 @@ export function prepareMesh(file: MeshFile, surface: MeshSurface, n: number): Pr
   }
   const sampleStart = performance.now();
   const image = sampleSurface({ kind: 'mesh', mesh, sphere: parameterization.sphere }, n);
-  return { mesh, parameterization, image, parameterizationMs, samplingMs: performance.now() - sampleStart };
+  return { mesh, parameterization, image, parameterizationMs, samplingMs: performance.now() - sampleStart, reoriented };
+}
+
+/** Refuses a mesh whose size in µm (after `scale`) is not finite or outside MESH_EXTENT_UM. */
+export function checkMeshExtent(mesh: TriangleMesh, name: string, scale: number): void {
+  const p = mesh.positions;
+  let extent = 0;
+  for (let axis = 0; axis < 3; axis++) {
+    let lo = Infinity;
+    let hi = -Infinity;
+    for (let k = axis; k < p.length; k += 3) {
+      lo = Math.min(lo, p[k]);
+      hi = Math.max(hi, p[k]);
+    }
+    extent = Math.max(extent, hi - lo);
+  }
+  const across = Number.isFinite(extent) ? `${sized(extent)} µm across` : 'of no finite size (coordinates overflow)';
+  if (Number.isFinite(extent) && extent >= MESH_EXTENT_UM.min && extent <= MESH_EXTENT_UM.max) return;
+  const hint =
+    Number.isFinite(extent) && extent > 0
+      ? `; its coordinates are read as µm times surface.scale (${scale}): set surface.scale to about ${sized(100 / (extent / scale))} for a 100 µm sheet`
+      : "; check the file's coordinates";
+  throw new ConfigError(
+    'surface.src',
+    `surface.src: ${name}: the mesh is ${across} after surface.scale ${scale}; a sheet of cells must be ${MESH_EXTENT_UM.min} to ${MESH_EXTENT_UM.max.toLocaleString('en-US')} µm across${hint}`,
+  );
+}
+
+/** 3 significant digits, in exponent form outside 0.01 .. 10,000. */
+function sized(x: number): string {
+  return x >= 0.01 && x < 1e4 ? x.toPrecision(3) : x.toExponential(2);
 }
 
 function oneLine(text: string): string {

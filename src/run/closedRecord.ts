@@ -34,6 +34,7 @@ export function closedSection(
             areaDistortion: { ...mesh.parameterization.areaDistortion },
             parameterizationMs: mesh.parameterizationMs,
             samplingMs: mesh.samplingMs,
+            reoriented: mesh.reoriented,
             curvatureRadius: { convex: finiteOrNull(geometry.convexRadius), concave: finiteOrNull(geometry.concaveRadius) },
           },
         }

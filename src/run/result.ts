@@ -110,6 +110,8 @@ export interface ClosedSurfaceRecord {
     readonly areaDistortion: { readonly min: number; readonly max: number; readonly meanAbsLog: number };
     readonly parameterizationMs: number;
     readonly samplingMs: number;
+    /** Set when the file's triangles were oriented inward and were flipped to point outward: says so in words. */
+    readonly reoriented: string | null;
     /** 1 / (max edge curvature) of convex and concave regions, µm; null: no edge bends that way. */
     readonly curvatureRadius: { readonly convex: number | null; readonly concave: number | null };
   };

@@ -10,6 +10,7 @@ import type { Relaxation, RunOptions, StackLayer, SurfaceFamily } from './family
 import { planarFamily } from './planarFamily';
 import { relaxSeededSurface, throwIfAborted, yieldToEventLoop, type SeededSurface } from './relax';
 import type { SheetOutput } from './result';
+import { SeededCache } from './seededCache';
 import { analyzeStack } from './stack';
 
 export type { RunInputs, RunOptions } from './family';
@@ -37,10 +38,16 @@ export function runSheet(config: AnyConfig, context: GpuContext, options: RunOpt
  *   iterations than the kept run has done starts a new one.
  */
 export class SheetRunner {
-  private cached: { key: string; seeded: Promise<SeededSurface<unknown, unknown>> } | null = null;
+  private readonly seededSurfaces: SeededCache;
   private chain: { key: string; lloyd: Promise<LloydChain<unknown, unknown>> } | null = null;
 
-  constructor(private readonly context: GpuContext) {}
+  /** `keepSeeded`: how many seeded surfaces are kept (default 1; see SeededCache). */
+  constructor(
+    private readonly context: GpuContext,
+    options: { keepSeeded?: number } = {},
+  ) {
+    this.seededSurfaces = new SeededCache(options.keepSeeded ?? 1);
+  }
 
   /** The one place a run's surface family is decided. */
   run(config: AnyConfig, options: RunOptions = {}): Promise<SheetOutput> {
@@ -57,19 +64,15 @@ export class SheetRunner {
     // surface is reused only by runs on the same engine.
     const engine = chooseEngine(config, family.name, this.context.capabilities);
     const key = `${engine.name}/${engine.centroidPath}/${seededKey(config)}`;
-    if (this.cached?.key !== key) {
-      this.cached = {
-        key,
-        seeded:
-          engine.name === 'exact' ? this.fromChain(family, config, engine, callbacks) : relaxSeededSurface(family, config, this.context, engine, callbacks),
-      };
-    }
+    const kept = this.seededSurfaces.get(key, () =>
+      engine.name === 'exact' ? this.fromChain(family, config, engine, callbacks) : relaxSeededSurface(family, config, this.context, engine, callbacks),
+    );
     let seeded: SeededSurface<G, S>;
     try {
       // The key holds the surface, so a cached seeded surface is of this family.
-      seeded = (await this.cached.seeded) as SeededSurface<G, S>;
+      seeded = (await kept) as SeededSurface<G, S>;
     } catch (error) {
-      this.cached = null;
+      this.seededSurfaces.drop(key, kept);
       throw error;
     }
     const stack = await analyzeStack(family, config, seeded, this.context, callbacks.signal, callbacks.cellTables === true);

@@ -12,6 +12,19 @@ import type { ViewSurface } from './stack';
 /** Texture side limit: large enough for smooth borders, small enough for software GPUs. */
 const MAX_SIDE = 2048;
 
+/**
+ * Above this many cells the pictures drawn on the page (an opened result, which the worker did
+ * not draw) are the painted label image, one pixel per texel (paintSurface), not the cells'
+ * polygons: 100,000 filled and stroked polygons took the main thread ~10 s on a software
+ * renderer (issue 27), and at that count a cell is a few pixels of the picture anyway.
+ */
+export const MAX_POLYGON_CELLS = 20_000;
+
+/** Whether the page draws `surface` by its texels (see MAX_POLYGON_CELLS). */
+export function drawnByTexels(surface: ViewSurface): boolean {
+  return surface.cells.length > MAX_POLYGON_CELLS;
+}
+
 /** Pixels per texel for a surface's exact drawing (at least 1, at most MAX_SIDE on a side). */
 export function exactScale(surface: ViewSurface, target = 4): number {
   const { width, height } = surface.image.grid;

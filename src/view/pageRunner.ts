@@ -19,7 +19,16 @@
  */
 import type { AnyConfig } from '../core/config';
 import type { GrayImage } from '../core/density';
-import { createCanvasContext, WorkerSheetRunner, type ComputeSite, type GpuContext, type IterationRecord, type MeshFile, type SheetOutput } from '../run';
+import {
+  createCanvasContext,
+  seededKey,
+  WorkerSheetRunner,
+  type ComputeSite,
+  type GpuContext,
+  type IterationRecord,
+  type MeshFile,
+  type SheetOutput,
+} from '../run';
 import type { WorkerRunOptions } from '../run/worker/workerRunner';
 import { decodeGrayImage } from './densityImage';
 import { meshFileFor } from './meshFiles';
@@ -93,6 +102,20 @@ export interface RunRequest {
    * no picked cell, as the views show a result first. false: none drawn there.
    */
   pictures?: PictureRequest | false;
+}
+
+/**
+ * How long after the last live change (a slider's drag, an element's `sheet.*` attribute) the
+ * result on screen is drawn again with its full pictures.
+ */
+export const FULL_PICTURES_DELAY_MS = 400;
+
+/**
+ * True when `next` differs from `previous` in `sheet.*` only (and differs): the worker's
+ * converged seeded surface serves it, the change the live path (LatestRunner.live) is for.
+ */
+export function sheetOnlyChange(previous: AnyConfig, next: AnyConfig): boolean {
+  return seededKey(previous) === seededKey(next) && JSON.stringify(previous.sheet) !== JSON.stringify(next.sheet);
 }
 
 const decoded = new Map<string, Promise<GrayImage>>();

@@ -4,7 +4,8 @@
  * drew (workerPictures.ts): a finished one, or a drag's draft of one pixel per texel.
  */
 import * as THREE from 'three';
-import { drawExactCells } from './exactCells';
+import { drawExactCells, drawnByTexels } from './exactCells';
+import { paintSurface } from './sideColors';
 import type { ViewStack, ViewSurface } from './stack';
 import { PICTURE_LAYOUT, workerPicture } from './workerPictures';
 
@@ -14,7 +15,12 @@ export interface SurfacePaint {
 }
 
 export function surfaceTexture(stack: ViewStack, surface: ViewSurface, paint: SurfacePaint, maxAnisotropy: number): THREE.Texture {
-  const picture = workerPicture(surface, 'texture', paint);
+  const { width, height } = surface.image.grid;
+  const picture =
+    workerPicture(surface, 'texture', paint) ??
+    (drawnByTexels(surface)
+      ? new ImageData(paintSurface(surface, { ...paint, valid: stack.valid, scutoid: stack.scutoid }) as Uint8ClampedArray<ArrayBuffer>, width, height)
+      : null);
   let texture: THREE.Texture;
   if (picture) texture = new THREE.Texture(picture);
   else {

@@ -110,6 +110,12 @@ describe('tissue-sheet run', () => {
       /^tissue-sheet: surface\.src: .*nan\.ply: .*vertex 3 .*NaN/,
     ],
     [
+      // issue 26: was refused as a minSpacing problem with exit 1
+      'a mesh scaled to 1e30',
+      { ...small, surface: { kind: 'mesh', src: 'unit.ply', scale: 1e30 }, sheet: {} },
+      /^tissue-sheet: surface\.src: .*unit\.ply: the mesh is 1\.00e\+30 µm across after surface\.scale 1e\+30; .*set surface\.scale to about 100 for a 100 µm sheet$/,
+    ],
+    [
       'a PLY with a wrong vertex count',
       { ...small, surface: { kind: 'mesh', src: 'count.ply' }, sheet: {} },
       /^tissue-sheet: surface\.src: .*count\.ply: the PLY header declares 5 vertex \+ 4 face = 9 lines but the body has 8/,
@@ -136,6 +142,7 @@ describe('tissue-sheet run', () => {
     `0 0 0\n1 0 0\n0 1 0\n${last}\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n`;
   writeFileSync(join(dir, 'nan.ply'), tetra(4, '0 0 NaN'));
   writeFileSync(join(dir, 'count.ply'), tetra(5, '0 0 1'));
+  writeFileSync(join(dir, 'unit.ply'), tetra(4, '0 0 1'));
   writeFileSync(join(dir, 'empty.png'), '');
   mkdirSync(join(dir, 'folder.png'), { recursive: true });
   for (const [name, input, message] of badInputs) {

@@ -17,8 +17,7 @@
  * and the configuration through the schema; every refusal is one line naming the field.
  */
 import { validateAnyConfig } from '../../core/config';
-import { exactVoronoi } from '../../core/exact';
-import { rasterizeCells } from '../../core/exactEngine';
+import { exactLabelImage } from '../../view/exactLabels';
 import type { Grid } from '../../core/grid';
 import type { LabelImage, SheetOutput, SheetResult } from '../../run';
 import { savedSections } from './projectSections';
@@ -87,12 +86,20 @@ export type OpenedFile =
 
 /** A project file or a CLI result JSON, checked; `name` is used in messages. */
 export function openFile(text: string, name: string): OpenedFile {
-  let data: unknown;
+  return openParsed(parseFileJson(text, name), name);
+}
+
+/** The JSON of an opened file, or a one-line refusal naming it. */
+export function parseFileJson(text: string, name: string): unknown {
   try {
-    data = JSON.parse(text);
+    return JSON.parse(text) as unknown;
   } catch {
     throw new Error(`${name}: not JSON; open a project file (.tissue-sheet.json) or a result JSON written by tissue-sheet run.`);
   }
+}
+
+/** openFile of an already parsed file (a result whose cells came from its side file: model/resultFiles.ts). */
+export function openParsed(data: unknown, name: string): OpenedFile {
   if (!isObject(data)) throw new Error(`${name}: not a tissue-sheet file (a JSON object was expected).`);
   if (data.format === PROJECT_FORMAT) {
     if (data.formatVersion !== PROJECT_FORMAT_VERSION)
@@ -121,7 +128,7 @@ export function labelsFromCells(result: SheetResult): LabelImage[] {
       sites[2 * i] = cell.surface[0] / grid.texelX;
       sites[2 * i + 1] = cell.surface[1] / grid.texelY;
     });
-    return { name: surface.name, grid, labels: rasterizeCells(grid, exactVoronoi(grid, sites)) };
+    return { name: surface.name, grid, labels: exactLabelImage(grid, sites) };
   });
 }
 

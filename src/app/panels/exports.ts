@@ -11,8 +11,9 @@ import { withPngText } from '../model/pngText';
 import { cellsPly } from '../model/ply';
 import { cellsVtk } from '../model/vtk';
 import { unrolledSvg } from '../model/svg';
-import { openFile, projectJson, type OpenedFile, type ViewState } from '../model/project';
+import { projectJson, type OpenedFile, type ViewState } from '../model/project';
 import { openSections, prepareSections } from '../model/projectSections';
+import { openFiles } from '../model/resultFiles';
 import { figurePng, figureSize } from '../view/figure';
 import type { SheetView3D } from '../../view/sheetView3d';
 import type { ViewStack } from '../../view/stack';
@@ -79,7 +80,10 @@ function addControls(root: HTMLElement): { dpi: HTMLSelectElement; width: HTMLIn
   const file = document.createElement('input');
   file.type = 'file';
   file.id = 'open-file';
-  file.accept = '.json,application/json';
+  // A big result is two files (RESULT.json + RESULT.cells.bin): both chosen together.
+  file.accept = '.json,application/json,.bin';
+  file.multiple = true;
+  openLabel.title = 'A project, a result JSON, or a result JSON with its .cells.bin side file (choose both)';
   openLabel.append('Open project or result JSON ', file);
   figure.append(dpiLabel, ' ', widthLabel, ' ', openLabel);
   root.append(figure);
@@ -94,14 +98,13 @@ function baseName(stack: ViewStack): string {
 export function bindExports(root: HTMLElement, sources: ExportSources): void {
   const more = addControls(root);
   more.file.addEventListener('change', async () => {
-    const chosen = more.file.files?.[0];
+    const chosen = [...(more.file.files ?? [])];
     more.file.value = '';
-    if (!chosen) return;
+    if (chosen.length === 0) return;
     try {
-      if (chosen.size > 256 * 1024 * 1024) throw new Error(`${chosen.name}: ${chosen.size} bytes; a project or result file over 256 MiB is refused.`);
-      const opened = openFile(await chosen.text(), chosen.name);
-      await sources.onOpen(opened, chosen.name);
-      if (opened.kind === 'project') await openSections(opened.sections, chosen.name);
+      const { file, name } = await openFiles(chosen);
+      await sources.onOpen(file, name);
+      if (file.kind === 'project') await openSections(file.sections, name);
     } catch (error) {
       sources.onError((error as Error).message);
     }

@@ -50,7 +50,10 @@ export function renderResults(root: HTMLElement, stack: ViewStack): void {
     run.textContent =
       `${result.cells.length} cells, ${where}, ${last} Lloyd iterations (Voronoi ${last + 1})` +
       `${result.lloyd.converged ? ' (converged)' : ''}, final energy ${result.lloyd.finalEnergy.toPrecision(6)} µm⁴, ` +
-      `${describeEngine(result.engine)}, ${timings(result.timings)}${result.gpu ? ` on ${result.gpu.renderer}` : ''}${geodesic}`;
+      `${describeEngine(result.engine)}, ${timings(result.timings)}${result.gpu ? ` on ${result.gpu.renderer}` : ''}${geodesic}` +
+      // A mesh whose triangles faced inward was turned outward: said, never silently (issue 26).
+      `${mesh?.reoriented ? `. Note: ${mesh.reoriented}` : ''}`;
+    run.dataset.reoriented = mesh?.reoriented ? 'true' : 'false';
     run.dataset.voronoiK = String(last + 1);
   }
   const table = root.querySelector<HTMLElement>('#cell-table');

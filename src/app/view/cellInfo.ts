@@ -3,7 +3,9 @@
  * surface, and the neighbours it wins and loses between the seeded surface and the other one
  * (ids). Planes and tubes: neighbours from the exact cells (the adjacency the headline uses);
  * closed surfaces: the result's neighbours (label images). The analysis' own won / lost counts
- * (accumulated over layers under the lab protocol) are shown beside them.
+ * (accumulated over layers under the lab protocol) are shown beside them. Every line names the
+ * method that made its numbers, and where the neighbour ids come from another method than the
+ * flags, the panel says so (issue 26: never mixed silently).
  */
 import { surfacePolygons } from '../../view/cellPolygons';
 import type { ViewStack, ViewSurface } from '../../view/stack';
@@ -17,6 +19,8 @@ export interface CellSummary {
   won: number[];
   lost: number[];
   neighbourSource: 'exact' | 'labels';
+  /** The method of the flags and sides (the analysis shown), or null without an analysis. */
+  flagsMethod: 'exact' | 'labels' | null;
 }
 
 export function neighbourIds(stack: ViewStack, surface: ViewSurface, id: number): number[] {
@@ -37,7 +41,32 @@ export function cellSummary(stack: ViewStack, id: number): CellSummary {
     won: [...other].filter((n) => !seeded.has(n)).sort((a, b) => a - b),
     lost: [...seeded].filter((n) => !other.has(n)).sort((a, b) => a - b),
     neighbourSource: stack.closed ? 'labels' : 'exact',
+    flagsMethod: stack.analysis?.method ?? null,
   };
+}
+
+/** The panel's lines for cell `id` of `stack` (see the module's comment). */
+export function cellInfoLines(stack: ViewStack, id: number): string[] {
+  const s = cellSummary(stack, id);
+  const stats = stack.analysis?.cells[id];
+  const first = stack.surfaces[0].name;
+  const last = stack.surfaces[stack.surfaces.length - 1].name;
+  // Without an analysis the flags are the border test and the sides the result's neighbours.
+  const flagsBy = s.flagsMethod ? `${s.flagsMethod} method` : `${s.neighbourSource} neighbours, no analysis`;
+  const lines = [
+    `Cell ${s.id}: ${s.valid ? 'valid' : 'border cell (not counted)'}, ${s.scutoid ? 'scutoid' : 'not a scutoid'} (${flagsBy}).`,
+    `Sides (${flagsBy}): ${s.sides.map((x) => `${x.surface} ${x.sides}`).join(', ')}.`,
+    `Neighbours won from ${first} to ${last}: ${cells(s.won)}; lost: ${cells(s.lost)} (${s.neighbourSource} method).`,
+  ];
+  if (s.flagsMethod && s.flagsMethod !== s.neighbourSource)
+    lines.push(
+      `These neighbour ids are the ${s.neighbourSource} method's; the flags and sides above are the ${s.flagsMethod} method's: the two methods can disagree on a cell.`,
+    );
+  if (stats)
+    lines.push(
+      `Analysis (${stack.analysis!.method} method): ${stats.won} won, ${stats.lost} lost, ${stats.transitions} transitions, ${stats.neighbours3D} 3D neighbours.`,
+    );
+  return lines;
 }
 
 export function renderCellInfo(container: HTMLElement, stack: ViewStack | null, id: number): void {
@@ -47,19 +76,7 @@ export function renderCellInfo(container: HTMLElement, stack: ViewStack | null, 
     return;
   }
   const s = cellSummary(stack, id);
-  const stats = stack.analysis?.cells[id];
-  const first = stack.surfaces[0].name;
-  const last = stack.surfaces[stack.surfaces.length - 1].name;
-  const lines = [
-    `Cell ${s.id}: ${s.valid ? 'valid' : 'border cell (not counted)'}, ${s.scutoid ? 'scutoid' : 'not a scutoid'}.`,
-    `Sides: ${s.sides.map((x) => `${x.surface} ${x.sides}`).join(', ')}.`,
-    `Neighbours won from ${first} to ${last}: ${cells(s.won)}; lost: ${cells(s.lost)} (${s.neighbourSource} neighbours).`,
-  ];
-  if (stats)
-    lines.push(
-      `Analysis (${stack.analysis!.method}): ${stats.won} won, ${stats.lost} lost, ${stats.transitions} transitions, ${stats.neighbours3D} 3D neighbours.`,
-    );
-  for (const line of lines) {
+  for (const line of cellInfoLines(stack, id)) {
     const p = document.createElement('p');
     p.textContent = line;
     container.append(p);
@@ -78,7 +95,7 @@ export function hoverText(stack: ViewStack, picked: { surface: number; cell: num
   const on = stack.surfaces[picked.surface]?.name ?? '';
   const sides = stack.surfaces.map((s) => `${s.name} ${s.sides[id]}`).join(', ');
   const flag = stack.valid[id] !== 1 ? 'border cell (not counted)' : stack.scutoid[id] === 1 ? 'scutoid' : 'not a scutoid';
-  return `Cell ${id} (on ${on}) · sides ${sides} · ${flag}`;
+  return `Cell ${id} (on ${on}) · sides ${sides} · ${flag}${stack.analysis ? ` (${stack.analysis.method} method)` : ''}`;
 }
 
 /** Neighbour ids in words that cannot be read as counts: "cell 51", "cells 7, 12 (2)", "none". */

@@ -10,9 +10,9 @@
  * face as stored: i to the right, j down), one strip per surface.
  */
 import { FACE_NAMES } from '../../core/cubemap/cubemap';
-import { drawExactCells } from '../../view/exactCells';
+import { drawExactCells, drawnByTexels } from '../../view/exactCells';
 import { PICTURE_LAYOUT, workerPicture, workerRgba } from '../../view/workerPictures';
-import { paintSurface } from '../../view/sideColors';
+import { flipRows, paintSurface } from '../../view/sideColors';
 import type { ViewStack, ViewSurface } from '../../view/stack';
 
 export interface UnrolledOptions {
@@ -51,7 +51,10 @@ export function drawUnrolled(container: HTMLElement, stack: ViewStack, highlight
       context()?.putImageData(new ImageData(cubeStrip(rgba, n), 6 * n, n), 0, 0);
     } else {
       // Drawn in the pipeline's worker when it could (workerPictures.ts).
-      const picture = workerPicture(surface, 'unrolled', paint);
+      // Very many cells: the painted label image (exactCells.ts, MAX_POLYGON_CELLS), y = 0 at the bottom.
+      const picture =
+        workerPicture(surface, 'unrolled', paint) ??
+        (drawnByTexels(surface) ? new ImageData(flipRows(paintSurface(surface, paint), width, height), width, height) : null);
       if (picture) {
         canvas.width = picture.width;
         canvas.height = picture.height;

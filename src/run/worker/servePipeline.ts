@@ -12,6 +12,7 @@
 import { createCanvasContext, type GpuContext } from '../../gpu/context';
 import type { SheetOutput } from '../result';
 import { SheetRunner } from '../runSheet';
+import { WORKER_KEEP_SEEDED } from '../seededCache';
 import type { FromWorker, SerializedError, ToWorker } from './protocol';
 
 /** What this module uses of the worker's global scope (the DOM typings describe a window). */
@@ -37,7 +38,7 @@ export function servePipeline(presenter?: Presenter): void {
     try {
       if (typeof OffscreenCanvas === 'undefined') throw new Error('OffscreenCanvas is not available in workers here');
       const context: GpuContext = createCanvasContext(new OffscreenCanvas(1, 1));
-      runner = new SheetRunner(context);
+      runner = new SheetRunner(context, { keepSeeded: WORKER_KEEP_SEEDED });
     } catch (error) {
       unavailable = error instanceof Error ? error.message : String(error);
     }

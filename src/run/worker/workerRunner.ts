@@ -3,6 +3,7 @@ import { GpuCapabilityError, type GpuContext } from '../../gpu/context';
 import type { RunOptions } from '../family';
 import type { SheetOutput } from '../result';
 import { SheetRunner } from '../runSheet';
+import { WORKER_KEEP_SEEDED } from '../seededCache';
 import type { FromWorker, SerializedError, ToWorker } from './protocol';
 
 /** Where a WorkerSheetRunner computes. */
@@ -121,7 +122,7 @@ export class WorkerSheetRunner {
   }
 
   private onPage(): SheetRunner {
-    this.pageRunner ??= new SheetRunner(this.pageContext());
+    this.pageRunner ??= new SheetRunner(this.pageContext(), { keepSeeded: WORKER_KEEP_SEEDED });
     return this.pageRunner;
   }
 }

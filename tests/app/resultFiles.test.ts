@@ -1,0 +1,93 @@
+import { spawnSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, statSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { basename, join } from 'node:path';
+import { beforeAll, describe, expect, it } from 'vitest';
+import { openFiles, type GivenFile } from '../../src/app/model/resultFiles';
+
+/**
+ * The page opens a result written with a cells side file (issue 27): the same configuration is
+ * run by the CLI twice, once with its cells in the JSON and once with --cells-file; the page's
+ * reading of the pair must equal the JSON result (timings aside), and one file of the pair
+ * alone is refused naming the other.
+ */
+const dir = mkdtempSync(join(tmpdir(), 'tissue-sheet-result-files-'));
+const config = {
+  surface: { kind: 'tube', radius: 30, length: 300 },
+  resolution: 128,
+  cells: 60,
+  seed: 4,
+  lloyd: { maxIterations: 3 },
+  sheet: { surfaceRatio: 2, layers: 1 },
+};
+
+function given(path: string, name = basename(path)): GivenFile {
+  return {
+    name,
+    size: statSync(path).size,
+    text: async () => readFileSync(path, 'utf8'),
+    arrayBuffer: async () => {
+      const bytes = readFileSync(path);
+      return bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength) as ArrayBuffer;
+    },
+  };
+}
+
+const withoutTimings = (value: unknown) => JSON.parse(JSON.stringify(value), (key, v) => (key === 'timings' || key.endsWith('Ms') ? undefined : v));
+
+beforeAll(() => {
+  writeFileSync(join(dir, 'cfg.json'), JSON.stringify(config));
+  for (const args of [
+    ['--out', join(dir, 'plain.json')],
+    ['--out', join(dir, 'big.json'), '--cells-file'],
+  ]) {
+    const run = spawnSync(process.execPath, [join(__dirname, '../cli/fromSource.mjs'), 'run', join(dir, 'cfg.json'), ...args], { encoding: 'utf8' });
+    if (run.status !== 0) throw new Error(run.stderr);
+  }
+}, 120_000);
+
+describe('opening a result with its cells side file', () => {
+  it('the pair (in either order) reads back as the JSON result', async () => {
+    const plain = JSON.parse(readFileSync(join(dir, 'plain.json'), 'utf8'));
+    const side = JSON.parse(readFileSync(join(dir, 'big.json'), 'utf8'));
+    expect(side.cells).toBeNull();
+    expect(side.cellsFile.path).toBe('big.cells.bin');
+    for (const order of [
+      [given(join(dir, 'big.json')), given(join(dir, 'big.cells.bin'))],
+      [given(join(dir, 'big.cells.bin')), given(join(dir, 'big.json'))],
+    ]) {
+      const { file, name } = await openFiles(order);
+      expect(name).toBe('big.json + big.cells.bin');
+      expect(file.kind).toBe('result');
+      if (file.kind !== 'result') return;
+      expect(withoutTimings(file.output.result)).toEqual(withoutTimings(plain));
+      expect(file.output.labelImages).toHaveLength(plain.surfaces.length + 1);
+    }
+  });
+
+  it('one file of the pair alone, or the wrong side file: refused, naming the missing file', async () => {
+    await expect(openFiles([given(join(dir, 'big.json'))])).rejects.toThrow(
+      'big.json: its cells are in the side file big.cells.bin (written beside it by tissue-sheet run); choose or drop both files together.',
+    );
+    await expect(openFiles([given(join(dir, 'big.cells.bin'))])).rejects.toThrow(
+      /^big\.cells\.bin is a cells side file: choose it together with its result JSON \(big\.json/,
+    );
+    await expect(openFiles([given(join(dir, 'big.json')), given(join(dir, 'big.cells.bin'), 'other.cells.bin')])).rejects.toThrow(
+      'big.json: its cells are in big.cells.bin, not in other.cells.bin; choose or drop big.json with big.cells.bin.',
+    );
+    await expect(openFiles([given(join(dir, 'plain.json')), given(join(dir, 'big.cells.bin'))])).rejects.toThrow(/plain\.json has no cellsFile/);
+  });
+
+  it('a truncated side file is refused with the sizes', async () => {
+    const bytes = readFileSync(join(dir, 'big.cells.bin'));
+    writeFileSync(join(dir, 'cut.cells.bin'), bytes.subarray(0, bytes.length - 8));
+    await expect(openFiles([given(join(dir, 'big.json')), given(join(dir, 'cut.cells.bin'), 'big.cells.bin')])).rejects.toThrow(
+      new RegExp(`big\\.json with big\\.cells\\.bin: big\\.cells\\.bin: ${bytes.length - 8} bytes where the result says ${bytes.length}`),
+    );
+  });
+
+  it('a plain result JSON still opens alone', async () => {
+    const { file } = await openFiles([given(join(dir, 'plain.json'))]);
+    expect(file.kind).toBe('result');
+  });
+});
