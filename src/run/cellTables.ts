@@ -25,7 +25,7 @@
  */
 import type { SurfaceAdjacency } from '../core/analysis';
 import type { CellStatistics } from '../core/analysis/scutoids';
-import type { AnalysisRecord, CellStatisticsRecord } from '../core/analysis/record';
+import { cellStatisticsRecords, type AnalysisRecord, type CellStatisticsRecord } from '../core/analysis/record';
 import type { CellRecord, SheetResult } from './result';
 
 /** The cells of one surface as columns (see the module comment). */
@@ -156,16 +156,7 @@ export function analysisCellTable(cells: CellStatistics): AnalysisCellTable {
 export function analysisCellRecordsOf(table: AnalysisCellTable): CellStatisticsRecord[] {
   const n = table.count;
   const surfaces = n > 0 ? table.sides.length / n : 0;
-  return Array.from(table.valid, (valid, id) => ({
-    id,
-    valid: valid === 1,
-    scutoid: table.scutoid[id] === 1,
-    won: table.won[id],
-    lost: table.lost[id],
-    transitions: table.transitions[id],
-    neighbours3D: table.neighbours3D[id],
-    sides: Array.from({ length: surfaces }, (_, k) => table.sides[k * n + id]),
-  }));
+  return cellStatisticsRecords(table, (id) => Array.from({ length: surfaces }, (_, k) => table.sides[k * n + id]));
 }
 
 const CELL_COLUMNS = ['position', 'surface', 'area', 'touchesBorder', 'neighbourOffsets', 'neighbourIds', 'neighbourLengths'] as const;
@@ -249,32 +240,15 @@ export function decodeCellsFile(record: CellsFileRecord, bytes: Uint8Array): Res
     if (!table) throw new Error(`${record.path}: no table for ${of}`);
     return table;
   };
-  const cellsOf = (of: string): CellTable => {
+  // Every column of the table named in `names`, in that order, with its count.
+  const columnsOf = (of: string, names: readonly string[]): Record<string, number | Column> => {
     const t = find(of);
-    return {
-      count: t.count,
-      position: read(t, 'position') as Float64Array,
-      surface: read(t, 'surface') as Float64Array,
-      area: read(t, 'area') as Float64Array,
-      touchesBorder: read(t, 'touchesBorder') as Uint8Array,
-      neighbourOffsets: read(t, 'neighbourOffsets') as Int32Array,
-      neighbourIds: read(t, 'neighbourIds') as Int32Array,
-      neighbourLengths: read(t, 'neighbourLengths') as Float64Array,
-    };
+    const table: Record<string, number | Column> = { count: t.count };
+    for (const name of names) table[name] = read(t, name);
+    return table;
   };
-  const analysisOf = (of: string): AnalysisCellTable => {
-    const t = find(of);
-    return {
-      count: t.count,
-      valid: read(t, 'valid') as Uint8Array,
-      scutoid: read(t, 'scutoid') as Uint8Array,
-      won: read(t, 'won') as Int32Array,
-      lost: read(t, 'lost') as Int32Array,
-      transitions: read(t, 'transitions') as Int32Array,
-      neighbours3D: read(t, 'neighbours3D') as Int32Array,
-      sides: read(t, 'sides') as Int32Array,
-    };
-  };
+  const cellsOf = (of: string) => columnsOf(of, CELL_COLUMNS) as unknown as CellTable;
+  const analysisOf = (of: string) => columnsOf(of, ANALYSIS_COLUMNS) as unknown as AnalysisCellTable;
   const surfaces = record.tables.filter((t) => /^surfaces\[\d+\]\.cells$/.test(t.of)).map((t) => cellsOf(t.of));
   const analyses = record.tables.filter((t) => /^analyses\[\d+\]\.cells$/.test(t.of)).map((t) => analysisOf(t.of));
   return { cells: cellsOf('cells'), surfaces, analyses };

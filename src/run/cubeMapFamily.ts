@@ -26,7 +26,7 @@ import { closedSection } from './closedRecord';
 import { checkOffsets, prepareClosedSurface } from './closedSurface';
 import type { CubeMapGeometry, CubeMapLayer, CubeMapProjected } from './cubeMapTypes';
 import type { Labeller, SurfaceFamily } from './family';
-import { relaxation } from './relax';
+import { engineRelaxation } from './relax';
 
 export type { CubeMapGeometry, CubeMapLayer, CubeMapProjected } from './cubeMapTypes';
 
@@ -56,21 +56,11 @@ export const cubeMapFamily: SurfaceFamily<ClosedConfig, CubeMapGeometry, ClosedS
     const centroidPath = gpuPath(choice);
     const sites = placeClosedSites(image, projector, config.cells, config.seed, config.minSpacing);
     const engine = new GpuEngine(context, cubeLayout(image.n), config.cells, { variant: config.jumpFlood.variant, centroidPath });
-    try {
+    const relaxation = engineRelaxation(engine, () => {
       engine.setGeometry(image.area, image.position);
-      const run = new GpuLloydRun(engine, closedSites(projector, sites, minTexelSpacing(geometry)), config.lloyd);
-      return {
-        sites,
-        relaxation: relaxation(
-          run,
-          () => engine.readLabels(),
-          () => engine.dispose(),
-        ),
-      };
-    } catch (error) {
-      engine.dispose();
-      throw error;
-    }
+      return new GpuLloydRun(engine, closedSites(projector, sites, minTexelSpacing(geometry)), config.lloyd);
+    });
+    return { sites, relaxation };
   },
 
   stack(config, geometry) {

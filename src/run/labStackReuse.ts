@@ -15,7 +15,7 @@
  */
 import { addDifference, differenceSize, isCanonical, newDifference } from '../core/analysis/sortedSets';
 import { analyzeLabStack, invalidOnAnySurface, neighbourSet, type ScutoidAnalysis, type SurfaceAdjacency, type SurfaceSummary } from '../core/analysis';
-import { cellArrays, summarizeCells, summarizeSurface } from '../core/analysis/scutoids';
+import { cellArrays, countWonLost, summarizeCells, summarizeSurface } from '../core/analysis/scutoids';
 
 /** Neighbour sets of one surface as CSR: each cell's ids ascending, once, without the cell. */
 interface Sets {
@@ -137,14 +137,11 @@ function finish(state: Carried, stack: SurfaceAdjacency[], invalid: Uint8Array):
   const labWon = new Int32Array(count);
   const labLost = new Int32Array(count);
   for (let i = 0; i < count; i++) {
-    const f0 = first.offsets[i];
-    const f1 = first.offsets[i + 1];
+    countWonLost(first, last, i, won, lost);
     const p0 = previous.offsets[i];
     const p1 = previous.offsets[i + 1];
     const l0 = last.offsets[i];
     const l1 = last.offsets[i + 1];
-    won[i] = differenceSize(last.ids, l0, l1, first.ids, f0, f1);
-    lost[i] = differenceSize(first.ids, f0, f1, last.ids, l0, l1);
     const t = state.transitions[i] + differenceSize(previous.ids, p0, p1, last.ids, l0, l1) + differenceSize(last.ids, l0, l1, previous.ids, p0, p1);
     const u = state.union[i];
     let all = u.length;

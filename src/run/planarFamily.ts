@@ -21,7 +21,7 @@ import { GpuEngine } from '../gpu/engine';
 import { gridLayout } from '../gpu/layout';
 import { GpuLloydRun, gridSites } from '../gpu/lloyd';
 import type { Labeller, RunInputs, SurfaceFamily } from './family';
-import { relaxation } from './relax';
+import { engineRelaxation, relaxation } from './relax';
 
 /** A plane or tube, unrolled: its texel grid and the density per texel. */
 export interface PlanarGeometry {
@@ -64,25 +64,14 @@ export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, St
       return { sites, relaxation: relaxation(run, () => null) };
     }
     const engine = new GpuEngine(context, gridLayout(grid), config.cells, { variant: config.jumpFlood.variant, centroidPath: choice.centroidPath });
-    try {
+    const start = () => {
       // Planar-family texels all cover the same area, so the weight is the density alone.
       engine.setGeometry(density);
-      const run = new GpuLloydRun(engine, gridSites(grid, sites), config.lloyd);
-      // Label the final sites with a cold flood, as every other surface of the stack is
-      // labelled: identical surfaces then get identical labels (no warm-start residue at s = 1).
-      return {
-        sites,
-        relaxation: relaxation(
-          run,
-          () => engine.readLabels(),
-          () => engine.dispose(),
-          () => engine.floodLabels(),
-        ),
-      };
-    } catch (error) {
-      engine.dispose();
-      throw error;
-    }
+      return new GpuLloydRun(engine, gridSites(grid, sites), config.lloyd);
+    };
+    // Label the final sites with a cold flood, as every other surface of the stack is
+    // labelled: identical surfaces then get identical labels (no warm-start residue at s = 1).
+    return { sites, relaxation: engineRelaxation(engine, start, () => engine.floodLabels()) };
   },
 
   stack: (config, geometry) => surfaceStack(config, geometry.grid),

@@ -1,5 +1,6 @@
 import type { AnyConfig } from '../core/config';
 import type { GpuContext } from '../gpu/context';
+import type { GpuEngine } from '../gpu/engine';
 import type { IterationRecord, LloydIterations } from '../core/iterationRecord';
 import type { EngineChoice } from './enginePolicy';
 import type { Relaxation, RunOptions, StackLayer, SurfaceFamily } from './family';
@@ -89,6 +90,24 @@ export function relaxation(
     },
     dispose,
   };
+}
+
+/**
+ * The relaxation of a GPU engine's Lloyd run that `start` sets up: labels read from the engine,
+ * which it disposes of (also where `start` throws); `beforeFinish` as for relaxation.
+ */
+export function engineRelaxation(engine: GpuEngine, start: () => LloydIterations, beforeFinish?: () => void): Relaxation {
+  try {
+    return relaxation(
+      start(),
+      () => engine.readLabels(),
+      () => engine.dispose(),
+      beforeFinish,
+    );
+  } catch (error) {
+    engine.dispose();
+    throw error;
+  }
 }
 
 export function throwIfAborted(signal: AbortSignal | undefined): void {

@@ -29,6 +29,7 @@
  */
 import { embed } from '../core/surface';
 import { wrapDelta } from '../core/grid';
+import { signedVolume as meshSignedVolume } from '../core/mesh/types';
 import { surfacePolygons } from './cellPolygons';
 import { closedSections } from './cellSolidClosed';
 import { cross, sub, type Section, type Vec3 } from './cellSolidSection';
@@ -126,17 +127,7 @@ export function cellSolid(stack: ViewStack, id: number, options: CellSolidOption
 
 /** Volume enclosed by a closed, consistently oriented triangle mesh (µm³). */
 export function signedVolume(positions: ArrayLike<number>, indices: ArrayLike<number>): number {
-  let volume = 0;
-  for (let t = 0; t < indices.length; t += 3) {
-    const a = 3 * indices[t];
-    const b = 3 * indices[t + 1];
-    const c = 3 * indices[t + 2];
-    const [ax, ay, az] = [positions[a], positions[a + 1], positions[a + 2]];
-    const [bx, by, bz] = [positions[b], positions[b + 1], positions[b + 2]];
-    const [cx, cy, cz] = [positions[c], positions[c + 1], positions[c + 2]];
-    volume += ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx);
-  }
-  return volume / 6;
+  return meshSignedVolume({ positions, indices });
 }
 
 /** Area of a polygon given as interleaved x, y (positive counter-clockwise). */

@@ -9,7 +9,7 @@
  * seam. Pure data (no three.js, no DOM); the triangles of a resolution are built once.
  */
 import { CUBE_EDGE, CUBE_EDGES, CUBE_FACES, texelIndex, wrapTexel } from '../core/cubemap/cubemap';
-import { meanEdgeLength, signedVolume } from '../core/mesh/types';
+import { crossOfDifferences, meanEdgeLength, signedVolume } from '../core/mesh/types';
 import type { LabelImage } from '../run';
 
 /** A surface as triangles, outward normals, and the cell of every vertex. */
@@ -178,20 +178,10 @@ function texelNeighbours(n: number): Int32Array {
 function texelNormals(positions: Float32Array, neighbours: Int32Array): Float32Array {
   const normals = new Float32Array(positions.length);
   const count = positions.length / 3;
+  const cross = new Float64Array(3);
   for (let v = 0; v < count; v++) {
-    const sp = 3 * neighbours[4 * v],
-      sm = 3 * neighbours[4 * v + 1];
-    const tp = 3 * neighbours[4 * v + 2],
-      tm = 3 * neighbours[4 * v + 3];
-    const ax = positions[sp] - positions[sm],
-      ay = positions[sp + 1] - positions[sm + 1],
-      az = positions[sp + 2] - positions[sm + 2];
-    const bx = positions[tp] - positions[tm],
-      by = positions[tp + 1] - positions[tm + 1],
-      bz = positions[tp + 2] - positions[tm + 2];
-    const nx = ay * bz - az * by,
-      ny = az * bx - ax * bz,
-      nz = ax * by - ay * bx;
+    // (s+ - s-) × (t+ - t-) of the texel's four neighbours.
+    const [nx, ny, nz] = crossOfDifferences(positions, neighbours[4 * v + 1], neighbours[4 * v], neighbours[4 * v + 3], neighbours[4 * v + 2], cross);
     const l = Math.hypot(nx, ny, nz) || 1;
     normals[3 * v] = nx / l;
     normals[3 * v + 1] = ny / l;

@@ -9,7 +9,7 @@
  * `maxSide` pixels per side: the picture of an 8k x 8k layer would be 256 MB of RGBA.
  */
 import type { LabelPixels, MeasuredCellRecord } from '../core/measure';
-import { RGB, SELECTED_RGB, sideColorIndex, writePixel } from './sideColors';
+import { cellRgb, SELECTED_RGB, writePixel } from './sideColors';
 
 /** One layer's labels at picture resolution: raw labels (0 = background), row 0 = top. */
 export interface LayerLabels {
@@ -64,6 +64,8 @@ export function cellsByLabel(cells: readonly MeasuredCellRecord[], layers: numbe
 }
 
 const BACKGROUND = [40, 40, 40] as const;
+/** Every stripe-th diagonal of a scutoid. */
+const SCUTOID_STRIPE = [20, 20, 20] as const;
 
 /** Whether picture pixel (x, y) lies on a cell boundary (its right or lower neighbour differs). */
 export function isLayerBoundary(layer: LayerLabels, periodicX: boolean, x: number, y: number): boolean {
@@ -80,20 +82,16 @@ export function paintLayer(layer: LayerLabels, k: number, cells: CellsByLabel, p
   const out = new Uint8ClampedArray(width * height * 4);
   const sides = cells.sides[k];
   const stripe = Math.max(4, Math.round(Math.min(width, height) / 24));
+  /** Pixel (x, y)'s colour, of cell `label`, before its boundary is darkened. */
+  const colourAt = (label: number, x: number, y: number): readonly number[] => {
+    if (label === 0 || label >= sides.length) return BACKGROUND;
+    const valid = cells.valid[label] !== 0;
+    return valid && cells.scutoid[label] && (x + y) % stripe === 0 ? SCUTOID_STRIPE : cellRgb(sides[label], valid);
+  };
   for (let y = 0; y < height; y++) {
     for (let x = 0; x < width; x++) {
       const index = y * width + x;
-      const label = labels[index];
-      let r: number, g: number, b: number;
-      if (label === 0 || label >= sides.length) [r, g, b] = BACKGROUND;
-      else {
-        [r, g, b] = RGB[sideColorIndex(sides[label])];
-        if (!cells.valid[label]) {
-          r = (r + 2 * 235) / 3;
-          g = (g + 2 * 235) / 3;
-          b = (b + 2 * 235) / 3;
-        } else if (cells.scutoid[label] && (x + y) % stripe === 0) r = g = b = 20;
-      }
+      const [r, g, b] = colourAt(labels[index], x, y);
       writePixel(out, index, r, g, b, isLayerBoundary(layer, periodicX, x, y));
     }
   }

@@ -23,6 +23,12 @@ export function sideColorIndex(sides: number): number {
   return Math.max(0, Math.min(sides, 10) - 3);
 }
 
+/** A cell's colour by its sides; one not counted in the statistics (not valid) faded two thirds of the way to light grey. */
+export function cellRgb(sides: number, valid: boolean): readonly number[] {
+  const rgb = RGB[sideColorIndex(sides)];
+  return valid ? rgb : rgb.map((v) => (v + 2 * 235) / 3);
+}
+
 export interface PaintOptions {
   /** Stripe scutoids (default true). */
   highlightScutoids?: boolean;
@@ -53,12 +59,7 @@ export function paintSurface(surface: ViewSurface, options: PaintOptions = {}): 
       let r: number, g: number, b: number;
       if (id < 0) [r, g, b] = NO_CELL;
       else {
-        [r, g, b] = RGB[sideColorIndex(surface.sides[id] ?? 0)];
-        if (options.valid && !options.valid[id]) {
-          r = (r + 2 * 235) / 3;
-          g = (g + 2 * 235) / 3;
-          b = (b + 2 * 235) / 3;
-        }
+        [r, g, b] = cellRgb(surface.sides[id] ?? 0, !options.valid || !!options.valid[id]);
         if (id === options.selected) [r, g, b] = SELECTED_RGB;
         else if (highlight && options.scutoid?.[id] && (x + y) % stripe === 0) {
           r = 20;

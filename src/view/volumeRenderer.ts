@@ -35,15 +35,21 @@ export interface Orbit {
   readonly elevation: number;
 }
 
+/** GLSL: the vertex's world position into vWorld, and its clip position. */
+const worldPosition = /* glsl */ `
+    vec4 world = modelMatrix * vec4(position, 1.0);
+    vWorld = world.xyz;
+    gl_Position = projectionMatrix * viewMatrix * world;`;
+
+/** GLSL: the facing of the triangle's own normal to the camera, 0 to 1 (flat shading without lights). */
+const facing = /* glsl */ `abs(dot(normalize(cross(dFdx(vWorld), dFdy(vWorld))), normalize(cameraPosition - vWorld)))`;
+
 const vertexShader = /* glsl */ `
   in float cell;
   flat out int vCell;
   out vec3 vWorld;
   void main() {
-    vCell = int(cell + 0.5);
-    vec4 world = modelMatrix * vec4(position, 1.0);
-    vWorld = world.xyz;
-    gl_Position = projectionMatrix * viewMatrix * world;
+    vCell = int(cell + 0.5);${worldPosition}
   }`;
 
 const fragmentShader = /* glsl */ `
@@ -58,25 +64,20 @@ const fragmentShader = /* glsl */ `
     // Scutoids: dark stripes across the surface (alpha 1), as the model's views stripe them.
     if (c.a > 0.5 && fract((vWorld.x + vWorld.y + vWorld.z) / stripe) < 0.25) rgb = vec3(0.08);
     // Flat shading from the triangle's own normal: the surface's relief without lights.
-    vec3 n = normalize(cross(dFdx(vWorld), dFdy(vWorld)));
-    float light = 0.55 + 0.45 * abs(dot(n, normalize(cameraPosition - vWorld)));
+    float light = 0.55 + 0.45 * ${facing};
     outColor = vec4(rgb * light, 1.0);
   }`;
 
 const shapeVertex = /* glsl */ `
   out vec3 vWorld;
-  void main() {
-    vec4 world = modelMatrix * vec4(position, 1.0);
-    vWorld = world.xyz;
-    gl_Position = projectionMatrix * viewMatrix * world;
+  void main() {${worldPosition}
   }`;
 
 const shapeFragment = /* glsl */ `
   in vec3 vWorld;
   out vec4 outColor;
   void main() {
-    vec3 n = normalize(cross(dFdx(vWorld), dFdy(vWorld)));
-    float light = 0.35 + 0.65 * abs(dot(n, normalize(cameraPosition - vWorld)));
+    float light = 0.35 + 0.65 * ${facing};
     outColor = vec4(vec3(0.93, 0.9, 0.82) * light, 1.0);
   }`;
 

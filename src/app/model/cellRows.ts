@@ -9,6 +9,7 @@
  * against formula injection by formatCsv (core/sweep/csv.ts).
  */
 import { formatCsv } from '../../core/sweep';
+import { statisticsColumns } from './measuredCsv';
 import { methodCaption, type ViewStack } from '../../view/stack';
 import { describeHeadline, describeOmitted } from '../../core/analysis/headline';
 import { describeEngine } from '../../run/enginePolicy';
@@ -24,12 +25,7 @@ export function cellTable(stack: ViewStack): CellTable {
     'id',
     'valid',
     'scutoid',
-    ...names.map((n) => `sides_${n}`),
-    'won',
-    'lost',
-    'transitions',
-    'neighbours3D',
-    ...names.map((n) => `area_um2_${n}`),
+    ...statisticsColumns(names),
     // The result keeps neighbour ids (with contact lengths) from the label images only.
     ...names.map((n) => `label_neighbours_${n}`),
     // Closed surfaces: the site's parameter direction as longitude / latitude.

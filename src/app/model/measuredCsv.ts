@@ -8,21 +8,14 @@
 import { formatCsv } from '../../core/sweep';
 import type { MeasuredResult } from '../../core/measure';
 
+/** The per-cell CSVs' statistics columns for surfaces or layers `names`: sides, won to neighbours3D, areas. */
+export function statisticsColumns(names: string[]): string[] {
+  return [...names.map((n) => `sides_${n}`), 'won', 'lost', 'transitions', 'neighbours3D', ...names.map((n) => `area_um2_${n}`)];
+}
+
 export function measuredCellCsv(result: MeasuredResult): string {
   const names = result.inputs.layers.map((l) => l.name.replace(/\s+/g, '_'));
-  const header = [
-    'label',
-    'valid',
-    'excluded_because',
-    'scutoid',
-    ...names.map((n) => `sides_${n}`),
-    'won',
-    'lost',
-    'transitions',
-    'neighbours3D',
-    ...names.map((n) => `area_um2_${n}`),
-    ...names.map((n) => `neighbour_labels_${n}`),
-  ];
+  const header = ['label', 'valid', 'excluded_because', 'scutoid', ...statisticsColumns(names), ...names.map((n) => `neighbour_labels_${n}`)];
   const rows = result.cells.map((cell) => [
     cell.label,
     cell.valid ? 1 : 0,

@@ -43,7 +43,23 @@ export function analysisRecord(
   protocol: 'default' | 'lab' = 'default',
 ): AnalysisRecord {
   const c = analysis.cells;
-  const cells = Array.from(c.valid, (valid, id) => ({
+  const cells = cellStatisticsRecords(c, (id) => c.sides.map((perSurface) => perSurface[id]));
+  return { method, protocol, minContactLength, summary: analysis.summary, cells };
+}
+
+/** The per-cell scalar columns a record list is made from (flags 1 or 0). */
+export interface CellStatisticsColumns {
+  readonly valid: ArrayLike<number>;
+  readonly scutoid: ArrayLike<number>;
+  readonly won: ArrayLike<number>;
+  readonly lost: ArrayLike<number>;
+  readonly transitions: ArrayLike<number>;
+  readonly neighbours3D: ArrayLike<number>;
+}
+
+/** One record per cell of the columns, `sidesOf` giving a cell's sides on each surface. */
+export function cellStatisticsRecords(c: CellStatisticsColumns, sidesOf: (id: number) => number[]): CellStatisticsRecord[] {
+  return Array.from(c.valid, (valid, id) => ({
     id,
     valid: valid === 1,
     scutoid: c.scutoid[id] === 1,
@@ -51,7 +67,6 @@ export function analysisRecord(
     lost: c.lost[id],
     transitions: c.transitions[id],
     neighbours3D: c.neighbours3D[id],
-    sides: c.sides.map((perSurface) => perSurface[id]),
+    sides: sidesOf(id),
   }));
-  return { method, protocol, minContactLength, summary: analysis.summary, cells };
 }

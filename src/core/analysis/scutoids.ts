@@ -198,12 +198,9 @@ export function analyzeSurfaces(surfaces: SurfaceAdjacency[], options: AnalysisO
   const first = sets[0];
   const last = sets[S - 1];
   for (let i = 0; i < count; i++) {
+    countWonLost(first, last, i, won, lost);
     const f0 = first.offsets[i];
     const f1 = first.offsets[i + 1];
-    const l0 = last.offsets[i];
-    const l1 = last.offsets[i + 1];
-    won[i] = differenceSize(last.ids, l0, l1, first.ids, f0, f1);
-    lost[i] = differenceSize(first.ids, f0, f1, last.ids, l0, l1);
     let t = 0;
     let n = f1 - f0;
     for (let e = f0; e < f1; e++) all[e - f0] = first.ids[e];
@@ -228,6 +225,22 @@ export function analyzeSurfaces(surfaces: SurfaceAdjacency[], options: AnalysisO
   for (let i = 0; i < count; i++) validCells += valid[i];
   const perSurface = surfaces.map((s, k) => summarizeSurface(s, sets[k], sides[k], valid, validCells, options));
   return summarizeCells({ valid, sides, won, lost, transitions, neighbours3D, changed, scutoid }, perSurface);
+}
+
+/** Cell i's neighbours on `last` that are not on `first` into won[i], and the other way round into lost[i] (sets as neighbourSets gives). */
+export function countWonLost(
+  first: { readonly offsets: Int32Array; readonly ids: Int32Array },
+  last: { readonly offsets: Int32Array; readonly ids: Int32Array },
+  i: number,
+  won: Int32Array,
+  lost: Int32Array,
+): void {
+  const f0 = first.offsets[i];
+  const f1 = first.offsets[i + 1];
+  const l0 = last.offsets[i];
+  const l1 = last.offsets[i + 1];
+  won[i] = differenceSize(last.ids, l0, l1, first.ids, f0, f1);
+  lost[i] = differenceSize(first.ids, f0, f1, last.ids, l0, l1);
 }
 
 /** The per-cell arrays of CellStatistics that an analysis fills (validity and sides come first). */

@@ -7,7 +7,7 @@ import { ContactRows, type ContactLength } from '../labels';
 import { texelFromIndex, texelIndex, wrapTexel, type Vec3 } from '../cubemap/cubemap';
 import type { CubeGeometryImage } from '../cubemap/sample';
 import type { TriangleMesh } from '../mesh/types';
-import { vertexNormals } from '../mesh/types';
+import { crossOfDifferences, vertexNormals } from '../mesh/types';
 import { createRandom, searchCdf } from '../random';
 import { directionTexel, PROJECTION_STRIDE, type ClosedProjector } from './projector';
 
@@ -176,18 +176,10 @@ export function offsetSurface(image: CubeGeometryImage, t: number, neighbours = 
   for (let k = 0; k < 3 * count; k++) position[k] = P[k] + t * N[k];
   const area = new Float32Array(count);
   let total = 0;
+  const cross = new Float64Array(3);
   const crossNorm = (X: ArrayLike<number>, k: number) => {
-    const a = neighbours[4 * k],
-      b = neighbours[4 * k + 1],
-      c = neighbours[4 * k + 2],
-      d = neighbours[4 * k + 3];
-    const ux = X[3 * b] - X[3 * a],
-      uy = X[3 * b + 1] - X[3 * a + 1],
-      uz = X[3 * b + 2] - X[3 * a + 2];
-    const vx = X[3 * d] - X[3 * c],
-      vy = X[3 * d + 1] - X[3 * c + 1],
-      vz = X[3 * d + 2] - X[3 * c + 2];
-    return Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
+    const n = crossOfDifferences(X, neighbours[4 * k], neighbours[4 * k + 1], neighbours[4 * k + 2], neighbours[4 * k + 3], cross);
+    return Math.hypot(n[0], n[1], n[2]);
   };
   for (let k = 0; k < count; k++) {
     const before = crossNorm(P, k);

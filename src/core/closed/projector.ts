@@ -15,7 +15,7 @@ import { BufferAttribute, BufferGeometry, Vector3 } from 'three';
 import { MeshBVH } from 'three-mesh-bvh';
 import { CUBE_FACES, texelIndex, type Vec3 } from '../cubemap/cubemap';
 import { closestPointOnEllipsoid } from '../cubemap/sample';
-import { vertexNormals, type TriangleMesh } from '../mesh/types';
+import { dotOfDifferences, vertexNormals, type TriangleMesh } from '../mesh/types';
 
 /** Where a point landed: stride 9 [px, py, pz, nx, ny, nz, dx, dy, dz] in the caller's buffer. */
 export const PROJECTION_STRIDE = 9;
@@ -88,6 +88,7 @@ export function meshProjector(mesh: TriangleMesh, sphere: Float64Array): ClosedP
   const target = { point: new Vector3(), distance: 0, faceIndex: 0 };
   const w = [0, 0, 0];
   const ids = [0, 0, 0];
+  const Q = new Float64Array(12);
   /** Closest point into `target`, its triangle's vertices into `ids`, barycentrics into `w`. */
   const locate = (x: number, y: number, z: number) => {
     bvh.closestPointToPoint(q.set(x, y, z), target);
@@ -97,20 +98,18 @@ export function meshProjector(mesh: TriangleMesh, sphere: Float64Array): ClosedP
       ic = t[3 * f + 2];
     // Barycentric coordinates of the closest point in its triangle (Ericson, Real-Time Collision Detection).
     const P = target.point;
-    const v0x = p[3 * ib] - p[3 * ia],
-      v0y = p[3 * ib + 1] - p[3 * ia + 1],
-      v0z = p[3 * ib + 2] - p[3 * ia + 2];
-    const v1x = p[3 * ic] - p[3 * ia],
-      v1y = p[3 * ic + 1] - p[3 * ia + 1],
-      v1z = p[3 * ic + 2] - p[3 * ia + 2];
-    const v2x = P.x - p[3 * ia],
-      v2y = P.y - p[3 * ia + 1],
-      v2z = P.z - p[3 * ia + 2];
-    const d00 = v0x * v0x + v0y * v0y + v0z * v0z,
-      d01 = v0x * v1x + v0y * v1y + v0z * v1z,
-      d11 = v1x * v1x + v1y * v1y + v1z * v1z;
-    const d20 = v2x * v0x + v2y * v0y + v2z * v0z,
-      d21 = v2x * v1x + v2y * v1y + v2z * v1z;
+    // Q: the triangle's corners A, B, C and the point, for v0 = B - A, v1 = C - A, v2 = P - A.
+    Q.set(p.subarray(3 * ia, 3 * ia + 3), 0);
+    Q.set(p.subarray(3 * ib, 3 * ib + 3), 3);
+    Q.set(p.subarray(3 * ic, 3 * ic + 3), 6);
+    Q[9] = P.x;
+    Q[10] = P.y;
+    Q[11] = P.z;
+    const d00 = dotOfDifferences(Q, 0, 1, 0, 1),
+      d01 = dotOfDifferences(Q, 0, 1, 0, 2),
+      d11 = dotOfDifferences(Q, 0, 2, 0, 2);
+    const d20 = dotOfDifferences(Q, 0, 3, 0, 1),
+      d21 = dotOfDifferences(Q, 0, 3, 0, 2);
     const den = d00 * d11 - d01 * d01 || 1;
     let beta = (d11 * d20 - d01 * d21) / den,
       gamma = (d00 * d21 - d01 * d20) / den;

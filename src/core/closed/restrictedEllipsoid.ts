@@ -168,12 +168,9 @@ export class EllipsoidRestrictedVoronoi {
       areaTol = 1e-12 * scale * scale;
     let area = 0;
     for (let q = 0; q < n; q++) {
-      const first = this.ivStart[q],
-        last = this.ivStart[q + 1];
-      if (first === last) continue;
-      this.arcs.setCircle(this.circC, this.circU, this.circV, 3 * q);
+      if (!this.onCircle(q)) continue;
       let len = 0;
-      for (let t = first; t < last; t++) {
+      for (let t = this.ivStart[q]; t < this.ivStart[q + 1]; t++) {
         len += this.arcs.length(this.ivLo[t], this.ivHi[t], lengthTol);
         // The cell lies on the side x·m̂ ≤ h, i.e. to the right of increasing θ (u × v = m̂):
         // its counter-clockwise boundary runs with decreasing θ.
@@ -182,6 +179,13 @@ export class EllipsoidRestrictedVoronoi {
       if (len > this.lengthTolerance) this.recorder.add(this.cand[q], len);
     }
     this.areas[i] = area;
+  }
+
+  /** Puts `arcs` on candidate q's circle, false (and nothing set) where none of it survived clipping. */
+  private onCircle(q: number): boolean {
+    if (this.ivStart[q] === this.ivStart[q + 1]) return false;
+    this.arcs.setCircle(this.circC, this.circU, this.circV, 3 * q);
+    return true;
   }
 
   /** Whether the unit vector x lies in the candidate cell (all n constraints). */
@@ -345,12 +349,9 @@ export class EllipsoidRestrictedVoronoi {
   private boundaryRadius(n: number, sx: number, sy: number, sz: number): number {
     let R = 0;
     for (let q = 0; q < n; q++) {
-      const first = this.ivStart[q],
-        last = this.ivStart[q + 1];
-      if (first === last) continue;
-      this.arcs.setCircle(this.circC, this.circU, this.circV, 3 * q);
+      if (!this.onCircle(q)) continue;
       const speed = this.arcs.speedBound();
-      for (let t = first; t < last; t++) {
+      for (let t = this.ivStart[q]; t < this.ivStart[q + 1]; t++) {
         const lo = this.ivLo[t],
           hi = this.ivHi[t];
         const steps = Math.max(2, Math.ceil((hi - lo) / 0.05));

@@ -132,20 +132,10 @@ export class Triangulation {
     let i2y = coords[2 * i2 + 1];
     if (minRadius === Infinity) return; // every point collinear: no triangle
 
-    if (orient2d(i0x, i0y, i1x, i1y, i2x, i2y) < 0) {
-      const i = i1;
-      const x = i1x;
-      const y = i1y;
-      i1 = i2;
-      i1x = i2x;
-      i1y = i2y;
-      i2 = i;
-      i2x = x;
-      i2y = y;
-    }
-    circumcenter(i0x, i0y, i1x, i1y, i2x, i2y, CENTER);
-    this.cx = CENTER[0];
-    this.cy = CENTER[1];
+    if (orient2d(i0x, i0y, i1x, i1y, i2x, i2y) < 0) [i1, i1x, i1y, i2, i2x, i2y] = [i2, i2x, i2y, i1, i1x, i1y];
+    circumOffset(i0x, i0y, i1x, i1y, i2x, i2y, CENTER);
+    this.cx = i0x + CENTER[0];
+    this.cy = i0y + CENTER[1];
     const centerX = this.cx;
     const centerY = this.cy;
     for (let i = 0; i < n; i++) dists[i] = dist(coords[2 * i], coords[2 * i + 1], centerX, centerY);
@@ -321,33 +311,26 @@ function inCircle(ax: number, ay: number, bx: number, by: number, cx: number, cy
   return dx * (ey * cp - bp * fy) - dy * (ex * cp - bp * fx) + ap * (ex * fy - ey * fx) < 0;
 }
 
+/** Squared circumradius of A, B, C. */
 function circumradius(ax: number, ay: number, bx: number, by: number, cx: number, cy: number): number {
-  const dx = bx - ax;
-  const dy = by - ay;
-  const ex = cx - ax;
-  const ey = cy - ay;
-  const bl = dx * dx + dy * dy;
-  const cl = ex * ex + ey * ey;
-  const d = 0.5 / (dx * ey - dy * ex);
-  const x = (ey * bl - dy * cl) * d;
-  const y = (dx * cl - ex * bl) * d;
-  return x * x + y * y;
+  circumOffset(ax, ay, bx, by, cx, cy, CENTER);
+  return CENTER[0] * CENTER[0] + CENTER[1] * CENTER[1];
 }
 
-/** Scratch for the seed triangle's circumcentre. */
+/** Scratch for a circumcentre's offset. */
 const CENTER = new Float64Array(2);
 
-/** Circumcentre of A, B, C written to out[0], out[1] (no object allocated). */
-function circumcenter(ax: number, ay: number, bx: number, by: number, cx: number, cy: number, out: Float64Array): void {
+/** Circumcentre of A, B, C minus A, written to out[0], out[1] (no object allocated). */
+function circumOffset(ax: number, ay: number, bx: number, by: number, cx: number, cy: number, out: Float64Array): void {
   const dx = bx - ax;
   const dy = by - ay;
   const ex = cx - ax;
   const ey = cy - ay;
-  const bl = dx * dx + dy * dy;
-  const cl = ex * ex + ey * ey;
+  const bl = dist(bx, by, ax, ay);
+  const cl = dist(cx, cy, ax, ay);
   const d = 0.5 / (dx * ey - dy * ex);
-  out[0] = ax + (ey * bl - dy * cl) * d;
-  out[1] = ay + (dx * cl - ex * bl) * d;
+  out[0] = (ey * bl - dy * cl) * d;
+  out[1] = (dx * cl - ex * bl) * d;
 }
 
 function quicksort(ids: Uint32Array, dists: Float64Array, left: number, right: number): void {

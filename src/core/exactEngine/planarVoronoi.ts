@@ -336,21 +336,9 @@ export class PlanarVoronoi {
       const dx = xy[2 * k];
       const dy = xy[2 * k + 1];
       const r2 = dx * dx + dy * dy;
-      if (checkX) {
-        const a = sx + dx - loX;
-        const b = hiX - sx - dx;
-        if (a <= 0 || b <= 0 || a * a <= r2 || b * b <= r2) {
-          this.uncertified = true;
-          return;
-        }
-      }
-      if (checkY) {
-        const a = sy + dy - loY;
-        const b = hiY - sy - dy;
-        if (a <= 0 || b <= 0 || a * a <= r2 || b * b <= r2) {
-          this.uncertified = true;
-          return;
-        }
+      if ((checkX && reachesBand(sx, dx, loX, hiX, r2)) || (checkY && reachesBand(sy, dy, loY, hiY, r2))) {
+        this.uncertified = true;
+        return;
       }
     }
   }
@@ -488,4 +476,11 @@ export class PlanarVoronoi {
     const reference = exactVoronoi(this.grid, sites);
     this.fallback = reference.cells.map((cell) => cell.polygon);
   }
+}
+
+/** Whether the disk of squared radius r2 around s + d (one coordinate) is not strictly inside lo < x < hi. */
+function reachesBand(s: number, d: number, lo: number, hi: number, r2: number): boolean {
+  const a = s + d - lo;
+  const b = hi - s - d;
+  return a <= 0 || b <= 0 || a * a <= r2 || b * b <= r2;
 }

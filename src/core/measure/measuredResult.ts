@@ -75,7 +75,8 @@ export interface CellExclusion {
   readonly reason: string;
 }
 
-export interface MeasuredCellRecord {
+/** A measured cell's record in both modes (layers; a volume's basal and apical surfaces). */
+export interface MeasuredCellFields<Contact, Exclusion> {
   readonly id: number;
   readonly label: number;
   readonly valid: boolean;
@@ -86,24 +87,30 @@ export interface MeasuredCellRecord {
   /** Labels of the neighbours per layer (contacts >= min-contact), ascending. */
   readonly neighbours: number[][];
   /** Every contact per layer, also those below min-contact. */
-  readonly contacts: ContactRecord[][];
+  readonly contacts: Contact[][];
   readonly won: number;
   readonly lost: number;
   readonly transitions: number;
   readonly neighbours3D: number;
-  readonly exclusion: CellExclusion | null;
+  readonly exclusion: Exclusion | null;
 }
 
-export interface MeasuredResult {
+export type MeasuredCellRecord = MeasuredCellFields<ContactRecord, CellExclusion>;
+
+/** What a measured result holds in both modes. */
+export interface MeasuredResultFields<Inputs, Cell> {
   readonly software: { readonly name: 'tissue-sheet'; readonly version: string };
   readonly kind: 'measured';
-  readonly inputs: MeasuredInputs;
+  readonly inputs: Inputs;
   readonly analyses: MeasuredAnalysis[];
-  readonly cells: MeasuredCellRecord[];
+  readonly cells: Cell[];
+  readonly warnings: string[];
+}
+
+export interface MeasuredResult extends MeasuredResultFields<MeasuredInputs, MeasuredCellRecord> {
   readonly exclusions: { readonly touchesBorder: number; readonly missing: number; readonly total: number };
   /** Apical over basal size around the tube. */
   readonly surfaceRatio: { readonly value: number; readonly source: 'widths' | 'areas' | 'option' };
   readonly comparison: ModelComparison | null;
-  readonly warnings: string[];
   readonly timings: { readonly readMs: number; readonly contactsMs: number; readonly analysisMs: number; readonly totalMs: number };
 }

@@ -19,22 +19,15 @@
  * L_ii = -Σ_j L_ij; M is the lumped (barycentric) mass: a third of the incident triangle areas.
  */
 import { csrAddDiagonal, csrFromTriplets, SparseCholesky, type CsrMatrix } from './sparse';
-import { meanEdgeLength, triangleArea, triangleCross, type TriangleMesh } from './types';
+import { crossOfDifferences, dotOfDifferences, meanEdgeLength, triangleArea, triangleCross, type TriangleMesh } from './types';
 
 /** Cotangent of the angle at vertex o of triangle (o, a, b). */
 function cotAt(p: Float32Array, o: number, a: number, b: number): number {
-  const ux = p[3 * a] - p[3 * o],
-    uy = p[3 * a + 1] - p[3 * o + 1],
-    uz = p[3 * a + 2] - p[3 * o + 2];
-  const vx = p[3 * b] - p[3 * o],
-    vy = p[3 * b + 1] - p[3 * o + 1],
-    vz = p[3 * b + 2] - p[3 * o + 2];
-  const dot = ux * vx + uy * vy + uz * vz;
-  const cx = uy * vz - uz * vy,
-    cy = uz * vx - ux * vz,
-    cz = ux * vy - uy * vx;
-  return dot / Math.max(Math.sqrt(cx * cx + cy * cy + cz * cz), 1e-300);
+  const c = crossOfDifferences(p, o, a, o, b, cotCross);
+  return dotOfDifferences(p, o, a, o, b) / Math.max(Math.sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), 1e-300);
 }
+
+const cotCross = new Float64Array(3);
 
 /**
  * Cotangent Laplacian (positive semi-definite, CSR). With `clampNegative`, negative edge weights

@@ -53,19 +53,30 @@ export function boundingBox(positions: ArrayLike<number>): { min: Vec3; max: Vec
  * twice the triangle's area long.
  */
 export function triangleCross(p: ArrayLike<number>, t: ArrayLike<number>, f: number, out: Float64Array): Float64Array {
-  const a = 3 * t[3 * f],
-    b = 3 * t[3 * f + 1],
-    c = 3 * t[3 * f + 2];
-  const ux = p[b] - p[a],
-    uy = p[b + 1] - p[a + 1],
-    uz = p[b + 2] - p[a + 2];
-  const vx = p[c] - p[a],
-    vy = p[c + 1] - p[a + 1],
-    vz = p[c + 2] - p[a + 2];
+  return crossOfDifferences(p, t[3 * f], t[3 * f + 1], t[3 * f], t[3 * f + 2], out);
+}
+
+/** (p_b - p_a) × (p_d - p_c) of points of `p` (x, y, z per point), written into `out` (allocates nothing). */
+export function crossOfDifferences(p: ArrayLike<number>, a: number, b: number, c: number, d: number, out: Float64Array): Float64Array {
+  const ux = p[3 * b] - p[3 * a],
+    uy = p[3 * b + 1] - p[3 * a + 1],
+    uz = p[3 * b + 2] - p[3 * a + 2];
+  const vx = p[3 * d] - p[3 * c],
+    vy = p[3 * d + 1] - p[3 * c + 1],
+    vz = p[3 * d + 2] - p[3 * c + 2];
   out[0] = uy * vz - uz * vy;
   out[1] = uz * vx - ux * vz;
   out[2] = ux * vy - uy * vx;
   return out;
+}
+
+/** (p_b - p_a) · (p_d - p_c) of points of `p` (x, y, z per point). */
+export function dotOfDifferences(p: ArrayLike<number>, a: number, b: number, c: number, d: number): number {
+  return (
+    (p[3 * b] - p[3 * a]) * (p[3 * d] - p[3 * c]) +
+    (p[3 * b + 1] - p[3 * a + 1]) * (p[3 * d + 1] - p[3 * c + 1]) +
+    (p[3 * b + 2] - p[3 * a + 2]) * (p[3 * d + 2] - p[3 * c + 2])
+  );
 }
 
 const crossScratch = new Float64Array(3);

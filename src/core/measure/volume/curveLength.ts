@@ -12,6 +12,7 @@
  * other on the surface) has no fixed end and would shrink: its round shape's known decay is
  * undone. Coordinates are in µm, so anisotropic voxels weigh their edges.
  */
+import { disjointSets } from './disjointSets';
 
 export const SMOOTHING_STEPS = 30;
 
@@ -121,15 +122,7 @@ function sumLengths(xyz: Float64Array, ends: Int32Array, m: number): number {
 
 /** The root vertex of each vertex's connected piece. */
 function pieceRoots(n: number, ends: Int32Array, m: number): Int32Array {
-  const parent = new Int32Array(n);
-  for (let i = 0; i < n; i++) parent[i] = i;
-  const find = (i: number): number => {
-    while (parent[i] !== i) {
-      parent[i] = parent[parent[i]];
-      i = parent[i];
-    }
-    return i;
-  };
+  const { parent, find } = disjointSets(n);
   for (let k = 0; k < m; k++) {
     const a = find(ends[2 * k]);
     const b = find(ends[2 * k + 1]);

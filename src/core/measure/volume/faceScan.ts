@@ -198,11 +198,10 @@ export function scanFaces(
     } else if (cj === CELL && (ci === OUTSIDE || ci === LUMEN)) addSurface(ids[j], ci, axis, -1, cx, cy, cz);
   };
 
-  for (let z = 0; z < depth; z++) {
+  // i: the voxel (x, y, z), z * plane + y * W + x, counted along.
+  for (let z = 0, i = 0; z < depth; z++) {
     for (let y = 0; y < height; y++) {
-      const row = z * plane + y * W;
-      for (let x = 0; x < W; x++) {
-        const i = row + x;
+      for (let x = 0; x < W; x++, i++) {
         const ci = classes[i];
         const id = ids[i];
         if (ci === CELL) {

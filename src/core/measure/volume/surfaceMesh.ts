@@ -13,6 +13,8 @@
  *   blocks' terraces without shrinking the surface.
  * Triangles are oriented with their normals leaving the mask.
  */
+import { signedVolume as meshSignedVolume } from '../../mesh/types';
+
 export interface SurfaceMesh {
   /** x, y, z per vertex, µm from the volume's corner. */
   readonly positions: Float64Array;
@@ -179,12 +181,5 @@ function taubin(p: Float64Array, t: Uint32Array, rounds: number): void {
 
 /** Volume enclosed by a closed, consistently oriented mesh (positive when its normals point out). */
 export function signedVolume(p: ArrayLike<number>, t: ArrayLike<number>): number {
-  let v = 0;
-  for (let f = 0; f < t.length; f += 3) {
-    const a = 3 * t[f];
-    const b = 3 * t[f + 1];
-    const c = 3 * t[f + 2];
-    v += p[a] * (p[b + 1] * p[c + 2] - p[b + 2] * p[c + 1]) - p[a + 1] * (p[b] * p[c + 2] - p[b + 2] * p[c]) + p[a + 2] * (p[b] * p[c + 1] - p[b + 1] * p[c]);
-  }
-  return v / 6;
+  return meshSignedVolume({ positions: p, indices: t });
 }

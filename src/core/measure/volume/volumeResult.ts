@@ -3,7 +3,7 @@
  * the layers mode's shape (MeasuredResult) with layers basal then apical, plus what a volume
  * adds (voxel size, cell volumes and heights, lateral neighbours).
  */
-import type { MeasuredAnalysis } from '../measuredResult';
+import type { MeasuredCellFields, MeasuredResultFields } from '../measuredResult';
 import type { VolumeComparison } from './compareVolume';
 
 export interface VolumeSurfaceRecord {
@@ -85,40 +85,20 @@ export interface VolumeExclusion {
   readonly reason: string;
 }
 
-export interface VolumeCellRecord {
-  readonly id: number;
-  readonly label: number;
-  readonly valid: boolean;
-  readonly scutoid: boolean;
+/** Areas, sides, neighbours and contacts per layer: basal, apical (contacts: curves). */
+export interface VolumeCellRecord extends MeasuredCellFields<VolumeContactRecord, VolumeExclusion> {
   /** Voxel count x voxel volume, µm³. */
   readonly volume: number;
   /** Distance between the cell's basal and apical surface centroids, µm (null without both). */
   readonly height: number | null;
   /** Area-weighted centroid (µm, x y z from the volume's corner) of its faces on each layer, null where it has none. */
   readonly centroids: ([number, number, number] | null)[];
-  /** µm² on each layer (basal, apical). */
-  readonly areas: number[];
-  readonly sides: number[];
-  /** Neighbours' labels per layer (basal, apical), ascending. */
-  readonly neighbours: number[][];
-  /** Every contact curve per layer, also those shorter than min-contact. */
-  readonly contacts: VolumeContactRecord[][];
-  readonly won: number;
-  readonly lost: number;
-  readonly transitions: number;
-  readonly neighbours3D: number;
   /** Cells sharing an interface of at least (the larger min-contact)² µm² anywhere in the volume. */
   readonly lateralNeighbours: number[];
   readonly lateralContacts: LateralContactRecord[];
-  readonly exclusion: VolumeExclusion | null;
 }
 
-export interface VolumeMeasuredResult {
-  readonly software: { readonly name: 'tissue-sheet'; readonly version: string };
-  readonly kind: 'measured';
-  readonly inputs: VolumeInputs;
-  readonly analyses: MeasuredAnalysis[];
-  readonly cells: VolumeCellRecord[];
+export interface VolumeMeasuredResult extends MeasuredResultFields<VolumeInputs, VolumeCellRecord> {
   readonly exclusions: { readonly touchesFaces: number; readonly missing: number; readonly total: number };
   /** With the quartet filter: the quartets found and the exchanges it removed (labels). */
   readonly quartetFilter: {
@@ -127,7 +107,6 @@ export interface VolumeMeasuredResult {
   } | null;
   /** With --compare: the model of the same tissue (closed shells: on their own meshes; open pieces: the fitted tube), else null. */
   readonly comparison: VolumeComparison | null;
-  readonly warnings: string[];
   readonly timings: {
     readonly readMs: number;
     readonly classifyMs: number;

@@ -12,6 +12,7 @@
  */
 import { MeasureInputError } from '../errors';
 import type { LabelVolume, VolumeArray } from './tiffVolume';
+import { disjointSets } from './disjointSets';
 
 /** Most cells a volume may have (pair keys of dense ids stay exact doubles). */
 export const MAX_CELLS = 2 ** 24;
@@ -152,15 +153,7 @@ function classifyBackground(volume: LabelVolume, classes: Uint8Array, pocketLimi
     }
   }
   rowStart[rows] = runs;
-  const parent = new Int32Array(runs);
-  for (let k = 0; k < runs; k++) parent[k] = k;
-  const find = (k: number): number => {
-    while (parent[k] !== k) {
-      parent[k] = parent[parent[k]];
-      k = parent[k];
-    }
-    return k;
-  };
+  const { parent, find } = disjointSets(runs);
   /** Joins the overlapping runs of rows r and q (both sorted by x). */
   const joinRows = (r: number, q: number) => {
     let i = rowStart[r];
