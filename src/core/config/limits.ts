@@ -80,9 +80,9 @@ export function estimateRun(config: AnyConfig): RunEstimate {
   const texels = sizes[0];
   const iterations = config.lloyd.maxIterations;
   const total = sizes.reduce((a, b) => a + b, 0);
+  // A cube map's geometry image and per-texel points add to the active texels (see surfaceLayout).
   const perActive = ACTIVE_BYTES_PER_TEXEL + layout.extraBytesPerTexel;
   const cellBytes = config.cells * (BYTES_PER_CELL + BYTES_PER_CELL_PER_SURFACE * grids.length);
-  // A cube map's geometry image and per-texel points add to the active texels (see surfaceLayout).
   // The exact engine (planes and tubes) holds no texture: the density per texel, no label images
   // unless a view draws them.
   const texelBytes = config.engine === 'exact' ? EXACT_BYTES_PER_TEXEL * texels : perActive * Math.max(...sizes) + KEPT_BYTES_PER_TEXEL * total;
