@@ -6,7 +6,8 @@
  */
 import { readFileSync, statSync } from 'node:fs';
 import { totalmem } from 'node:os';
-import { checkClosedFeasible, checkFeasible, isClosedConfig, makeGrid, type AnyConfig, type Config } from '../core/config';
+import type { AnyConfig } from '../core/config';
+import { surfaceLayout } from '../core/config/surfaceLayout';
 import { checkLimits, DEFAULT_MAX_WORK, type ComputeBudget, type RunEstimate } from '../core/config/limits';
 import type { GrayImage } from '../core/density';
 import type { MeshFile } from '../run/index';
@@ -55,8 +56,7 @@ export const RAISE_HINT = 'pass --allow-large to lift the work and memory limits
 
 /** Feasibility, scale guards and budget of one validated config; throws ConfigError (exit 2). */
 export function checkRunnable(config: AnyConfig, budget: ComputeBudget): RunEstimate {
-  if (isClosedConfig(config)) checkClosedFeasible(config);
-  else checkFeasible(config as Config, makeGrid(config as Config));
+  surfaceLayout(config).checkFeasible();
   return checkLimits(config, budget, RAISE_HINT);
 }
 

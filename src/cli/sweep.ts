@@ -13,7 +13,8 @@
  */
 import { appendFileSync, mkdirSync } from 'node:fs';
 import { dirname, join } from 'node:path';
-import { ConfigError, isClosedConfig, validateAnyConfig, type AnyConfig } from '../core/config';
+import { ConfigError, validateAnyConfig, type AnyConfig } from '../core/config';
+import { surfaceLayout } from '../core/config/surfaceLayout';
 import { parseShard, planResume, ResumeError, runSweep, shardRuns, SweepSpecError, validateSweepSpec, type Shard } from '../core/sweep';
 import { createHeadlessContext } from '../node/headless';
 import { chooseEngine } from '../run/enginePolicy';
@@ -108,8 +109,7 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
       if (!config) valid.set(run.pointKey, (config = validateAnyConfig(run.config)));
       return config;
     };
-    const onThreads = (run: Run) =>
-      chooseEngine(configOf(run), isClosedConfig(configOf(run)) ? 'cube map' : 'planar grid', context.capabilities).name === 'exact';
+    const onThreads = (run: Run) => chooseEngine(configOf(run), surfaceLayout(configOf(run)).name, context.capabilities).name === 'exact';
     const chains = new Map<string, string>();
     const chainOf = (run: Run): string => {
       const id = `${run.pointKey}#${run.seed}`;

@@ -1,4 +1,5 @@
-import { layerStepOf, steppedOffsets, type AnyConfig, type Config } from './config';
+import { layerStepOf, steppedOffsets } from './config/methods';
+import type { AnyConfig, Config } from './config/types';
 import type { Grid } from './grid';
 
 /** One surface of the sheet's stack: the seeded surface, a layer, or the other surface. */

@@ -1,3 +1,4 @@
+import type { SurfaceLayoutName } from '../core/config/surfaceLayout';
 import { GpuCapabilityError, type GpuCapabilities } from './context';
 
 /**
@@ -7,8 +8,8 @@ import { GpuCapabilityError, type GpuCapabilities } from './context';
 export type CentroidPath = 'blend' | 'gather' | 'readback';
 export type RequestedCentroidPath = CentroidPath | 'auto';
 
-/** The two geometry-image layouts the GPU engines run on. */
-export type SurfaceFamilyName = 'planar grid' | 'cube map';
+/** The two geometry-image layouts the GPU engines run on: core/config/surfaceLayout.ts's layouts. */
+export type SurfaceFamilyName = SurfaceLayoutName;
 
 export interface CentroidPathChoice {
   readonly path: CentroidPath;

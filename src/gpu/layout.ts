@@ -1,4 +1,5 @@
 import type * as THREE from 'three';
+import { LAYOUTS, maxResolution } from '../core/config/surfaceLayout';
 import { texelEdgeTable } from '../core/cubemap/cubemap';
 import type { Grid } from '../core/grid';
 import { accumulateCentroidRows } from '../core/labels';
@@ -101,7 +102,7 @@ export function cubeLayout(n: number): TexelLayout {
     energyScale: 1,
     tooLarge: (max) =>
       6 * n > max
-        ? `resolution: the cube map is ${n} x ${6 * n} texels (6 faces of ${n}²) but this GPU allows at most ${max} per side; lower resolution to at most ${Math.floor(max / 6)}`
+        ? `resolution: the cube map is ${n} x ${6 * n} texels (6 faces of ${n}²) but this GPU allows at most ${max} per side; lower resolution to at most ${maxResolution(LAYOUTS['cube map'], max)}`
         : null,
     accumulate(ids, firstRow, rows, sites, geometry, count, sums) {
       const g = geometry!;

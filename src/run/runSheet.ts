@@ -1,5 +1,6 @@
 import { byConstruction, runHeadline } from '../core/analysis';
-import { isClosedConfig, type AnyConfig } from '../core/config';
+import type { AnyConfig, ClosedConfig, Config } from '../core/config';
+import { surfaceLayout } from '../core/config/surfaceLayout';
 import type { GpuContext } from '../gpu/context';
 import { version } from '../version';
 import { cubeMapFamily } from './cubeMapFamily';
@@ -49,9 +50,11 @@ export class SheetRunner {
     this.seededSurfaces = new SeededCache(options.keepSeeded ?? 1);
   }
 
-  /** The one place a run's surface family is decided. */
+  /** The one place a run's surface family is chosen: the family of the config's layout (core/config/surfaceLayout.ts). */
   run(config: AnyConfig, options: RunOptions = {}): Promise<SheetOutput> {
-    return isClosedConfig(config) ? this.runOn(cubeMapFamily, config, options) : this.runOn(planarFamily, config, options);
+    return surfaceLayout(config).name === 'cube map'
+      ? this.runOn(cubeMapFamily, config as ClosedConfig, options)
+      : this.runOn(planarFamily, config as Config, options);
   }
 
   private async runOn<C extends AnyConfig, G, S, L extends StackLayer, P>(

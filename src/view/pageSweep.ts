@@ -15,7 +15,8 @@
  * The pipeline runs on a pool of workers of the sweep's own (acquirePipelineRunner, see
  * defaultPageWorkers), given back at the end; each takes one realization's Lloyd run (chainKey).
  */
-import { checkClosedFeasible, checkFeasible, ConfigError, isClosedConfig, makeGrid, validateAnyConfig, type AnyConfig, type Config } from '../core/config';
+import { ConfigError, validateAnyConfig, type AnyConfig } from '../core/config';
+import { surfaceLayout } from '../core/config/surfaceLayout';
 import {
   aggregateColumns,
   aggregateRows,
@@ -177,8 +178,7 @@ export function seededOrder(runs: readonly Run[]): Run[] {
 function pointConfig(run: Run): AnyConfig {
   try {
     const config = validateAnyConfig(run.config);
-    if (isClosedConfig(config)) checkClosedFeasible(config);
-    else checkFeasible(config as Config, makeGrid(config as Config));
+    surfaceLayout(config).checkFeasible();
     return config;
   } catch (error) {
     if (error instanceof ConfigError) throw new SweepSpecError(error.field, `grid point ${run.pointKey || '(base)'}: ${error.message}`);

@@ -1,4 +1,3 @@
-import { isClosedConfig } from '../core/config';
 /**
  * The 3D view of the sheet: every surface of the stack as a mesh textured with its painted label
  * image (tube: coaxial cylinders; plane: parallel sheets) or, on closed surfaces (sphere,
@@ -11,6 +10,7 @@ import { isClosedConfig } from '../core/config';
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import type { ViewStack } from './stack';
+import type { Config } from '../core/config';
 import { closedCellAt, closedSurfaceGeometry } from './closedSurfaceObject';
 import { closedCellsMaterial, disposeClosedCells, setClosedPaint } from './closedMaterial';
 import { sheetBounds, sheetPose, solidPose, type CameraPose, type SheetBounds } from './cameraFit';
@@ -301,7 +301,7 @@ export class SheetView3D {
     const visible = this.meshes.map((m) => m.visible);
     this.clearMeshes();
     const config = stack.result.config;
-    const closed = stack.closed || isClosedConfig(config);
+    const closed = stack.closed;
     for (const surface of stack.surfaces) {
       let mesh: THREE.Mesh;
       if (closed) {
@@ -311,7 +311,7 @@ export class SheetView3D {
         const paint = { highlightScutoids: this.highlight, selected: this.selected };
         const material = this.material('textured', surface.index);
         material.map = surfaceTexture(stack, surface, paint, this.renderer.capabilities.getMaxAnisotropy());
-        mesh = new THREE.Mesh(surfaceGeometry(config.surface, surface.image.grid, surface.offset), material);
+        mesh = new THREE.Mesh(surfaceGeometry((config as Config).surface, surface.image.grid, surface.offset), material);
       }
       mesh.name = surface.name;
       mesh.visible = visible[surface.index] ?? true;

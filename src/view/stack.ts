@@ -4,6 +4,7 @@
  * per-cell flags (valid, scutoid) of the analysis shown. Pure data; no DOM.
  */
 import { headlineMethod } from '../core/config/analysisMethods';
+import { surfaceLayout } from '../core/config/surfaceLayout';
 import type { AnalysisRecord, CellRecord, LabelImage, SheetOutput, SheetResult } from '../run';
 
 export interface ViewSurface {
@@ -29,7 +30,10 @@ export interface ViewStack {
   readonly valid: Uint8Array;
   /** 1 for scutoids. */
   readonly scutoid: Uint8Array;
-  /** Closed surfaces (sphere, ellipsoid, mesh): label images are n x 6n cube-map atlases. */
+  /**
+   * Closed surfaces (sphere, ellipsoid, mesh): label images are n x 6n cube-map atlases. Read
+   * from the result's closed-surface record or its config's layout (core/config/surfaceLayout.ts).
+   */
   readonly closed: boolean;
 }
 
@@ -88,5 +92,5 @@ export function viewStack(output: SheetOutput): ViewStack {
     valid[i] = stats ? (stats.valid ? 1 : 0) : result.cells[i]?.touchesBorder ? 0 : 1;
     scutoid[i] = stats?.scutoid ? 1 : 0;
   }
-  return { result, analysis, surfaces, valid, scutoid, closed: result.closed !== undefined };
+  return { result, analysis, surfaces, valid, scutoid, closed: result.closed !== undefined || surfaceLayout(result.config).name === 'cube map' };
 }

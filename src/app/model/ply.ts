@@ -1,4 +1,3 @@
-import { isClosedConfig } from '../../core/config';
 /**
  * The cells as a mesh: an ASCII PLY with one polygon per cell per surface. Cell polygons are
  * the exact Voronoi cells (d3-delaunay, periodic copies around a tube) of the sites on each
@@ -12,14 +11,16 @@ import { isClosedConfig } from '../../core/config';
  */
 import { surfacePolygons } from '../../view/cellPolygons';
 import { embed } from '../../core/surface';
+import type { Config } from '../../core/config';
 import { closedSurfaceMesh } from '../../view/cubeAtlasMesh';
 import { provenanceLines } from './cellRows';
 import type { ViewStack } from '../../view/stack';
 import type { CellSolid } from '../../view/cellSolid';
 
 export function cellsPly(stack: ViewStack): string {
-  const { config } = stack.result;
-  if (stack.closed || isClosedConfig(config)) return closedCellsPly(stack);
+  if (stack.closed) return closedCellsPly(stack);
+  // A stack that is not closed is unrolled: a plane's or a tube's config.
+  const config = stack.result.config as Config;
   const vertices: string[] = [];
   const faces: string[] = [];
   for (const surface of stack.surfaces) {

@@ -9,8 +9,8 @@
  * The legacy header line holds at most 256 characters: it carries the version, seed and method;
  * the full configuration is in the result JSON, the CSV and the project file.
  */
-import { isClosedConfig } from '../../core/config';
 import { embed } from '../../core/surface';
+import type { Config } from '../../core/config';
 import { closedSurfaceMesh } from '../../view/cubeAtlasMesh';
 import type { ViewStack } from '../../view/stack';
 import { surfacePolygons } from '../../view/cellPolygons';
@@ -30,7 +30,7 @@ export interface SheetPolygons {
 
 export function sheetPolygons(stack: ViewStack): SheetPolygons {
   const out: SheetPolygons = { points: [], polygons: [], cellId: [], surface: [], sides: [], scutoid: [], valid: [] };
-  const closed = stack.closed || isClosedConfig(stack.result.config);
+  const closed = stack.closed;
   const push = (id: number, surfaceIndex: number, sides: number, corners: number[]) => {
     out.polygons.push(corners);
     out.cellId.push(id);
@@ -60,7 +60,7 @@ export function sheetPolygons(stack: ViewStack): SheetPolygons {
       if (count < 3) continue;
       const first = out.points.length / 3;
       for (let k = 0; k < count; k++) {
-        const { position } = embed(stack.result.config.surface, grid, polygon[2 * k], polygon[2 * k + 1], surface.offset);
+        const { position } = embed((stack.result.config as Config).surface, grid, polygon[2 * k], polygon[2 * k + 1], surface.offset);
         out.points.push(...position);
       }
       push(

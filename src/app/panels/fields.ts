@@ -10,8 +10,9 @@
  * surfaces: sphere (radius), ellipsoid (a, b, c), mesh (a sample from public/meshes/ or a
  * user's file; see model/meshFiles.ts).
  */
-import { defaultResolution, isClosedKind, type ConfigDraft } from '../../core/config';
+import { defaultResolution, type ConfigDraft } from '../../core/config';
 import { densityPreset, surfaceOfKind, thicknessForKind } from '../../core/config/presets';
+import { layoutOfKind } from '../../core/config/surfaceLayout';
 import { kindsWithField, schemaField, schemaUnion } from '../../core/config/schemaFields';
 import { SAMPLE_MESHES, sampleName, sampleUrl } from '../model/meshFiles';
 
@@ -131,14 +132,13 @@ function field(path: string, p: Presentation): FieldSpec {
  */
 function withSurfaceKind(c: Config, kind: string): Config {
   const surface = surfaceOfKind(c.surface, kind);
-  const wasClosed = isClosedKind(c.surface.kind);
-  const closed = isClosedKind(kind);
-  const resolution = closed === wasClosed ? c.resolution : null;
+  const layout = layoutOfKind(kind);
+  const resolution = layout === layoutOfKind(c.surface.kind) ? c.resolution : null;
   return {
     ...c,
     surface,
     resolution,
-    density: closed ? { kind: 'uniform' } : c.density,
+    density: layout.uniformDensityOnly ? { kind: 'uniform' } : c.density,
     // Every kind starts from a sheet with a thickness (see thicknessForKind), never 0.
     sheet: {
       ...c.sheet,

@@ -6,7 +6,8 @@
  * the run on screen. Frames appear as they are computed, then loop; "WebM" records the loop from
  * the canvas with MediaRecorder. Planes and tubes only (closed surfaces have no flat picture).
  */
-import { isClosedConfig, type AnyConfig as Config } from '../../core/config';
+import type { AnyConfig as Config } from '../../core/config';
+import { surfaceLayout } from '../../core/config/surfaceLayout';
 import type { SheetOutput } from '../../run';
 import { acquirePipelineRunner, isAbort, releasePipelineRunner, runInputs } from '../../view/pageRunner';
 import { flipRows, paintSurface } from '../../view/sideColors';
@@ -58,7 +59,7 @@ export class LloydMovie {
     const runner = acquirePipelineRunner();
     try {
       const config = this.events.config();
-      if (isClosedConfig(config)) throw new Error('The Lloyd movie shows planes and tubes; a closed surface has no flat picture.');
+      if (!surfaceLayout(config).flatPicture) throw new Error('The Lloyd movie shows planes and tubes; a closed surface has no flat picture.');
       const count = Math.min(MAX_FRAMES, config.lloyd.maxIterations + 1);
       const inputs = await runInputs(config);
       for (let k = 1; k <= count; k++) {

@@ -14,7 +14,7 @@
  * A result with no valid cell (every cell touches an open end of a tube or plane) has no
  * percentage at all; `noValidCells` says so.
  */
-import { isClosedConfig, type AnyConfig } from '../config/types';
+import type { AnyConfig } from '../config/types';
 
 export interface ByConstruction {
   /** The value fixed by the geometry (0: no neighbour can change). */
@@ -57,7 +57,7 @@ export function byConstruction(config: AnyConfig): ByConstruction | null {
     };
   }
   const isSphere = surface.kind === 'sphere' || (surface.kind === 'ellipsoid' && sameLength(surface.a, surface.b) && sameLength(surface.b, surface.c));
-  if (isClosedConfig(config) && isSphere) {
+  if (isSphere) {
     return {
       percent: 0,
       reason: 'concentric-spheres',

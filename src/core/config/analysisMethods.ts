@@ -8,7 +8,8 @@
  * Every surface has an exact method: the Delaunay of the unrolled sites on planes and tubes, the
  * restricted Voronoi diagram on spheres, ellipsoids and meshes.
  */
-import { isClosedConfig, type AnyConfig } from './types';
+import { surfaceLayout } from './surfaceLayout';
+import type { AnyConfig } from './types';
 
 export const ADJACENCY_METHODS = ['labels', 'exact'] as const;
 /** `labels`: adjacent texels of the label images; `exact`: the exact Voronoi diagram. */
@@ -29,7 +30,7 @@ export interface RendererTraits {
  * on the GPU (their exact method is an analysis, not a Lloyd engine).
  */
 export function engineNameFor(config: AnyConfig, renderer: RendererTraits): EngineName {
-  if (isClosedConfig(config)) return 'gpu';
+  if (!surfaceLayout(config).exactEngine) return 'gpu';
   if (config.engine === 'exact') return 'exact';
   if (config.engine === 'auto' && renderer.softwareRenderer && config.sheet.adjacency !== 'labels') return 'exact';
   return 'gpu';

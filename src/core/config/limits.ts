@@ -15,10 +15,9 @@
  *   labelled once (one jump flood each); bytes: see estimateRun. Both are estimated before
  *   anything is allocated and compared with the caller's budget.
  */
-import type { Grid } from '../grid';
-import { sheetOffsets, surfaceStack } from '../sheetGeometry';
-import { makeCubeGrid, makeGrid, unrolledDomain } from './feasibility';
-import { isClosedConfig, type AnyConfig, type Config } from './types';
+import { unrolledDomain } from './feasibility';
+import { maxResolution, surfaceLayout } from './surfaceLayout';
+import type { AnyConfig, Config } from './types';
 import { ConfigError } from './validate';
 
 export const MIN_EXTENT_UM = 1e-3;
@@ -37,11 +36,6 @@ const ACTIVE_BYTES_PER_TEXEL = 76;
 /** The exact engine: the density field and the placement density (float32 each). */
 const EXACT_BYTES_PER_TEXEL = 8;
 const KEPT_BYTES_PER_TEXEL = 8;
-/**
- * A closed surface adds its cube-map geometry image (positions, normals, areas in float32/64),
- * and on the GPU its point and weight per texel (RGBA32F) instead of a weight alone (R32F).
- */
-const CUBE_EXTRA_BYTES_PER_TEXEL = 60;
 /**
  * Per cell: the Lloyd run (the exact engine's triangulation of the sites and their copies near
  * the seams, cell sums; GPU: site buffers) and, per surface of the stack, its adjacency, the
@@ -76,22 +70,18 @@ export interface RunEstimate {
 
 /** Texel sizes of every surface of the stack (planar: unrolled grids; closed: n x 6n cube maps). */
 export function stackGrids(config: AnyConfig): { width: number; height: number }[] {
-  if (isClosedConfig(config)) {
-    const { n } = makeCubeGrid(config);
-    // One cube map per surface the pipeline builds (layers, or every sheet.layerStep µm).
-    return sheetOffsets(config).map(() => ({ width: n, height: 6 * n }));
-  }
-  const seeded: Grid = makeGrid(config);
-  return surfaceStack(config, seeded).map((s) => ({ width: s.grid.width, height: s.grid.height }));
+  return surfaceLayout(config).grids();
 }
 
 export function estimateRun(config: AnyConfig): RunEstimate {
-  const grids = stackGrids(config);
+  const layout = surfaceLayout(config);
+  const grids = layout.grids();
   const sizes = grids.map((g) => g.width * g.height);
   const texels = sizes[0];
   const iterations = config.lloyd.maxIterations;
   const total = sizes.reduce((a, b) => a + b, 0);
-  const perActive = ACTIVE_BYTES_PER_TEXEL + (isClosedConfig(config) ? CUBE_EXTRA_BYTES_PER_TEXEL : 0);
+  // A cube map's geometry image and per-texel points add to the active texels (see surfaceLayout).
+  const perActive = ACTIVE_BYTES_PER_TEXEL + layout.extraBytesPerTexel;
   const cellBytes = config.cells * (BYTES_PER_CELL + BYTES_PER_CELL_PER_SURFACE * grids.length);
   // The exact engine (planes and tubes) holds no texture: the density per texel, no label images
   // unless a view draws them.
@@ -130,13 +120,14 @@ export function checkExtents(config: AnyConfig): void {
 
 /** Refuses grids with fewer than MIN_TEXELS_PER_SIDE texels along a side, naming the cause. */
 export function checkTexelsPerSide(config: AnyConfig): void {
-  if (isClosedConfig(config)) return; // the cube map is resolution² per face, and resolution >= 16
-  const grids = stackGrids(config);
+  const layout = surfaceLayout(config);
+  if (!layout.aspectSetsShortSide) return; // a cube map is resolution² per face, and resolution >= 16
+  const grids = layout.grids();
   const [seeded] = grids;
   const short = Math.min(seeded.width, seeded.height);
   if (short < MIN_TEXELS_PER_SIDE) {
     // The long side gets `resolution` texels, the short one resolution x short/long (rounded).
-    const d = unrolledDomain(config.surface);
+    const d = unrolledDomain((config as Config).surface);
     const need = Math.ceil((MIN_TEXELS_PER_SIDE * Math.max(d.lengthX, d.lengthY)) / Math.min(d.lengthX, d.lengthY));
     throw new ConfigError(
       'resolution',
@@ -160,14 +151,17 @@ export function checkTexelsPerSide(config: AnyConfig): void {
 
 /** Refuses a grid wider than the GPU's texture limit, naming the field that made it so. */
 export function checkTextureSize(config: AnyConfig, maxTextureSize: number): void {
-  const grids = stackGrids(config);
+  const layout = surfaceLayout(config);
+  const grids = layout.grids();
   grids.forEach((g, k) => {
     if (g.width <= maxTextureSize && g.height <= maxTextureSize) return;
-    if (k === 0 || isClosedConfig(config)) {
-      const max = isClosedConfig(config) ? Math.floor(maxTextureSize / 6) : maxTextureSize;
+    // Only a widened other surface or layer of a grid can exceed the limit after the seeded one
+    // fits (a cube map's surfaces are all n x 6n).
+    if (k === 0) {
+      const max = maxResolution(layout, maxTextureSize);
       throw new ConfigError(
         'resolution',
-        `resolution: the ${isClosedConfig(config) ? 'cube map' : 'grid'} would be ${g.width} x ${g.height} texels but this GPU allows at most ${maxTextureSize} per side; lower resolution to at most ${max}`,
+        `resolution: the ${layout.textureName} would be ${g.width} x ${g.height} texels but this GPU allows at most ${maxTextureSize} per side; lower resolution to at most ${max}`,
       );
     }
     const field = sheetField(config);
@@ -181,9 +175,10 @@ export function checkTextureSize(config: AnyConfig, maxTextureSize: number): voi
 /** Refuses a run whose estimated work or memory exceeds the budget (before allocating anything). */
 export function checkBudget(config: AnyConfig, budget: ComputeBudget, raiseHint: string): RunEstimate {
   const e = estimateRun(config);
-  // Name what made the run large: the seeded grid (resolution) or a wider other surface.
+  // Name what made the run large: the seeded grid (resolution) or a wider other surface (only a
+  // tube's grids differ in size; a cube map's surfaces are all n x 6n, so largest stays 0).
   const largest = e.grids.reduce((k, g, i) => (g.width * g.height > e.grids[k].width * e.grids[k].height ? i : k), 0);
-  const field = largest > 0 && !isClosedConfig(config) ? sheetField(config) : 'resolution';
+  const field = largest > 0 ? sheetField(config) : 'resolution';
   if (e.work > budget.maxWork) {
     throw new ConfigError(
       field,
