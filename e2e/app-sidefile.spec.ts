@@ -27,7 +27,8 @@ test('a result with its cells side file opens when both files are chosen; one al
   const dir = mkdtempSync(join(tmpdir(), 'sidefile-'));
   const configPath = join(dir, 'config.json');
   writeFileSync(configPath, JSON.stringify({ ...TUBE, seed: 12 }));
-  const cli = (args: string[]) => execFileSync(process.execPath, ['tests/cli/fromSource.mjs', 'run', configPath, ...args], { stdio: 'pipe' });
+  // xvfb-run: the CLI's headless-gl needs an X display, and Playwright's runner has none.
+  const cli = (args: string[]) => execFileSync('xvfb-run', ['-a', process.execPath, 'tests/cli/fromSource.mjs', 'run', configPath, ...args], { stdio: 'pipe' });
   cli(['--out', join(dir, 'plain.json')]);
   cli(['--out', join(dir, 'big.json'), '--cells-file']);
   const plain = JSON.parse(readFileSync(join(dir, 'plain.json'), 'utf8')) as Result;
