@@ -33,6 +33,12 @@ const INITIAL_CANDIDATES = 24;
 /** Relative shortfall of a triangle's covered area that triggers the repair pass. */
 const COVERAGE_SLACK = 1e-9;
 
+/**
+ * One clipped piece of a cell: site i's part of triangle f, a convex polygon of `vertices`
+ * points (x, y, z each in `polygon`, which is scratch: read it during the call only).
+ */
+export type PieceCallback = (site: number, triangle: number, polygon: Float64Array, vertices: number) => void;
+
 export interface MeshRvdStats {
   triangles: number;
   /** Triangle clippings performed (all seeds). */
@@ -85,6 +91,7 @@ export class MeshRestrictedVoronoi {
     private readonly recorder: ContactRecorder,
     private readonly areas: Float64Array,
     private readonly hints?: ArrayLike<number>,
+    private readonly onPiece?: PieceCallback,
   ) {
     const p = surface.positions;
     this.P = Float64Array.from(p as ArrayLike<number>);
@@ -179,6 +186,7 @@ export class MeshRestrictedVoronoi {
       if (n === 0) continue;
       const V = this.out,
         L = this.outLab;
+      this.onPiece?.(i, f, V, n);
       // Area of the convex planar polygon (fan from vertex 0).
       let cx = 0,
         cy = 0,

@@ -22,7 +22,7 @@ import { ellipsoidArea } from './conicArc';
 import { KdTree3 } from './kdTree';
 import { ContactRecorder } from './restrictedContacts';
 import { EllipsoidRestrictedVoronoi, type EllipsoidRvdStats } from './restrictedEllipsoid';
-import { MeshRestrictedVoronoi, type MeshRvdStats } from './restrictedMesh';
+import { MeshRestrictedVoronoi, type MeshRvdStats, type PieceCallback } from './restrictedMesh';
 import { checkRestrictedSurface, type RestrictedSurface } from './restrictedSurface';
 import { meshArea } from '../mesh/types';
 
@@ -36,6 +36,8 @@ export interface RestrictedVoronoiOptions {
    * A wrong hint costs one clip, never correctness.
    */
   startTriangles?: ArrayLike<number>;
+  /** Mesh only: called with every clipped piece of every cell, as it is found (drawing the diagram). */
+  onPiece?: PieceCallback;
 }
 
 export interface RestrictedVoronoi {
@@ -92,7 +94,7 @@ export function restrictedVoronoi(
     rvd.run();
     stats = { method: 'ellipsoid', ellipsoid: rvd.stats, ms: 0 };
   } else {
-    const rvd = new MeshRestrictedVoronoi(surface, xyz, count, tree, recorder, areas, options.startTriangles);
+    const rvd = new MeshRestrictedVoronoi(surface, xyz, count, tree, recorder, areas, options.startTriangles, options.onPiece);
     rvd.run();
     startTriangles = rvd.startTriangles;
     stats = { method: 'mesh', mesh: rvd.stats, ms: 0 };

@@ -132,7 +132,8 @@ export function modelComparison(
   };
 }
 
-function lloyd(grid: Grid, sites: Float64Array, iterations: number): Float64Array {
+/** `iterations` exact Lloyd steps (sites to their exact cells' centroids). */
+export function exactLloyd(grid: Grid, sites: Float64Array, iterations: number): Float64Array {
   let current = sites;
   for (let it = 0; it < iterations; it++) current = Float64Array.from(exactVoronoi(grid, current).centroids);
   return current;
@@ -152,7 +153,7 @@ export function compareWithModel(options: CompareOptions): ModelComparison {
     options.distribution,
     initial,
     maxK,
-    (s) => lloyd(grid, s, 1),
+    (s) => exactLloyd(grid, s, 1),
     (s) => analyzeSurfaces([exactVoronoi(grid, s).adjacency]).summary.perSurface[0].polygonDistribution,
     options.onProgress,
   );

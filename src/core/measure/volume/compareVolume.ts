@@ -23,7 +23,8 @@
 import { analyzeSurfaces } from '../../analysis';
 import { KdTree3 } from '../../closed/kdTree';
 import { compareWithModel, LAB_MIN_SPACING_PIXELS, modelComparison, searchVoronoiK, type ModelComparison } from '../compare';
-import { carryAlongNormals, lloydStepOnMesh, meshSurface, prepareMesh, randomSitesOnMesh } from './meshModel';
+import type { Grid } from '../../grid';
+import { carryAlongNormals, lloydStepOnMesh, meshSurface, prepareMesh, randomSitesOnMesh, type PreparedMesh } from './meshModel';
 import type { SurfaceMesh } from './surfaceMesh';
 import { fitTube, thicknessOf, type TubeGeometry } from './tubeFit';
 import type { VolumeMeasuredResult } from './volumeResult';
@@ -91,25 +92,59 @@ function localThickness(result: VolumeMeasuredResult, inner: number, fallback: n
   return (x, y, z) => (tree.knn(x, y, z, 1, ids, d2) > 0 ? cells[ids[0]].height! : fallback);
 }
 
-/** The model of a closed shell on its own surface meshes (see the module comment). */
-export function compareShell(
-  result: VolumeMeasuredResult,
-  meshes: { lumen: SurfaceMesh; outer: SurfaceMesh; spacing: number },
-  options: CompareVolumeOptions,
-): { comparison: VolumeComparison | null; note: string } {
+/** What the model of a closed shell runs on: its meshes, cell count, spacing and thickness. */
+export interface ShellSetup {
+  /** Index of the lumen-side (seeded) layer in `result.inputs.layers`. */
+  readonly inner: number;
+  readonly layer: VolumeMeasuredResult['inputs']['layers'][number];
+  readonly cells: number;
+  readonly seeded: PreparedMesh;
+  readonly other: PreparedMesh;
+  readonly thickness: { readonly mean: number; readonly sd: number; readonly cells: number };
+  /** The lab's minimum spacing of the random sites, µm. */
+  readonly minSpacing: number;
+  /** Sites carried to the other surface (see the module comment). */
+  carry(sites: Float64Array): { sites: Float64Array; alongNormal: number; parallel: number };
+}
+
+export type ShellMeshes = { lumen: SurfaceMesh; outer: SurfaceMesh; spacing: number };
+
+/** The closed shell's model set up on its meshes, or a note saying why there is none. */
+export function shellSetup(result: VolumeMeasuredResult, meshes: ShellMeshes): ShellSetup | { note: string } {
   const inner = result.inputs.layers.findIndex((l) => l.faces === 'lumen');
   const layer = result.inputs.layers[inner];
   const cells = layer.cells;
-  if (cells < 4) return { comparison: null, note: `no model: ${cells} cells reach the lumen; a model needs at least 4` };
-  if (meshes.lumen.indices.length === 0 || meshes.outer.indices.length === 0) return { comparison: null, note: 'no model: a surface mesh came out empty' };
+  if (cells < 4) return { note: `no model: ${cells} cells reach the lumen; a model needs at least 4` };
+  if (meshes.lumen.indices.length === 0 || meshes.outer.indices.length === 0) return { note: 'no model: a surface mesh came out empty' };
   const seeded = prepareMesh(meshes.lumen);
   const other = prepareMesh(meshes.outer);
   const thickness = thicknessOf(result);
   const reach = Number.isFinite(thickness.mean) ? thickness.mean : 5 * meshes.spacing;
   const thicknessAt = localThickness(result, inner, reach);
+  const minSpacing = (LAB_MIN_SPACING_PIXELS * Math.sqrt(seeded.area / cells)) / Math.sqrt((512 * 4096) / 200);
+  return {
+    inner,
+    layer,
+    cells,
+    seeded,
+    other,
+    thickness,
+    minSpacing,
+    carry: (sites) => carryAlongNormals(seeded, sites, other, 1, 3 * reach, thicknessAt),
+  };
+}
+
+/** The model of a closed shell on its own surface meshes (see the module comment). */
+export function compareShell(
+  result: VolumeMeasuredResult,
+  meshes: ShellMeshes,
+  options: CompareVolumeOptions,
+): { comparison: VolumeComparison | null; note: string } {
+  const setup = shellSetup(result, meshes);
+  if ('note' in setup) return { comparison: null, note: setup.note };
+  const { inner, layer, cells, seeded, other, thickness, minSpacing } = setup;
   const maxK = options.maxK ?? 10;
   const { realizations, seed } = options;
-  const minSpacing = (LAB_MIN_SPACING_PIXELS * Math.sqrt(seeded.area / cells)) / Math.sqrt((512 * 4096) / 200);
   const summary = result.analyses[0].summary;
   const distribution = summary.perSurface[inner].polygonDistribution.map((f) => (Number.isNaN(f) ? 0 : f));
 
@@ -125,7 +160,7 @@ export function compareShell(
   let alongNormal = 0;
   let parallel = 0;
   const summaries = search.atK[search.best.k - 1].map((s) => {
-    const carried = carryAlongNormals(seeded, s, other, 1, 3 * reach, thicknessAt);
+    const carried = setup.carry(s);
     alongNormal += carried.alongNormal;
     parallel += carried.parallel;
     return analyzeSurfaces([meshSurface(seeded, s, 'lumen side'), meshSurface(other, carried.sites, 'outer side')]).summary;
@@ -153,13 +188,27 @@ export function compareShell(
 }
 
 /**
+ * The unrolled inner surface of a fitted tube at the lab's resolution (102.4 px per mean cell
+ * diameter): periodic around, open along; `cells` sites.
+ */
+export function tubeGrid(result: VolumeMeasuredResult, geometry: TubeGeometry): Grid {
+  const inner = result.inputs.layers.findIndex((l) => l.faces === 'lumen');
+  const cellDiameter = Math.sqrt(result.inputs.layers[inner].area / geometry.seededCells);
+  const pixel = cellDiameter / Math.sqrt((512 * 4096) / 200);
+  const width = Math.max(8, Math.round((2 * Math.PI * geometry.innerRadius) / pixel));
+  const height = Math.max(8, Math.round(geometry.length / pixel));
+  const size = (2 * Math.PI * geometry.innerRadius) / width;
+  return { width, height, texelX: size, texelY: size, periodicX: true, periodicY: false };
+}
+
+/**
  * The model of the same tissue, or null with a note saying why there is none. Closed shells
  * need `meshes` (measureVolume's onSurfaceMeshes).
  */
 export function compareVolume(
   result: VolumeMeasuredResult,
   options: CompareVolumeOptions,
-  meshes?: { lumen: SurfaceMesh; outer: SurfaceMesh; spacing: number },
+  meshes?: ShellMeshes,
 ): { comparison: VolumeComparison | null; note: string } {
   if (!result.inputs.background.lumenReachesFaces) {
     if (!meshes) return { comparison: null, note: 'no model: a closed shell is modelled on its own surface meshes; measure it with onSurfaceMeshes' };
@@ -169,15 +218,11 @@ export function compareVolume(
   if (!geometry) return { comparison: null, note: `no model: ${note}` };
   const inner = result.inputs.layers.findIndex((l) => l.faces === 'lumen');
   const summary = result.analyses[0].summary;
-  // The inner surface unrolled at the lab's resolution: 102.4 px per mean cell diameter.
-  const cellDiameter = Math.sqrt(result.inputs.layers[inner].area / geometry.seededCells);
-  const pixel = cellDiameter / Math.sqrt((512 * 4096) / 200);
-  const width = Math.max(8, Math.round((2 * Math.PI * geometry.innerRadius) / pixel));
-  const height = Math.max(8, Math.round(geometry.length / pixel));
+  const grid = tubeGrid(result, geometry);
   const base = compareWithModel({
-    width,
-    height,
-    pixelSize: (2 * Math.PI * geometry.innerRadius) / width,
+    width: grid.width,
+    height: grid.height,
+    pixelSize: grid.texelX,
     periodicX: true,
     cells: geometry.seededCells,
     distribution: summary.perSurface[inner].polygonDistribution.map((f) => (Number.isNaN(f) ? 0 : f)),

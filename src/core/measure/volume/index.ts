@@ -14,3 +14,4 @@ export * from './compareVolume';
 export * from './surfaceMesh';
 export * from './meshModel';
 export * from './tubeFit';
+export * from './modelDrawing';
