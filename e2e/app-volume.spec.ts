@@ -3,7 +3,14 @@ import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
-import type { MeasuredResult, VolumeMeasuredResult } from '../src/core/measure';
+import {
+  measureVolume,
+  volumeModelDrawing,
+  type MeasuredResult,
+  type ShellMeshes,
+  type VolumeMeasuredResult,
+  type VolumeModelDrawing,
+} from '../src/core/measure';
 import { parseCsv } from '../src/core/sweep';
 import { readPngText } from '../src/app/model/pngText';
 import { png16, randomSites, rasterizeVoronoi } from '../tests/measure/images';
@@ -18,6 +25,10 @@ import { labelData, permutedLabels, shellVolume, volumePages } from '../tests/me
  *   picked on a surface shows its neighbours on both sides and its 3D shape; the per-cell CSV,
  *   the JSON and the figure are parsed back and compared with the screen and the CLI; the
  *   project file keeps it, and reopening it in a fresh page shows the same numbers.
+ * - the model of the same geometry is drawn below the tissue (its first realization, every cell on
+ *   both surfaces), and a model cell picked there lists the neighbours on both sides that the
+ *   core's volumeModelDrawing gives for the CLI's comparison; the 3D view's PNG includes it; the
+ *   project file draws it again.
  * - two label images chosen in a file dialog's (alphabetical) order, apical first: the page
  *   warns; the file's layer picker reassigns them, the warning goes, the CSV follows the screen,
  *   and the project file keeps the reassigned order.
@@ -30,6 +41,8 @@ const VOXEL = { x: 0.5, y: 0.5, z: 0.75 };
 interface Inputs {
   dir: string;
   cli: VolumeMeasuredResult;
+  /** The model's first realization as the core draws it from the CLI's comparison (what the page must show). */
+  model: VolumeModelDrawing;
 }
 
 function makeVolume(dir: string): Inputs {
@@ -59,7 +72,21 @@ function makeVolume(dir: string): Inputs {
     ],
     { stdio: 'pipe' },
   );
-  return { dir, cli: JSON.parse(readFileSync(out, 'utf8')) as VolumeMeasuredResult };
+  const cli = JSON.parse(readFileSync(out, 'utf8')) as VolumeMeasuredResult;
+  let meshes: ShellMeshes | undefined;
+  const bytes = new Uint8Array(readFileSync(join(dir, 'shell.tif')));
+  const result = measureVolume(
+    { name: 'shell.tif', read: () => bytes },
+    { voxelSize: VOXEL, version: cli.software.version, onSurfaceMeshes: (m) => (meshes = m) },
+  );
+  const model = volumeModelDrawing(result, cli.comparison!, meshes).drawing!;
+  return { dir, cli, model };
+}
+
+/** Model cell `cell`'s (1-based) neighbours on surface k, 1-based, space-separated. */
+function modelNeighbours(model: VolumeModelDrawing, k: number, cell: number): string {
+  const s = model.surfaces[k];
+  return Array.from(s.neighbours.subarray(s.offsets[cell - 1], s.offsets[cell]), (j) => j + 1).join(' ');
 }
 
 async function openApp(page: Page): Promise<void> {
@@ -147,11 +174,48 @@ test.describe('measure a volume in the app', () => {
     await expect(page.locator('#volume-model')).toContainText('a closed shell');
     await expect(page.locator('#volume-info')).toContainText('voxel 0.5 x 0.5 x 0.75 µm (typed in the page)');
 
-    // Pick the cell in the middle of the basal view: its neighbours on both sides and its shape.
+    // The model of the same geometry drawn below the tissue: its first realization, every cell on both surfaces.
     const canvas = page.locator('#volume-canvas');
-    const box = (await canvas.boundingBox())!;
+    const drawnModel = inputs.model;
+    expect(drawnModel.matches).toBe(true);
+    await expect(canvas).toHaveAttribute('data-layout', 'both');
+    await expect(canvas).toHaveAttribute('data-model-cells', `${cli.comparison!.cells},${cli.comparison!.cells}`);
+    await expect(page.locator('#volume-layout')).toHaveValue('both');
+    await expect(page.locator('#volume-drawing-note')).toContainText(
+      `realization 1 (seed 1), Voronoi ${cli.comparison!.bestK}, ${cli.comparison!.cells} cells`,
+    );
+    await expect.poll(async () => (await canvas.boundingBox())!.height).toBeGreaterThan(600);
+    await page.waitForTimeout(300); // the drawing worker takes the new size before the click
+
+    // Pick the model cell in the middle of the model's basal view (bottom row): its neighbours on both sides, as the core's.
+    let box = (await canvas.boundingBox())!;
+    await canvas.click({ position: { x: box.width / 6, y: (3 * box.height) / 4 } });
+    const modelInfo = page.locator('#volume-model-cell');
+    await expect(modelInfo).toHaveAttribute('data-cell', /^\d+$/);
+    const pickedModel = Number(await modelInfo.getAttribute('data-cell'));
+    expect(pickedModel).toBeGreaterThanOrEqual(1);
+    expect(pickedModel).toBeLessThanOrEqual(drawnModel.cells);
+    for (const [k, name] of ['basal', 'apical'].entries()) {
+      const expected = modelNeighbours(drawnModel, k, pickedModel);
+      expect(expected).not.toBe('');
+      await expect(modelInfo).toHaveAttribute(`data-neighbours-${name}`, expected);
+      await expect(modelInfo).toContainText(
+        `Model ${name} (faces the ${k === 0 ? 'outside' : 'lumen'}): ${drawnModel.surfaces[k].sides[pickedModel - 1]} sides, neighbours ${expected.split(' ').join(', ')}.`,
+      );
+    }
+    await expect(modelInfo).toContainText(
+      `Model cell ${pickedModel}: ${drawnModel.valid[pickedModel - 1] ? 'valid' : 'left out'}, ${drawnModel.scutoid[pickedModel - 1] ? 'a scutoid' : 'not a scutoid'}`,
+    );
+    const modelTasks = await page.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks.splice(0));
+    expect(
+      modelTasks.filter((d) => d > 50),
+      `long tasks ${modelTasks.join(', ')} ms`,
+    ).toEqual([]);
+
+    // Pick the cell in the middle of the tissue's basal view (top row): its neighbours on both sides and its shape.
+    box = (await canvas.boundingBox())!;
     const frames = Number(await canvas.getAttribute('data-frames'));
-    await canvas.click({ position: { x: box.width / 6, y: box.height / 2 } });
+    await canvas.click({ position: { x: box.width / 6, y: box.height / 4 } });
     const info = page.locator('#volume-cell');
     await expect(info).toHaveAttribute('data-label', /\d+/);
     const picked = Number(await info.getAttribute('data-label'));
@@ -169,7 +233,7 @@ test.describe('measure a volume in the app', () => {
       const bitmap = await createImageBitmap(new Blob([Uint8Array.from(atob(b64), (c) => c.charCodeAt(0))], { type: 'image/png' }));
       const g = new OffscreenCanvas(bitmap.width, bitmap.height).getContext('2d')!;
       g.drawImage(bitmap, 0, 0);
-      const d = g.getImageData(0, 0, Math.floor(bitmap.width / 3), bitmap.height).data;
+      const d = g.getImageData(0, 0, Math.floor(bitmap.width / 3), Math.floor(bitmap.height / 2)).data;
       let n = 0;
       for (let k = 0; k < d.length; k += 4) if (d[k] > 200 && d[k + 1] > 200 && d[k + 2] > 190 && Math.abs(d[k] - d[k + 2]) < 12) n++;
       return n;
@@ -214,6 +278,9 @@ test.describe('measure a volume in the app', () => {
     const text = readPngText(pngBytes);
     expect(text['tissue-sheet:method']).toContain('contact curves in');
     expect(text.Description).toContain(`picked cell ${picked}`);
+    expect(text.Description).toContain('the model of the same geometry (bottom row)');
+    expect(text.Description).toContain(`picked model cell ${pickedModel}`);
+    expect(JSON.parse(text['tissue-sheet:config']).model).toMatchObject({ realization: 0, seed: 1, k: cli.comparison!.bestK, cells: drawnModel.cells });
 
     // Kept in the project file; a fresh page opening it shows the same volume and numbers.
     const project = await downloaded(page, '[data-export="project"]');
@@ -230,6 +297,11 @@ test.describe('measure a volume in the app', () => {
     expect(await dataValue(page, '#volume-model-percent')).toBe(model.percentScutoids.mean);
     await expect(page.locator('#volume-voxel-z')).toHaveValue('0.75');
     await expect(page.locator('#volume-model')).toContainText('As saved in the project');
+    // The model is drawn again from the saved comparison: the same realization.
+    await expect(page.locator('#volume-canvas')).toHaveAttribute('data-model-cells', `${drawnModel.cells},${drawnModel.cells}`);
+    await expect(page.locator('#volume-drawing-note')).toContainText(
+      `Voronoi ${cli.comparison!.bestK}, ${drawnModel.cells} cells, ${drawnModel.percentScutoids.toFixed(1)} % scutoids.`,
+    );
   });
 });
 

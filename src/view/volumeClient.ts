@@ -1,10 +1,10 @@
 /**
  * The page's side of the volume-measuring worker (volumeWorker.ts): reads the chosen file
  * (File -> ArrayBuffer, asynchronously), hands it to the worker, reports progress, the measured
- * volume with its drawn surfaces, then the model; asks for a picked cell's 3D shape. A newer
+ * volume with its drawn surfaces, then the model (and its drawing); asks for a picked cell's 3D shape. A newer
  * measurement supersedes an older one (its late messages are ignored).
  */
-import type { VolumeComparison, VolumeMeasuredResult } from '../core/measure';
+import type { VolumeComparison, VolumeMeasuredResult, VolumeModelDrawing } from '../core/measure';
 import { MAX_MEASURE_FILE_BYTES, MeasureFileError } from './measureClient';
 import type { FromVolumeWorker, ToVolumeWorker, VolumeRequestOptions } from './volumeProtocol';
 import type { CellShape, DrawnSurface } from './volumeSurfaces';
@@ -12,7 +12,8 @@ import type { CellShape, DrawnSurface } from './volumeSurfaces';
 export interface VolumeCallbacks {
   onProgress?(line: string): void;
   onMeasured?(result: VolumeMeasuredResult, surfaces: DrawnSurface[]): void;
-  onCompared?(comparison: VolumeComparison | null, note: string): void;
+  /** The model (or null and why), and its first realization to draw (or null and why). */
+  onCompared?(comparison: VolumeComparison | null, note: string, drawing: VolumeModelDrawing | null, drawingNote: string): void;
 }
 
 export class VolumeClient {
@@ -32,9 +33,9 @@ export class VolumeClient {
       if (data.type === 'progress') callbacks.onProgress?.(data.line);
       else if (data.type === 'measured') {
         callbacks.onMeasured?.(data.result, data.surfaces);
-        if (options.realizations <= 0) done();
+        if (options.realizations <= 0 && !options.saved) done();
       } else if (data.type === 'compared') {
-        callbacks.onCompared?.(data.comparison, data.note);
+        callbacks.onCompared?.(data.comparison, data.note, data.drawing, data.drawingNote);
         done();
       }
     });

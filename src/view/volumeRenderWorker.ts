@@ -1,7 +1,7 @@
 /**
  * Draws a measured volume in a worker, on the OffscreenCanvas the page hands over
  * (volumeRenderer.ts): creating the WebGL context, compiling the programs, uploading the
- * surfaces, drawing and picking (a ray against every triangle) never run on the page's main
+ * surfaces (the tissue's and the model's), drawing and picking (a ray against every triangle) never run on the page's main
  * thread, which only forwards the pointer and shows the text (docs/app.md, "Measure a volume").
  */
 import type { FromVolumeRenderer, ToVolumeRenderer } from './volumeRenderProtocol';
@@ -42,8 +42,10 @@ self.onmessage = (event: MessageEvent<ToVolumeRenderer>) => {
     if (!renderer) throw new Error('the 3D view is not ready');
     if (data.type === 'size') renderer.setSize(data.width, data.height);
     else if (data.type === 'show') scope.postMessage({ type: 'shown', orbit: renderer.show(data.cells, data.surfaces, data.stripe) });
+    else if (data.type === 'model') scope.postMessage({ type: 'modelShown', cells: renderer.showModel(data.cells, data.surfaces, data.stripe) });
+    else if (data.type === 'layout') renderer.setLayout(data.layout);
     else if (data.type === 'orbit') renderer.setOrbit(data.orbit);
-    else if (data.type === 'select') renderer.setSelected(data.cell);
+    else if (data.type === 'select') renderer.setSelected(data.row, data.cell);
     else if (data.type === 'shape') renderer.setShape(data.shape);
     else if (data.type === 'pick') {
       scope.postMessage({ type: 'picked', request: data.request, hit: renderer.pick(data.x, data.y) });

@@ -1,11 +1,20 @@
 /**
  * The page's volume-measuring worker (docs/app.md, "Measure a volume"): the CLI's own core
  * (measureVolume, then compareVolume: the model of the same geometry, a closed shell on its own
- * meshes, an open piece as the fitted tube), and the surfaces to draw (volumeSurfaces.ts), so the
+ * meshes, an open piece as the fitted tube), and the surfaces to draw (volumeSurfaces.ts; the
+ * model's first realization, volumeModelDrawing, also for a saved comparison), so the
  * page's main thread never decodes, classifies or meshes. The classified voxels of the last
  * volume stay here to build a picked cell's 3D shape on request.
  */
-import { compareVolume, MeasureInputError, measureVolume, type ClassifiedVolume, type SurfaceMesh } from '../core/measure';
+import {
+  compareVolume,
+  MeasureInputError,
+  measureVolume,
+  volumeModelDrawing,
+  type ClassifiedVolume,
+  type ShellMeshes,
+  type VolumeModelDrawing,
+} from '../core/measure';
 import { version } from '../version';
 import type { FromVolumeWorker, ToVolumeWorker } from './volumeProtocol';
 import { cellShape, drawSurface } from './volumeSurfaces';
@@ -19,6 +28,12 @@ const post = (message: FromVolumeWorker, transfer: Transferable[] = []) => scope
 
 let kept: ClassifiedVolume | null = null;
 
+const drawingBuffers = (d: VolumeModelDrawing): ArrayBuffer[] => [
+  d.valid.buffer as ArrayBuffer,
+  d.scutoid.buffer as ArrayBuffer,
+  ...d.surfaces.flatMap((s) => [s.positions, s.cells, s.sites, s.sides, s.offsets, s.neighbours].map((a) => a.buffer as ArrayBuffer)),
+];
+
 self.onmessage = (event: MessageEvent<ToVolumeWorker>) => {
   const data = event.data;
   const id = data.id;
@@ -31,7 +46,7 @@ self.onmessage = (event: MessageEvent<ToVolumeWorker>) => {
     }
     const { file, options } = data;
     kept = null;
-    let meshes: { lumen: SurfaceMesh; outer: SurfaceMesh; spacing: number } | undefined;
+    let meshes: ShellMeshes | undefined;
     let voxels: ClassifiedVolume | null = null;
     const progress = (line: string) => post({ type: 'progress', id, line });
     const result = measureVolume(
@@ -44,7 +59,7 @@ self.onmessage = (event: MessageEvent<ToVolumeWorker>) => {
         quartetFilter: options.quartetFilter,
         version,
         onProgress: progress,
-        onSurfaceMeshes: options.realizations > 0 ? (m) => (meshes = m) : undefined,
+        onSurfaceMeshes: options.realizations > 0 || options.saved ? (m) => (meshes = m) : undefined,
         onVoxels: (v) => (voxels = v),
       },
     );
@@ -57,10 +72,14 @@ self.onmessage = (event: MessageEvent<ToVolumeWorker>) => {
       { type: 'measured', id, result, surfaces },
       surfaces.flatMap((s) => [s.positions.buffer, s.cells.buffer]),
     );
-    if (options.realizations > 0) {
-      const { comparison, note } = compareVolume(result, { realizations: options.realizations, seed: options.seed, onProgress: progress }, meshes);
-      post({ type: 'compared', id, comparison, note });
-    }
+    let compared: ReturnType<typeof compareVolume>;
+    if (options.realizations > 0) compared = compareVolume(result, { realizations: options.realizations, seed: options.seed, onProgress: progress }, meshes);
+    else if (options.saved) compared = { comparison: options.saved, note: '' };
+    else return;
+    const { comparison, note } = compared;
+    progress('drawing the model of the same geometry…');
+    const { drawing, note: drawingNote } = comparison ? volumeModelDrawing(result, comparison, meshes) : { drawing: null, note: '' };
+    post({ type: 'compared', id, comparison, note, drawing, drawingNote }, drawing ? drawingBuffers(drawing) : []);
   } catch (error) {
     const file = error instanceof MeasureInputError ? error.file : null;
     post({ type: 'error', id, file, message: error instanceof Error ? error.message : String(error) });

@@ -25,7 +25,17 @@ import { writeTiff } from './tiffWriter';
 import { labelData, shellVolume, tubeVolume, volumePages, type SyntheticVolume } from './volumes';
 
 const tiffOf = (volume: SyntheticVolume) =>
-  writeTiff(volumePages(volume, labelData(volume, Array.from({ length: volume.sites }, (_, k) => k + 1), 16), 16) as never);
+  writeTiff(
+    volumePages(
+      volume,
+      labelData(
+        volume,
+        Array.from({ length: volume.sites }, (_, k) => k + 1),
+        16,
+      ),
+      16,
+    ) as never,
+  );
 
 interface Case {
   result: VolumeMeasuredResult;

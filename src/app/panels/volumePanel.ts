@@ -3,12 +3,14 @@
  * organoid, a gland cut by the volume) measured in a worker by the CLI's own core
  * (`tissue-sheet measure --volume --compare`: src/view/volumeWorker.ts), its basal and apical
  * surfaces drawn in 3D with the model's legend (volumeView.ts), a picked cell's neighbours on
- * both sides and its 3D shape, the model of the same geometry's statistics beside the measured
- * ones (mean and 95 % CI), and the exports: per-cell CSV, figure (SVG/PNG), JSON, each with its
+ * both sides and its 3D shape, the model of the same geometry drawn below it (its first
+ * realization, same legend, same camera; a picked model cell's neighbours on both sides) and its
+ * statistics beside the measured ones (mean and 95 % CI), and the exports: per-cell CSV, figure (SVG/PNG), JSON, each with its
  * provenance. The voxel size comes from the file's metadata or from the X, Y, Z fields; never
  * assumed: without either the page asks for it.
  */
-import type { VolumeComparison, VolumeMeasuredResult } from '../../core/measure';
+import type { VolumeComparison, VolumeMeasuredResult, VolumeModelDrawing } from '../../core/measure';
+import type { VolumeLayout } from '../../view/volumeRenderer';
 import { MeasureFileError } from '../../view/measureClient';
 import { VolumeClient } from '../../view/volumeClient';
 import type { VolumeRequestOptions } from '../../view/volumeProtocol';
@@ -41,9 +43,13 @@ export const VOLUME_RESULTS = `
     <p class="headline"><output id="volume-measured-percent">–</output> scutoids measured;
       model of the same geometry <output id="volume-model-percent">–</output></p>
     <p id="volume-info" class="small"></p>
+    <div class="measure-options"><label title="The measured tissue, the model of the same geometry (its first realization), or both: the tissue above, the model below, one camera">Show
+      <select id="volume-layout" disabled><option value="both">tissue and model (model below)</option><option value="tissue" selected>tissue</option><option value="model">model</option></select></label>
+      <span id="volume-drawing-note" class="small"></span></div>
     <div id="volume-view" class="volume-view"></div>
-    <p class="small">Left: basal surface; middle: apical surface (one camera: drag to turn both); right: the picked cell's 3D shape. Legend as the model's views: cells coloured by their sides on that surface, scutoids striped, cells left out faded, the picked cell white; while a cell is picked, cells that are not its neighbours on that surface are darkened.</p>
+    <p class="small">Left: basal surface; middle: apical surface (one camera for all views: drag to turn them together); right: the picked cell's 3D shape (for a model cell, its own basal and apical faces). Below the tissue, the model of the same geometry (first realization of the best Voronoi k) with the same legend. Legend as the model's views: cells coloured by their sides on that surface, scutoids striped, cells left out faded, the picked cell white; while a cell is picked, cells that are not its neighbours on that surface are darkened.</p>
     <div id="volume-cell" class="small" aria-live="polite"></div>
+    <div id="volume-model-cell" class="small" aria-live="polite"></div>
     <div id="volume-summary-box" class="table-box"></div>
     <p id="volume-model" class="small"></p>
     <div class="measure-options">
@@ -51,7 +57,7 @@ export const VOLUME_RESULTS = `
       <button type="button" id="volume-cells-csv" title="One row per cell: valid, scutoid, sides, areas, neighbours on both surfaces, volume, height, lateral neighbours">Per-cell CSV</button>
       <button type="button" id="volume-figure-svg" title="Measured and model polygon distributions with the statistics, at the width chosen under the exports">Figure SVG</button>
       <button type="button" id="volume-figure-png" title="The same figure as PNG, at the DPI and width chosen under the exports">Figure PNG</button>
-      <button type="button" id="volume-view-png" title="The 3D view as drawn (basal, apical, picked cell), with its provenance in the PNG's text">3D view PNG</button>
+      <button type="button" id="volume-view-png" title="The 3D view as shown (basal, apical, picked cell; the tissue, the model or both, as chosen under Show), with its provenance in the PNG's text">3D view PNG</button>
     </div>
   </div>`;
 
@@ -78,6 +84,8 @@ export class VolumePanel {
   private view: VolumeView | null = null;
   private viewError: string | null = null;
   shown: ShownVolume | null = null;
+  /** The model's first realization as drawn (its per-cell arrays: a picked model cell is described from them). */
+  private model: VolumeModelDrawing | null = null;
   private request = 0;
 
   constructor(
@@ -91,6 +99,9 @@ export class VolumePanel {
     );
     for (const kind of ['svg', 'png'] as const) this.$(`#volume-figure-${kind}`).addEventListener('click', () => void this.figure(kind));
     this.$('#volume-view-png').addEventListener('click', () => void this.viewPng());
+    this.$<HTMLSelectElement>('#volume-layout').addEventListener('change', (event) =>
+      this.view?.layout((event.target as HTMLSelectElement).value as VolumeLayout),
+    );
   }
 
   private $<T extends HTMLElement = HTMLElement>(selector: string): T {
@@ -139,17 +150,26 @@ export class VolumePanel {
     this.report.status(`Measuring ${file.name} as a label volume (in a worker)…`);
     let drawn: Promise<void> = Promise.resolve();
     try {
-      await this.client.measure(file, stored ? { ...options, realizations: 0 } : options, {
+      // A saved comparison is not re-run; its first realization is drawn again from it.
+      const asked = stored ? { ...options, realizations: 0, saved: stored.comparison ?? undefined } : options;
+      let compared: Promise<void> = Promise.resolve();
+      await this.client.measure(file, asked, {
         onProgress: (line) => this.report.status(volumeWords(line)),
         onMeasured: (result, surfaces) => {
           drawn = this.showMeasured(result, surfaces, request);
         },
-        onCompared: (comparison, note) => {
-          void drawn.then(() => request === this.request && this.showComparison(comparison, note));
+        onCompared: (comparison, note, drawing, drawingNote) => {
+          compared = drawn.then(() => {
+            if (request !== this.request) return;
+            if (stored) this.showComparison(stored.comparison, stored.note, true);
+            else this.showComparison(comparison, note);
+            this.showModel(drawing, drawingNote);
+          });
         },
       });
       await drawn;
-      if (stored && request === this.request) this.showComparison(stored.comparison, stored.note, true);
+      await compared;
+      if (stored && !stored.comparison && request === this.request) this.showComparison(null, stored.note, true);
     } catch (error) {
       if (error instanceof MeasureFileError && error.message.startsWith('superseded')) return;
       const message = volumeWords(error instanceof Error ? error.message : String(error));
@@ -172,6 +192,13 @@ export class VolumePanel {
     this.$('#volume-model-percent').textContent = 'comparing…';
     this.$('#volume-info').textContent = describeVolume(result);
     this.$('#volume-cell').textContent = 'Click a cell on either surface to pick it.';
+    this.model = null;
+    this.$('#volume-model-cell').textContent = '';
+    delete this.$('#volume-model-cell').dataset.cell;
+    this.$('#volume-drawing-note').textContent = '';
+    const layout = this.$<HTMLSelectElement>('#volume-layout');
+    layout.value = 'tissue';
+    layout.disabled = true;
     await nextTask();
     if (request !== this.request) return;
     try {
@@ -216,17 +243,61 @@ export class VolumePanel {
     );
   }
 
+  /** The model's first realization drawn below the tissue (both rows shown), or why not. */
+  private showModel(drawing: VolumeModelDrawing | null, note: string): void {
+    this.model = drawing;
+    const layout = this.$<HTMLSelectElement>('#volume-layout');
+    const words = this.$('#volume-drawing-note');
+    if (!drawing || !this.view) {
+      words.textContent = drawing ? '' : volumeWords(note);
+      return;
+    }
+    this.view.showModel(drawing);
+    layout.disabled = false;
+    layout.value = 'both';
+    this.view.layout('both');
+    words.textContent =
+      `Model drawn: realization 1 (seed ${drawing.seed}), Voronoi ${drawing.k}, ${drawing.cells} cells, ${drawing.percentScutoids.toFixed(1)} % scutoids` +
+      (drawing.matches ? '.' : '; this is not the saved first realization (the volume or its meshes differ).');
+    this.$('#volume-model-cell').textContent = 'Click a cell of the model to pick it.';
+  }
+
   private async pick(clientX: number, clientY: number): Promise<void> {
     const shown = this.shown;
     const hit = await this.view?.pick(clientX, clientY);
     if (!shown || !this.view || shown !== this.shown) return;
     if (!hit) {
-      this.view.setSelected(-1);
       this.$('#volume-cell').textContent = 'No cell there.';
       delete this.$('#volume-cell').dataset.label;
+      delete this.$('#volume-model-cell').dataset.cell;
+      this.view.setSelected(-1);
+      this.view.setSelected(-1, 'model');
       return;
     }
-    this.select(hit.cell);
+    if (hit.row === 'model') this.selectModel(hit.cell);
+    else this.select(hit.cell);
+  }
+
+  /** Picks model cell `id` (0-based; numbered id + 1): drawn white, its neighbours on both surfaces listed. */
+  selectModel(id: number): void {
+    const model = this.model;
+    if (!model || !this.view) return;
+    this.view.setSelected(id, 'model');
+    const box = this.$('#volume-model-cell');
+    const neighbours = model.surfaces.map((s) => Array.from(s.neighbours.subarray(s.offsets[id], s.offsets[id + 1]), (j) => j + 1));
+    box.dataset.cell = String(id + 1);
+    model.surfaces.forEach((s, k) => (box.dataset[`neighbours${k === 0 ? 'Basal' : 'Apical'}`] = neighbours[k].join(' ')));
+    const lines = [
+      `Model cell ${id + 1}: ${model.valid[id] ? 'valid' : 'left out (on an open end of the tube)'}, ${model.scutoid[id] ? 'a scutoid' : 'not a scutoid'}.`,
+      ...model.surfaces.map((s, k) => `Model ${s.name} (faces the ${s.faces}): ${s.sides[id]} sides, neighbours ${neighbours[k].join(', ') || 'none'}.`),
+    ];
+    box.replaceChildren(
+      ...lines.map((text) => {
+        const p = document.createElement('p');
+        p.textContent = text;
+        return p;
+      }),
+    );
   }
 
   /** Picks cell `id` (0-based): drawn white, described, its shape asked of the worker. */
@@ -281,15 +352,40 @@ export class VolumePanel {
     const png = new Uint8Array(await (await this.view.png()).arrayBuffer());
     const { files, voxelSize: v } = shown.result.inputs;
     const picked = this.$('#volume-cell').dataset.label;
+    const pickedModel = this.$('#volume-model-cell').dataset.cell;
+    const layout = this.model ? (this.$<HTMLSelectElement>('#volume-layout').value as VolumeLayout) : 'tissue';
+    const m = this.model;
+    const rows = {
+      tissue: 'the measured tissue',
+      model: 'the model of the same geometry',
+      both: 'the measured tissue (top row) and the model of the same geometry (bottom row)',
+    }[layout];
+    const modelWords =
+      m && layout !== 'tissue'
+        ? `; model: realization 1 (seed ${m.seed}), Voronoi ${m.k}, ${m.cells} cells${pickedModel ? `, picked model cell ${pickedModel}` : ''}`
+        : '';
     const tagged = withPngText(png, [
       ['Software', `tissue-sheet ${shown.result.software.version}`],
       [
         'Description',
-        `tissue-sheet measured volume in 3D: basal surface (left), apical surface (middle), picked cell (right); ${files[0].name}, voxel ${v.x} x ${v.y} x ${v.z} µm (${v.source}); cells coloured by their sides on each surface, scutoids striped, cells left out faded${picked ? `; picked cell ${picked} (white, non-neighbours darkened)` : ''}`,
+        `tissue-sheet measured volume in 3D, ${rows}: basal surface (left), apical surface (middle), picked cell (right); ${files[0].name}, voxel ${v.x} x ${v.y} x ${v.z} µm (${v.source}); cells coloured by their sides on each surface, scutoids striped, cells left out faded${picked && layout !== 'model' ? `; picked cell ${picked} (white, non-neighbours darkened)` : ''}${modelWords}`,
       ],
       ['tissue-sheet:version', shown.result.software.version],
-      ['tissue-sheet:method', 'measured: contact curves in µm on the voxel surfaces'],
-      ['tissue-sheet:config', JSON.stringify({ inputs: shown.result.inputs })],
+      [
+        'tissue-sheet:method',
+        m && layout !== 'tissue'
+          ? 'measured: contact curves in µm on the voxel surfaces; model: exact Voronoi (compareVolume), its first realization drawn'
+          : 'measured: contact curves in µm on the voxel surfaces',
+      ],
+      [
+        'tissue-sheet:config',
+        JSON.stringify({
+          inputs: shown.result.inputs,
+          ...(m && layout !== 'tissue'
+            ? { model: { realization: 0, seed: m.seed, k: m.k, cells: m.cells, geometry: shown.comparison?.geometry ?? null } }
+            : {}),
+        }),
+      ],
     ]);
     download('tissue-sheet-measured-volume-3d.png', new Blob([tagged as BlobPart], { type: 'image/png' }));
   }

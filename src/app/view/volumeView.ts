@@ -2,11 +2,12 @@
  * The page's side of a measured volume's 3D view (docs/app.md, "Measure a volume"): a canvas
  * whose drawing is handed to a worker (src/view/volumeRenderWorker.ts, an OffscreenCanvas: the
  * WebGL context, shader compilation, drawing and picking never block the page). Here only the
- * pointer: a drag turns the one camera of the basal (left) and apical (middle) views, the wheel
- * zooms, a click (without a drag) asks the worker which cell is under it.
+ * pointer: a drag turns the one camera of the basal (left) and apical (middle) views, of the
+ * tissue and of the model alike (cameras linked), the wheel zooms, a click (without a drag) asks
+ * the worker which cell is under it, and on which row.
  */
-import type { VolumeMeasuredResult } from '../../core/measure';
-import type { DrawnCell, Orbit } from '../../view/volumeRenderer';
+import type { VolumeMeasuredResult, VolumeModelDrawing } from '../../core/measure';
+import type { DrawnCell, Orbit, RowName, VolumeLayout } from '../../view/volumeRenderer';
 import type { FromVolumeRenderer, ToVolumeRenderer } from '../../view/volumeRenderProtocol';
 import type { CellShape, DrawnSurface } from '../../view/volumeSurfaces';
 
@@ -14,7 +15,7 @@ export class VolumeView {
   readonly canvas: HTMLCanvasElement;
   private readonly worker: Worker;
   private orbit: Orbit | null = null;
-  private picks = new Map<number, (hit: { cell: number; surface: number } | null) => void>();
+  private picks = new Map<number, (hit: { row: RowName; cell: number; surface: number } | null) => void>();
   private pngs = new Map<number, (png: Blob) => void>();
   private request = 0;
   /** Frames the worker has drawn (data-frames on the canvas: tests wait for a new one). */
@@ -58,22 +59,56 @@ export class VolumeView {
     const basal = result.inputs.layers[0];
     const stripe = Math.sqrt(basal.area / Math.max(1, basal.cells)) / 4;
     this.orbit = null;
+    delete this.canvas.dataset.modelCells;
+    this.layout('tissue');
     this.post(
       { type: 'show', cells, surfaces, stripe },
       surfaces.flatMap((s) => [s.positions.buffer, s.cells.buffer]),
     );
   }
 
-  setSelected(cell: number): void {
-    this.post({ type: 'select', cell });
+  /**
+   * Shows the model of the same geometry in the second row, with the tissue's legend (its cells
+   * numbered 1..n, neighbours by number). Its triangles are handed to the drawing worker; the
+   * per-cell arrays stay with `drawing` (the page describes a picked model cell from them).
+   */
+  showModel(drawing: VolumeModelDrawing): void {
+    const ids = (k: number, i: number) => {
+      const s = drawing.surfaces[k];
+      return Array.from(s.neighbours.subarray(s.offsets[i], s.offsets[i + 1]), (j) => j + 1);
+    };
+    const cells: DrawnCell[] = Array.from({ length: drawing.cells }, (_, i) => ({
+      id: i,
+      label: i + 1,
+      valid: drawing.valid[i] === 1,
+      scutoid: drawing.scutoid[i] === 1,
+      sides: drawing.surfaces.map((s) => s.sides[i]),
+      neighbours: [ids(0, i), ids(1, i)],
+    }));
+    const surfaces = drawing.surfaces.map((s) => ({ name: s.name, faces: s.faces, positions: s.positions, cells: s.cells, spacing: s.spacing }));
+    this.post(
+      { type: 'model', cells, surfaces, stripe: (5 * drawing.surfaces[0].spacing) / 4 },
+      surfaces.flatMap((s) => [s.positions.buffer, s.cells.buffer]),
+    );
+  }
+
+  /** Which rows to show: the tissue, the model, or both (tissue above); the canvas grows a row for both. */
+  layout(layout: VolumeLayout): void {
+    this.canvas.dataset.layout = layout;
+    this.canvas.classList.toggle('two-rows', layout === 'both');
+    this.post({ type: 'layout', layout });
+  }
+
+  setSelected(cell: number, row: RowName = 'tissue'): void {
+    this.post({ type: 'select', row, cell });
   }
 
   setShape(shape: CellShape | null): void {
     this.post({ type: 'shape', shape }, shape ? [shape.positions.buffer, shape.indices.buffer] : []);
   }
 
-  /** The cell (0-based id) under a point of the page (client pixels), or null. */
-  pick(clientX: number, clientY: number): Promise<{ cell: number; surface: number } | null> {
+  /** The cell (0-based id) under a point of the page (client pixels), on the tissue's row or the model's, or null. */
+  pick(clientX: number, clientY: number): Promise<{ row: RowName; cell: number; surface: number } | null> {
     const rect = this.canvas.getBoundingClientRect();
     const request = ++this.request;
     const scale = this.size().width / Math.max(1, rect.width);
@@ -83,7 +118,7 @@ export class VolumeView {
     });
   }
 
-  /** The three views as a PNG (basal, apical, picked cell), drawn afresh in the worker. */
+  /** The views as shown (basal, apical, picked cell; the tissue's row, the model's, or both) as a PNG, drawn afresh in the worker. */
   png(): Promise<Blob> {
     const request = ++this.request;
     return new Promise((resolve) => {
@@ -102,6 +137,7 @@ export class VolumeView {
 
   private receive(data: FromVolumeRenderer): void {
     if (data.type === 'shown') this.orbit = data.orbit;
+    else if (data.type === 'modelShown') this.canvas.dataset.modelCells = data.cells.join(',');
     else if (data.type === 'picked') {
       this.picks.get(data.request)?.(data.hit);
       this.picks.delete(data.request);
