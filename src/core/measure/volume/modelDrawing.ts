@@ -158,6 +158,19 @@ function assemble(
   };
 }
 
+/** Whether triangle (p[0..2], p[b..], p[c..]) is flat: twice its area below 1e-9 of its longest edge squared. */
+function flat(p: Float64Array, b: number, c: number): boolean {
+  const ux = p[b] - p[0],
+    uy = p[b + 1] - p[1],
+    uz = p[b + 2] - p[2];
+  const vx = p[c] - p[0],
+    vy = p[c + 1] - p[1],
+    vz = p[c + 2] - p[2];
+  const cross = Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
+  const longest = Math.max(ux * ux + uy * uy + uz * uz, vx * vx + vy * vy + vz * vz, (vx - ux) ** 2 + (vy - uy) ** 2 + (vz - uz) ** 2);
+  return cross <= 1e-9 * longest;
+}
+
 /** A closed shell's realization 0 on its meshes (compareShell's steps), drawn as exact RVD pieces. */
 function shellDrawing(result: VolumeMeasuredResult, comparison: VolumeComparison, meshes: ShellMeshes, maxTriangles: number): VolumeModelDrawing | string {
   const setup = shellSetup(result, meshes);
@@ -170,9 +183,12 @@ function shellDrawing(result: VolumeMeasuredResult, comparison: VolumeComparison
   const draw = (mesh: typeof setup.seeded, at: Float64Array): Drawn => {
     const buffer = new TriangleBuffer(maxTriangles);
     const rvd = restrictedVoronoi({ kind: 'mesh', positions: mesh.positions, indices: mesh.indices, triangleNeighbours: mesh.neighbours }, at, setup.cells, {
-      // Each piece is convex: a fan from its first vertex.
+      // Each piece is convex: a fan from its first vertex, leaving out flat triangles (three
+      // vertices in a line, where a bisector passes through a vertex: no area, edges along a side).
       onPiece: (site, _triangle, polygon, n) => {
-        for (let v = 1; v + 1 < n && !over; v++) over = !buffer.add(site, polygon, 0, polygon, 3 * v, polygon, 3 * v + 3);
+        for (let v = 1; v + 1 < n && !over; v++) {
+          if (!flat(polygon, 3 * v, 3 * v + 3)) over = !buffer.add(site, polygon, 0, polygon, 3 * v, polygon, 3 * v + 3);
+        }
       },
     });
     return { triangles: buffer.finish(), sites: Float32Array.from(at), adjacency: rvd.adjacency };
