@@ -65,6 +65,24 @@ beforeAll(() => {
 
 const triangleCentre = (p: Float32Array, t: number) => [0, 1, 2].map((a) => (p[9 * t + a] + p[9 * t + 3 + a] + p[9 * t + 6 + a]) / 3);
 
+/**
+ * Each triangle's cell is the site nearest its centre (`distanceFrom(t)(i)`: to site i), by brute
+ * force over the `n` sites; where another is nearer, only by rounding (1 nm), and rarely.
+ */
+function checkNearest(cells: Int32Array, n: number, distanceFrom: (t: number) => (i: number) => number): void {
+  let ties = 0;
+  for (let t = 0; t < cells.length; t++) {
+    const dist = distanceFrom(t);
+    let best = 0;
+    for (let i = 1; i < n; i++) if (dist(i) < dist(best)) best = i;
+    if (best !== cells[t]) {
+      ties++;
+      expect(dist(cells[t]) - dist(best)).toBeLessThan(1e-3);
+    }
+  }
+  expect(ties).toBeLessThan(0.001 * cells.length + 2);
+}
+
 /** Pairs of cells whose drawn triangles share an edge (matched by its ends within `eps` µm), with the shared length, key i * n + j (i < j). */
 function drawnContacts(positions: Float32Array, cells: Int32Array, n: number, eps: number): Map<number, number> {
   const edges = cells.length * 3;
@@ -141,19 +159,10 @@ describe('the model of a closed shell, drawn', () => {
 
   it('draws each triangle in the cell of the site nearest it (brute force over the sites)', () => {
     for (const s of shell.drawing.surfaces) {
-      const n = shell.drawing.cells;
-      let ties = 0;
-      for (let t = 0; t < s.cells.length; t++) {
+      checkNearest(s.cells, shell.drawing.cells, (t) => {
         const [x, y, z] = triangleCentre(s.positions, t);
-        const dist = (i: number) => Math.hypot(s.sites[3 * i] - x, s.sites[3 * i + 1] - y, s.sites[3 * i + 2] - z);
-        let best = 0;
-        for (let i = 1; i < n; i++) if (dist(i) < dist(best)) best = i;
-        if (best !== s.cells[t]) {
-          ties++;
-          expect(dist(s.cells[t]) - dist(best)).toBeLessThan(1e-3);
-        }
-      }
-      expect(ties).toBeLessThan(0.001 * s.cells.length + 2);
+        return (i) => Math.hypot(s.sites[3 * i] - x, s.sites[3 * i + 1] - y, s.sites[3 * i + 2] - z);
+      });
     }
   });
 
@@ -225,22 +234,14 @@ describe('the model of an open tube, drawn', () => {
     for (const s of tube.drawing.surfaces) {
       const radius = s.faces === 'lumen' ? g.innerRadius : g.outerRadius;
       const sites = Array.from({ length: tube.drawing.cells }, (_, i) => unrolled([s.sites[3 * i], s.sites[3 * i + 1], s.sites[3 * i + 2]]));
-      let ties = 0;
-      for (let t = 0; t < s.cells.length; t++) {
+      checkNearest(s.cells, sites.length, (t) => {
         const p = unrolled(triangleCentre(s.positions, t));
-        const dist = (i: number) => {
+        return (i) => {
           let dt = Math.abs(p.theta - sites[i].theta);
           dt = Math.min(dt, 2 * Math.PI - dt);
           return Math.hypot(radius * dt, p.along - sites[i].along);
         };
-        let best = 0;
-        for (let i = 1; i < sites.length; i++) if (dist(i) < dist(best)) best = i;
-        if (best !== s.cells[t]) {
-          ties++;
-          expect(dist(s.cells[t]) - dist(best)).toBeLessThan(1e-3);
-        }
-      }
-      expect(ties).toBeLessThan(0.001 * s.cells.length + 2);
+      });
     }
   });
 
