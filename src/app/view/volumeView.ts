@@ -29,7 +29,7 @@ export class VolumeView {
     this.canvas.setAttribute('role', 'img');
     this.canvas.setAttribute(
       'aria-label',
-      'measured volume in 3D: basal surface (left), apical surface (middle), picked cell (right); drag to turn, wheel to zoom, click a cell to pick it',
+      'measured volume in 3D: basal surface (left), apical surface (middle), picked cell (right); the model of the same geometry in a row below when shown; drag to turn, wheel to zoom, click a cell to pick it',
     );
     container.append(this.canvas);
     if (typeof this.canvas.transferControlToOffscreen !== 'function') {
