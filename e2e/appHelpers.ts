@@ -1,3 +1,4 @@
+import { readFileSync } from 'node:fs';
 import type { Page } from '@playwright/test';
 
 /** How many runs the app has finished (the body's data-runs). */
@@ -19,3 +20,31 @@ export async function runSweep(page: Page, field: string, from: number, to: numb
   await page.locator('[data-sweep="run"]').click();
   await page.locator(`#sweep[data-done="${steps}"]`).waitFor({ timeout: 120_000 });
 }
+
+/** The app's address for a `?config=` link (a string is sent as it is: a malformed link). */
+export const linkTo = (config: unknown): string => `/?config=${encodeURIComponent(typeof config === 'string' ? config : JSON.stringify(config))}`;
+
+/**
+ * The small tube most app tests run, seconds on SwiftShader: 60 cells at resolution 128 on a
+ * tube 256 µm round and 512 µm long; the seed, the Lloyd iterations and the surface ratio vary.
+ */
+export function smallTube(seed: number, maxIterations: number, surfaceRatio: number) {
+  return {
+    surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 },
+    resolution: 128,
+    cells: 60,
+    seed,
+    lloyd: { maxIterations },
+    sheet: { surfaceRatio },
+  };
+}
+
+/** Clicks `selector` and reads the file it downloads: its suggested name, bytes and text. */
+export async function download(page: Page, selector: string): Promise<{ name: string; bytes: Buffer; text: string }> {
+  const [file] = await Promise.all([page.waitForEvent('download'), page.locator(selector).click()]);
+  const bytes = readFileSync(await file.path());
+  return { name: file.suggestedFilename(), bytes, text: bytes.toString('utf8') };
+}
+
+/** The file of the app's export button `key` (its `data-export`). */
+export const downloadExport = (page: Page, key: string) => download(page, `[data-export="${key}"]`);

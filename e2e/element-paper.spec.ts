@@ -1,4 +1,5 @@
 import { expect, test } from '@playwright/test';
+import { openElementExample } from './elementHelpers';
 
 /**
  * Issue 26, embedding: the element fires `waiting` while it waits for permission to load a
@@ -13,7 +14,7 @@ test('waiting event; the question goes with a later unrelated run', async ({ pag
     (url) => url.hostname === 'lab.example',
     (route) => route.abort(),
   );
-  await page.goto('/examples/element.html');
+  await openElementExample(page, { waitForRuns: false });
   const waiting = await page.evaluate(async () => {
     const element = document.createElement('tissue-sheet');
     element.id = 'remote';
@@ -43,7 +44,7 @@ test('waiting event; the question goes with a later unrelated run', async ({ pag
 });
 
 test('a misspelled attribute is said with a suggestion; "22,5" is 22.5; an empty attribute is named; the status is under the view', async ({ page }) => {
-  await page.goto('/examples/element.html');
+  await openElementExample(page, { waitForRuns: false });
   const out = await page.evaluate(async () => {
     const element = document.createElement('tissue-sheet');
     element.id = 'typo';

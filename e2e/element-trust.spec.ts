@@ -1,5 +1,6 @@
 import { readFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
+import { openElementExample } from './elementHelpers';
 
 /**
  * `<tissue-sheet>` as untrusted input (issue 19) and as a trustworthy report (issue 14): the
@@ -9,7 +10,7 @@ import { expect, test } from '@playwright/test';
  */
 
 test('the result event carries the method and the by-construction reason', async ({ page }) => {
-  await page.goto('/examples/element.html');
+  await openElementExample(page, { waitForRuns: false });
   const details = await page.evaluate(async () => {
     const run = async (attributes: Record<string, string>) => {
       const element = document.createElement('tissue-sheet');
@@ -44,7 +45,7 @@ test('a src on another origin is asked about and fetched only after the click', 
       return route.fulfill({ status: 200, body: ply, headers: { 'access-control-allow-origin': '*' } });
     },
   );
-  await page.goto('/examples/element.html');
+  await openElementExample(page, { waitForRuns: false });
   await page.evaluate(() => {
     const element = document.createElement('tissue-sheet');
     element.id = 'remote';
@@ -67,7 +68,7 @@ test('a src on another origin is asked about and fetched only after the click', 
 });
 
 test('a run over the page budget is refused at once, naming the field and the limit', async ({ page }) => {
-  await page.goto('/examples/element.html');
+  await openElementExample(page, { waitForRuns: false });
   const outcome = await page.evaluate(async () => {
     const element = document.createElement('tissue-sheet');
     element.setAttribute('manual', '');

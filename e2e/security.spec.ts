@@ -1,6 +1,7 @@
 import { readFileSync, readdirSync } from 'node:fs';
 import { deflateSync } from 'node:zlib';
 import { expect, test, type Page } from '@playwright/test';
+import { linkTo, smallTube } from './appHelpers';
 
 /**
  * Issue 19 under the app's Content-Security-Policy (index.html): no 'unsafe-eval' (validators are
@@ -10,15 +11,7 @@ import { expect, test, type Page } from '@playwright/test';
  * relay frame only after the click, and density images are size-checked from their header.
  */
 
-const linkTo = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
-const SMALL = {
-  surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 },
-  resolution: 128,
-  cells: 60,
-  seed: 3,
-  lloyd: { maxIterations: 2 },
-  sheet: { surfaceRatio: 2 },
-};
+const SMALL = smallTube(3, 2, 2);
 
 /** The app's policy, read from index.html (the element's page is served with the same one). */
 function appPolicy(): string {
