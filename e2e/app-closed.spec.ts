@@ -1,7 +1,7 @@
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
-import { downloadExport, linkTo, runs, waitForRun } from './appHelpers';
+import { downloadExport, linkTo, runs, shownElsewhere, shownResult, waitForRun } from './appHelpers';
 import { tempDir } from './cli';
 
 /**
@@ -130,18 +130,8 @@ test('a URL round trip reproduces a closed-surface result (sphere and sample mes
     await waitForRun(page, before);
     const link = page.url();
     expect(new URL(link).searchParams.get('config')).toContain('"seed":11');
-    const percent = await page.locator('#percent-scutoids').getAttribute('data-drawn');
-    const summary = await page.locator('#summary').textContent();
-    const cells = await page.locator('#cell-table').textContent();
-
-    const other = await browser.newContext();
-    const shared = await other.newPage();
-    await shared.goto(link);
-    await waitForRun(shared);
-    expect(await shared.locator('#percent-scutoids').getAttribute('data-drawn')).toBe(percent);
-    expect(await shared.locator('#summary').textContent()).toBe(summary);
-    expect(await shared.locator('#cell-table').textContent()).toBe(cells);
-    await expect(shared.getByLabel('Random seed')).toHaveValue('11');
-    await other.close();
+    const shown = await shownResult(page);
+    expect(shown.seed).toBe('11');
+    expect(await shownElsewhere(browser, link)).toEqual(shown);
   }
 });

@@ -1,5 +1,5 @@
 import { expect, test } from '@playwright/test';
-import { downloadExport, runs, waitForRun } from './appHelpers';
+import { downloadExport, runs, shownElsewhere, shownResult, waitForRun } from './appHelpers';
 import { parseCsv } from '../src/core/sweep/csv';
 
 /** Exports parse and match the numbers on screen; the URL (and the saved session) reproduce a run. */
@@ -96,25 +96,15 @@ test('a URL round trip reproduces the result, and reopening restores the last se
   await waitForRun(page, before);
   const link = page.url();
   expect(new URL(link).searchParams.get('config')).toContain('"seed":7');
-  const percent = await page.locator('#percent-scutoids').getAttribute('data-drawn');
-  const summary = await page.locator('#summary').textContent();
   await page.locator('section[aria-labelledby="cells-title"] summary').click();
-  const cells = await page.locator('#cell-table').textContent();
-
+  const shown = await shownResult(page);
+  expect(shown.seed).toBe('7');
   // A fresh browser context (no saved session) opening the shared link.
-  const other = await browser.newContext();
-  const shared = await other.newPage();
-  await shared.goto(link);
-  await waitForRun(shared);
-  expect(await shared.locator('#percent-scutoids').getAttribute('data-drawn')).toBe(percent);
-  expect(await shared.locator('#summary').textContent()).toBe(summary);
-  expect(await shared.locator('#cell-table').textContent()).toBe(cells);
-  await expect(shared.getByLabel('Random seed')).toHaveValue('7');
-  await other.close();
+  expect(await shownElsewhere(browser, link)).toEqual(shown);
 
   // The same context reopening the bare page restores the last session from localStorage.
   await page.goto('/');
   await waitForRun(page);
   await expect(page.getByLabel('Cells', { exact: true })).toHaveValue('120');
-  expect(await page.locator('#percent-scutoids').getAttribute('data-drawn')).toBe(percent);
+  expect(await page.locator('#percent-scutoids').getAttribute('data-drawn')).toBe(shown.percent);
 });

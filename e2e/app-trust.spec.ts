@@ -1,6 +1,6 @@
 import { readFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
-import { downloadExport, linkTo, runs, smallTube, waitForRun } from './appHelpers';
+import { downloadExport, injectedScriptRuns, linkTo, runs, smallTube, waitForRun } from './appHelpers';
 import { readPngText } from '../src/app/model/pngText';
 import { parseCsv } from '../src/core/sweep/csv';
 
@@ -229,13 +229,6 @@ test('the page runs under its Content-Security-Policy, which stops an injected i
   await waitForRun(page);
   await expect(page.locator('meta[http-equiv="Content-Security-Policy"]')).toHaveCount(1);
   expect(violations).toEqual([]);
-  const ran = await page.evaluate(async () => {
-    const script = document.createElement('script');
-    script.textContent = 'window.__injected = true;';
-    document.body.append(script);
-    await new Promise((r) => setTimeout(r, 100));
-    return (window as unknown as { __injected?: boolean }).__injected === true;
-  });
-  expect(ran).toBe(false);
+  expect(await injectedScriptRuns(page)).toBe(false);
   expect(violations.some((v) => v.startsWith('script-src'))).toBe(true);
 });

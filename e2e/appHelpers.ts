@@ -1,5 +1,5 @@
 import { readFileSync } from 'node:fs';
-import type { Page } from '@playwright/test';
+import type { Browser, Page } from '@playwright/test';
 
 /** How many runs the app has finished (the body's data-runs). */
 export async function runs(page: Page): Promise<number> {
@@ -48,3 +48,37 @@ export async function download(page: Page, selector: string): Promise<{ name: st
 
 /** The file of the app's export button `key` (its `data-export`). */
 export const downloadExport = (page: Page, key: string) => download(page, `[data-export="${key}"]`);
+
+/** What the app shows of its result: the drawn % scutoids, the summary, the cell table and the seed. */
+export async function shownResult(page: Page) {
+  return {
+    percent: await page.locator('#percent-scutoids').getAttribute('data-drawn'),
+    summary: await page.locator('#summary').textContent(),
+    cells: await page.locator('#cell-table').textContent(),
+    seed: await page.getByLabel('Random seed').inputValue(),
+  };
+}
+
+/** What `link` shows once run in a fresh browser context (no saved session): a link shared with someone else. */
+export async function shownElsewhere(browser: Browser, link: string): Promise<Awaited<ReturnType<typeof shownResult>>> {
+  const other = await browser.newContext();
+  try {
+    const shared = await other.newPage();
+    await shared.goto(link);
+    await waitForRun(shared);
+    return await shownResult(shared);
+  } finally {
+    await other.close();
+  }
+}
+
+/** Whether a script injected into the page runs (the Content-Security-Policy must stop it). */
+export function injectedScriptRuns(page: Page): Promise<boolean> {
+  return page.evaluate(async () => {
+    const script = document.createElement('script');
+    script.textContent = 'window.__injected = true;';
+    document.body.append(script);
+    await new Promise((r) => setTimeout(r, 100));
+    return (window as unknown as { __injected?: boolean }).__injected === true;
+  });
+}

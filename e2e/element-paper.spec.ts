@@ -1,5 +1,5 @@
 import { expect, test } from '@playwright/test';
-import { openElementExample } from './elementHelpers';
+import { openElementExample, REMOTE_MESH } from './elementHelpers';
 
 /**
  * Issue 26, embedding: the element fires `waiting` while it waits for permission to load a
@@ -15,19 +15,16 @@ test('waiting event; the question goes with a later unrelated run', async ({ pag
     (route) => route.abort(),
   );
   await openElementExample(page, { waitForRuns: false });
-  const waiting = await page.evaluate(async () => {
-    const element = document.createElement('tissue-sheet');
-    element.id = 'remote';
-    element.setAttribute('surface', 'mesh');
-    element.setAttribute('src', 'https://lab.example/shared/egg.ply');
-    element.setAttribute('cells', '40');
-    element.setAttribute('iterations', '1');
-    element.setAttribute('resolution', '24');
-    element.setAttribute('realizations', '1');
-    const event = new Promise<unknown>((resolve) => element.addEventListener('waiting', (e) => resolve((e as CustomEvent).detail), { once: true }));
-    document.body.append(element);
-    return event;
-  });
+  const waiting = await page.evaluate(
+    async (attributes) => {
+      const element = document.createElement('tissue-sheet');
+      for (const [name, value] of Object.entries(attributes)) element.setAttribute(name, value);
+      const event = new Promise<unknown>((resolve) => element.addEventListener('waiting', (e) => resolve((e as CustomEvent).detail), { once: true }));
+      document.body.append(element);
+      return event;
+    },
+    { ...REMOTE_MESH, realizations: '1' },
+  );
   expect(waiting).toEqual({ sources: [{ path: '/shared/egg.ply', host: 'lab.example' }] });
   const ask = page.locator('#remote').locator('.ask');
   await expect(ask).toBeVisible();

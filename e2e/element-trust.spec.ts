@@ -1,6 +1,6 @@
 import { readFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
-import { openElementExample } from './elementHelpers';
+import { openElementExample, REMOTE_MESH } from './elementHelpers';
 
 /**
  * `<tissue-sheet>` as untrusted input (issue 19) and as a trustworthy report (issue 14): the
@@ -46,17 +46,12 @@ test('a src on another origin is asked about and fetched only after the click', 
     },
   );
   await openElementExample(page, { waitForRuns: false });
-  await page.evaluate(() => {
+  await page.evaluate((attributes) => {
     const element = document.createElement('tissue-sheet');
-    element.id = 'remote';
-    element.setAttribute('surface', 'mesh');
-    element.setAttribute('src', 'https://lab.example/shared/egg.ply');
-    element.setAttribute('cells', '40');
-    element.setAttribute('iterations', '1');
-    element.setAttribute('resolution', '24');
+    for (const [name, value] of Object.entries(attributes)) element.setAttribute(name, value);
     element.addEventListener('result', () => (element.dataset.result = 'yes'));
     document.body.append(element);
-  });
+  }, REMOTE_MESH);
   const ask = page.locator('#remote').locator('.ask');
   await expect(ask).toBeVisible();
   await expect(ask).toContainText('This element asks to load a mesh, /shared/egg.ply, from lab.example');

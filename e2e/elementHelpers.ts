@@ -11,3 +11,13 @@ export async function openElementExample(page: Page, options: { waitForRuns?: bo
     timeout: 120_000,
   });
 }
+
+/** A small mesh element whose `src` is on another origin (lab.example): it asks before loading it. */
+export const REMOTE_MESH: Record<string, string> = {
+  id: 'remote',
+  surface: 'mesh',
+  src: 'https://lab.example/shared/egg.ply',
+  cells: '40',
+  iterations: '1',
+  resolution: '24',
+};
