@@ -1,8 +1,13 @@
 /**
  * `<tissue-sheet>`: a sheet computed and shown in any page. Attributes (kebab-case) configure
- * it, properties carry rich data (`config`, `densityImage`, `meshFile`), methods run and export it, and
- * `progress` / `result` / `error` events report on it. A bare element shows the app's small
- * default tube. Runs share one compute context per page and are queued.
+ * it, properties carry rich data (`config`, `densityImage`, `meshFile`), methods run, sweep and
+ * export it, and events report on it (events.ts: `progress`, `result`, `error`, `warning`,
+ * `waiting`, `cell-hover`, `sweep-progress`). A bare element shows the schema's default sheet
+ * (the published tube), as the CLI runs it. Runs go to the page's one pipeline worker
+ * (src/view/pageRunner.ts; the page itself after a fallback, which `computeSite` says); a newer
+ * run cancels the previous one, or, on the slider path, replaces the one waiting (LatestRunner).
+ * Each feature beside the run has a file of its own here (listed in docs/architecture.md,
+ * "Consumers").
  */
 import type { AnyConfig, ConfigInput } from '../core/config';
 import type { GrayImage } from '../core/density';
@@ -65,8 +70,9 @@ export class TissueSheetElement extends HTMLElement {
 
   /**
    * The effective configuration. While an attribute is invalid it does not throw (issue 26): it
-   * gives the last valid configuration (of the last run, else the defaults with the `config`
-   * property), and `configError` says what is wrong; `run()` and the `error` event report it.
+   * gives the last valid configuration read (else the last result's, else the defaults with the
+   * `config` property), and `configError` says what is wrong; `run()` and the `error` event
+   * report it.
    */
   get config(): AnyConfig {
     try {
