@@ -16,7 +16,7 @@ interface ResultJson {
 
 /**
  * `<tissue-sheet>` on Debian's Chromium. Screenshot tolerance: maxDiffPixelRatio 0.02.
- * The CLI comparison runs `node bin/tissue-sheet.mjs run` (headless-gl under xvfb-run on Mesa's
+ * The CLI comparison runs `tissue-sheet run` from source (e2e/cli.ts: headless-gl under xvfb-run on Mesa's
  * software rasterizer, where "auto" reads the ids back and sums on the CPU) on the element's own
  * config; the browser is told to run the additive blend path ("auto" would pick readback on
  * SwiftShader too). Both are Lloyd on the same grid from the same seeded sites, so the neighbour
