@@ -1,8 +1,8 @@
-import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
-import { runs, waitForRun } from './appHelpers';
+import { downloadExport, linkTo, runs, shownElsewhere, shownResult, waitForRun } from './appHelpers';
+import { tempDir } from './cli';
 
 /**
  * Closed surfaces in the page (sphere, ellipsoid, meshes from public/meshes/ or uploaded) on
@@ -14,14 +14,12 @@ const SMALL = { resolution: 32, cells: 100, seed: 3, lloyd: { maxIterations: 2 }
 const sphere = { ...SMALL, surface: { kind: 'sphere', radius: 50 }, sheet: { thickness: 10 } };
 const eggChamber = { ...SMALL, surface: { kind: 'mesh', src: '/meshes/egg-chamber.ply', scale: 50 }, sheet: { thickness: 5 } };
 
-const withConfig = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
-
 async function percentScutoids(page: Page): Promise<number> {
   return Number(await page.locator('#percent-scutoids').getAttribute('data-drawn'));
 }
 
 test('a sphere runs: concentric spheres keep every neighbour (0 % scutoids)', async ({ page }) => {
-  await page.goto(withConfig(sphere));
+  await page.goto(linkTo(sphere));
   await waitForRun(page);
   await expect(page.locator('#error')).toBeHidden();
   expect(await percentScutoids(page)).toBe(0);
@@ -39,10 +37,7 @@ test('a sphere runs: concentric spheres keep every neighbour (0 % scutoids)', as
   await expect(page.locator('#surface-toggles input')).toHaveCount(2);
 
   // Exports: the per-cell CSV gives the site's direction; the PLY holds both surfaces' meshes.
-  const download = async (name: string) => {
-    const [file] = await Promise.all([page.waitForEvent('download'), page.locator(`[data-export="${name}"]`).click()]);
-    return readFileSync((await file.path())!, 'utf8');
-  };
+  const download = async (name: string) => (await downloadExport(page, name)).text;
   // Provenance comment lines (# ...) first, then the table.
   const csv = (await download('cells'))
     .trim()
@@ -66,7 +61,7 @@ test('a sphere runs: concentric spheres keep every neighbour (0 % scutoids)', as
 });
 
 test('switching to an ellipsoid in the controls runs it', async ({ page }) => {
-  await page.goto(withConfig(sphere));
+  await page.goto(linkTo(sphere));
   await waitForRun(page);
   const before = await runs(page);
   await page.getByLabel('Surface', { exact: true }).selectOption('ellipsoid');
@@ -78,7 +73,7 @@ test('switching to an ellipsoid in the controls runs it', async ({ page }) => {
 });
 
 test('uploading a mesh runs; a corrupt file and a genus-1 mesh show their messages and leave the result', async ({ page }) => {
-  await page.goto(withConfig(eggChamber));
+  await page.goto(linkTo(eggChamber));
   await waitForRun(page);
   await expect(page.locator('#run-info')).toContainText('/meshes/egg-chamber.ply (1962 vertices');
 
@@ -94,7 +89,7 @@ test('uploading a mesh runs; a corrupt file and a genus-1 mesh show their messag
   const summary = await page.locator('#summary').textContent();
 
   // A corrupt file: a few garbage bytes.
-  const dir = mkdtempSync(join(tmpdir(), 'tissue-sheet-'));
+  const dir = tempDir('closed');
   const garbage = join(dir, 'garbage.ply');
   writeFileSync(garbage, Buffer.from([0x70, 0x6c, 0x79, 0x0a, 0xde, 0xad, 0xbe, 0xef, 0x00, 0x13]));
   await page.locator('input[name="surface.src"]').setInputFiles(garbage);
@@ -120,14 +115,14 @@ test('uploading a mesh runs; a corrupt file and a genus-1 mesh show their messag
 });
 
 test('a link with an uploaded file name asks for the file again', async ({ page }) => {
-  await page.goto(withConfig({ ...eggChamber, surface: { kind: 'mesh', src: 'my-organoid.ply', scale: 50 } }));
+  await page.goto(linkTo({ ...eggChamber, surface: { kind: 'mesh', src: 'my-organoid.ply', scale: 50 } }));
   await expect(page.locator('#error')).toContainText('"my-organoid.ply" is a file uploaded from a computer', { timeout: 60_000 });
   await expect(page.locator('#error')).toContainText('upload it again');
 });
 
 test('a URL round trip reproduces a closed-surface result (sphere and sample mesh)', async ({ page, browser }) => {
   for (const start of [sphere, eggChamber]) {
-    await page.goto(withConfig(start));
+    await page.goto(linkTo(start));
     await waitForRun(page);
     const before = await runs(page);
     await page.getByLabel('Random seed').fill('11');
@@ -135,18 +130,8 @@ test('a URL round trip reproduces a closed-surface result (sphere and sample mes
     await waitForRun(page, before);
     const link = page.url();
     expect(new URL(link).searchParams.get('config')).toContain('"seed":11');
-    const percent = await page.locator('#percent-scutoids').getAttribute('data-drawn');
-    const summary = await page.locator('#summary').textContent();
-    const cells = await page.locator('#cell-table').textContent();
-
-    const other = await browser.newContext();
-    const shared = await other.newPage();
-    await shared.goto(link);
-    await waitForRun(shared);
-    expect(await shared.locator('#percent-scutoids').getAttribute('data-drawn')).toBe(percent);
-    expect(await shared.locator('#summary').textContent()).toBe(summary);
-    expect(await shared.locator('#cell-table').textContent()).toBe(cells);
-    await expect(shared.getByLabel('Random seed')).toHaveValue('11');
-    await other.close();
+    const shown = await shownResult(page);
+    expect(shown.seed).toBe('11');
+    expect(await shownElsewhere(browser, link)).toEqual(shown);
   }
 });

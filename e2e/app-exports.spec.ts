@@ -1,16 +1,8 @@
-import { readFileSync } from 'node:fs';
-import { expect, test, type Page } from '@playwright/test';
-import { runs, waitForRun } from './appHelpers';
+import { expect, test } from '@playwright/test';
+import { downloadExport, runs, shownElsewhere, shownResult, waitForRun } from './appHelpers';
 import { parseCsv } from '../src/core/sweep/csv';
 
 /** Exports parse and match the numbers on screen; the URL (and the saved session) reproduce a run. */
-
-async function downloadText(page: Page, button: string): Promise<{ name: string; text: string; bytes: Buffer }> {
-  const [download] = await Promise.all([page.waitForEvent('download'), page.locator(`[data-export="${button}"]`).click()]);
-  const path = await download.path();
-  const bytes = readFileSync(path);
-  return { name: download.suggestedFilename(), text: bytes.toString('utf8'), bytes };
-}
 
 function table(text: string): Record<string, string>[] {
   // Provenance comment lines ("# ...") come first in the per-cell CSV.
@@ -29,7 +21,7 @@ test('exports download files that parse and match the on-screen numbers', async 
   const scutoidsShown = Number(await page.locator('#summary tr[data-key="scutoids"]').getAttribute('data-value'));
   const validShown = Number(await page.locator('#summary tr[data-key="validCells"]').getAttribute('data-value'));
 
-  const json = await downloadText(page, 'json');
+  const json = await downloadExport(page, 'json');
   expect(json.name).toBe('tissue-sheet-tube-seed1.json');
   const result = JSON.parse(json.text);
   // The headline's analysis: the exact method wherever the result has one (a tube has).
@@ -41,7 +33,7 @@ test('exports download files that parse and match the on-screen numbers', async 
   expect(result.config.sheet.surfaceRatio).toBe(1.5);
   expect(result.cells).toHaveLength(150);
 
-  const cells = table((await downloadText(page, 'cells')).text);
+  const cells = table((await downloadExport(page, 'cells')).text);
   expect(cells).toHaveLength(150);
   expect(cells.filter((c) => c.scutoid === '1')).toHaveLength(scutoidsShown);
   expect(cells.filter((c) => c.valid === '1')).toHaveLength(validShown);
@@ -55,7 +47,7 @@ test('exports download files that parse and match the on-screen numbers', async 
     expect(Number(cell.transitions)).toBe(stats.transitions);
   }
 
-  const ply = await downloadText(page, 'ply');
+  const ply = await downloadExport(page, 'ply');
   const header = ply.text.slice(0, ply.text.indexOf('end_header'));
   const vertices = Number(/element vertex (\d+)/.exec(header)![1]);
   const faces = Number(/element face (\d+)/.exec(header)![1]);
@@ -75,7 +67,7 @@ test('exports download files that parse and match the on-screen numbers', async 
   );
   expect(scutoidCells.size).toBe(scutoidsShown);
 
-  const png = await downloadText(page, 'png');
+  const png = await downloadExport(page, 'png');
   expect(png.bytes.subarray(1, 4).toString('latin1')).toBe('PNG');
   expect(png.bytes.length).toBeGreaterThan(5000);
 
@@ -83,7 +75,7 @@ test('exports download files that parse and match the on-screen numbers', async 
   await page.locator('[name="sweep-steps"]').fill('3');
   await page.locator('[data-sweep="run"]').click();
   await expect(page.locator('#sweep')).toHaveAttribute('data-done', '3', { timeout: 120_000 });
-  const sweep = table((await downloadText(page, 'sweep')).text);
+  const sweep = table((await downloadExport(page, 'sweep')).text);
   expect(sweep.map((r) => r['sheet.surfaceRatio'])).toEqual(['1', '1.5', '2']);
   // The CLI's runs.csv columns: one % per adjacency method. On this software renderer the
   // engine is the exact one (engine "auto"), so the exact method's columns are the filled ones.
@@ -104,25 +96,15 @@ test('a URL round trip reproduces the result, and reopening restores the last se
   await waitForRun(page, before);
   const link = page.url();
   expect(new URL(link).searchParams.get('config')).toContain('"seed":7');
-  const percent = await page.locator('#percent-scutoids').getAttribute('data-drawn');
-  const summary = await page.locator('#summary').textContent();
   await page.locator('section[aria-labelledby="cells-title"] summary').click();
-  const cells = await page.locator('#cell-table').textContent();
-
+  const shown = await shownResult(page);
+  expect(shown.seed).toBe('7');
   // A fresh browser context (no saved session) opening the shared link.
-  const other = await browser.newContext();
-  const shared = await other.newPage();
-  await shared.goto(link);
-  await waitForRun(shared);
-  expect(await shared.locator('#percent-scutoids').getAttribute('data-drawn')).toBe(percent);
-  expect(await shared.locator('#summary').textContent()).toBe(summary);
-  expect(await shared.locator('#cell-table').textContent()).toBe(cells);
-  await expect(shared.getByLabel('Random seed')).toHaveValue('7');
-  await other.close();
+  expect(await shownElsewhere(browser, link)).toEqual(shown);
 
   // The same context reopening the bare page restores the last session from localStorage.
   await page.goto('/');
   await waitForRun(page);
   await expect(page.getByLabel('Cells', { exact: true })).toHaveValue('120');
-  expect(await page.locator('#percent-scutoids').getAttribute('data-drawn')).toBe(percent);
+  expect(await page.locator('#percent-scutoids').getAttribute('data-drawn')).toBe(shown.percent);
 });

@@ -1,9 +1,9 @@
-import { readFileSync, writeFileSync, mkdtempSync } from 'node:fs';
+import { writeFileSync } from 'node:fs';
 import { expect, test, type Page } from '@playwright/test';
-import { waitForRun } from './appHelpers';
+import { download, downloadExport, linkTo, smallTube, waitForRun } from './appHelpers';
+import { tempDir } from './cli';
 import { readPngDpi, readPngText } from '../src/app/model/pngText';
 import { parseCsv } from '../src/core/sweep/csv';
-import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { png16, randomSites, rasterizeVoronoi } from '../tests/measure/images';
 
@@ -14,21 +14,7 @@ import { png16, randomSites, rasterizeVoronoi } from '../tests/measure/images';
  * configuration, seed, engine, method) in the files' metadata.
  */
 
-const SMALL = {
-  surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 },
-  resolution: 128,
-  cells: 60,
-  seed: 2,
-  lloyd: { maxIterations: 3 },
-  sheet: { surfaceRatio: 1.5 },
-};
-const linkTo = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
-
-async function download(page: Page, selector: string): Promise<{ name: string; bytes: Buffer; text: string }> {
-  const [file] = await Promise.all([page.waitForEvent('download'), page.locator(selector).click()]);
-  const bytes = readFileSync(await file.path());
-  return { name: file.suggestedFilename(), bytes, text: bytes.toString('utf8') };
-}
+const SMALL = smallTube(2, 3, 1.5);
 
 type Box = { x: number; y: number; width: number; height: number; what: string };
 
@@ -74,7 +60,7 @@ test('the cell figure: SVG printed at the chosen width, the headline on it, a le
   await waitForRun(page);
   await page.waitForFunction(() => document.body.dataset.headline === 'complete', undefined, { timeout: 120_000 });
   await page.locator('#figure-width').fill('120');
-  const svg = (await download(page, '[data-export="svg"]')).text;
+  const svg = (await downloadExport(page, 'svg')).text;
   if (process.env.FIGURE_DIR) writeFileSync(`${process.env.FIGURE_DIR}/cells.svg`, svg);
   const size = svgSize(svg);
   expect(size.widthMm).toBe(120);
@@ -156,7 +142,7 @@ test('the sweep chart and the Flintstones fit as SVG and PNG: units, n, CI, numb
 });
 
 test('the measured-vs-model comparison as SVG and PNG: bars per layer, the model line, both % scutoids, provenance', async ({ page }) => {
-  const dir = mkdtempSync(join(tmpdir(), 'figures-measure-'));
+  const dir = tempDir('figures-measure');
   const sites = randomSites(60, 256, 192, 7);
   const labels = sites.map((_, i) => 5 + i);
   writeFileSync(join(dir, 'basal.png'), png16(rasterizeVoronoi(256, 192, sites, labels, true)));
@@ -217,7 +203,7 @@ test('the measured-vs-model comparison as SVG and PNG: bars per layer, the model
 });
 
 test('measure: the page says which file it takes as basal and warns when s < 1 (files handed over apical first)', async ({ page }) => {
-  const dir = mkdtempSync(join(tmpdir(), 'figures-sides-'));
+  const dir = tempDir('figures-sides');
   const sites = randomSites(60, 256, 192, 7);
   const labels = sites.map((_, i) => 5 + i);
   writeFileSync(

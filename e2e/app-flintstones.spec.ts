@@ -1,18 +1,12 @@
 import { expect, test } from '@playwright/test';
-import { runSweep } from './appHelpers';
+import { linkTo, runSweep, smallTube, waitForRun } from './appHelpers';
 
 /** The Flintstones law (Gómez-Gálvez et al. 2022) fitted and drawn after a sweep over the surface ratio. */
 test('a sweep over the surface ratio draws the Flintstones fit with its parameters', async ({ page }) => {
-  const small = {
-    surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 },
-    resolution: 128,
-    cells: 60,
-    seed: 2,
-    lloyd: { maxIterations: 3 },
-    sheet: { surfaceRatio: 1.5 },
-  };
-  await page.goto(`/?config=${encodeURIComponent(JSON.stringify(small))}`);
-  await page.waitForFunction(() => document.body.dataset.state === 'done' && Number(document.body.dataset.runs ?? 0) > 0, undefined, { timeout: 120_000 });
+  const small = smallTube(2, 3, 1.5);
+
+  await page.goto(linkTo(small));
+  await waitForRun(page);
   await runSweep(page, 'sheet.surfaceRatio', 1, 6, 6);
   const chart = page.locator('#chart-flintstones');
   await expect(chart).toBeVisible();

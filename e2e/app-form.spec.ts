@@ -1,6 +1,6 @@
 import { readFileSync } from 'node:fs';
 import { expect, test, type Page } from '@playwright/test';
-import { runs, waitForRun } from './appHelpers';
+import { downloadExport, linkTo, runs, waitForRun } from './appHelpers';
 
 /**
  * Issue 26, the form: the address, the form and the result always agree (seed 1 -> 2 -> 1,
@@ -18,7 +18,6 @@ const TUBE = {
   lloyd: { maxIterations: 2 },
   sheet: { surfaceRatio: 2 },
 };
-const linkTo = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
 
 async function typeInto(page: Page, label: string, text: string): Promise<void> {
   const field = page.getByLabel(label, { exact: true });
@@ -31,10 +30,7 @@ async function typeInto(page: Page, label: string, text: string): Promise<void> 
 const urlConfig = (page: Page) => JSON.parse(new URL(page.url()).searchParams.get('config')!);
 const drawn = async (page: Page) => page.locator('#percent-scutoids').getAttribute('data-drawn');
 
-async function resultJson(page: Page) {
-  const [download] = await Promise.all([page.waitForEvent('download'), page.locator('[data-export="json"]').click()]);
-  return JSON.parse(readFileSync(await download.path(), 'utf8'));
-}
+const resultJson = async (page: Page) => JSON.parse((await downloadExport(page, 'json')).text);
 
 test('seed 1 -> 2 -> 1: the address is the link again, and reloading shows the same result', async ({ page }) => {
   const link = linkTo(TUBE);

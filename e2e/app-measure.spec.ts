@@ -1,8 +1,9 @@
-import { tmpdir } from 'node:os';
-import { execFileSync } from 'node:child_process';
-import { mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
+import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
+import { download, linkTo } from './appHelpers';
+import { runCli, tempDir } from './cli';
+import { installLongTaskObserver, takeLongTasks } from './pages/longTasks';
 import type { MeasuredResult } from '../src/core/measure';
 import { png16, randomSites, rasterizeVoronoi } from '../tests/measure/images';
 
@@ -45,25 +46,7 @@ function makeInputs(dir: string): Inputs {
   writeFileSync(join(dir, 'basal.png'), basal);
   writeFileSync(join(dir, 'apical.png'), apical);
   const out = join(dir, 'cli.json');
-  execFileSync(
-    process.execPath,
-    [
-      '--import',
-      'tsx',
-      'tests/measure/runMeasure.ts',
-      'measure',
-      join(dir, 'basal.png'),
-      join(dir, 'apical.png'),
-      '--out',
-      out,
-      '--pixel-size',
-      '0.5',
-      '--periodic-x',
-      '--compare',
-      '--force',
-    ],
-    { stdio: 'pipe' },
-  );
+  runCli(['measure', join(dir, 'basal.png'), join(dir, 'apical.png'), '--out', out, '--pixel-size', '0.5', '--periodic-x', '--compare', '--force']);
   return { dir, basal, apical, cli: JSON.parse(readFileSync(out, 'utf8')) as MeasuredResult };
 }
 
@@ -83,16 +66,12 @@ async function dropFiles(page: Page, files: { name: string; bytes: Buffer; type:
 }
 
 async function openApp(page: Page): Promise<void> {
-  await page.addInitScript(() => {
-    const w = window as unknown as { longTasks: number[] };
-    w.longTasks = [];
-    new PerformanceObserver((list) => list.getEntries().forEach((entry) => w.longTasks.push(entry.duration))).observe({ type: 'longtask' });
-  });
-  await page.goto(`/?config=${encodeURIComponent(JSON.stringify(small))}`);
+  await installLongTaskObserver(page);
+  await page.goto(linkTo(small));
   // The simulated sheet's own first run is not part of the measurement.
   await page.waitForFunction(() => ['done', 'no-webgl', 'error'].includes(document.body.dataset.state ?? ''), null, { timeout: 120_000 });
   await page.waitForTimeout(300);
-  await page.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks.splice(0));
+  await takeLongTasks(page);
 }
 
 const dataValue = async (page: Page, selector: string) => Number(await page.locator(selector).getAttribute('data-value'));
@@ -101,7 +80,7 @@ test.describe('measure a tissue in the app', () => {
   let inputs: Inputs;
   test.beforeAll(async () => {
     // A folder of its own: a test's output folder is emptied when that test (re)starts.
-    inputs = makeInputs(mkdtempSync(join(tmpdir(), 'tissue-sheet-measure-')));
+    inputs = makeInputs(tempDir('measure'));
   });
 
   test('dropped label PNGs give the CLI numbers and the model comparison, without long tasks; cells can be picked', async ({ page }, testInfo) => {
@@ -116,7 +95,7 @@ test.describe('measure a tissue in the app', () => {
       { name: 'apical.png', bytes: inputs.apical, type: 'image/png' },
     ]);
     await expect(page.locator('#measure')).toHaveAttribute('data-state', 'compared', { timeout: 120_000 });
-    const longTasks = await page.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks.splice(0));
+    const longTasks = await takeLongTasks(page);
     expect(
       longTasks.filter((d) => d > 50),
       `long tasks ${longTasks.join(', ')} ms`,
@@ -166,8 +145,7 @@ test.describe('measure a tissue in the app', () => {
     );
     expect(whiteOnEvery.every((n) => n > 0)).toBe(true);
     // The result JSON: the CLI's document (timings and file paths aside).
-    const [download] = await Promise.all([page.waitForEvent('download'), page.locator('#measure-json').click()]);
-    const saved = JSON.parse(readFileSync((await download.path())!, 'utf8')) as MeasuredResult;
+    const saved = JSON.parse((await download(page, '#measure-json')).text) as MeasuredResult;
     expect(saved.analyses).toEqual(cli.analyses);
     expect(saved.cells).toEqual(cli.cells);
     expect(saved.comparison!.bestK).toBe(comparison.bestK);

@@ -1,9 +1,6 @@
-import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
-import { runs, waitForRun } from './appHelpers';
+import { downloadExport, linkTo, runs, smallTube, waitForRun } from './appHelpers';
+import { cliRun } from './cli';
 import { readPngText } from '../src/app/model/pngText';
 
 /**
@@ -12,21 +9,7 @@ import { readPngText } from '../src/app/model/pngText';
  * same. Runs stay tiny (60 cells, resolution 128, 2 Lloyd iterations).
  */
 
-const SMALL = {
-  surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 },
-  resolution: 128,
-  cells: 60,
-  seed: 3,
-  lloyd: { maxIterations: 2 },
-  sheet: { surfaceRatio: 2 },
-};
-const linkTo = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
-
-async function download(page: Page, button: string): Promise<{ name: string; bytes: Buffer; text: string }> {
-  const [file] = await Promise.all([page.waitForEvent('download'), page.locator(`[data-export="${button}"]`).click()]);
-  const bytes = readFileSync(await file.path());
-  return { name: file.suggestedFilename(), bytes, text: bytes.toString('utf8') };
-}
+const SMALL = smallTube(3, 2, 2);
 
 async function waitForHeadline(page: Page): Promise<void> {
   await page.waitForFunction(() => document.body.dataset.headline === 'complete', undefined, { timeout: 120_000 });
@@ -67,7 +50,7 @@ test('the headline is the mean over 5 realizations with its 95 % CI and n; reali
   });
 
   // The result JSON: realization 1's cells and analyses, the headline over the 5.
-  const json = JSON.parse((await download(page, 'json')).text);
+  const json = JSON.parse((await downloadExport(page, 'json')).text);
   const exact = json.analyses.find((a: { method: string }) => a.method === 'exact');
   expect(exact.summary.percentScutoids).toBe(drawn);
   expect(json.headline.realizations).toBe(5);
@@ -77,34 +60,27 @@ test('the headline is the mean over 5 realizations with its 95 % CI and n; reali
   expect(json.headline.realizationValues[0]).toBe(drawn);
 
   // Non-JSON exports carry the same headline, and name the engine that ran (not "auto").
-  const csv = (await download(page, 'cells')).text;
+  const csv = (await downloadExport(page, 'cells')).text;
   const headlineLine = `headline: ${mean.toFixed(1)} % scutoids (exact method`;
   expect(csv).toContain(`# ${headlineLine}`);
   expect(csv).toContain(
     `mean of 5 realizations (seeds 3–7), 95 % CI ${low.toFixed(1)}–${high.toFixed(1)} %; realization 1 (seed 3, drawn): ${drawn.toFixed(1)} %`,
   );
   expect(csv).toMatch(/^# engine: exact engine \(engine setting "auto": /m);
-  const ply = (await download(page, 'ply')).text;
+  const ply = (await downloadExport(page, 'ply')).text;
   expect(ply).toContain(`comment ${headlineLine}`);
   expect(ply).toContain('comment engine: exact engine');
-  const png = readPngText(new Uint8Array((await download(page, 'png')).bytes));
+  const png = readPngText(new Uint8Array((await downloadExport(page, 'png')).bytes));
   expect(JSON.parse(png['tissue-sheet:headline'])).toEqual(json.headline);
   expect(png['tissue-sheet:engine']).toBe('exact');
   expect(png['tissue-sheet:method']).toBe('exact');
-  const vtk = (await download(page, 'vtk')).text.split('\n')[1];
+  const vtk = (await downloadExport(page, 'vtk')).text.split('\n')[1];
   expect(vtk).toContain(`exact engine, exact adjacency, ${mean.toFixed(1)} % scutoids (mean n=5, 95% CI ${low.toFixed(1)}-${high.toFixed(1)})`);
-  const svg = (await download(page, 'svg')).text;
+  const svg = (await downloadExport(page, 'svg')).text;
   expect(svg).toContain(headlineLine);
 
   // The CLI with the same configuration and n prints the same headline.
-  const dir = mkdtempSync(join(tmpdir(), 'paper-'));
-  writeFileSync(join(dir, 'cfg.json'), JSON.stringify(json.config));
-  const stderr = execFileSync('node', ['bin/tissue-sheet.mjs', 'run', join(dir, 'cfg.json'), '--out', join(dir, 'out.json'), '--realizations', '5'], {
-    stdio: 'pipe',
-    encoding: 'utf8',
-  });
-  void stderr;
-  const cli = JSON.parse(readFileSync(join(dir, 'out.json'), 'utf8'));
+  const cli = cliRun<typeof json>(json.config, ['--realizations', '5']).result;
   expect(cli.headline.realizationValues).toEqual(json.headline.realizationValues);
   expect(cli.headline.percentScutoids).toBeCloseTo(mean, 10);
   expect(cli.headline.ci95[0]).toBeCloseTo(low, 10);
@@ -126,7 +102,7 @@ test('a control raises n (typed as a person types); n = 1 says it is one realiza
   // The drawn realization did not change, and nothing was run again for it.
   await expect(number).toHaveAttribute('data-drawn', drawn!);
   expect(await runs(page)).toBe(before);
-  const json = JSON.parse((await download(page, 'json')).text);
+  const json = JSON.parse((await downloadExport(page, 'json')).text);
   expect(json.headline.realizationSeeds).toEqual([3, 4, 5, 6, 7, 8, 9, 10]);
 
   await typeInto(page, '#realizations', '1');
@@ -135,10 +111,10 @@ test('a control raises n (typed as a person types); n = 1 says it is one realiza
   await expect(number).toHaveAttribute('data-value', drawn!);
   await expect(page.locator('#headline-ci')).toHaveText('(one realization, n = 1: no confidence interval)');
   await expect(page.locator('#headline-realizations')).toContainText('One realization (seed 3)');
-  const single = JSON.parse((await download(page, 'json')).text);
+  const single = JSON.parse((await downloadExport(page, 'json')).text);
   expect(single.headline.realizations).toBe(1);
   expect(single.headline.ci95).toBeNull();
-  expect((await download(page, 'cells')).text).toContain('one realization (seed 3)');
+  expect((await downloadExport(page, 'cells')).text).toContain('one realization (seed 3)');
 
   await typeInto(page, '#realizations', '0');
   await page.locator('#realizations').blur();

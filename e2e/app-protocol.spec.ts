@@ -1,6 +1,5 @@
-import { readFileSync } from 'node:fs';
-import { expect, test, type Page } from '@playwright/test';
-import { runs, waitForRun } from './appHelpers';
+import { expect, test } from '@playwright/test';
+import { downloadExport, linkTo, runs, smallTube, waitForRun } from './appHelpers';
 
 /**
  * Issue 26: every schema field is reachable in the form (the protocol with the sheet, the rest
@@ -9,20 +8,7 @@ import { runs, waitForRun } from './appHelpers';
  * out and why; Engine "gpu" gives both.
  */
 
-const SMALL = {
-  surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 },
-  resolution: 128,
-  cells: 60,
-  seed: 3,
-  lloyd: { maxIterations: 2 },
-  sheet: { surfaceRatio: 2 },
-};
-const linkTo = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
-
-async function download(page: Page, button: string): Promise<string> {
-  const [file] = await Promise.all([page.waitForEvent('download'), page.locator(`[data-export="${button}"]`).click()]);
-  return readFileSync(await file.path(), 'utf8');
-}
+const SMALL = smallTube(3, 2, 2);
 
 test('every schema field has a control: the protocol in the sheet, engine settings under Advanced', async ({ page }) => {
   await page.goto(linkTo(SMALL));
@@ -55,7 +41,7 @@ test('the lab protocol can be chosen in the form, and the result says it ran und
   const before = await runs(page);
   await page.getByLabel('Protocol', { exact: true }).selectOption('lab');
   await waitForRun(page, before);
-  const result = JSON.parse(await download(page, 'json'));
+  const result = JSON.parse((await downloadExport(page, 'json')).text);
   expect(result.config.sheet.protocol).toBe('lab');
   expect(result.headline.protocol).toBe('lab');
   expect(new URL(page.url()).searchParams.get('config')).toContain('"protocol":"lab"');
@@ -70,19 +56,19 @@ test('"labels and exact" on the exact engine says the labels method was left out
   await expect(note).toHaveAttribute('data-omitted', 'labels');
   await expect(note).toContainText('Labels method left out: engine "auto" took the exact engine');
   await expect(note).toContainText('renderer here is software');
-  const result = JSON.parse(await download(page, 'json'));
+  const result = JSON.parse((await downloadExport(page, 'json')).text);
   expect(result.analyses.map((a: { method: string }) => a.method)).toEqual(['exact']);
   expect(result.headline.omittedMethods).toEqual([{ method: 'labels', reason: expect.stringContaining('software') }]);
-  const csv = await download(page, 'cells');
+  const csv = (await downloadExport(page, 'cells')).text;
   expect(csv).toMatch(/^# methods: labels method left out: engine "auto" took the exact engine/m);
-  expect(await download(page, 'ply')).toContain('comment methods: labels method left out');
+  expect((await downloadExport(page, 'ply')).text).toContain('comment methods: labels method left out');
 
   await page.locator('details.advanced summary').click();
   const before = await runs(page);
   await page.locator('#controls [name="engine"]').selectOption('gpu');
   await waitForRun(page, before);
   await expect(note).toBeHidden();
-  const both = JSON.parse(await download(page, 'json'));
+  const both = JSON.parse((await downloadExport(page, 'json')).text);
   expect(both.analyses.map((a: { method: string }) => a.method).sort()).toEqual(['exact', 'labels']);
   expect(both.headline.omittedMethods).toEqual([]);
   await expect(page.locator('#summary tr').first()).toContainText('labels');

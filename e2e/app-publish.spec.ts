@@ -1,9 +1,8 @@
-import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
-import { runs, waitForRun } from './appHelpers';
+import { downloadExport, linkTo, runs, waitForRun } from './appHelpers';
+import { cliRun, runCli, tempDir } from './cli';
 import { readPngDpi, readPngText } from '../src/app/model/pngText';
 import { SIDE_COLORS } from '../src/view/sideColors';
 
@@ -15,13 +14,6 @@ import { SIDE_COLORS } from '../src/view/sideColors';
 
 const TUBE = { resolution: 128, cells: 60, seed: 5, lloyd: { maxIterations: 3 }, sheet: { surfaceRatio: 2 } };
 const SPHERE = { resolution: 24, cells: 60, seed: 3, lloyd: { maxIterations: 2 }, surface: { kind: 'sphere', radius: 50 }, sheet: { thickness: 10 } };
-const linkTo = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
-
-async function download(page: Page, key: string): Promise<{ name: string; bytes: Buffer; text: string }> {
-  const [file] = await Promise.all([page.waitForEvent('download'), page.locator(`[data-export="${key}"]`).click()]);
-  const bytes = readFileSync(await file.path());
-  return { name: file.suggestedFilename(), bytes, text: bytes.toString('utf8') };
-}
 
 interface Result {
   config: unknown;
@@ -35,7 +27,7 @@ interface Result {
 }
 
 async function resultOf(page: Page): Promise<Result> {
-  return JSON.parse((await download(page, 'json')).text) as Result;
+  return JSON.parse((await downloadExport(page, 'json')).text) as Result;
 }
 
 const exact = (result: Result) => result.analyses.find((a) => a.method === 'exact')!;
@@ -90,7 +82,7 @@ test('VTK and SVG exports parse back to the result: every cell on every surface,
   const n = result.cells.length;
   const surfaces = result.surfaces.length + 1;
 
-  const vtk = await download(page, 'vtk');
+  const vtk = await downloadExport(page, 'vtk');
   expect(vtk.name).toBe('tissue-sheet-tube-seed5-cells.vtk');
   const parsed = parseVtk(vtk.text);
   expect(parsed.title).toContain('seed 5');
@@ -109,7 +101,7 @@ test('VTK and SVG exports parse back to the result: every cell on every surface,
     expect(ids).toEqual(Array.from({ length: n }, (_, i) => i));
   }
 
-  const svg = (await download(page, 'svg')).text;
+  const svg = (await downloadExport(page, 'svg')).text;
   expect(svg).toContain('<svg xmlns="http://www.w3.org/2000/svg"');
   const config = /<metadata id="tissue-sheet-config">([^<]*)<\/metadata>/
     .exec(svg)![1]
@@ -141,7 +133,7 @@ test('figure PNG: chosen DPI in pHYs, pixel width from mm and DPI, provenance in
   const result = await resultOf(page);
   await page.locator('#figure-dpi').selectOption('150');
   await page.locator('#figure-width').fill('120');
-  const png = await download(page, 'figure');
+  const png = await downloadExport(page, 'figure');
   expect(png.name).toBe('tissue-sheet-tube-seed5-figure-150dpi.png');
   const bytes = new Uint8Array(png.bytes);
   expect(readPngDpi(bytes)).toBeCloseTo(150, 1);
@@ -187,9 +179,9 @@ test('a saved project restores the exact view; a result JSON from the CLI opens 
   await page.waitForTimeout(300);
   const before = await page.locator('#view3d').screenshot();
   const info = await page.locator('#cell-info').textContent();
-  const project = await download(page, 'project');
+  const project = await downloadExport(page, 'project');
   expect(project.name).toBe('tissue-sheet-tube-seed5.tissue-sheet.json');
-  const dir = mkdtempSync(join(tmpdir(), 'publish-'));
+  const dir = tempDir('publish');
   const projectPath = join(dir, project.name);
   writeFileSync(projectPath, project.bytes);
 
@@ -209,11 +201,7 @@ test('a saved project restores the exact view; a result JSON from the CLI opens 
   expect(JSON.parse(new URL(page.url()).searchParams.get('config')!)).toEqual(result.config);
 
   // The CLI's result JSON: statistics are the file's, pictures its exact cells; nothing runs.
-  const configPath = join(dir, 'config.json');
-  const resultPath = join(dir, 'result.json');
-  writeFileSync(configPath, JSON.stringify({ ...TUBE, seed: 11 }));
-  execFileSync('node', ['bin/tissue-sheet.mjs', 'run', configPath, '--out', resultPath], { stdio: 'pipe' });
-  const cli = JSON.parse(readFileSync(resultPath, 'utf8')) as Result;
+  const { result: cli, resultPath } = cliRun<Result>({ ...TUBE, seed: 11 });
   await page.locator('#open-file').setInputFiles(resultPath);
   await expect(page.locator('#status')).toContainText('exact cells of its sites');
   expect(await runs(page)).toBe(runsBefore);
@@ -230,12 +218,12 @@ test('a saved project restores the exact view; a result JSON from the CLI opens 
 });
 
 test('a CLI result of a closed surface is run again from its configuration, and says whether it reproduced the file', async ({ page }) => {
-  const dir = mkdtempSync(join(tmpdir(), 'publish-'));
+  const dir = tempDir('publish');
   const configPath = join(dir, 'sphere.json');
   const resultPath = join(dir, 'sphere-result.json');
   writeFileSync(configPath, JSON.stringify(SPHERE));
   try {
-    execFileSync('node', ['bin/tissue-sheet.mjs', 'run', configPath, '--out', resultPath], { stdio: 'pipe' });
+    runCli(['run', configPath, '--out', resultPath]);
   } catch (error) {
     test.skip(true, `the CLI could not run a sphere here (no headless-gl?): ${String((error as Error).message).split('\n')[0]}`);
   }

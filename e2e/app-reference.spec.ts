@@ -1,5 +1,5 @@
 import { expect, test } from '@playwright/test';
-import { runSweep, waitForRun } from './appHelpers';
+import { linkTo, runSweep, smallTube, waitForRun } from './appHelpers';
 
 const HEADER = 'curve,label,kind,quantity,source,x,percent,sd,n';
 const USER_SOURCE = 'digitised by hand for this test from no paper at all (test data)';
@@ -7,15 +7,9 @@ const csv = (rows: string[]) => ({ name: '', mimeType: 'text/csv', buffer: Buffe
 
 /** Reference curves over the sweep chart (docs/reference-curves.md). */
 test('reference curves: the shipped set after a ratio sweep, a user CSV with its source, a bad file refused', async ({ page }) => {
-  const small = {
-    surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 },
-    resolution: 128,
-    cells: 60,
-    seed: 2,
-    lloyd: { maxIterations: 3 },
-    sheet: { surfaceRatio: 1.5 },
-  };
-  await page.goto(`/?config=${encodeURIComponent(JSON.stringify(small))}`);
+  const small = smallTube(2, 3, 1.5);
+
+  await page.goto(linkTo(small));
   await waitForRun(page);
   const overlay = page.locator('#reference-curves');
   const shipped = overlay.locator('[name="reference-shipped"]');

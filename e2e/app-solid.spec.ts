@@ -1,6 +1,5 @@
-import { readFileSync } from 'node:fs';
 import { expect, test, type Page } from '@playwright/test';
-import { waitForRun } from './appHelpers';
+import { download, downloadExport, linkTo, waitForRun } from './appHelpers';
 
 /**
  * The picked cell as a 3D solid, and hover (issue 14): on a tube with a scutoid, the solid is
@@ -10,7 +9,6 @@ import { waitForRun } from './appHelpers';
  */
 
 const TUBE = { resolution: 128, cells: 60, seed: 5, lloyd: { maxIterations: 3 }, sheet: { surfaceRatio: 2 } };
-const linkTo = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
 
 interface Analysis {
   method: string;
@@ -18,8 +16,7 @@ interface Analysis {
 }
 
 async function analysisOf(page: Page): Promise<Analysis> {
-  const [file] = await Promise.all([page.waitForEvent('download'), page.locator('[data-export="json"]').click()]);
-  const result = JSON.parse(readFileSync(await file.path(), 'utf8')) as { analyses: Analysis[] };
+  const result = JSON.parse((await downloadExport(page, 'json')).text) as { analyses: Analysis[] };
   return result.analyses.find((a) => a.method === 'exact')!;
 }
 
@@ -92,11 +89,9 @@ test('a scutoid drawn as a 3D solid: keyboard toggle, sides per surface, pixels 
   expect((await viewPixels(page)).neutral).toBeGreaterThan(0.03 * width * height);
 
   // The solid as PLY: a closed, consistently oriented triangle mesh of this cell.
-  const [file] = await Promise.all([page.waitForEvent('download'), page.locator('#cell-solid-ply').click()]);
-  expect(file.suggestedFilename()).toMatch(new RegExp(`cell${id}-solid\\.ply$`));
-  const lines = readFileSync(await file.path(), 'utf8')
-    .trim()
-    .split('\n');
+  const file = await download(page, '#cell-solid-ply');
+  expect(file.name).toMatch(new RegExp(`cell${id}-solid\\.ply$`));
+  const lines = file.text.trim().split('\n');
   const vertexCount = Number(lines.find((l) => l.startsWith('element vertex'))!.split(' ')[2]);
   const faceCount = Number(lines.find((l) => l.startsWith('element face'))!.split(' ')[2]);
   const body = lines.slice(lines.indexOf('end_header') + 1);

@@ -1,6 +1,6 @@
 import { readFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
-import { runs, waitForRun } from './appHelpers';
+import { downloadExport, injectedScriptRuns, linkTo, runs, smallTube, waitForRun } from './appHelpers';
 import { readPngText } from '../src/app/model/pngText';
 import { parseCsv } from '../src/core/sweep/csv';
 
@@ -11,16 +11,7 @@ import { parseCsv } from '../src/core/sweep/csv';
  * Runs stay tiny (≤ 80 cells, resolution ≤ 256).
  */
 
-const SMALL = {
-  surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 },
-  resolution: 128,
-  cells: 60,
-  seed: 3,
-  lloyd: { maxIterations: 2 },
-  sheet: { surfaceRatio: 2 },
-};
-
-const linkTo = (config: unknown) => `/?config=${encodeURIComponent(typeof config === 'string' ? config : JSON.stringify(config))}`;
+const SMALL = smallTube(3, 2, 2);
 
 const STORAGE_KEY = 'tissue-sheet:last-config';
 
@@ -110,8 +101,7 @@ test('the headline says its method; 0 by construction says why; Voronoi k is sho
   await expect(page.locator('#run-info')).toContainText('2 Lloyd iterations (Voronoi 3)');
   await expect(page.locator('.live-note')).toContainText('Voronoi 3');
   // The exact analysis in the result gives the headline.
-  const [download] = await Promise.all([page.waitForEvent('download'), page.locator('[data-export="json"]').click()]);
-  const result = JSON.parse(readFileSync(await download.path(), 'utf8'));
+  const result = JSON.parse((await downloadExport(page, 'json')).text);
   const exact = result.analyses.find((a: { method: string }) => a.method === 'exact');
   expect(Number(await headline.getAttribute('data-drawn'))).toBe(exact.summary.percentScutoids);
 
@@ -154,10 +144,7 @@ test('exports carry provenance: CSV comments, PNG text, PLY comments; an empty v
   await page.locator('#cancel').click();
   await page.goto(linkTo(SMALL));
   await waitForRun(page);
-  const get = async (name: string) => {
-    const [download] = await Promise.all([page.waitForEvent('download'), page.locator(`[data-export="${name}"]`).click()]);
-    return readFileSync(await download.path());
-  };
+  const get = async (name: string) => (await downloadExport(page, name)).bytes;
   const csv = (await get('cells')).toString('utf8');
   const comments = csv.split('\r\n').filter((l) => l.startsWith('#'));
   expect(comments[0]).toMatch(/tissue-sheet \d+\.\d+\.\d+/);
@@ -242,13 +229,6 @@ test('the page runs under its Content-Security-Policy, which stops an injected i
   await waitForRun(page);
   await expect(page.locator('meta[http-equiv="Content-Security-Policy"]')).toHaveCount(1);
   expect(violations).toEqual([]);
-  const ran = await page.evaluate(async () => {
-    const script = document.createElement('script');
-    script.textContent = 'window.__injected = true;';
-    document.body.append(script);
-    await new Promise((r) => setTimeout(r, 100));
-    return (window as unknown as { __injected?: boolean }).__injected === true;
-  });
-  expect(ran).toBe(false);
+  expect(await injectedScriptRuns(page)).toBe(false);
   expect(violations.some((v) => v.startsWith('script-src'))).toBe(true);
 });

@@ -1,4 +1,5 @@
-import type { Page } from '@playwright/test';
+import { readFileSync } from 'node:fs';
+import type { Browser, Page } from '@playwright/test';
 
 /** How many runs the app has finished (the body's data-runs). */
 export async function runs(page: Page): Promise<number> {
@@ -18,4 +19,66 @@ export async function runSweep(page: Page, field: string, from: number, to: numb
   await page.locator('[name="sweep-steps"]').fill(String(steps));
   await page.locator('[data-sweep="run"]').click();
   await page.locator(`#sweep[data-done="${steps}"]`).waitFor({ timeout: 120_000 });
+}
+
+/** The app's address for a `?config=` link (a string is sent as it is: a malformed link). */
+export const linkTo = (config: unknown): string => `/?config=${encodeURIComponent(typeof config === 'string' ? config : JSON.stringify(config))}`;
+
+/**
+ * The small tube most app tests run, seconds on SwiftShader: 60 cells at resolution 128 on a
+ * tube 256 µm round and 512 µm long; the seed, the Lloyd iterations and the surface ratio vary.
+ */
+export function smallTube(seed: number, maxIterations: number, surfaceRatio: number) {
+  return {
+    surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 },
+    resolution: 128,
+    cells: 60,
+    seed,
+    lloyd: { maxIterations },
+    sheet: { surfaceRatio },
+  };
+}
+
+/** Clicks `selector` and reads the file it downloads: its suggested name, bytes and text. */
+export async function download(page: Page, selector: string): Promise<{ name: string; bytes: Buffer; text: string }> {
+  const [file] = await Promise.all([page.waitForEvent('download'), page.locator(selector).click()]);
+  const bytes = readFileSync(await file.path());
+  return { name: file.suggestedFilename(), bytes, text: bytes.toString('utf8') };
+}
+
+/** The file of the app's export button `key` (its `data-export`). */
+export const downloadExport = (page: Page, key: string) => download(page, `[data-export="${key}"]`);
+
+/** What the app shows of its result: the drawn % scutoids, the summary, the cell table and the seed. */
+export async function shownResult(page: Page) {
+  return {
+    percent: await page.locator('#percent-scutoids').getAttribute('data-drawn'),
+    summary: await page.locator('#summary').textContent(),
+    cells: await page.locator('#cell-table').textContent(),
+    seed: await page.getByLabel('Random seed').inputValue(),
+  };
+}
+
+/** What `link` shows once run in a fresh browser context (no saved session): a link shared with someone else. */
+export async function shownElsewhere(browser: Browser, link: string): Promise<Awaited<ReturnType<typeof shownResult>>> {
+  const other = await browser.newContext();
+  try {
+    const shared = await other.newPage();
+    await shared.goto(link);
+    await waitForRun(shared);
+    return await shownResult(shared);
+  } finally {
+    await other.close();
+  }
+}
+
+/** Whether a script injected into the page runs (the Content-Security-Policy must stop it). */
+export function injectedScriptRuns(page: Page): Promise<boolean> {
+  return page.evaluate(async () => {
+    const script = document.createElement('script');
+    script.textContent = 'window.__injected = true;';
+    document.body.append(script);
+    await new Promise((r) => setTimeout(r, 100));
+    return (window as unknown as { __injected?: boolean }).__injected === true;
+  });
 }

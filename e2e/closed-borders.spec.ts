@@ -1,7 +1,6 @@
-import { readFileSync } from 'node:fs';
 import { decode } from 'fast-png';
 import { expect, test, type Page } from '@playwright/test';
-import { waitForRun } from './appHelpers';
+import { downloadExport, linkTo, waitForRun } from './appHelpers';
 import { SIDE_COLORS } from '../src/view/sideColors';
 
 /**
@@ -13,7 +12,6 @@ import { SIDE_COLORS } from '../src/view/sideColors';
  */
 
 const SPHERE = { resolution: 24, cells: 60, seed: 3, lloyd: { maxIterations: 2 }, surface: { kind: 'sphere', radius: 50 }, sheet: { thickness: 10 } };
-const linkTo = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
 const PALETTE = SIDE_COLORS.map((hex) => [1, 3, 5].map((k) => parseInt(hex.slice(k, k + 2), 16)));
 
 interface Result {
@@ -21,8 +19,7 @@ interface Result {
 }
 
 async function resultOf(page: Page): Promise<Result> {
-  const [file] = await Promise.all([page.waitForEvent('download'), page.locator('[data-export="json"]').click()]);
-  return JSON.parse(readFileSync(await file.path(), 'utf8')) as Result;
+  return JSON.parse((await downloadExport(page, 'json')).text) as Result;
 }
 
 /** Index of the legend colour `rgb` is (each channel within 3), or -1. */

@@ -1,5 +1,5 @@
 import { expect, test, type Page } from '@playwright/test';
-import { waitForRun } from './appHelpers';
+import { linkTo, waitForRun } from './appHelpers';
 
 /**
  * Issue 24: sweeps on closed surfaces other than a sphere, with the default adjacency ("both"),
@@ -25,8 +25,6 @@ const MESH = {
   sheet: { thickness: 2 },
 };
 
-const withConfig = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
-
 /** The page's sweep panel over `field`, from..to in `steps` points; resolves with the panel's final state. */
 async function panelSweep(page: Page, from: number, to: number, steps: number, field = 'sheet.thickness'): Promise<string> {
   await page.locator('[name="sweep-field"]').selectOption(field);
@@ -46,7 +44,7 @@ for (const [name, config] of [
   ['a mesh', MESH],
 ] as const) {
   test(`the page's sweep panel sweeps ${name} with both methods to the end`, async ({ page }) => {
-    await page.goto(withConfig(config));
+    await page.goto(linkTo(config));
     await waitForRun(page);
     expect(await panelSweep(page, 2, 6, 2)).toBe('done');
     await expect(page.locator('#sweep')).toHaveAttribute('data-done', '2');
@@ -88,7 +86,7 @@ for (const [name, config] of [
 test('a page sweep refused before its first run, or failing in a run, says so and stops', async ({ page }) => {
   // Inward past the sphere's radius: the second grid point is refused before anything runs.
   await page.goto(
-    withConfig({
+    linkTo({
       surface: { kind: 'sphere', radius: 30 },
       resolution: 24,
       cells: 40,
@@ -103,7 +101,7 @@ test('a page sweep refused before its first run, or failing in a run, says so an
   await expect(page.locator('[data-sweep="run"]')).toBeEnabled();
 
   // A mesh shrunk until the inward offset folds: known only once the mesh is loaded, in the run.
-  await page.goto(withConfig({ ...MESH, sheet: { thickness: 2, direction: 'inward' } }));
+  await page.goto(linkTo({ ...MESH, sheet: { thickness: 2, direction: 'inward' } }));
   await waitForRun(page);
   expect(await panelSweep(page, 40, 2, 2, 'surface.scale')).toBe('error');
   await expect(page.locator('[data-sweep="status"]')).toContainText('Sweep failed after');

@@ -1,10 +1,7 @@
-import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { join } from 'node:path';
 import { expect, test } from '@playwright/test';
 import { defaultResolution, validateAnyConfig } from '../src/core/config';
-import { runs, waitForRun } from './appHelpers';
+import { downloadExport, linkTo, runs, waitForRun } from './appHelpers';
+import { cliRun } from './cli';
 
 /**
  * One set of defaults (issue 24): a config that leaves out lloyd and resolution runs the same
@@ -15,14 +12,13 @@ import { runs, waitForRun } from './appHelpers';
 const TUBE = { surface: { kind: 'tube', radius: 20, length: 200 }, cells: 50, seed: 2, sheet: { surfaceRatio: 2 } };
 
 test('a link, the element and the CLI run the same config with the schema defaults and give the same headline', async ({ page }) => {
-  await page.goto(`/?config=${encodeURIComponent(JSON.stringify(TUBE))}`);
+  await page.goto(linkTo(TUBE));
   await waitForRun(page);
   await expect(page.locator('#run-info')).toContainText('50 Lloyd iterations (Voronoi 51)');
   await expect(page.locator('#field-resolution')).toHaveValue('');
   await expect(page.locator('#field-resolution')).toHaveAttribute('placeholder', 'default: 512');
   // The realization drawn (the seed's own sites): its exact analysis, from the result JSON export.
-  const [download] = await Promise.all([page.waitForEvent('download'), page.locator('[data-export="json"]').click()]);
-  const shown = JSON.parse(readFileSync((await download.path())!, 'utf8'));
+  const shown = JSON.parse((await downloadExport(page, 'json')).text);
   const app = shown.analyses.find((a: { method: string }) => a.method === 'exact').summary.percentScutoids;
 
   await page.goto('/e2e/pages/interactive.html');
@@ -43,22 +39,16 @@ test('a link, the element and the CLI run the same config with the schema defaul
   expect(element.config).toEqual(validateAnyConfig(TUBE));
   expect(element.voronoiK).toBe(51);
 
-  const dir = mkdtempSync(join(tmpdir(), 'tissue-sheet-defaults-'));
-  writeFileSync(join(dir, 'tube.json'), JSON.stringify(TUBE));
-  execFileSync('xvfb-run', ['-a', process.execPath, 'tests/cli/fromSource.mjs', 'run', join(dir, 'tube.json'), '--out', join(dir, 'out.json')], {
-    stdio: 'pipe',
-    timeout: 120_000,
-  });
-  const cli = JSON.parse(readFileSync(join(dir, 'out.json'), 'utf8'));
+  const cli = cliRun<{ config: unknown; analyses: { method: string; summary: { percentScutoids: number } }[] }>(TUBE).result;
   expect(cli.config).toEqual(validateAnyConfig(TUBE));
   // The same sites, the same exact analysis, whichever entry point ran them.
   expect(element.percent).toBeCloseTo(app, 9);
-  expect(cli.analyses.find((a: { method: string }) => a.method === 'exact').summary.percentScutoids).toBeCloseTo(element.percent, 9);
+  expect(cli.analyses.find((a: { method: string }) => a.method === 'exact')!.summary.percentScutoids).toBeCloseTo(element.percent, 9);
 });
 
 test("the app's default resolution follows the cells until one is typed", async ({ page }) => {
   const sphere = { surface: { kind: 'sphere', radius: 40 }, cells: 60, seed: 3, lloyd: { maxIterations: 1 }, sheet: { thickness: 5 } };
-  await page.goto(`/?config=${encodeURIComponent(JSON.stringify(sphere))}`);
+  await page.goto(linkTo(sphere));
   await waitForRun(page);
   const resolutionOf = (cells: number) => defaultResolution(validateAnyConfig({ ...sphere, cells }));
   await expect(page.locator('#run-info')).toContainText(`cube map 6 x ${resolutionOf(60)}²`);

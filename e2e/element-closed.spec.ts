@@ -1,4 +1,5 @@
-import { expect, test, type Page } from '@playwright/test';
+import { expect, test } from '@playwright/test';
+import { openElementExample } from './elementHelpers';
 
 /**
  * `<tissue-sheet>` on closed surfaces (Debian's Chromium, SwiftShader): surface="sphere",
@@ -6,28 +7,14 @@ import { expect, test, type Page } from '@playwright/test';
  * edge, 80 cells, 2 Lloyd iterations).
  */
 
-async function waitForExample(page: Page): Promise<void> {
-  await page.waitForFunction(() => [...document.querySelectorAll('tissue-sheet')].every((e) => (e as HTMLElement).dataset.done), null, {
-    timeout: 120_000,
-  });
-}
+/** A small sphere (32 texels per cube-face edge, 80 cells, 2 Lloyd iterations), run on demand. */
+const SPHERE = { manual: '', surface: 'sphere', radius: '50', resolution: '32', cells: '80', iterations: '2', thickness: '15' };
 
 test('sphere, ellipsoid and mesh (meshFile, src) attributes; a genus-1 mesh fires an error and the view stays', async ({ page }) => {
-  await page.goto('/examples/element.html');
-  await waitForExample(page);
-  const outcome = await page.evaluate(async () => {
+  await openElementExample(page);
+  const outcome = await page.evaluate(async (attributes) => {
     const element = document.createElement('tissue-sheet');
-    for (const [name, value] of Object.entries({
-      manual: '',
-      surface: 'sphere',
-      radius: '50',
-      resolution: '32',
-      cells: '80',
-      iterations: '2',
-      thickness: '15',
-    })) {
-      element.setAttribute(name, value);
-    }
+    for (const [name, value] of Object.entries(attributes)) element.setAttribute(name, value);
     document.body.append(element);
     const errors: { message: string; field?: string }[] = [];
     element.addEventListener('error', (e) => errors.push(e.detail));
@@ -63,7 +50,7 @@ test('sphere, ellipsoid and mesh (meshFile, src) attributes; a genus-1 mesh fire
       stillShown: element.result?.closed?.mesh?.src,
       caption: element.shadowRoot!.querySelector('.status')!.textContent,
     };
-  });
+  }, SPHERE);
   expect(outcome.sphere).toEqual({ kind: 'sphere', percent: 0, cells: 80, n: 32 });
   expect(outcome.sphereConfig.surface).toEqual({ kind: 'sphere', radius: 50 });
   expect(outcome.ellipsoid).toEqual({ kind: 'ellipsoid', axes: { kind: 'ellipsoid', a: 80, b: 40, c: 40 } });
@@ -78,29 +65,18 @@ test('sphere, ellipsoid and mesh (meshFile, src) attributes; a genus-1 mesh fire
 });
 
 test('cell-hover: the cell under the pointer on a sphere, null once the pointer leaves', async ({ page }) => {
-  await page.goto('/examples/element.html');
-  await waitForExample(page);
-  await page.evaluate(async () => {
+  await openElementExample(page);
+  await page.evaluate(async (attributes) => {
     const element = document.createElement('tissue-sheet');
     element.id = 'hover-sphere';
-    for (const [name, value] of Object.entries({
-      manual: '',
-      surface: 'sphere',
-      radius: '50',
-      resolution: '32',
-      cells: '80',
-      iterations: '2',
-      thickness: '15',
-    })) {
-      element.setAttribute(name, value);
-    }
+    for (const [name, value] of Object.entries(attributes)) element.setAttribute(name, value);
     element.style.cssText = 'position:fixed;left:0;top:0;width:400px;height:300px;z-index:100;display:block';
     document.body.append(element);
     const events: unknown[] = [];
     (window as unknown as { hoverEvents: unknown[] }).hoverEvents = events;
     element.addEventListener('cell-hover', (e) => events.push((e as CustomEvent).detail));
     await element.run();
-  });
+  }, SPHERE);
   const canvas = page.locator('#hover-sphere').locator('canvas').first();
   const box = (await canvas.boundingBox())!;
   await page.mouse.move(box.x + box.width / 2 - 4, box.y + box.height / 2 - 4);

@@ -1,4 +1,5 @@
 import { expect, test } from '@playwright/test';
+import { openElementExample, REMOTE_MESH } from './elementHelpers';
 
 /**
  * Issue 26, embedding: the element fires `waiting` while it waits for permission to load a
@@ -13,20 +14,17 @@ test('waiting event; the question goes with a later unrelated run', async ({ pag
     (url) => url.hostname === 'lab.example',
     (route) => route.abort(),
   );
-  await page.goto('/examples/element.html');
-  const waiting = await page.evaluate(async () => {
-    const element = document.createElement('tissue-sheet');
-    element.id = 'remote';
-    element.setAttribute('surface', 'mesh');
-    element.setAttribute('src', 'https://lab.example/shared/egg.ply');
-    element.setAttribute('cells', '40');
-    element.setAttribute('iterations', '1');
-    element.setAttribute('resolution', '24');
-    element.setAttribute('realizations', '1');
-    const event = new Promise<unknown>((resolve) => element.addEventListener('waiting', (e) => resolve((e as CustomEvent).detail), { once: true }));
-    document.body.append(element);
-    return event;
-  });
+  await openElementExample(page, { waitForRuns: false });
+  const waiting = await page.evaluate(
+    async (attributes) => {
+      const element = document.createElement('tissue-sheet');
+      for (const [name, value] of Object.entries(attributes)) element.setAttribute(name, value);
+      const event = new Promise<unknown>((resolve) => element.addEventListener('waiting', (e) => resolve((e as CustomEvent).detail), { once: true }));
+      document.body.append(element);
+      return event;
+    },
+    { ...REMOTE_MESH, realizations: '1' },
+  );
   expect(waiting).toEqual({ sources: [{ path: '/shared/egg.ply', host: 'lab.example' }] });
   const ask = page.locator('#remote').locator('.ask');
   await expect(ask).toBeVisible();
@@ -43,7 +41,7 @@ test('waiting event; the question goes with a later unrelated run', async ({ pag
 });
 
 test('a misspelled attribute is said with a suggestion; "22,5" is 22.5; an empty attribute is named; the status is under the view', async ({ page }) => {
-  await page.goto('/examples/element.html');
+  await openElementExample(page, { waitForRuns: false });
   const out = await page.evaluate(async () => {
     const element = document.createElement('tissue-sheet');
     element.id = 'typo';

@@ -1,5 +1,6 @@
 import { readFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
+import { openElementExample, REMOTE_MESH } from './elementHelpers';
 
 /**
  * `<tissue-sheet>` as untrusted input (issue 19) and as a trustworthy report (issue 14): the
@@ -9,7 +10,7 @@ import { expect, test } from '@playwright/test';
  */
 
 test('the result event carries the method and the by-construction reason', async ({ page }) => {
-  await page.goto('/examples/element.html');
+  await openElementExample(page, { waitForRuns: false });
   const details = await page.evaluate(async () => {
     const run = async (attributes: Record<string, string>) => {
       const element = document.createElement('tissue-sheet');
@@ -44,18 +45,13 @@ test('a src on another origin is asked about and fetched only after the click', 
       return route.fulfill({ status: 200, body: ply, headers: { 'access-control-allow-origin': '*' } });
     },
   );
-  await page.goto('/examples/element.html');
-  await page.evaluate(() => {
+  await openElementExample(page, { waitForRuns: false });
+  await page.evaluate((attributes) => {
     const element = document.createElement('tissue-sheet');
-    element.id = 'remote';
-    element.setAttribute('surface', 'mesh');
-    element.setAttribute('src', 'https://lab.example/shared/egg.ply');
-    element.setAttribute('cells', '40');
-    element.setAttribute('iterations', '1');
-    element.setAttribute('resolution', '24');
+    for (const [name, value] of Object.entries(attributes)) element.setAttribute(name, value);
     element.addEventListener('result', () => (element.dataset.result = 'yes'));
     document.body.append(element);
-  });
+  }, REMOTE_MESH);
   const ask = page.locator('#remote').locator('.ask');
   await expect(ask).toBeVisible();
   await expect(ask).toContainText('This element asks to load a mesh, /shared/egg.ply, from lab.example');
@@ -67,7 +63,7 @@ test('a src on another origin is asked about and fetched only after the click', 
 });
 
 test('a run over the page budget is refused at once, naming the field and the limit', async ({ page }) => {
-  await page.goto('/examples/element.html');
+  await openElementExample(page, { waitForRuns: false });
   const outcome = await page.evaluate(async () => {
     const element = document.createElement('tissue-sheet');
     element.setAttribute('manual', '');

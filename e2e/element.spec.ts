@@ -1,8 +1,8 @@
-import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { expect, test, type Page } from '@playwright/test';
+import { expect, test } from '@playwright/test';
+import { runCli, tempDir } from './cli';
+import { openElementExample } from './elementHelpers';
 
 /** The parts of a result JSON (README, "Result JSON") these tests read. */
 interface ResultJson {
@@ -16,22 +16,15 @@ interface ResultJson {
 
 /**
  * `<tissue-sheet>` on Debian's Chromium. Screenshot tolerance: maxDiffPixelRatio 0.02.
- * The CLI comparison runs `node bin/tissue-sheet.mjs run` (headless-gl under xvfb-run on Mesa's
+ * The CLI comparison runs `tissue-sheet run` from source (e2e/cli.ts: headless-gl under xvfb-run on Mesa's
  * software rasterizer, where "auto" reads the ids back and sums on the CPU) on the element's own
  * config; the browser is told to run the additive blend path ("auto" would pick readback on
  * SwiftShader too). Both are Lloyd on the same grid from the same seeded sites, so the neighbour
  * sets and % scutoids are compared for equality, energies within a relative 1e-4.
  */
 
-async function waitForExample(page: Page): Promise<void> {
-  await page.waitForFunction(() => [...document.querySelectorAll('tissue-sheet')].every((e) => (e as HTMLElement).dataset.done), null, {
-    timeout: 120_000,
-  });
-}
-
 test('example page with two instances (screenshot)', async ({ page }) => {
-  await page.goto('/examples/element.html');
-  await waitForExample(page);
+  await openElementExample(page);
   await expect(page.locator('#bare').locator('.percent')).toHaveText(/\d+\.\d %/);
   await expect(page.locator('#wide').locator('.percent')).toHaveText(/\d+\.\d %/);
   expect(await page.locator('#bare').evaluate((e) => e.shadowRoot !== null)).toBe(true);
@@ -40,8 +33,7 @@ test('example page with two instances (screenshot)', async ({ page }) => {
 });
 
 test('attributes, properties, methods and events', async ({ page }) => {
-  await page.goto('/examples/element.html');
-  await waitForExample(page);
+  await openElementExample(page);
   const outcome = await page.evaluate(async () => {
     const element = document.createElement('tissue-sheet');
     element.setAttribute('manual', '');
@@ -95,8 +87,7 @@ test('attributes, properties, methods and events', async ({ page }) => {
 });
 
 test('the element fires result with the same numbers as the CLI for the same config', async ({ page }) => {
-  await page.goto('/examples/element.html');
-  await waitForExample(page);
+  await openElementExample(page);
   const browser = await page.evaluate(async () => {
     const element = document.createElement('tissue-sheet');
     element.setAttribute('manual', '');
@@ -112,9 +103,9 @@ test('the element fires result with the same numbers as the CLI for the same con
     await element.run();
     return { config: element.config, detail: (await detail) as { result: ResultJson; percentScutoids: number } };
   });
-  const dir = mkdtempSync(join(tmpdir(), 'tissue-sheet-e2e-'));
+  const dir = tempDir('element');
   writeFileSync(join(dir, 'cfg.json'), JSON.stringify({ ...browser.config, centroidPath: 'auto' }));
-  execFileSync(process.execPath, ['bin/tissue-sheet.mjs', 'run', join(dir, 'cfg.json'), '--out', join(dir, 'out.json')], { stdio: 'pipe', timeout: 120_000 });
+  runCli(['run', join(dir, 'cfg.json'), '--out', join(dir, 'out.json')]);
   const cli = JSON.parse(readFileSync(join(dir, 'out.json'), 'utf8')) as ResultJson;
   const web = browser.detail.result;
 

@@ -1,8 +1,9 @@
-import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
+import { download, linkTo, runs, waitForRun } from './appHelpers';
+import { runCli, tempDir } from './cli';
+import { installLongTaskObserver, takeLongTasks } from './pages/longTasks';
 import { readCsvTable } from '../src/core/sweep/csv';
 import { readRunsCsv } from '../src/core/sweep/runner';
 
@@ -23,33 +24,13 @@ const small = {
   sheet: { surfaceRatio: 1.5 },
 };
 
-async function installLongTaskObserver(page: Page): Promise<void> {
-  await page.addInitScript(() => {
-    const w = window as unknown as { longTasks: number[] };
-    w.longTasks = [];
-    new PerformanceObserver((list) => list.getEntries().forEach((entry) => w.longTasks.push(entry.duration))).observe({ type: 'longtask' });
-  });
-}
-
-const takeLongTasks = (page: Page) => page.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks.splice(0));
-const runs = async (page: Page) => Number((await page.locator('body').getAttribute('data-runs')) ?? 0);
-
-async function waitForRun(page: Page, after: number): Promise<void> {
-  await page.waitForFunction((after) => document.body.dataset.state === 'done' && Number(document.body.dataset.runs ?? 0) > after, after, { timeout: 120_000 });
-}
-
-async function downloadText(page: Page, selector: string): Promise<string> {
-  const [download] = await Promise.all([page.waitForEvent('download'), page.locator(selector).click()]);
-  return readFileSync((await download.path())!, 'utf8');
-}
-
 test.describe('the app stays responsive', () => {
   // A long task is the browser's own scheduling on a shared 2-core machine as much as ours: a
   // heavily loaded machine can push one layout past 50 ms. The limit stays; a retry measures again.
   test.describe.configure({ retries: 2 });
   test('no main-thread task over 50 ms during a run, a slider drag and a sweep; the drag streams pictures', async ({ page }) => {
     await installLongTaskObserver(page);
-    await page.goto(`/?config=${encodeURIComponent(JSON.stringify(small))}`);
+    await page.goto(linkTo(small));
     await waitForRun(page, 0);
     await expect(page.locator('body')).toHaveAttribute('data-compute-site', 'worker');
     await takeLongTasks(page); // loading the page (modules, WebGL contexts) is not a run
@@ -101,7 +82,7 @@ test.describe('the app stays responsive', () => {
   });
 
   test('a cancelled sweep keeps its finished runs; Resume computes the rest; the downloads are the CLI files', async ({ page }) => {
-    await page.goto(`/?config=${encodeURIComponent(JSON.stringify(small))}`);
+    await page.goto(linkTo(small));
     await waitForRun(page, 0);
     await page.locator('[name="sweep-to"]').fill('2.5');
     await page.locator('[name="sweep-steps"]').fill('2');
@@ -117,20 +98,20 @@ test.describe('the app stays responsive', () => {
     });
     await page.locator('[data-sweep="run"]').click();
     await expect(page.locator('#sweep')).toHaveAttribute('data-state', 'cancelled', { timeout: 60_000 });
-    const kept = readRunsCsv(await downloadText(page, '[data-sweep="runs-csv"]')).rows;
+    const kept = readRunsCsv((await download(page, '[data-sweep="runs-csv"]')).text).rows;
     expect(kept.length).toBeGreaterThanOrEqual(2);
     expect(kept.length).toBeLessThan(6);
 
     await page.locator('[data-sweep="resume"]').click();
     await expect(page.locator('#sweep')).toHaveAttribute('data-state', 'done', { timeout: 120_000 });
-    const all = readRunsCsv(await downloadText(page, '[data-sweep="runs-csv"]'));
+    const all = readRunsCsv((await download(page, '[data-sweep="runs-csv"]')).text);
     expect(all.rows).toHaveLength(6);
     // The kept rows are the first ones of the file, unchanged.
     expect(all.rows.slice(0, kept.length)).toEqual(kept);
     expect(new Set(all.rows.map((r) => r.key)).size).toBe(6);
     expect(all.header.slice(0, 4)).toEqual(['key', 'sheet.surfaceRatio', 'realization', 'seed']);
     // Seeded reuse: realization outer, ratio inner (the CLI's order).
-    const aggregate = readCsvTable(await downloadText(page, '[data-sweep="aggregate-csv"]'));
+    const aggregate = readCsvTable((await download(page, '[data-sweep="aggregate-csv"]')).text);
     expect(aggregate.rows.map((r) => [r['sheet.surfaceRatio'], r.runs])).toEqual([
       ['1', '3'],
       ['2.5', '3'],
@@ -167,12 +148,9 @@ test.describe('<tissue-sheet>.sweep()', () => {
 
   test('gives the runs and the aggregate of `tissue-sheet sweep` for the same spec, with a sweep-progress event per run', async ({ page }) => {
     const inPage = await sweep(page, { spec });
-    const dir = mkdtempSync(join(tmpdir(), 'tissue-sheet-sweep-'));
+    const dir = tempDir('sweep');
     writeFileSync(join(dir, 'spec.json'), JSON.stringify(spec));
-    execFileSync('xvfb-run', ['-a', process.execPath, 'tests/cli/fromSource.mjs', 'sweep', join(dir, 'spec.json'), '--out', join(dir, 'out')], {
-      stdio: 'pipe',
-      timeout: 150_000,
-    });
+    runCli(['sweep', join(dir, 'spec.json'), '--out', join(dir, 'out')]);
     const cliRuns = readRunsCsv(readFileSync(join(dir, 'out', 'runs.csv'), 'utf8'));
     const cliAggregate = readFileSync(join(dir, 'out', 'aggregate.csv'), 'utf8');
 
@@ -195,12 +173,9 @@ test.describe('<tissue-sheet>.sweep()', () => {
     const grid = { ...spec, vary: { 'lloyd.maxIterations': [0, 2], 'sheet.surfaceRatio': [1.5, 2.5] }, realizations: 3 };
     const cores = await page.evaluate(() => navigator.hardwareConcurrency);
     const inPage = await sweep(page, { spec: grid, workers: 2 });
-    const dir = mkdtempSync(join(tmpdir(), 'tissue-sheet-sweep-pool-'));
+    const dir = tempDir('sweep-pool');
     writeFileSync(join(dir, 'spec.json'), JSON.stringify(grid));
-    execFileSync('xvfb-run', ['-a', process.execPath, 'tests/cli/fromSource.mjs', 'sweep', join(dir, 'spec.json'), '--out', join(dir, 'out')], {
-      stdio: 'pipe',
-      timeout: 150_000,
-    });
+    runCli(['sweep', join(dir, 'spec.json'), '--out', join(dir, 'out')]);
     console.log(`pool sweep: ${(inPage.runs as unknown[]).length} runs on ${inPage.workers} workers (${cores} cores) in ${Math.round(inPage.ms as number)} ms`);
     expect(inPage.workers).toBe(2);
     // By default the pool leaves one core to the page.

@@ -1,6 +1,7 @@
 import { readFileSync, readdirSync } from 'node:fs';
 import { deflateSync } from 'node:zlib';
 import { expect, test, type Page } from '@playwright/test';
+import { injectedScriptRuns, linkTo, smallTube } from './appHelpers';
 
 /**
  * Issue 19 under the app's Content-Security-Policy (index.html): no 'unsafe-eval' (validators are
@@ -10,15 +11,7 @@ import { expect, test, type Page } from '@playwright/test';
  * relay frame only after the click, and density images are size-checked from their header.
  */
 
-const linkTo = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
-const SMALL = {
-  surface: { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 },
-  resolution: 128,
-  cells: 60,
-  seed: 3,
-  lloyd: { maxIterations: 2 },
-  sheet: { surfaceRatio: 2 },
-};
+const SMALL = smallTube(3, 2, 2);
 
 /** The app's policy, read from index.html (the element's page is served with the same one). */
 function appPolicy(): string {
@@ -142,14 +135,7 @@ test('the element runs examples/element.html under the same policy with no viola
   }
   expect(violations).toEqual([]);
   // The policy is in force on that page: an inline script does not run there either.
-  const ran = await page.evaluate(async () => {
-    const script = document.createElement('script');
-    script.textContent = 'window.__injected = true;';
-    document.body.append(script);
-    await new Promise((r) => setTimeout(r, 100));
-    return (window as unknown as { __injected?: boolean }).__injected === true;
-  });
-  expect(ran).toBe(false);
+  expect(await injectedScriptRuns(page)).toBe(false);
 });
 
 test('an approved foreign density image is fetched by the relay frame, after the click, with no violation', async ({ page }) => {

@@ -5,10 +5,10 @@ import '../../src/element/index';
 import type { AnyConfig } from '../../src/core/config';
 import type { TissueSheetElement } from '../../src/element/TissueSheetElement';
 import { createCanvasContext, WorkerSheetRunner, type SheetResult } from '../../src/run';
+import { observeLongTasks } from './longTasks';
 
 const element = document.querySelector('tissue-sheet') as TissueSheetElement;
-const longTasks: number[] = [];
-new PerformanceObserver((list) => list.getEntries().forEach((entry) => longTasks.push(entry.duration))).observe({ type: 'longtask' });
+const longTasks = observeLongTasks();
 
 /** What a result's numbers are, without its timings (`timings`, every `...Ms`: they differ from run to run). */
 function numbers(result: SheetResult) {

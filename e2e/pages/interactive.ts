@@ -8,10 +8,10 @@ import { runInPage } from '../../src/view/pageRunner';
 import { flipRows, paintSurface } from '../../src/view/sideColors';
 import { viewStack, type ViewStack } from '../../src/view/stack';
 import { PICTURE_LAYOUT, workerPicture, type PictureKind } from '../../src/view/workerPictures';
+import { observeLongTasks } from './longTasks';
 
 const element = document.querySelector('tissue-sheet')!;
-const longTasks: number[] = [];
-new PerformanceObserver((list) => list.getEntries().forEach((entry) => longTasks.push(entry.duration))).observe({ type: 'longtask' });
+const longTasks = observeLongTasks();
 
 /** Runs `spec`; with `abortAfter`, aborts once that many runs have finished. */
 async function sweep(input: { spec: unknown; abortAfter?: number; resume?: string; workers?: number }) {

@@ -3,18 +3,18 @@
 import { validateAnyConfig, type ConfigInput } from '../../src/core/config';
 import { createCanvasContext, SheetRunner } from '../../src/run';
 import { WorkerSheetRunner } from '../../src/run/worker/workerRunner';
+import { observeLongTasks } from './longTasks';
 
 const pageContext = () => createCanvasContext(document.createElement('canvas'));
 
+const longTasks = observeLongTasks();
+
 /** Long tasks (> 50 ms) the page saw while `work` ran, in ms. */
 async function longTasksDuring<T>(work: () => Promise<T>): Promise<{ value: T; longTasks: number[] }> {
-  const longTasks: number[] = [];
-  const observer = new PerformanceObserver((list) => list.getEntries().forEach((entry) => longTasks.push(entry.duration)));
-  observer.observe({ type: 'longtask' });
+  longTasks.length = 0;
   const value = await work();
-  await new Promise((resolve) => setTimeout(resolve, 50));
-  observer.disconnect();
-  return { value, longTasks };
+  await new Promise((resolve) => setTimeout(resolve, 50)); // the observer reports a task after it ends
+  return { value, longTasks: [...longTasks] };
 }
 
 /** The result without timings (which differ run to run). */

@@ -345,29 +345,3 @@ function adjacencyOf(cells: readonly ExactCell[]): SurfaceAdjacency {
   }
   return { count: n, offsets, neighbours, lengths, areas, border };
 }
-
-/** True when the point (texel units) lies inside the cell polygon (texel units), tried at every periodic image. */
-export function cellContains(grid: Grid, polygon: Float64Array, x: number, y: number): boolean {
-  const shiftsX = grid.periodicX ? [0, -grid.width, grid.width] : [0];
-  const shiftsY = grid.periodicY ? [0, -grid.height, grid.height] : [0];
-  for (const oy of shiftsY) {
-    for (const ox of shiftsX) {
-      if (pointInPolygon(polygon, x + ox, y + oy)) return true;
-    }
-  }
-  return false;
-}
-
-/** Even-odd point-in-polygon test; polygon interleaved x, y. */
-function pointInPolygon(polygon: Float64Array, x: number, y: number): boolean {
-  const m = polygon.length / 2;
-  let inside = false;
-  for (let k = 0, l = m - 1; k < m; l = k++) {
-    const xk = polygon[2 * k];
-    const yk = polygon[2 * k + 1];
-    const xl = polygon[2 * l];
-    const yl = polygon[2 * l + 1];
-    if (yk > y !== yl > y && x < ((xl - xk) * (y - yk)) / (yl - yk) + xk) inside = !inside;
-  }
-  return inside;
-}

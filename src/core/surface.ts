@@ -21,8 +21,9 @@ export function embed(surface: SurfaceConfig, grid: Grid, x: number, y: number, 
 }
 
 /**
- * embed's positions and surfaceCoordinates of many points at once (interleaved x, y texel units),
- * into columns: (x, y, z) at 3i, (u, v) at 2i; the same arithmetic, no object per point.
+ * embed's positions and the surface coordinates (µm along the unrolled domain) of many points at
+ * once (interleaved x, y texel units), into columns: (x, y, z) at 3i, (u, v) at 2i; the same
+ * arithmetic, no object per point.
  */
 export function embedAll(
   surface: SurfaceConfig,
@@ -50,9 +51,4 @@ export function embedAll(
     coordinates[2 * i] = x * grid.texelX;
     coordinates[2 * i + 1] = y * grid.texelY;
   }
-}
-
-/** Surface coordinates (µm along the unrolled domain) of a point in texel units. */
-export function surfaceCoordinates(grid: Grid, x: number, y: number): [number, number] {
-  return [x * grid.texelX, y * grid.texelY];
 }

@@ -1,24 +1,19 @@
 /**
  * `<tissue-sheet>`: a sheet computed and shown in any page. Attributes (kebab-case) configure
- * it, properties carry rich data (`config`, `densityImage`, `meshFile`), methods run and export it, and
- * `progress` / `result` / `error` events report on it. A bare element shows the app's small
- * default tube. Runs share one compute context per page and are queued.
+ * it, properties carry rich data (`config`, `densityImage`, `meshFile`), methods run, sweep and
+ * export it, and events report on it (events.ts: `progress`, `result`, `error`, `warning`,
+ * `waiting`, `cell-hover`, `sweep-progress`). A bare element shows the schema's default sheet
+ * (the published tube), as the CLI runs it. Runs go to the page's one pipeline worker
+ * (src/view/pageRunner.ts; the page itself after a fallback, which `computeSite` says); a newer
+ * run cancels the previous one, or, on the slider path, replaces the one waiting (LatestRunner).
+ * Each feature beside the run has a file of its own here (listed in docs/architecture.md,
+ * "Consumers").
  */
 import type { AnyConfig, ConfigInput } from '../core/config';
 import type { GrayImage } from '../core/density';
 import { ConfigError, validateAnyConfig } from '../core/config';
-import type { IterationRecord, MeshFile, SheetOutput, SheetResult, ComputeSite, WorkerSheetRunner } from '../run';
-import {
-  isAbort,
-  LatestRunner,
-  computeSite as pipelineSite,
-  computeContext,
-  runInPage,
-  acquirePipelineRunner,
-  releasePipelineRunner,
-  sheetOnlyChange,
-  FULL_PICTURES_DELAY_MS,
-} from '../view/pageRunner';
+import type { IterationRecord, MeshFile, SheetOutput, SheetResult, ComputeSite } from '../run';
+import { isAbort, LatestRunner, computeSite as pipelineSite, computeContext } from '../view/pageRunner';
 import { sweepInPage } from '../view/pageSweep';
 import type {
   TissueSheetSweepOptions,
@@ -34,15 +29,17 @@ import type {
 import { SheetView3D } from '../view/sheetView3d';
 import { trackCellHover } from '../view/cellHover';
 import { byConstruction } from '../core/analysis/byConstruction';
-import { checkRealizations, DEFAULT_REALIZATIONS } from '../core/analysis/realizations';
-import { describeRealizations } from '../core/analysis/headline';
-import { startRealizations } from '../view/realizations';
 import { checkPageBudget } from '../view/pageBudget';
 import { pendingSources, type ForeignSource } from '../view/sources';
-import { methodCaption, primaryAnalysis, viewStack } from '../view/stack';
+import { primaryAnalysis, viewStack } from '../view/stack';
 import { askToLoad } from './sourcePrompt';
 import { ATTRIBUTES, OTHER_ATTRIBUTES, configFromAttributes } from './attributes';
 import { TEMPLATE } from './template';
+import { unknownAttributes } from './unknownAttributes';
+import { ElementRealizations, realizationStatus, realizationsOf } from './realizations';
+import { LivePath } from './livePath';
+import { StatusLine } from './statusLine';
+import { resultStatus, showDrawn, showHeadline } from './resultDisplay';
 
 export class TissueSheetElement extends HTMLElement {
   static get observedAttributes(): string[] {
@@ -55,20 +52,27 @@ export class TissueSheetElement extends HTMLElement {
   private last: SheetResult | null = null;
   private view: SheetView3D | null = null;
   private readonly runner = new LatestRunner();
+  /** The slider path: a change of `sheet.*` only redraws the result on screen from its seeded surface. */
+  private readonly livePath = new LivePath(this.runner, (full) => this.drawStack(full));
+  /** The other realizations of the latest run's headline, in the element's own worker. */
+  private readonly realizationRuns = new ElementRealizations();
   private scheduled = false;
   private readonly shadow: ShadowRoot;
+  /** What the element is doing, with its standing warnings. */
+  private readonly statusLine: StatusLine;
 
   constructor() {
     super();
     this.shadow = this.attachShadow({ mode: 'open' });
     this.shadow.innerHTML = TEMPLATE;
+    this.statusLine = new StatusLine(this.shadow.querySelector<HTMLElement>('.status')!);
   }
 
-  /** The effective, validated configuration (throws ConfigError when the attributes are invalid). */
   /**
    * The effective configuration. While an attribute is invalid it does not throw (issue 26): it
-   * gives the last valid configuration (of the last run, else the defaults with the `config`
-   * property), and `configError` says what is wrong; `run()` and the `error` event report it.
+   * gives the last valid configuration read (else the last result's, else the defaults with the
+   * `config` property), and `configError` says what is wrong; `run()` and the `error` event
+   * report it.
    */
   get config(): AnyConfig {
     try {
@@ -136,8 +140,7 @@ export class TissueSheetElement extends HTMLElement {
    * result event's headline is their mean with its 95 % CI; the cells shown are realization 1.
    */
   get realizations(): number {
-    const text = this.getAttribute('realizations');
-    return text === null ? DEFAULT_REALIZATIONS : checkRealizations(text, 'realizations');
+    return realizationsOf(this.getAttribute('realizations'));
   }
 
   /** Without the `manual` attribute, the element runs when connected and when configured. */
@@ -162,50 +165,20 @@ export class TissueSheetElement extends HTMLElement {
 
   disconnectedCallback(): void {
     this.runner.cancel();
-    this.realizationsRun?.abort();
-    if (this.realizationsRunner) releasePipelineRunner(this.realizationsRunner);
-    this.realizationsRunner = null;
+    this.realizationRuns.stop();
   }
 
-  /** The worker the element's realizations run in, kept while connected (their seeded surfaces with it). */
-  private realizationsRunner: WorkerSheetRunner | null = null;
-
-  /** Warnings in words (unknown attributes, a fallback to the page), shown under every status. */
-  private warnings: string[] = [];
-  private fellBack = false;
-
-  /** Attributes the element does not know are said, never ignored silently. */
+  /** Attributes the element does not know are said (a warning event each, and in the status). */
   private checkAttributes(): void {
-    const known = new Set([...Object.keys(ATTRIBUTES), ...OTHER_ATTRIBUTES]);
-    const global =
-      /^(id|class|style|title|slot|hidden|lang|dir|tabindex|part|role|is|draggable|translate|inert|autofocus|contenteditable|spellcheck|nonce|exportparts|popover|accesskey|enterkeyhint|inputmode|(data|aria)-.+|on[a-z]+)$/;
-    this.warnings = this.warnings.filter((w) => !w.startsWith('unknown attribute'));
-    for (const name of this.getAttributeNames()) {
-      if (known.has(name) || global.test(name)) continue;
-      const suggestion = closest(name, [...known]);
-      const message = `unknown attribute "${name}" ignored${suggestion ? ` (did you mean "${suggestion}"?)` : ''}`;
-      this.warnings.push(message);
-      this.emit<TissueSheetWarningDetail>('warning', { message, attribute: name, ...(suggestion ? { suggestion } : {}) });
-    }
+    const unknown = unknownAttributes(this.getAttributeNames(), TissueSheetElement.observedAttributes);
+    this.statusLine.setUnknownAttributes(unknown.map((warning) => warning.message));
+    for (const warning of unknown) this.emit<TissueSheetWarningDetail>('warning', warning);
   }
 
   /** Once: runs fell back from the worker to the page; said in the status and as a warning event. */
   private noteFallback(): void {
-    const site = pipelineSite();
-    if (this.fellBack || site.where !== 'page') return;
-    this.fellBack = true;
-    const message = `computed on the page, not in a worker (${site.reason}): the page may pause during runs`;
-    this.warnings.push(message);
-    this.emit<TissueSheetWarningDetail>('warning', { message });
-  }
-
-  /** The realizations of the latest run: a newer run (or disconnecting) stops them. */
-  private realizationsRun: AbortController | null = null;
-
-  private runSignal(): AbortSignal {
-    this.realizationsRun?.abort();
-    this.realizationsRun = new AbortController();
-    return this.realizationsRun.signal;
+    const message = this.statusLine.noteFallback(pipelineSite());
+    if (message) this.emit<TissueSheetWarningDetail>('warning', { message });
   }
 
   attributeChangedCallback(name: string, previous: string | null, next: string | null): void {
@@ -220,11 +193,6 @@ export class TissueSheetElement extends HTMLElement {
       config = this.readConfig();
       this.lastValid = config;
       n = this.realizations;
-    } catch (error) {
-      this.fail(error);
-      throw error;
-    }
-    try {
       // Untrusted attributes: the work is bounded before anything is allocated.
       checkPageBudget(config, computeContext().capabilities.maxTextureSize);
     } catch (error) {
@@ -237,15 +205,13 @@ export class TissueSheetElement extends HTMLElement {
     this.shadow.querySelector<HTMLElement>('.ask')!.hidden = true;
     this.status(`Running ${config.cells} cells…`);
     // A change of `sheet.*` only (surface-ratio, thickness) on the result shown takes the app's
-    // slider path (issue 27): the worker's converged seeded surface is reused and draws draft
-    // pictures, so the result event follows in tens of milliseconds; the full pictures of the
-    // same result are drawn once the changes settle (redrawInFull).
-    const live = this.shown !== null && this.shown.image === this.image && this.shown.mesh === this.mesh && sheetOnlyChange(this.shown.config, config);
+    // slider path (issue 27, livePath.ts): the result event follows in tens of milliseconds.
+    const live = this.livePath.applies(config, this.image, this.mesh);
+    const inputs = { densityImage: this.image ?? undefined, meshFile: config.surface.kind === 'mesh' ? this.mesh : null };
     try {
       const request = {
         config,
-        densityImage: this.image ?? undefined,
-        meshFile: config.surface.kind === 'mesh' ? this.mesh : null,
+        ...inputs,
         onIteration: (record: IterationRecord, maxIterations: number) => {
           this.status(`Lloyd iteration ${record.iteration} / ${maxIterations}`);
           this.emit<TissueSheetProgressDetail>('progress', {
@@ -257,57 +223,31 @@ export class TissueSheetElement extends HTMLElement {
         },
       };
       // The other realizations of the headline start at once in their own worker (issue 27).
-      const realizations = startRealizations(config, n, {
-        signal: this.runSignal(),
-        runner: (this.realizationsRunner ??= acquirePipelineRunner()),
-        inputs: { densityImage: this.image ?? undefined, meshFile: config.surface.kind === 'mesh' ? this.mesh : null },
-      });
+      const realizations = this.realizationRuns.start(config, n, inputs);
       const output = await (live ? this.runner.live(request) : this.runner.start(request));
-      this.shown = { config, image: this.image, mesh: this.mesh, output };
-      if (live) this.runner.debounced(FULL_PICTURES_DELAY_MS, () => void this.redrawInFull(output));
+      this.livePath.show({ config, image: this.image, mesh: this.mesh, output }, live);
       this.noteFallback();
-      const stack = viewStack(output);
       try {
-        this.view?.setStack(stack);
-        this.view?.acceleratePicking();
+        this.drawStack(output);
       } catch (error) {
         this.status(`3D view: ${(error as Error).message}`, true);
       }
       const analysis = primaryAnalysis(output.result);
-      const percent = analysis?.summary.percentScutoids ?? Number.NaN;
-      const method = analysis?.method ?? 'labels';
       const label = this.shadow.querySelector<HTMLElement>('.percent')!;
-      label.textContent = `${percent.toFixed(1)} %`;
-      label.dataset.value = String(percent);
-      label.dataset.method = method;
-      label.title = `scutoids, from ${methodCaption(analysis)}`;
+      showDrawn(label, analysis);
+      const method = analysis?.method ?? 'labels';
       this.shadow.querySelector<HTMLElement>('.method')!.textContent = method;
-      const rule = byConstruction(output.result.config);
-      const iterations = output.result.lloyd.iterations.length;
       // The headline over realizations (realization 1 is on screen): the result event carries it.
-      const headline = await realizations.combine(
-        output,
-        (done, total) => done < total && this.status(`Realization ${done + 1} of ${total} (seed ${config.seed + done}) for the mean % scutoids…`),
-      );
+      const headline = await realizations.combine(output, (done, total) => done < total && this.status(realizationStatus(config, done, total)));
       const result = { ...output.result, headline };
       this.last = result;
-      if (headline && headline.realizations > 1 && headline.percentScutoids !== null) {
-        label.textContent = `${headline.percentScutoids.toFixed(1)} %`;
-        label.dataset.value = String(headline.percentScutoids);
-      }
-      label.dataset.drawn = String(percent);
-      label.dataset.realizations = String(headline?.realizations ?? 1);
-      const over = headline ? describeRealizations(headline) : 'one realization';
-      label.title = `scutoids, from ${methodCaption(analysis)}; ${over}`;
-      this.status(
-        rule
-          ? rule.message
-          : `${config.cells} cells, Voronoi ${iterations + 1} (${iterations} Lloyd iterations), ${config.surface.kind}, ${method} adjacency; ${over}`,
-      );
+      const over = showHeadline(label, analysis, headline);
+      this.status(resultStatus(config, output.result, analysis, over));
+      const rule = byConstruction(config);
       this.emit<TissueSheetResultDetail>('result', {
         result,
         headline,
-        percentScutoids: percent,
+        percentScutoids: analysis?.summary.percentScutoids ?? Number.NaN,
         method,
         ...(rule ? { byConstruction: rule.message } : {}),
       });
@@ -318,24 +258,10 @@ export class TissueSheetElement extends HTMLElement {
     }
   }
 
-  /** The configuration and inputs of the result on screen (a live change is one of `sheet.*` only). */
-  private shown: { config: AnyConfig; image: GrayImage | null; mesh: MeshFile | null; output: SheetOutput } | null = null;
-
-  /**
-   * After live changes have settled: the result on screen fetched again with its full pictures
-   * (the worker's cached seeded surface: the same numbers) and only the 3D view redrawn, as the
-   * app does after a drag.
-   */
-  private async redrawInFull(output: SheetOutput): Promise<void> {
-    if (this.shown?.output !== output || this.runner.running) return;
-    try {
-      const full = await runInPage({ config: output.result.config, densityImage: this.image ?? undefined, meshFile: this.shown.mesh });
-      if (this.shown?.output !== output || this.runner.running) return;
-      this.view?.setStack(viewStack(full));
-      this.view?.acceleratePicking();
-    } catch {
-      // The draft pictures stay: they show the same result.
-    }
+  /** The stack of `output` in the 3D view (throws when the view cannot draw it). */
+  private drawStack(output: SheetOutput): void {
+    this.view?.setStack(viewStack(output));
+    this.view?.acceleratePicking();
   }
 
   /** Where runs compute: `{ where: 'worker' }`, or `{ where: 'page', reason }` after a fallback. */
@@ -408,9 +334,7 @@ export class TissueSheetElement extends HTMLElement {
   }
 
   private status(text: string, error = false): void {
-    const line = this.shadow.querySelector<HTMLElement>('.status')!;
-    line.textContent = this.warnings.length ? `${text} — ${this.warnings.join('; ')}.` : text;
-    line.classList.toggle('error', error);
+    this.statusLine.show(text, error);
   }
 
   private fail(error: unknown): void {
@@ -424,32 +348,4 @@ export class TissueSheetElement extends HTMLElement {
   private emit<T>(type: keyof TissueSheetEventMap, detail: T): void {
     this.dispatchEvent(new CustomEvent(type, { detail, bubbles: true, composed: true }));
   }
-}
-
-/** The known name nearest to `name` (edit distance at most 2), or null. */
-function closest(name: string, known: readonly string[]): string | null {
-  let best: string | null = null;
-  let bestDistance = 3;
-  for (const candidate of known) {
-    const d = editDistance(name, candidate);
-    if (d < bestDistance) {
-      bestDistance = d;
-      best = candidate;
-    }
-  }
-  return best;
-}
-
-function editDistance(a: string, b: string): number {
-  const row = Array.from({ length: b.length + 1 }, (_, j) => j);
-  for (let i = 1; i <= a.length; i++) {
-    let previous = row[0];
-    row[0] = i;
-    for (let j = 1; j <= b.length; j++) {
-      const current = row[j];
-      row[j] = Math.min(row[j] + 1, row[j - 1] + 1, previous + (a[i - 1] === b[j - 1] ? 0 : 1));
-      previous = current;
-    }
-  }
-  return row[b.length];
 }

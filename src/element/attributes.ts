@@ -9,14 +9,14 @@
  * number, string, boolean) and which surface kinds take it are read from the config schema.
  */
 import { ConfigError, configSchema, validateAnyConfig, type AnyConfig, type ConfigInput, type SurfaceConfig } from '../core/config';
-
-/** The schema's default surface (the published tube). */
-const DEFAULT_SURFACE = configSchema.properties.surface.default as SurfaceConfig;
 import { densityPreset, surfaceOfKind } from '../core/config/presets';
 import { layoutOfKind, surfaceLayout } from '../core/config/surfaceLayout';
 import { kindsWithField, schemaField } from '../core/config/schemaFields';
 import { setPath } from '../core/sweep';
 import { readDecimal } from '../core/config/decimal';
+
+/** The schema's default surface (the published tube). */
+const DEFAULT_SURFACE = configSchema.properties.surface.default as SurfaceConfig;
 
 type Kind = 'number' | 'string' | 'boolean' | 'nullable-number';
 
@@ -115,12 +115,11 @@ export function configFromAttributes(element: Element, base: ConfigInput | null,
   const baseKind = (input.surface as { kind?: string }).kind ?? '';
   if (surfaceKind !== null && surfaceKind !== baseKind) {
     // A different kind starts from that kind's required fields (an empty plane/tube is invalid).
-    const layout = layoutOfKind(surfaceKind);
-    input.surface =
-      layout.name === 'cube map' ? surfaceOfKind({ kind: 'tube', radius: 1, length: 1 }, surfaceKind) : surfaceOfKind(DEFAULT_SURFACE, surfaceKind);
+    // (A closed kind's defaults; a plane or tube keeps the default tube's unrolled size.)
+    input.surface = surfaceOfKind(DEFAULT_SURFACE, surfaceKind);
     // A resolution means texels along the longer side on a plane or tube, per cube-face edge on
     // a closed surface: without its attribute, the default of the new layout.
-    if (layout !== layoutOfKind(baseKind) && !element.hasAttribute('resolution')) input.resolution = null;
+    if (layoutOfKind(surfaceKind) !== layoutOfKind(baseKind) && !element.hasAttribute('resolution')) input.resolution = null;
   }
   const surface = input.surface as { kind?: string; src?: string };
   if (surface.kind === 'mesh' && meshName && !element.hasAttribute('src')) surface.src = meshName;

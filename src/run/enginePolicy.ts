@@ -1,4 +1,5 @@
 import { engineNameFor, type AnyConfig } from '../core/config';
+import { LAYOUTS } from '../core/config/surfaceLayout';
 import { chooseCentroidPath, type CentroidPath, type SurfaceFamilyName } from '../gpu/centroidPolicy';
 import type { GpuCapabilities } from '../gpu/context';
 
@@ -41,14 +42,13 @@ export function chooseEngine(config: AnyConfig, family: SurfaceFamilyName, capab
     );
   }
   const path = chooseCentroidPath(family, config.centroidPath, capabilities);
-  const why =
-    family === 'cube map'
-      ? 'the cube-map GPU engine, the only engine for closed surfaces'
-      : config.engine === 'gpu'
-        ? 'requested (engine "gpu")'
-        : config.sheet.adjacency === 'labels'
-          ? 'auto: the labels method needs label textures'
-          : 'auto: a hardware GPU';
+  const why = !LAYOUTS[family].exactEngine
+    ? `the GPU engine on the ${family}, the only engine for a ${config.surface.kind}`
+    : config.engine === 'gpu'
+      ? 'requested (engine "gpu")'
+      : config.sheet.adjacency === 'labels'
+        ? 'auto: the labels method needs label textures'
+        : 'auto: a hardware GPU';
   return { name: 'gpu', family, centroidPath: path.path, reason: `${why}; centroid path ${path.path} (${path.reason})` };
 }
 

@@ -130,18 +130,6 @@ export function signedVolume(positions: ArrayLike<number>, indices: ArrayLike<nu
   return meshSignedVolume({ positions, indices });
 }
 
-/** Area of a polygon given as interleaved x, y (positive counter-clockwise). */
-/** Area of a polygon given as interleaved x, y (positive counter-clockwise). */
-export function polygonArea(polygon: ArrayLike<number>): number {
-  let area = 0;
-  const n = polygon.length / 2;
-  for (let i = 0; i < n; i++) {
-    const j = (i + 1) % n;
-    area += polygon[2 * i] * polygon[2 * j + 1] - polygon[2 * j] * polygon[2 * i + 1];
-  }
-  return area / 2;
-}
-
 /** Planes and tubes: each surface's exact polygon in µm of the unrolled surface, around the site. */
 function planarSections(stack: ViewStack, id: number): Section[] | null {
   const config = stack.result.config;

@@ -92,5 +92,5 @@ export function viewStack(output: SheetOutput): ViewStack {
     valid[i] = stats ? (stats.valid ? 1 : 0) : result.cells[i]?.touchesBorder ? 0 : 1;
     scutoid[i] = stats?.scutoid ? 1 : 0;
   }
-  return { result, analysis, surfaces, valid, scutoid, closed: result.closed !== undefined || surfaceLayout(result.config).name === 'cube map' };
+  return { result, analysis, surfaces, valid, scutoid, closed: result.closed !== undefined || !surfaceLayout(result.config).flatPicture };
 }

@@ -1,14 +1,14 @@
 /**
  * The measured tissue in the project file (src/app/model/measureProject.ts, projectSections.ts,
  * project.ts): a real simulated sheet and a real measured tissue saved through projectJson, read
- * back through openFile and the sections; the kept files decode to the same bytes and, measured
+ * back through openParsed and the sections; the kept files decode to the same bytes and, measured
  * again, give the saved numbers. Bad sections are refused naming the field.
  */
 import { beforeAll, describe, expect, it } from 'vitest';
 import { validateConfig } from '../../src/core/config';
 import { measureTissue, type MeasuredResult } from '../../src/core/measure';
 import { fromBase64, readMeasuredSection, sameMeasurement, toBase64, type MeasuredSection } from '../../src/app/model/measureProject';
-import { openFile, projectJson } from '../../src/app/model/project';
+import { openParsed, parseFileJson, projectJson } from '../../src/app/model/project';
 import { openSections, registerProjectSection } from '../../src/app/model/projectSections';
 import { reassign } from '../../src/app/panels/layerAssign';
 import { runSheet, type SheetOutput } from '../../src/run';
@@ -62,7 +62,7 @@ describe('the measured tissue in a project file', () => {
     let opened: unknown = null;
     registerProjectSection('measured', { save: () => section, open: (data) => void (opened = data) });
     const text = projectJson(output, { camera: null, visible: [true, true], cut: 0, highlightScutoids: true, selectedCell: null });
-    const file = openFile(text, 'p.tissue-sheet.json');
+    const file = openParsed(parseFileJson(text, 'p.tissue-sheet.json'), 'p.tissue-sheet.json');
     expect(file.kind).toBe('project');
     await openSections(file.kind === 'project' ? file.sections : undefined, 'p.tissue-sheet.json');
     const back = readMeasuredSection(opened, 'p.tissue-sheet.json');

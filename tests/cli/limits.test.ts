@@ -1,6 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { ConfigError, validateAnyConfig } from '../../src/core/config';
-import { checkBudget, checkLimits, estimateRun, MAX_EXTENT_UM, MIN_EXTENT_UM, stackGrids } from '../../src/core/config/limits';
+import { checkBudget, checkLimits, estimateRun, MAX_EXTENT_UM, MIN_EXTENT_UM } from '../../src/core/config/limits';
+import { surfaceLayout } from '../../src/core/config/surfaceLayout';
 
 const budget = { maxTextureSize: 16384, maxWork: 2 ** 34, maxBytes: 8 * 2 ** 30 };
 const tube = { surface: { kind: 'tube', radius: 16, length: 200 }, resolution: 64, cells: 20, lloyd: { maxIterations: 2 } };
@@ -33,7 +34,7 @@ describe('scale guards', () => {
     // 2π·3 µm around, 4000 µm long: 8 texels around need resolution 8 x 4000 / 18.85 = 1698
     expect(fixable.message).toMatch(/5 x 1024 texels.*raise resolution to at least 1698/);
     const fixed = validateAnyConfig({ ...tube, surface: { kind: 'tube', radius: 3, length: 4000 }, resolution: 1698 });
-    expect(stackGrids(fixed)[0].width).toBeGreaterThanOrEqual(8);
+    expect(surfaceLayout(fixed).grids()[0].width).toBeGreaterThanOrEqual(8);
     expect(() => checkLimits(fixed, budget, '')).not.toThrow();
   });
 
@@ -51,7 +52,7 @@ describe('scale guards', () => {
 
   it('estimates work as seeded texels x iterations + every surface once, and refuses beyond the budget', () => {
     const config = validateAnyConfig({ ...tube, sheet: { surfaceRatio: 2, layers: 1 } });
-    const grids = stackGrids(config);
+    const grids = surfaceLayout(config).grids();
     expect(grids.map((g) => g.width)).toEqual([32, 48, 64]); // circumference scales 1, 1.5, 2
     const e = estimateRun(config);
     expect(e.work).toBe(32 * 64 * 2 + (32 + 48 + 64) * 64);

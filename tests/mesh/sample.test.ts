@@ -1,10 +1,36 @@
 import { describe, expect, it } from 'vitest';
 import { directionToTexel, texelDirection } from '../../src/core/cubemap/cubemap';
-import { closestPointOnEllipsoid, createMeshProjector, sampleSurface } from '../../src/core/cubemap/sample';
+import { BufferAttribute, BufferGeometry, Vector3 } from 'three';
+import { MeshBVH } from 'three-mesh-bvh';
+import { closestPointOnEllipsoid, sampleSurface } from '../../src/core/cubemap/sample';
 import { icosphere, mulberry32 } from '../../src/core/mesh/generate';
 import { sphericalParameterization } from '../../src/core/mesh/spherical';
-import { surfaceArea, type Vec3 } from '../../src/core/mesh/types';
+import { surfaceArea, type TriangleMesh, type Vec3 } from '../../src/core/mesh/types';
 import { loadShipped } from './helpers';
+
+interface ProjectedPoint {
+  point: Vec3;
+  /** Triangle of the mesh the point lies on. */
+  triangle: number;
+  distance: number;
+}
+
+/**
+ * Closest-point projector onto a triangle mesh from three-mesh-bvh's MeshBVH.closestPointToPoint:
+ * an oracle independent of the sampler (build once, project many points).
+ */
+function createMeshProjector(mesh: TriangleMesh): (p: Vec3) => ProjectedPoint {
+  const g = new BufferGeometry();
+  g.setAttribute('position', new BufferAttribute(mesh.positions.slice(), 3));
+  g.setIndex(new BufferAttribute(mesh.indices.slice(), 1));
+  const bvh = new MeshBVH(g, { indirect: true });
+  const q = new Vector3();
+  const target = { point: new Vector3(), distance: 0, faceIndex: 0 };
+  return (p: Vec3) => {
+    bvh.closestPointToPoint(q.set(p[0], p[1], p[2]), target);
+    return { point: [target.point.x, target.point.y, target.point.z], triangle: target.faceIndex, distance: target.distance };
+  };
+}
 
 /** Ellipsoid area by a fine midpoint rule in (θ, φ) over p = (a sinθ cosφ, b sinθ sinφ, c cosθ). */
 function ellipsoidAreaNumerical(a: number, b: number, c: number, nt = 1500, np = 3000): number {

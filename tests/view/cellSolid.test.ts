@@ -6,10 +6,21 @@
 import { describe, expect, it } from 'vitest';
 import { validateAnyConfig, type ConfigInput } from '../../src/core/config';
 import { runSheet } from '../../src/run/runSheet';
-import { cellSolid, polygonArea, signedVolume, type CellSolid } from '../../src/view/cellSolid';
+import { cellSolid, signedVolume, type CellSolid } from '../../src/view/cellSolid';
 import { surfacePolygons } from '../../src/view/cellPolygons';
 import { viewStack, type ViewStack } from '../../src/view/stack';
 import { useHeadlessContext } from '../gpu/context';
+
+/** Area of a polygon given as interleaved x, y (positive counter-clockwise). */
+function polygonArea(polygon: ArrayLike<number>): number {
+  let area = 0;
+  const n = polygon.length / 2;
+  for (let i = 0; i < n; i++) {
+    const j = (i + 1) % n;
+    area += polygon[2 * i] * polygon[2 * j + 1] - polygon[2 * j] * polygon[2 * i + 1];
+  }
+  return area / 2;
+}
 
 const context = useHeadlessContext();
 

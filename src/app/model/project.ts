@@ -84,11 +84,6 @@ export type OpenedFile =
   | { kind: 'result'; output: SheetOutput; drawnFrom: 'cells' }
   | { kind: 'result-rerun'; result: SheetResult };
 
-/** A project file or a CLI result JSON, checked; `name` is used in messages. */
-export function openFile(text: string, name: string): OpenedFile {
-  return openParsed(parseFileJson(text, name), name);
-}
-
 /** The JSON of an opened file, or a one-line refusal naming it. */
 export function parseFileJson(text: string, name: string): unknown {
   try {
@@ -98,7 +93,10 @@ export function parseFileJson(text: string, name: string): unknown {
   }
 }
 
-/** openFile of an already parsed file (a result whose cells came from its side file: model/resultFiles.ts). */
+/**
+ * A project file or a CLI result JSON, parsed (parseFileJson; a result whose cells came from its
+ * side file: model/resultFiles.ts), checked; `name` is used in messages.
+ */
 export function openParsed(data: unknown, name: string): OpenedFile {
   if (!isObject(data)) throw new Error(`${name}: not a tissue-sheet file (a JSON object was expected).`);
   if (data.format === PROJECT_FORMAT) {

@@ -16,9 +16,6 @@ import { layoutOfKind } from '../../core/config/surfaceLayout';
 import { kindsWithField, schemaField, schemaUnion } from '../../core/config/schemaFields';
 import { SAMPLE_MESHES, sampleName, sampleUrl } from '../model/meshFiles';
 
-// The presets moved to core/config/presets.ts (the element needs them too); kept here for importers.
-export { DEFAULT_ELLIPSOID, DEFAULT_MESH_SCALE, DEFAULT_MESH_SRC, DEFAULT_SPHERE_RADIUS, densityPreset, surfaceOfKind } from '../../core/config/presets';
-
 /** The form's config: a resolution left null is the default (defaultResolution), recomputed as the fields it depends on change. */
 type Config = ConfigDraft;
 

@@ -82,21 +82,6 @@ export function analyzeTubeLab(
 }
 
 /**
- * The lab's valid set of one realization: 1 for every cell that touches an open end of the tube
- * on any layer s = 1 : step : validityMaxRatio (decided once, so every ratio uses the same cells).
- */
-export function labInvalidCells(
-  grid: Grid,
-  sites: ArrayLike<number>,
-  settings: LabProtocolSettings = LAB_PROTOCOL,
-  surfaceOf: SurfaceOf = exactVoronoiSurface,
-): Uint8Array {
-  const count = Math.floor(sites.length / 2);
-  const surfaceAt = surfaceCache(grid, sites, surfaceOf);
-  return invalidOnAnySurface(validityRatios(settings).map(surfaceAt), count);
-}
-
-/**
  * The lab protocol's statistics of an analysed stack (any adjacency method): cells in `invalid`
  * or touching an open end on a surface of the stack are excluded, and intercalations are
  * accumulated layer to layer, |∪ lost| + |∪ won|.

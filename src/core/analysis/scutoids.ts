@@ -153,15 +153,6 @@ function neighbourSets(adj: SurfaceAdjacency, count: number): { offsets: Int32Ar
   return { offsets, ids };
 }
 
-/** Neighbours won and lost by cell i between two surfaces (ids). */
-export function neighbourExchange(from: SurfaceAdjacency, to: SurfaceAdjacency, i: number): { won: number[]; lost: number[] } {
-  const a = neighbourSet(from, i);
-  const b = neighbourSet(to, i);
-  const sa = new Set(a);
-  const sb = new Set(b);
-  return { won: [...b].filter((x) => !sa.has(x)), lost: [...a].filter((x) => !sb.has(x)) };
-}
-
 /** Per-cell statistics and summary of a stack of surfaces (see the module comment). */
 export function analyzeSurfaces(surfaces: SurfaceAdjacency[], options: AnalysisOptions = {}): ScutoidAnalysis {
   if (surfaces.length === 0) throw new Error('analyzeSurfaces needs at least one surface');

@@ -232,10 +232,13 @@ export function checkClosedFeasible(config: ClosedConfig, grid: CubeGrid = makeC
   checkClosedSheet(config);
 }
 
-/** The sheet of a closed surface: a thickness (no ratio), methods that exist there, no fold. */
+/** The sheet of a closed surface: the GPU engine, a thickness (no ratio), methods that exist there, no fold. */
 export function checkClosedSheet(config: ClosedConfig): void {
-  checkMethods(config);
   const { surface, sheet } = config;
+  if (config.engine === 'exact') {
+    throw new ConfigError('engine', `engine: "exact" runs planes and tubes only; a ${surface.kind} runs on the GPU cube-map engine: use "auto" or "gpu"`);
+  }
+  checkMethods(config);
   if (sheet.surfaceRatio !== null) {
     throw new ConfigError(
       'sheet.surfaceRatio',

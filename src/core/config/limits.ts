@@ -68,11 +68,6 @@ export interface RunEstimate {
   cellBytes: number;
 }
 
-/** Texel sizes of every surface of the stack (planar: unrolled grids; closed: n x 6n cube maps). */
-export function stackGrids(config: AnyConfig): { width: number; height: number }[] {
-  return surfaceLayout(config).grids();
-}
-
 export function estimateRun(config: AnyConfig): RunEstimate {
   const layout = surfaceLayout(config);
   const grids = layout.grids();

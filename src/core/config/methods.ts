@@ -33,10 +33,6 @@ export function steppedOffsets(total: number, step: number): number[] {
 
 export function checkMethods(config: AnyConfig): void {
   const { sheet, surface } = config;
-  const closed = surface.kind === 'sphere' || surface.kind === 'ellipsoid' || surface.kind === 'mesh';
-  if (config.engine === 'exact' && closed) {
-    throw new ConfigError('engine', `engine: "exact" runs planes and tubes only; a ${surface.kind} runs on the GPU cube-map engine: use "auto" or "gpu"`);
-  }
   if (config.engine === 'exact' && sheet.adjacency === 'labels') {
     throw new ConfigError(
       'sheet.adjacency',

@@ -259,27 +259,3 @@ export function closestPointOnEllipsoid(p: Vec3, a: number, b: number, c: number
   // A zero coordinate stays zero (and avoids 0/0 when λ = -r_min²).
   return [0, 1, 2].map((k) => (q[k] === 0 ? 0 : (s[k] * r[k] * r[k] * q[k]) / (r[k] * r[k] + l))) as Vec3;
 }
-
-export interface ProjectedPoint {
-  point: Vec3;
-  /** Triangle of the mesh the point lies on. */
-  triangle: number;
-  distance: number;
-}
-
-/**
- * Closest-point projector onto a triangle mesh (three-mesh-bvh's MeshBVH.closestPointToPoint):
- * build once, then project every site after each Lloyd step.
- */
-export function createMeshProjector(mesh: TriangleMesh): (p: Vec3) => ProjectedPoint {
-  const g = new BufferGeometry();
-  g.setAttribute('position', new BufferAttribute(mesh.positions.slice(), 3));
-  g.setIndex(new BufferAttribute(mesh.indices.slice(), 1));
-  const bvh = new MeshBVH(g, { indirect: true });
-  const q = new Vector3();
-  const target = { point: new Vector3(), distance: 0, faceIndex: 0 };
-  return (p: Vec3) => {
-    bvh.closestPointToPoint(q.set(p[0], p[1], p[2]), target);
-    return { point: [target.point.x, target.point.y, target.point.z], triangle: target.faceIndex, distance: target.distance };
-  };
-}

@@ -216,11 +216,6 @@ export class HeatGeodesics {
   }
 }
 
-/** Geodesic distance from `sources` (vertex ids) to every vertex. Factors the matrices each call. */
-export function geodesicDistances(mesh: TriangleMesh, sources: ArrayLike<number>, options?: HeatOptions): Float64Array {
-  return new HeatGeodesics(mesh, options).distance(sources);
-}
-
 export interface GeodesicVoronoi {
   /** Per vertex: index (into siteVertexIds) of the nearest site. */
   labels: Int32Array;

@@ -57,36 +57,6 @@ export function csrFromTriplets(n: number, rows: ArrayLike<number>, cols: ArrayL
   return { n, rowPtr, colIdx: Int32Array.from(colIdx), values: Float64Array.from(values) };
 }
 
-/** y = A x */
-export function csrMultiply(A: CsrMatrix, x: ArrayLike<number>, y = new Float64Array(A.n)): Float64Array {
-  for (let i = 0; i < A.n; i++) {
-    let s = 0;
-    for (let p = A.rowPtr[i]; p < A.rowPtr[i + 1]; p++) s += A.values[p] * x[A.colIdx[p]];
-    y[i] = s;
-  }
-  return y;
-}
-
-/** a A + b B for matrices with any patterns (result pattern = union). */
-export function csrAdd(A: CsrMatrix, a: number, B: CsrMatrix, b: number): CsrMatrix {
-  const rows: number[] = [],
-    cols: number[] = [],
-    vals: number[] = [];
-  for (const [M, s] of [
-    [A, a],
-    [B, b],
-  ] as const) {
-    for (let i = 0; i < M.n; i++) {
-      for (let p = M.rowPtr[i]; p < M.rowPtr[i + 1]; p++) {
-        rows.push(i);
-        cols.push(M.colIdx[p]);
-        vals.push(s * M.values[p]);
-      }
-    }
-  }
-  return csrFromTriplets(A.n, rows, cols, vals);
-}
-
 /** Adds d to the diagonal (d: one value per row). The diagonal must be in the pattern. */
 export function csrAddDiagonal(A: CsrMatrix, d: ArrayLike<number>, scale = 1): CsrMatrix {
   const values = A.values.slice();

@@ -26,11 +26,6 @@ export function faceCount(mesh: TriangleMesh): number {
   return mesh.indices.length / 3;
 }
 
-export function getVertex(mesh: TriangleMesh, i: number): Vec3 {
-  const p = mesh.positions;
-  return [p[3 * i], p[3 * i + 1], p[3 * i + 2]];
-}
-
 /** Axis-aligned bounding box; `diagonal` is the length of its diagonal (0 for an empty mesh). */
 export function boundingBox(positions: ArrayLike<number>): { min: Vec3; max: Vec3; diagonal: number } {
   const min: Vec3 = [Infinity, Infinity, Infinity];
