@@ -1,6 +1,4 @@
-import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
 import {
@@ -15,6 +13,9 @@ import { parseCsv } from '../src/core/sweep';
 import { readPngText } from '../src/app/model/pngText';
 import { png16, randomSites, rasterizeVoronoi } from '../tests/measure/images';
 import { writeTiff } from '../tests/measure/tiffWriter';
+import { download } from './appHelpers';
+import { runCli, tempDir } from './cli';
+import { installLongTaskObserver, takeLongTasks } from './pages/longTasks';
 import { labelData, permutedLabels, shellVolume, volumePages } from '../tests/measure/volumes';
 
 /**
@@ -50,28 +51,21 @@ function makeVolume(dir: string): Inputs {
   const labels = permutedLabels(24, 3, 7, 5);
   writeFileSync(join(dir, 'shell.tif'), writeTiff(volumePages(shell, labelData(shell, labels, 16), 16) as never));
   const out = join(dir, 'cli.json');
-  execFileSync(
-    process.execPath,
-    [
-      '--import',
-      'tsx',
-      'tests/measure/runMeasure.ts',
-      'measure',
-      '--volume',
-      join(dir, 'shell.tif'),
-      '--out',
-      out,
-      '--voxel-size',
-      `${VOXEL.x},${VOXEL.y},${VOXEL.z}`,
-      '--compare',
-      '--realizations',
-      '3',
-      '--seed',
-      '1',
-      '--force',
-    ],
-    { stdio: 'pipe' },
-  );
+  runCli([
+    'measure',
+    '--volume',
+    join(dir, 'shell.tif'),
+    '--out',
+    out,
+    '--voxel-size',
+    `${VOXEL.x},${VOXEL.y},${VOXEL.z}`,
+    '--compare',
+    '--realizations',
+    '3',
+    '--seed',
+    '1',
+    '--force',
+  ]);
   const cli = JSON.parse(readFileSync(out, 'utf8')) as VolumeMeasuredResult;
   let meshes: ShellMeshes | undefined;
   const bytes = new Uint8Array(readFileSync(join(dir, 'shell.tif')));
@@ -90,15 +84,11 @@ function modelNeighbours(model: VolumeModelDrawing, k: number, cell: number): st
 }
 
 async function openApp(page: Page): Promise<void> {
-  await page.addInitScript(() => {
-    const w = window as unknown as { longTasks: number[] };
-    w.longTasks = [];
-    new PerformanceObserver((list) => list.getEntries().forEach((entry) => w.longTasks.push(entry.duration))).observe({ type: 'longtask' });
-  });
+  await installLongTaskObserver(page);
   await page.goto(`/?config=${encodeURIComponent(JSON.stringify(small))}`);
   await page.waitForFunction(() => ['done', 'no-webgl', 'error'].includes(document.body.dataset.state ?? ''), null, { timeout: 120_000 });
   await page.waitForTimeout(300);
-  await page.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks.splice(0));
+  await takeLongTasks(page);
 }
 
 /** Types into a field as a person does: focus, select all, keys. */
@@ -107,11 +97,6 @@ async function type(page: Page, selector: string, text: string): Promise<void> {
   await field.focus();
   await page.keyboard.press('ControlOrMeta+A');
   await page.keyboard.type(text);
-}
-
-async function downloaded(page: Page, selector: string): Promise<{ name: string; text: string }> {
-  const [download] = await Promise.all([page.waitForEvent('download'), page.locator(selector).click()]);
-  return { name: download.suggestedFilename(), text: readFileSync((await download.path())!, 'utf8') };
 }
 
 const dataValue = async (page: Page, selector: string) => Number(await page.locator(selector).getAttribute('data-value'));
@@ -129,7 +114,7 @@ function csvRows(text: string): Record<string, string>[] {
 test.describe('measure a volume in the app', () => {
   let inputs: Inputs;
   test.beforeAll(() => {
-    inputs = makeVolume(mkdtempSync(join(tmpdir(), 'tissue-sheet-volume-')));
+    inputs = makeVolume(tempDir('volume'));
   });
 
   test('a 3D TIFF: voxel size asked, measured in a worker as the CLI does, picked, exported, kept in the project', async ({ page }, testInfo) => {
@@ -154,7 +139,7 @@ test.describe('measure a volume in the app', () => {
     await type(page, '#volume-voxel-z', '0.75');
     await page.locator('#measure-again').click();
     await expect(page.locator('#measure')).toHaveAttribute('data-state', 'compared', { timeout: 150_000 });
-    const longTasks = await page.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks.splice(0));
+    const longTasks = await takeLongTasks(page);
     expect(
       longTasks.filter((d) => d > 50),
       `long tasks ${longTasks.join(', ')} ms`,
@@ -206,7 +191,7 @@ test.describe('measure a volume in the app', () => {
     await expect(modelInfo).toContainText(
       `Model cell ${pickedModel}: ${drawnModel.valid[pickedModel - 1] ? 'valid' : 'left out'}, ${drawnModel.scutoid[pickedModel - 1] ? 'a scutoid' : 'not a scutoid'}`,
     );
-    const modelTasks = await page.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks.splice(0));
+    const modelTasks = await takeLongTasks(page);
     expect(
       modelTasks.filter((d) => d > 50),
       `long tasks ${modelTasks.join(', ')} ms`,
@@ -242,11 +227,11 @@ test.describe('measure a volume in the app', () => {
     await page.locator('#measure').screenshot({ path: process.env.VOLUME_SHOT ?? testInfo.outputPath('volume-panel.png') });
 
     // Exports: the JSON is the CLI's document; the CSV equals it and the screen; the figure carries provenance.
-    const json = JSON.parse((await downloaded(page, '#volume-json')).text) as VolumeMeasuredResult;
+    const json = JSON.parse((await download(page, '#volume-json')).text) as VolumeMeasuredResult;
     expect(json.cells).toEqual(cli.cells);
     expect(json.analyses).toEqual(cli.analyses);
     expect(json.comparison!.model).toEqual(model);
-    const csv = await downloaded(page, '#volume-cells-csv');
+    const csv = await download(page, '#volume-cells-csv');
     expect(csv.text).toMatch(/^# tissue-sheet measured volume/);
     expect(csv.text).toContain('voxel 0.5 x 0.5 x 0.75 µm (option');
     const rows = csvRows(csv.text);
@@ -266,7 +251,7 @@ test.describe('measure a volume in the app', () => {
     const validRows = rows.filter((r) => r.valid === '1');
     expect(validRows.length).toBe(await dataValue(page, '#volume-summary tr[data-key="validCells"] td:nth-of-type(1)'));
     expect((100 * validRows.filter((r) => r.scutoid === '1').length) / validRows.length).toBeCloseTo(await dataValue(page, '#volume-measured-percent'), 9);
-    const svg = await downloaded(page, '#volume-figure-svg');
+    const svg = await download(page, '#volume-figure-svg');
     expect(svg.name).toBe('tissue-sheet-measured-volume.svg');
     expect(svg.text).toContain('tissue-sheet measured volume beside the model of the same geometry');
     expect(svg.text).toMatch(/width="\d+(\.\d+)?mm"/);
@@ -283,7 +268,7 @@ test.describe('measure a volume in the app', () => {
     expect(JSON.parse(text['tissue-sheet:config']).model).toMatchObject({ realization: 0, seed: 1, k: cli.comparison!.bestK, cells: drawnModel.cells });
 
     // Kept in the project file; a fresh page opening it shows the same volume and numbers.
-    const project = await downloaded(page, '[data-export="project"]');
+    const project = await download(page, '[data-export="project"]');
     const saved = JSON.parse(project.text) as { sections: { measured: { mode: string; files: unknown[] } } };
     expect(saved.sections.measured.mode).toBe('volume');
     expect(saved.sections.measured.files).toHaveLength(1);
@@ -307,7 +292,7 @@ test.describe('measure a volume in the app', () => {
 
 test.describe('which file is which layer', () => {
   test('files handed over apical first are warned about, reassigned with the layer picker, exported and kept in the project', async ({ page }) => {
-    const dir = mkdtempSync(join(tmpdir(), 'tissue-sheet-layers-'));
+    const dir = tempDir('layers');
     const width = 256;
     const height = 192;
     const sites = randomSites(70, width, height, 7);
@@ -344,14 +329,14 @@ test.describe('which file is which layer', () => {
     const ratio = Number((await sides.textContent())!.match(/s = ([\d.]+)/)![1]);
     expect(ratio).toBeGreaterThan(1.9);
     // The CSV follows the screen.
-    const json = JSON.parse((await downloaded(page, '#measure-json')).text) as MeasuredResult;
+    const json = JSON.parse((await download(page, '#measure-json')).text) as MeasuredResult;
     expect(json.inputs.layers.map((l) => l.file)).toEqual(['basal.png', 'apical.png']);
-    const rows = csvRows((await downloaded(page, '#measure-cells-csv')).text);
+    const rows = csvRows((await download(page, '#measure-cells-csv')).text);
     expect(rows.map((r) => Number(r.label))).toEqual(json.cells.map((c) => c.label));
     expect(rows.map((r) => r.neighbour_labels_apical)).toEqual(json.cells.map((c) => c.neighbours[1].join(' ')));
     expect(await dataValue(page, '#measured-percent')).toBe(json.analyses[0].summary.percentScutoids);
     // The project keeps the reassigned order.
-    const project = await downloaded(page, '[data-export="project"]');
+    const project = await download(page, '[data-export="project"]');
     const path = join(dir, project.name);
     writeFileSync(path, project.text);
     await openApp(page);
