@@ -5,7 +5,7 @@
  * again, give the saved numbers. Bad sections are refused naming the field.
  */
 import { beforeAll, describe, expect, it } from 'vitest';
-import { validateConfig } from '../../src/core/config';
+import { validateConfig } from '../planarConfig';
 import { measureTissue, type MeasuredResult } from '../../src/core/measure';
 import { fromBase64, readMeasuredSection, sameMeasurement, toBase64, type MeasuredSection } from '../../src/app/model/measureProject';
 import { openParsed, parseFileJson, projectJson } from '../../src/app/model/project';

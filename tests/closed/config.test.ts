@@ -6,7 +6,6 @@ import {
   ellipsoidArea,
   minCurvatureRadius,
   validateAnyConfig,
-  validateConfig,
   type ClosedConfig,
   type ConfigInput,
 } from '../../src/core/config';
@@ -27,9 +26,6 @@ describe('closed surface config', () => {
     expect(mesh.surface).toEqual({ kind: 'mesh', src: 'organoid.ply', scale: 1, geodesic: false });
     expect(() => validateAnyConfig({ surface: { kind: 'ellipsoid', a: 1, b: 1 } })).toThrow('surface.c: required for kind "ellipsoid"; add a number > 0 µm');
     expect(() => validateAnyConfig({ surface: { kind: 'sphere', radius: -1 } })).toThrow('surface.radius: must be > 0 µm (got -1)');
-  });
-  it('validateConfig (planar callers) refuses closed kinds with a one-line message', () => {
-    expect(() => validateConfig({ surface: { kind: 'sphere', radius: 5 } })).toThrow(/^surface\.kind: "sphere" is a closed surface/);
   });
   it('cells <= 6 n² / 16, uniform density, exact on every closed surface, no surface ratio, no exact engine', () => {
     expect(feasibility({ surface: { kind: 'sphere', radius: 50 }, resolution: 32, cells: 384 })).toBeNull();

@@ -1,7 +1,8 @@
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
-import { ConfigError, DEFAULT_TUBE_RADIUS, checkFeasible, configSchema, makeGrid, unrolledDomain, validateConfig, type Config } from '../../src/core/config';
+import { ConfigError, DEFAULT_TUBE_RADIUS, checkFeasible, configSchema, makeGrid, unrolledDomain, type Config } from '../../src/core/config';
+import { validateConfig } from '../planarConfig';
 
 /** Runs validateConfig and returns the ConfigError it throws (fails the test if none). */
 function errorOf(input: unknown): ConfigError {

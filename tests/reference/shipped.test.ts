@@ -8,7 +8,8 @@
 import { describe, expect, it } from 'vitest';
 import shipped from '../../src/core/reference/tissueSheetVoronoiTube.json';
 import { analyzeTubeLab } from '../../src/core/analysis';
-import { makeGrid, validateConfig, type ConfigInput } from '../../src/core/config';
+import { makeGrid, type ConfigInput } from '../../src/core/config';
+import { validateConfig } from '../planarConfig';
 import { ExactLloydRun } from '../../src/core/exactEngine/exactLloyd';
 import { validateReferenceDocument, type ReferenceDocument } from '../../src/core/reference';
 import { placeSites } from '../../src/core/sites';

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { validateConfig } from '../../src/core/config';
+import { validateConfig } from '../planarConfig';
 import { runSheet } from '../../src/run/runSheet';
 import { useHeadlessContext } from '../gpu/context';
 

@@ -1,6 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { analyzeTubeLab, LAB_PROTOCOL } from '../../src/core/analysis';
-import { validateAnyConfig, validateConfig, type ConfigInput } from '../../src/core/config';
+import { validateAnyConfig, type ConfigInput } from '../../src/core/config';
+import { validateConfig } from '../planarConfig';
 import { exactVoronoi } from '../../src/core/exact';
 import { chooseEngine } from '../../src/run/enginePolicy';
 import { SheetRunner } from '../../src/run/runSheet';

@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
-import { validateConfig, type ConfigInput } from '../../src/core/config';
+import { type ConfigInput } from '../../src/core/config';
+import { validateConfig } from '../planarConfig';
 import { exactVoronoi } from '../../src/core/exact';
 import { withMinBoundaryLength } from '../../src/core/analysis';
 import { labelAdjacency } from '../../src/core/labels';

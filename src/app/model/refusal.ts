@@ -4,7 +4,8 @@
  * (the CLI and the element print them; tests match them); the page explains the ones that speak
  * of the engine.
  */
-import { ConfigError, validateAnyConfig, type AnyConfig } from '../../core/config';
+import { ConfigError, unrolledDomain, validateAnyConfig, type AnyConfig, type SurfaceConfig } from '../../core/config';
+import { layoutOfKind } from '../../core/config/surfaceLayout';
 import { checkTexelsPerSide } from '../../core/config/limits';
 
 export interface Refusal {
@@ -94,8 +95,8 @@ export function explainRefusal(error: unknown, config: AnyConfig | null): Refusa
       details: text,
     };
   }
-  if (config && field === 'resolution' && /short side/.test(text) && surface && (surface.kind === 'tube' || surface.kind === 'plane')) {
-    const [x, y] = surface.kind === 'tube' ? [2 * Math.PI * surface.radius, surface.length] : [surface.width, surface.height];
+  if (config && field === 'resolution' && /short side/.test(text) && surface && layoutOfKind(surface.kind).aspectSetsShortSide) {
+    const { lengthX: x, lengthY: y } = unrolledDomain(surface as SurfaceConfig);
     return {
       message: `This surface is too long and narrow to draw its cells (${um(x)} around or across, ${um(y)} along): make it shorter or wider, or raise the resolution under Advanced.`,
       details: text,

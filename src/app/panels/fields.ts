@@ -330,7 +330,7 @@ export const FIELDS: FieldSpec[] = [
     label: 'Other surface made by',
     group: 'Sheet',
     labels: { normal: 'parallel surface (normal)', axes: 'semi-axes + thickness (the lab spheroid model)' },
-    show: (c) => c.surface.kind === 'sphere' || c.surface.kind === 'ellipsoid' || c.surface.kind === 'mesh',
+    show: (c) => layoutOfKind(c.surface.kind).offsetChoice,
   }),
   field('sheet.layerStep', { label: 'Layer step (tube: in s; else µm; empty: layers evenly spaced)', group: 'Sheet', step: 0.05 }),
   field('sheet.validityMaxRatio', { label: 'Lab protocol: valid cells checked up to ratio', group: 'Sheet', step: 0.25 }),

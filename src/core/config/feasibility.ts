@@ -3,7 +3,7 @@ import { LAB_MEAN_CELL_DIAMETER_PIXELS, LAB_MIN_BOUNDARY_PIXELS } from '../analy
 import type { Grid } from '../grid';
 import { checkMethods } from './methods';
 import { ConfigError } from './configError';
-import type { AnyConfig, ClosedConfig, ClosedSurfaceConfig, Config, SurfaceConfig } from './types';
+import type { ClosedConfig, ClosedSurfaceConfig, Config, SurfaceConfig } from './types';
 
 // ---------------------------------------------------------------------------------------------
 // Grid and feasibility
@@ -135,15 +135,14 @@ export const PLANAR_DEFAULT_RESOLUTION = 512;
 const LAB_CONTACT_PER_DIAMETER = LAB_MIN_BOUNDARY_PIXELS / LAB_MEAN_CELL_DIAMETER_PIXELS;
 
 /**
- * The resolution a config gets when it leaves `resolution` null. Planes and tubes: 512. Closed
- * surfaces: the smallest n (a multiple of 8, 32 to 1024) whose texel edge sqrt(area / 6 n²) is
+ * The resolution a closed surface gets when its config leaves `resolution` null (planes and
+ * tubes: PLANAR_DEFAULT_RESOLUTION; surfaceLayout.ts's defaultResolution picks): the smallest n (a multiple of 8, 32 to 1024) whose texel edge sqrt(area / 6 n²) is
  * at most half the minimum contact length, so that the labels method resolves every counted
  * contact (with the default contact rule, 6/102.4 of the mean cell diameter, n depends on the
  * number of cells only: 200 for 200 cells), and at least MIN_TEXELS_PER_CELL texels per cell.
  */
-export function defaultResolution(config: Pick<AnyConfig, 'surface' | 'cells' | 'sheet'>): number {
+export function closedDefaultResolution(config: Pick<ClosedConfig, 'surface' | 'cells' | 'sheet'>): number {
   const { surface, cells, sheet } = config;
-  if (surface.kind === 'plane' || surface.kind === 'tube') return PLANAR_DEFAULT_RESOLUTION;
   const area =
     surface.kind === 'sphere' ? 4 * Math.PI * surface.radius ** 2 : surface.kind === 'ellipsoid' ? ellipsoidArea(surface.a, surface.b, surface.c) : null;
   const length = sheet.minContactLength;

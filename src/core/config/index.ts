@@ -15,5 +15,6 @@ export * from './types';
 export * from './schema';
 export * from './validate';
 export * from './feasibility';
+export { defaultResolution } from './surfaceLayout';
 export * from './methods';
 export * from './analysisMethods';

@@ -9,6 +9,7 @@
  */
 import { DEFAULT_TUBE_RADIUS } from './schema';
 import { unrolledDomain } from './feasibility';
+import { layoutOfKind } from './surfaceLayout';
 import type { AnyConfig, AnySurfaceConfig, ConfigInput, DensitySpec, SurfaceConfig } from './types';
 
 /**
@@ -69,8 +70,8 @@ export function planarOfKind(current: SurfaceConfig, kind: string): SurfaceConfi
 
 /** Density presets: parameters that suit the current domain. */
 export function densityPreset(kind: string, c: Pick<AnyConfig, 'surface' | 'density'>): DensitySpec {
-  // Closed surfaces take uniform density only: validation says so for any other preset.
-  const d = c.surface.kind === 'plane' || c.surface.kind === 'tube' ? unrolledDomain(c.surface) : { lengthX: 1, lengthY: 1 };
+  // A cube map takes uniform density only: validation says so for any other preset.
+  const d = layoutOfKind(c.surface.kind).uniformDensityOnly ? { lengthX: 1, lengthY: 1 } : unrolledDomain(c.surface as SurfaceConfig);
   switch (kind) {
     case 'linear':
       return { kind: 'linear', axis: 'y', from: 1, to: 4 };

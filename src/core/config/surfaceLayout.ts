@@ -7,7 +7,7 @@
  * (src/gpu/layout.ts builds the GPU's TexelLayout for the same two layouts).
  */
 import { sheetOffsets, surfaceStack } from '../sheetGeometry';
-import { checkClosedFeasible, checkFeasible, makeCubeGrid, makeGrid } from './feasibility';
+import { checkClosedFeasible, checkFeasible, closedDefaultResolution, makeCubeGrid, makeGrid, PLANAR_DEFAULT_RESOLUTION } from './feasibility';
 import { isClosedKind, type AnyConfig, type ClosedConfig, type Config } from './types';
 
 /** The two layouts (also the GPU's surface family names). */
@@ -37,6 +37,13 @@ export interface SurfaceLayoutKind {
   readonly exactEngine: boolean;
   /** Whether only uniform density is supported on it. */
   readonly uniformDensityOnly: boolean;
+  /**
+   * Whether the other surface may be made by the semi-axes (sheet.offset "axes", the lab's
+   * spheroid model) as well as along the normal; an unrolled sheet's is always the normal's.
+   */
+  readonly offsetChoice: boolean;
+  /** The resolution a config of this layout gets when it leaves `resolution` null. */
+  defaultResolution(config: Pick<AnyConfig, 'surface' | 'cells' | 'sheet'>): number;
 }
 
 /** A config's layout: its kind's fields and what follows from the config's dimensions. */
@@ -56,6 +63,8 @@ const PLANAR: SurfaceLayoutKind = {
   flatPicture: true,
   exactEngine: true,
   uniformDensityOnly: false,
+  offsetChoice: false,
+  defaultResolution: () => PLANAR_DEFAULT_RESOLUTION,
 };
 
 const CUBE_MAP: SurfaceLayoutKind = {
@@ -67,6 +76,8 @@ const CUBE_MAP: SurfaceLayoutKind = {
   flatPicture: false,
   exactEngine: false,
   uniformDensityOnly: true,
+  offsetChoice: true,
+  defaultResolution: (config) => closedDefaultResolution(config as Pick<ClosedConfig, 'surface' | 'cells' | 'sheet'>),
 };
 
 /** Each layout by its name (the GPU layer's TexelLayouts read theirs). */
@@ -75,6 +86,14 @@ export const LAYOUTS: { readonly [name in SurfaceLayoutName]: SurfaceLayoutKind 
 /** The layout of a surface kind ("plane", "tube": planar grid; "sphere", "ellipsoid", "mesh": cube map). */
 export function layoutOfKind(kind: string): SurfaceLayoutKind {
   return isClosedKind(kind) ? CUBE_MAP : PLANAR;
+}
+
+/**
+ * The resolution a config gets when it leaves `resolution` null: 512 on a planar grid; on a cube
+ * map the smallest that resolves the counted contacts (feasibility.ts, closedDefaultResolution).
+ */
+export function defaultResolution(config: Pick<AnyConfig, 'surface' | 'cells' | 'sheet'>): number {
+  return layoutOfKind(config.surface.kind).defaultResolution(config);
 }
 
 /** The largest `resolution` whose texture fits a GPU's MAX_TEXTURE_SIZE on this layout. */

@@ -2,9 +2,8 @@
 import type { ErrorObject } from 'ajv';
 import { validate as generatedValidate } from './configValidator.generated';
 import { ConfigError } from './configError';
-import { defaultResolution } from './feasibility';
-import type { AnyConfig, Config } from './types';
-import { isClosedConfig } from './types';
+import { defaultResolution } from './surfaceLayout';
+import type { AnyConfig } from './types';
 
 // ---------------------------------------------------------------------------------------------
 // Validation
@@ -55,22 +54,6 @@ export function validateConfigDraft(input: unknown): ConfigDraft {
     throw toConfigError(error);
   }
   return data;
-}
-
-/**
- * validateAnyConfig for the planar pipeline: a closed surface (sphere, ellipsoid, mesh) is
- * refused here, because callers of this function read planar fields (width, radius, length);
- * entry points that run closed surfaces too call validateAnyConfig and runSheet.
- */
-export function validateConfig(input: unknown): Config {
-  const config = validateAnyConfig(input);
-  if (isClosedConfig(config)) {
-    throw new ConfigError(
-      'surface.kind',
-      `surface.kind: "${config.surface.kind}" is a closed surface, which this entry point does not run; use one of "plane", "tube" here (closed surfaces run through validateAnyConfig and runSheet)`,
-    );
-  }
-  return config;
 }
 
 /** Keys that reach an object's prototype when assigned or walked: refused anywhere in a config. */
