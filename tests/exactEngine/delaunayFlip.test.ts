@@ -215,6 +215,19 @@ describe('PlanarVoronoi layer after layer (build with continues)', () => {
     expect(v.moved).toBeGreaterThan(0);
   });
 
+  it('widens the band where the moved copies no longer certify a layer (a tube shrunk to a tenth), still exact', () => {
+    // 600 cells: the first band is a third of the circumference; shrinking the tube widens the
+    // cells relative to it until a cell reaches past it.
+    const sites = placeSites(tube, 600, 2, 1);
+    const v = new PlanarVoronoi(tube, 600);
+    [1, 0.6, 0.4, 0.25, 0.15, 0.1].forEach((s, k) => {
+      const l = layer(tube, sites, s);
+      expectSameAsReference(l.grid, l.sites, v, k > 0);
+    });
+    expect(v.moved).toBeGreaterThan(0);
+    expect(v.retries).toBeGreaterThan(0);
+  });
+
   it('triangulates afresh where the sites moved too far (other sites), with the same diagram', () => {
     const v = new PlanarVoronoi(tube, 60);
     for (const seed of [4, 5, 6]) expectSameAsReference(tube, placeSites(tube, 60, seed, 1), v, true);
