@@ -32,7 +32,7 @@ const sampleMemory = () => (peakRss = Math.max(peakRss, process.memoryUsage().rs
 /** One realization: Voronoi 1..10 × every ratio. */
 function realization(grid: Grid, cells: number, seed: number, spacing: number, settings: LabProtocolSettings, voronoi = VORONOI) {
   const sites = placeSites(grid, cells, seed, spacing);
-  const reuse = new PlanarVoronoi(grid, cells);
+  const reuse = new PlanarVoronoi(grid, cells, true);
   // Within one Voronoi k the layers are the same sites: each layer after the first flips the
   // previous layer's triangulation (as the CLI's layers do), a new k triangulates afresh.
   let continues = false;

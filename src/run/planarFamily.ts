@@ -200,7 +200,7 @@ function exactLayer(grid: Grid, sites: PlanarSites, projected: ArrayLike<number>
 let scratch: { key: string; voronoi: PlanarVoronoi; sites: PlanarSites | null } | null = null;
 function scratchVoronoi(grid: Grid, count: number): { voronoi: PlanarVoronoi; sites: PlanarSites | null } {
   const key = `${count} ${grid.periodicX} ${grid.periodicY}`;
-  if (scratch?.key !== key) scratch = { key, voronoi: new PlanarVoronoi(grid, count), sites: null };
+  if (scratch?.key !== key) scratch = { key, voronoi: new PlanarVoronoi(grid, count, true), sites: null };
   return scratch;
 }
 

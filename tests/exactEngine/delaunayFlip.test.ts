@@ -189,7 +189,8 @@ describe('PlanarVoronoi layer after layer (build with continues)', () => {
         const sites = placeSites(grid, cells, seed, 1);
         // Relaxed sites (the sweep's case) and the raw random ones.
         if (seed > 1) new ExactLloydRun(grid, sites, { maxIterations: 3, tolerance: 0, overRelaxation: 1 }).finish();
-        const v = new PlanarVoronoi(grid, cells);
+        // With the first band of a chain of layers (narrower) and the usual one.
+        const v = new PlanarVoronoi(grid, cells, seed !== 2);
         ratios.forEach((s, k) => {
           const l = layer(grid, sites, s);
           expectSameAsReference(l.grid, l.sites, v, k > 0);
@@ -219,7 +220,7 @@ describe('PlanarVoronoi layer after layer (build with continues)', () => {
     // 600 cells: the first band is a third of the circumference; shrinking the tube widens the
     // cells relative to it until a cell reaches past it.
     const sites = placeSites(tube, 600, 2, 1);
-    const v = new PlanarVoronoi(tube, 600);
+    const v = new PlanarVoronoi(tube, 600, true);
     [1, 0.6, 0.4, 0.25, 0.15, 0.1].forEach((s, k) => {
       const l = layer(tube, sites, s);
       expectSameAsReference(l.grid, l.sites, v, k > 0);

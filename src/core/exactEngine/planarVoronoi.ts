@@ -46,6 +46,15 @@ export const EDGE_FAR = -5;
 /** First margin of the ghost band, in mean site spacings (sqrt(area / sites)). */
 const MARGIN_SPACINGS = 4;
 
+/**
+ * The first band of a diagram that serves a chain of layers (`layers` in the constructor): its
+ * later layers keep the first one's copies (build with `continues`), and on a tube widened layer
+ * after layer a band's share of the circumference that certifies one layer certifies the wider
+ * ones, so the first band can be narrower (a sweep's layers: about 30 % fewer points, a band
+ * widened in about 0.3 % of the layers).
+ */
+const LAYER_MARGIN_SPACINGS = 2;
+
 /** Which periodic copies of a site the band holds: at +L (site near 0) and -L (near L) per axis. */
 const COPY_X_PLUS = 1;
 const COPY_X_MINUS = 2;
@@ -103,9 +112,11 @@ export class PlanarVoronoi {
   private readonly ping = new PolygonBuffer();
   private readonly pong = new PolygonBuffer();
 
+  /** `layers`: the diagram will serve a chain of layers (LAYER_MARGIN_SPACINGS). */
   constructor(
     public grid: Grid,
     count: number,
+    private readonly layers = false,
   ) {
     this.count = count;
     this.siteX = new Float64Array(count);
@@ -132,8 +143,9 @@ export class PlanarVoronoi {
     this.epsilon = 1e-9 * Math.max(this.widthUm, this.heightUm, 1);
     this.far = 1e4 * (this.widthUm + this.heightUm);
     const spacing = Math.sqrt((this.widthUm * this.heightUm) / Math.max(this.count, 1));
-    this.baseMarginX = Math.min(this.widthUm, MARGIN_SPACINGS * spacing);
-    this.baseMarginY = Math.min(this.heightUm, MARGIN_SPACINGS * spacing);
+    const spacings = this.layers ? LAYER_MARGIN_SPACINGS : MARGIN_SPACINGS;
+    this.baseMarginX = Math.min(this.widthUm, spacings * spacing);
+    this.baseMarginY = Math.min(this.heightUm, spacings * spacing);
     return this;
   }
 
