@@ -32,8 +32,15 @@ const sampleMemory = () => (peakRss = Math.max(peakRss, process.memoryUsage().rs
 /** One realization: Voronoi 1..10 × every ratio. */
 function realization(grid: Grid, cells: number, seed: number, spacing: number, settings: LabProtocolSettings, voronoi = VORONOI) {
   const sites = placeSites(grid, cells, seed, spacing);
-  const reuse = new PlanarVoronoi(grid, cells);
-  const surfaceOf: SurfaceOf = (g, s, label) => exactSurface(g, s, label, reuse);
+  const reuse = new PlanarVoronoi(grid, cells, true);
+  // Within one Voronoi k the layers are the same sites: each layer after the first flips the
+  // previous layer's triangulation (as the CLI's layers do), a new k triangulates afresh.
+  let continues = false;
+  const surfaceOf: SurfaceOf = (g, s, label) => {
+    const surface = exactSurface(g, s, label, reuse, continues);
+    continues = true;
+    return surface;
+  };
   const run = new ExactLloydRun(grid, sites, { maxIterations: voronoi - 1, tolerance: 0, overRelaxation: 1 });
   const tables: LabRatioRow[][] = [];
   let lloydMs = 0;
@@ -45,6 +52,7 @@ function realization(grid: Grid, cells: number, seed: number, spacing: number, s
       lloydMs += performance.now() - t;
     }
     const t = performance.now();
+    continues = false;
     tables.push(labTubeTable(grid, sites, RATIOS, settings, surfaceOf));
     analysisMs += performance.now() - t;
     sampleMemory();

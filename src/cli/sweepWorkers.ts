@@ -20,6 +20,7 @@ import { pathToFileURL } from 'node:url';
 import { isMainThread, parentPort, Worker, workerData } from 'node:worker_threads';
 import { ConfigError, validateAnyConfig } from '../core/config';
 import { flatSummary, flattenSummary } from '../core/sweep';
+import { flatKeys, flatValues } from '../core/sweep/flatValues';
 import type { GpuCapabilities, GpuContext } from '../gpu/context';
 import { SheetRunner, sweepSummary } from '../run/index';
 import { InputError } from './errors';
@@ -255,7 +256,8 @@ function startWorker(setup: WorkerSetup): void {
   const runner = new SheetRunner(capabilitiesOnly(setup.capabilities));
   const inputs = new Map(setup.inputs);
   let controller = new AbortController();
-  const layouts = new Map<string, number>();
+  /** Per summary shape (flatValues): its layout number, keys, and whether its values line up with the keys. */
+  const layouts = new Map<string, { layout: number; keys: string[]; aligned: boolean }>();
   let queue: Promise<void> = Promise.resolve();
   const send = (message: FromWorker) => port.postMessage(message);
   port.on('message', (message: ToWorker) => {
@@ -284,18 +286,24 @@ function startWorker(setup: WorkerSetup): void {
         try {
           for (const { run, config } of order) {
             const output = await runner.run(config, { ...inputs.get(run.pointKey), signal, views: false });
-            // Flat values cross faster than the nested summary (a structured clone per key).
-            const flat = flattenSummary(sweepSummary(output.result));
-            const keys = Object.keys(flat);
-            const signature = keys.join('\n');
-            let layout = layouts.get(signature);
-            const known = layout !== undefined;
-            if (layout === undefined) layouts.set(signature, (layout = layouts.size));
+            // Flat values cross faster than the nested summary (a structured clone per key); the
+            // keys are made once per shape of summary (flatValues).
+            const summary = sweepSummary(output.result);
+            const flat = flatValues(summary);
+            let shape = layouts.get(flat.shape);
+            const known = shape !== undefined;
+            if (shape === undefined) {
+              const keys = Object.keys(flattenSummary(summary));
+              const own = flatKeys(summary);
+              const aligned = own.length === keys.length && own.every((k, n) => k === keys[n]);
+              layouts.set(flat.shape, (shape = { layout: layouts.size, keys, aligned }));
+            }
+            const { layout, keys } = shape;
+            const values = shape.aligned ? flat.values : Object.values(flattenSummary(summary));
             // Numbers in a transferred Float64Array (cloning a list of values costs per value), the rest apart.
             const numbers = new Float64Array(keys.length);
             const others: [number, unknown][] = [];
-            keys.forEach((k, n) => {
-              const value = flat[k];
+            values.forEach((value, n) => {
               if (typeof value === 'number') numbers[n] = value;
               else others.push([n, value]);
             });

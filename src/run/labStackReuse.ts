@@ -113,6 +113,9 @@ function fold(state: Carried, surface: SurfaceAdjacency): void {
     const a1 = a.offsets[i + 1];
     const b0 = b.offsets[i];
     const b1 = b.offsets[i + 1];
+    // Most cells keep their neighbours from one layer to the next: nothing to add (the last
+    // layer's set is already in the union, the differences are empty).
+    if (sameRange(a.ids, a0, a1, b.ids, b0, b1)) continue;
     state.transitions[i] += differenceSize(a.ids, a0, a1, b.ids, b0, b1) + differenceSize(b.ids, b0, b1, a.ids, a0, a1);
     const u = state.union[i];
     for (let k = b0; k < b1; k++) if (!u.includes(b.ids[k])) u.push(b.ids[k]);
@@ -142,16 +145,20 @@ function finish(state: Carried, stack: SurfaceAdjacency[], invalid: Uint8Array):
     const p1 = previous.offsets[i + 1];
     const l0 = last.offsets[i];
     const l1 = last.offsets[i + 1];
-    const t = state.transitions[i] + differenceSize(previous.ids, p0, p1, last.ids, l0, l1) + differenceSize(last.ids, l0, l1, previous.ids, p0, p1);
+    // The last step changes nothing where the outer surface keeps the previous layer's set.
+    const same = sameRange(previous.ids, p0, p1, last.ids, l0, l1);
+    const t = same
+      ? state.transitions[i]
+      : state.transitions[i] + differenceSize(previous.ids, p0, p1, last.ids, l0, l1) + differenceSize(last.ids, l0, l1, previous.ids, p0, p1);
     const u = state.union[i];
     let all = u.length;
-    for (let k = l0; k < l1; k++) if (!u.includes(last.ids[k])) all++;
+    if (!same) for (let k = l0; k < l1; k++) if (!u.includes(last.ids[k])) all++;
     neighbours3D[i] = all;
     changed[i] = t > 0 ? 1 : 0;
     scutoid[i] = valid[i] && changed[i] ? 1 : 0;
     // The lab's counts: the carried sets plus what the last step adds.
-    labLost[i] = state.lost[i].length + newDifference(previous.ids, p0, p1, last.ids, l0, l1, state.lost[i]);
-    labWon[i] = state.won[i].length + newDifference(last.ids, l0, l1, previous.ids, p0, p1, state.won[i]);
+    labLost[i] = state.lost[i].length + (same ? 0 : newDifference(previous.ids, p0, p1, last.ids, l0, l1, state.lost[i]));
+    labWon[i] = state.won[i].length + (same ? 0 : newDifference(last.ids, l0, l1, previous.ids, p0, p1, state.won[i]));
     transitions[i] = labWon[i] + labLost[i];
   }
 
@@ -191,6 +198,13 @@ function surfaceSummary(
   const summary = summarizeSurface(surface, sets, sides, valid, validCells, {});
   state.summaries.set(surface.neighbours, { areas: surface.areas, sides: surface.sides, excluded, summary });
   return summary;
+}
+
+/** Whether a[a0, a1) and b[b0, b1) hold the same ids in the same order. */
+function sameRange(a: Int32Array, a0: number, a1: number, b: Int32Array, b0: number, b1: number): boolean {
+  if (a1 - a0 !== b1 - b0) return false;
+  for (let k = 0; k < a1 - a0; k++) if (a[a0 + k] !== b[b0 + k]) return false;
+  return true;
 }
 
 function sameBytes(a: Uint8Array, b: Uint8Array): boolean {

@@ -182,19 +182,26 @@ function exactLayer(grid: Grid, sites: PlanarSites, projected: ArrayLike<number>
       memos.get(sites)?.delete(FINAL_DIAGRAM); // read once; its buffers are not kept
       return exactSurface(grid, projected, undefined, final);
     }
-    return exactSurface(grid, projected, undefined, scratchVoronoi(grid, sites.length / 2));
+    const kept = scratchVoronoi(grid, sites.length / 2);
+    // After the previous layer of the same seeded sites, its triangulation, moved, is flipped to
+    // this layer's (PlanarVoronoi.build): the same neighbours and open edges as a fresh
+    // triangulation (lengths and areas equal to rounding, which no sweep column reads).
+    const continues = kept.sites === sites;
+    kept.sites = sites;
+    return exactSurface(grid, projected, undefined, kept.voronoi, continues);
   });
 }
 
 /**
  * The triangulation buffers exactSurface builds in, kept for the next layer of the same shape
- * (one set: the last cell count and periodic axes), as bench/exactSweep.ts reuses them.
+ * (one set: the last cell count and periodic axes), as bench/exactSweep.ts reuses them, with the
+ * seeded sites whose layer it holds.
  */
-let scratch: { key: string; voronoi: PlanarVoronoi } | null = null;
-function scratchVoronoi(grid: Grid, count: number): PlanarVoronoi {
+let scratch: { key: string; voronoi: PlanarVoronoi; sites: PlanarSites | null } | null = null;
+function scratchVoronoi(grid: Grid, count: number): { voronoi: PlanarVoronoi; sites: PlanarSites | null } {
   const key = `${count} ${grid.periodicX} ${grid.periodicY}`;
-  if (scratch?.key !== key) scratch = { key, voronoi: new PlanarVoronoi(grid, count) };
-  return scratch.voronoi;
+  if (scratch?.key !== key) scratch = { key, voronoi: new PlanarVoronoi(grid, count, true), sites: null };
+  return scratch;
 }
 
 /** The seeded sites moved onto a layer's grid (projectSites), once per seeded surface and grid. */

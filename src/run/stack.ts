@@ -79,7 +79,19 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
     const analysisTables: ResultCellTables['analyses'] = [];
     // With cell tables, the per-cell statistics stay columns and the record's list is empty.
     const record = (method: 'labels' | 'exact', minContactLength: number, analysis: ReturnType<typeof analyze>) => {
-      if (!cellTables) return analysisRecord(method, minContactLength, analysis, config.sheet.protocol);
+      if (!cellTables) {
+        // Per-cell records built on first read (a sweep reads only the summary).
+        const cells = once(() => analysisRecord(method, minContactLength, analysis, config.sheet.protocol).cells);
+        return {
+          method,
+          protocol: config.sheet.protocol,
+          minContactLength,
+          summary: analysis.summary,
+          get cells() {
+            return cells();
+          },
+        };
+      }
       analysisTables.push(analysisCellTable(analysis.cells));
       return { method, protocol: config.sheet.protocol, minContactLength, summary: analysis.summary, cells: [] };
     };
@@ -100,12 +112,14 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
     const section = family.resultSection(config, geometry, seeded, labeller);
     // Cells and their contacts: exact where only the exact method ran, else from the label images.
     const cellSurfaces = !labelsAsked && exactSurfaces ? exactSurfaces : labelled;
-    const tables: CellTable[] = layers.map((layer, k) =>
-      cellTable(cellSurfaces[k], (position, coordinates) => family.cellPlacements(config, layer, seeded.sites, projected[k], position, coordinates)),
+    // Tables and records built on first read (a sweep reads only the analyses: a table per layer
+    // per run was a twentieth of a sweep's time); none with cell tables (the columns are the cells).
+    const tableOf = layers.map((layer, k) =>
+      once((): CellTable =>
+        cellTable(cellSurfaces[k], (position, coordinates) => family.cellPlacements(config, layer, seeded.sites, projected[k], position, coordinates)),
+      ),
     );
-    // Records built on first read (a sweep reads only the analyses): hundreds of objects per
-    // surface; none with cell tables (the columns are the cells).
-    const cellsOf = (k: number) => once(() => (cellTables ? [] : cellRecordsOf(tables[k])));
+    const cellsOf = (k: number) => once(() => (cellTables ? [] : cellRecordsOf(tableOf[k]())));
     const surfaces: SurfaceRecord[] = layers.slice(1).map((layer, index) => {
       const cells = cellsOf(index + 1);
       return {
@@ -120,6 +134,7 @@ export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLay
       };
     });
     const seededCells = cellsOf(0);
+    const tables = cellTables ? tableOf.map((table) => table()) : [];
     const resultTables = cellTables ? { tables: { cells: tables[0], surfaces: tables.slice(1), analyses: analysisTables } } : {};
     return {
       get seededCells() {

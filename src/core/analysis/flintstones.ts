@@ -95,10 +95,6 @@ interface FitData {
   readonly minus: number[];
 }
 
-function newMatrix(rows: number, columns: number): number[][] {
-  return Array.from({ length: rows }, () => new Array<number>(columns).fill(0));
-}
-
 function fitData(points: readonly FlintstonesPoint[]): FitData {
   const ratios: number[] = [];
   const index = new Map<number, number>();
@@ -132,12 +128,16 @@ function residuals(theta: number[], data: FitData, anchor: number | null, out: n
   return chi;
 }
 
-/** Central differences of the residuals, into `J` (m rows of theta.length, reused across iterations). */
-function jacobian(theta: number[], data: FitData, anchor: number | null, J: number[][] = newMatrix(data.at.length, theta.length)): number[][] {
+/**
+ * Central differences of the residuals, into `J` (m rows of theta.length, row-major; reused
+ * across iterations: flat typed rows made the sweep's fits several times faster, same numbers).
+ */
+function jacobian(theta: number[], data: FitData, anchor: number | null, J = new Float64Array(data.at.length * theta.length)): Float64Array {
   const m = data.at.length;
+  const p = theta.length;
   const plus = data.plus;
   const minus = data.minus;
-  for (let j = 0; j < theta.length; j++) {
+  for (let j = 0; j < p; j++) {
     const h = 1e-6 * Math.max(1, Math.abs(theta[j]));
     const tp = theta.slice();
     const tm = theta.slice();
@@ -146,7 +146,7 @@ function jacobian(theta: number[], data: FitData, anchor: number | null, J: numb
     residuals(tp, data, anchor, plus);
     residuals(tm, data, anchor, minus);
     // Residuals are (data - model): the model's derivative is minus their derivative.
-    for (let k = 0; k < m; k++) J[k][j] = -(plus[k] - minus[k]) / (2 * h);
+    for (let k = 0; k < m; k++) J[k * p + j] = -(plus[k] - minus[k]) / (2 * h);
   }
   return J;
 }
@@ -180,14 +180,18 @@ function solveSpd(A: number[][], y: number[]): number[] | null {
   return x;
 }
 
-function normalEquations(J: number[][], r: number[]): { A: number[][]; g: number[] } {
-  const p = J[0].length;
-  const A = Array.from({ length: p }, () => new Array(p).fill(0));
-  const g = new Array(p).fill(0);
-  for (let k = 0; k < J.length; k++) {
+/** JᵀJ and Jᵀr of the row-major m x p Jacobian (summed over the rows in order). */
+function normalEquations(J: Float64Array, p: number, r: ArrayLike<number>): { A: number[][]; g: number[] } {
+  const m = J.length / p;
+  const A = Array.from({ length: p }, () => new Array<number>(p).fill(0));
+  const g = new Array<number>(p).fill(0);
+  for (let k = 0; k < m; k++) {
+    const row = k * p;
     for (let i = 0; i < p; i++) {
-      g[i] += J[k][i] * r[k];
-      for (let j = 0; j < p; j++) A[i][j] += J[k][i] * J[k][j];
+      const Ji = J[row + i];
+      g[i] += Ji * r[k];
+      const Ai = A[i];
+      for (let j = 0; j < p; j++) Ai[j] += Ji * J[row + j];
     }
   }
   return { A, g };
@@ -198,13 +202,13 @@ function levenbergMarquardt(start: number[], data: FitData, anchor: number | nul
   const r: number[] = new Array(data.at.length);
   const trial: number[] = new Array(data.at.length);
   let chi = residuals(theta, data, anchor, r);
-  const J = newMatrix(data.at.length, theta.length);
+  const J = new Float64Array(data.at.length * theta.length);
   let lambda = 1e-3;
   let iterations = 0;
   let converged = false;
   for (; iterations < maxIterations; iterations++) {
     jacobian(theta, data, anchor, J);
-    const { A, g } = normalEquations(J, r);
+    const { A, g } = normalEquations(J, theta.length, r);
     let improved = false;
     while (lambda < 1e12) {
       const damped = A.map((row, i) => row.map((v, j) => (i === j ? v * (1 + lambda) + 1e-15 : v)));
@@ -267,7 +271,7 @@ export function fitFlintstones(points: readonly FlintstonesPoint[], options: Fli
   if (!best) throw new Error('fitFlintstones: no admissible starting point; check that n3D grows with s');
 
   const J = jacobian(best.theta, data, anchor);
-  const { A } = normalEquations(J, new Array(points.length).fill(0));
+  const { A } = normalEquations(J, p, new Float64Array(points.length));
   const dof = points.length - p;
   const scale = best.chi / dof;
   const covariance: number[] = [];

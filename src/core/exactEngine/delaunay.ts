@@ -298,7 +298,8 @@ function dist(ax: number, ay: number, bx: number, by: number): number {
   return dx * dx + dy * dy;
 }
 
-function inCircle(ax: number, ay: number, bx: number, by: number, cx: number, cy: number, px: number, py: number): boolean {
+/** Delaunator's (non-robust) test: true when p lies inside the circle through a, b, c. */
+export function inCircle(ax: number, ay: number, bx: number, by: number, cx: number, cy: number, px: number, py: number): boolean {
   const dx = ax - px;
   const dy = ay - py;
   const ex = bx - px;

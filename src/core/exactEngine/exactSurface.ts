@@ -10,21 +10,29 @@ import type { Grid } from '../grid';
 import { EDGE_FAR, EDGE_X0, EDGE_X1, EDGE_Y0, EDGE_Y1, PlanarVoronoi } from './planarVoronoi';
 import { PolygonBuffer, polygonMoments } from './polygon';
 
-/** Exact adjacency, areas (µm²) and open-edge bits of the sites (texel units) on `grid`. */
-export function exactSurface(grid: Grid, sites: ArrayLike<number>, label?: string, voronoi?: PlanarVoronoi): SurfaceAdjacency {
+/**
+ * Exact adjacency, areas (µm²) and open-edge bits of the sites (texel units) on `grid`.
+ * `continues`: the sites are those `voronoi` last built, moved a little (PlanarVoronoi.build).
+ */
+export function exactSurface(grid: Grid, sites: ArrayLike<number>, label?: string, voronoi?: PlanarVoronoi, continues = false): SurfaceAdjacency {
   const n = Math.floor(sites.length / 2);
   const v = voronoi ? voronoi.setGrid(grid) : new PlanarVoronoi(grid, n);
   if (v.count !== n) throw new Error(`exactSurface: the PlanarVoronoi holds ${v.count} sites, not ${n}`);
-  v.build(sites);
-  const cell = new PolygonBuffer();
-  const moments = new Float64Array(4);
+  v.build(sites, continues);
   const areas = new Float64Array(n);
   const border = new Uint8Array(n);
   // Cells are walked in the diagram's spatial order (cache) into a scratch list in that order
-  // (start[k] .. start[k + 1] for the k-th cell), then laid out in id order.
-  const start = new Int32Array(n + 1);
-  let scratchIds = new Int32Array(8 * n);
-  let scratchLengths = new Float64Array(8 * n);
+  // (start[k] .. start[k + 1] for the k-th cell), then laid out in id order. The scratch is kept
+  // between calls (a sweep makes tens of thousands of these records).
+  if (scratch.start.length < n + 1) scratch.start = new Int32Array(n + 1);
+  if (scratch.ids.length < 8 * n) {
+    scratch.ids = new Int32Array(8 * n);
+    scratch.lengths = new Float64Array(8 * n);
+  }
+  const { start, cell, moments } = scratch;
+  start[0] = 0;
+  let scratchIds = scratch.ids;
+  let scratchLengths = scratch.lengths;
   const eps = v.epsilon;
   // Again (rarely) when a cell of a site near a periodic seam was not certified (planarVoronoi.ts).
   do {
@@ -42,6 +50,8 @@ export function exactSurface(grid: Grid, sites: ArrayLike<number>, label?: strin
         const grownLengths = new Float64Array(grownIds.length);
         grownLengths.set(scratchLengths);
         scratchLengths = grownLengths;
+        scratch.ids = scratchIds;
+        scratch.lengths = scratchLengths;
       }
       if (cell.count >= 3) {
         areas[i] = polygonMoments(cell.xy, cell.count, moments)[0];
@@ -88,13 +98,25 @@ export function exactSurface(grid: Grid, sites: ArrayLike<number>, label?: strin
   const total = offsets[n];
   const neighbours = new Int32Array(total);
   const lengths = new Float64Array(total);
+  // Copied by hand: two subarray views per cell were a good part of this function's time.
   for (let k = 0; k < n; k++) {
     const i = v.siteAt(k);
-    neighbours.set(scratchIds.subarray(start[k], start[k + 1]), offsets[i]);
-    lengths.set(scratchLengths.subarray(start[k], start[k + 1]), offsets[i]);
+    for (let from = start[k], to = offsets[i]; from < start[k + 1]; from++, to++) {
+      neighbours[to] = scratchIds[from];
+      lengths[to] = scratchLengths[from];
+    }
   }
   return { count: n, offsets, neighbours, lengths, areas, border, label };
 }
+
+/** Buffers of exactSurface's walk, grown as needed (one call at a time: JavaScript is single-threaded per realm). */
+const scratch = {
+  start: new Int32Array(0),
+  ids: new Int32Array(0),
+  lengths: new Float64Array(0),
+  cell: new PolygonBuffer(),
+  moments: new Float64Array(4),
+};
 
 /** The BORDER_* bit of a domain-edge label of the diagram (EDGE_FAR edges are skipped before). */
 function borderBit(label: number): number {

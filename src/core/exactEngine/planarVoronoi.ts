@@ -33,6 +33,7 @@
 import { exactVoronoi } from '../exact';
 import { wrapCoordinate, type Grid } from '../grid';
 import { Triangulation } from './delaunay';
+import { restoreDelaunay } from './delaunayFlip';
 import { clipHalfPlane, PolygonBuffer } from './polygon';
 
 /** Edge labels of domain edges and of far (clipped-away) ray edges. */
@@ -44,6 +45,21 @@ export const EDGE_FAR = -5;
 
 /** First margin of the ghost band, in mean site spacings (sqrt(area / sites)). */
 const MARGIN_SPACINGS = 4;
+
+/**
+ * The first band of a diagram that serves a chain of layers (`layers` in the constructor): its
+ * later layers keep the first one's copies (build with `continues`), and on a tube widened layer
+ * after layer a band's share of the circumference that certifies one layer certifies the wider
+ * ones, so the first band can be narrower (a sweep's layers: about 30 % fewer points, a band
+ * widened in about 0.3 % of the layers).
+ */
+const LAYER_MARGIN_SPACINGS = 2;
+
+/** Which periodic copies of a site the band holds: at +L (site near 0) and -L (near L) per axis. */
+const COPY_X_PLUS = 1;
+const COPY_X_MINUS = 2;
+const COPY_Y_PLUS = 4;
+const COPY_Y_MINUS = 8;
 
 export class PlanarVoronoi {
   readonly count: number;
@@ -76,8 +92,16 @@ export class PlanarVoronoi {
   /** A diagram of siteX, siteY on this grid is built. */
   private built = false;
   private points = new Float64Array(0);
-  /** Site of copy k (point n + k). */
+  /** Site of copy k (point n + k), and its shift in domain sizes along x and y (-1, 0, 1). */
   private source = new Int32Array(0);
+  private shiftX = new Int8Array(0);
+  private shiftY = new Int8Array(0);
+  /** Per site, which copies the band holds: COPY_* bits. */
+  private readonly copies: Uint8Array;
+  /** The triangulation is one of the current points (no fallback): a next build may move it. */
+  private movable = false;
+  /** Builds that moved the previous triangulation instead of triangulating (for tests and benchmarks). */
+  moved = 0;
   private readonly triangulation = new Triangulation();
   private ccx = 0;
   private ccy = 0;
@@ -88,15 +112,18 @@ export class PlanarVoronoi {
   private readonly ping = new PolygonBuffer();
   private readonly pong = new PolygonBuffer();
 
+  /** `layers`: the diagram will serve a chain of layers (LAYER_MARGIN_SPACINGS). */
   constructor(
     public grid: Grid,
     count: number,
+    private readonly layers = false,
   ) {
     this.count = count;
     this.siteX = new Float64Array(count);
     this.siteY = new Float64Array(count);
     this.order = new Int32Array(count);
     this.rank = new Int32Array(count);
+    this.copies = new Uint8Array(count);
     this.setGrid(grid);
   }
 
@@ -116,8 +143,9 @@ export class PlanarVoronoi {
     this.epsilon = 1e-9 * Math.max(this.widthUm, this.heightUm, 1);
     this.far = 1e4 * (this.widthUm + this.heightUm);
     const spacing = Math.sqrt((this.widthUm * this.heightUm) / Math.max(this.count, 1));
-    this.baseMarginX = Math.min(this.widthUm, MARGIN_SPACINGS * spacing);
-    this.baseMarginY = Math.min(this.heightUm, MARGIN_SPACINGS * spacing);
+    const spacings = this.layers ? LAYER_MARGIN_SPACINGS : MARGIN_SPACINGS;
+    this.baseMarginX = Math.min(this.widthUm, spacings * spacing);
+    this.baseMarginY = Math.min(this.heightUm, spacings * spacing);
     return this;
   }
 
@@ -125,8 +153,15 @@ export class PlanarVoronoi {
    * Triangulates `sites` (interleaved x, y texel units); reuses every buffer after the first call.
    * Sites equal to the last build's on the same grid keep the diagram as it is (nothing is
    * recomputed: e.g. the final Lloyd sites, then the seeded surface's adjacency of the same sites).
+   *
+   * `continues`: the sites are the last build's moved a little (the next layer of a tube: the
+   * same sites, the circumference scaled), so the last triangulation, its points moved, is made
+   * Delaunay again by edge flips (delaunayFlip.ts) where it is still a valid triangulation, with
+   * the same periodic copies; else, and without `continues`, the sites are triangulated afresh.
+   * Either way the diagram is the exact one of the sites on the grid: the same cells and
+   * neighbours, contact lengths and areas equal to rounding (tested).
    */
-  build(sites: ArrayLike<number>): this {
+  build(sites: ArrayLike<number>, continues = false): this {
     const { grid, count: n, siteX, siteY } = this;
     let same = this.built;
     for (let i = 0; i < n; i++) {
@@ -141,6 +176,7 @@ export class PlanarVoronoi {
     this.sites = sites;
     if (same) return this;
     this.built = true;
+    if (continues && this.movable && this.move()) return this;
     this.sortSpatially();
     this.marginX = this.baseMarginX;
     this.marginY = this.baseMarginY;
@@ -153,8 +189,9 @@ export class PlanarVoronoi {
    */
   retry(): boolean {
     if (!this.uncertified) return false;
-    this.marginX = Math.min(this.widthUm, 2 * this.marginX);
-    this.marginY = Math.min(this.heightUm, 2 * this.marginY);
+    // (After a move the band can be narrow: widen it to at least the first band.)
+    this.marginX = Math.min(this.widthUm, Math.max(2 * this.marginX, this.baseMarginX));
+    this.marginY = Math.min(this.heightUm, Math.max(2 * this.marginY, this.baseMarginY));
     this.retries++;
     this.triangulate();
     return true;
@@ -165,13 +202,47 @@ export class PlanarVoronoi {
     this.fallback = null;
     this.uncertified = false;
     this.pointCount = this.placePoints();
+    this.movable = false;
     if (n === 0) return this;
     this.triangulation.triangulate(this.points, this.pointCount);
-    if (this.isCollinear()) {
-      this.useFallback(this.sites!);
-      return this;
-    }
+    this.movable = !this.isCollinear();
+    if (!this.movable) this.useFallback(this.sites!);
     return this;
+  }
+
+  /**
+   * The points of the last triangulation moved to the new sites (same order, same copies), and
+   * the triangulation flipped to Delaunay; false where it cannot be (then build triangulates).
+   * The band is then whatever the copies cover on this grid: the widest margin such that every
+   * copy inside the box [-margin, L + margin) is a point (certification checks against it).
+   */
+  private move(): boolean {
+    const { count: n, siteX, siteY, order, source, shiftX, shiftY, copies, points, widthUm: W, heightUm: H } = this;
+    for (let k = 0; k < n; k++) {
+      points[2 * k] = siteX[order[k]];
+      points[2 * k + 1] = siteY[order[k]];
+    }
+    for (let p = n; p < this.pointCount; p++) {
+      const i = source[p - n];
+      points[2 * p] = siteX[i] + shiftX[p - n] * W;
+      points[2 * p + 1] = siteY[i] + shiftY[p - n] * H;
+    }
+    let marginX = W;
+    let marginY = H;
+    for (let i = 0; i < n; i++) {
+      const c = copies[i];
+      if (!(c & COPY_X_PLUS)) marginX = Math.min(marginX, siteX[i]);
+      if (!(c & COPY_X_MINUS)) marginX = Math.min(marginX, W - siteX[i]);
+      if (!(c & COPY_Y_PLUS)) marginY = Math.min(marginY, siteY[i]);
+      if (!(c & COPY_Y_MINUS)) marginY = Math.min(marginY, H - siteY[i]);
+    }
+    this.marginX = marginX;
+    this.marginY = marginY;
+    this.fallback = null;
+    this.uncertified = false;
+    this.movable = restoreDelaunay(this.triangulation, points);
+    if (this.movable) this.moved++;
+    return this.movable;
   }
 
   /**
@@ -226,8 +297,13 @@ export class PlanarVoronoi {
       }
     }
     if (this.points.length < 2 * total) this.points = new Float64Array(2 * Math.ceil(total * 1.1));
-    if (this.source.length < total - n) this.source = new Int32Array(Math.ceil((total - n) * 1.25) + 16);
-    const { points, source } = this;
+    if (this.source.length < total - n) {
+      this.source = new Int32Array(Math.ceil((total - n) * 1.25) + 16);
+      this.shiftX = new Int8Array(this.source.length);
+      this.shiftY = new Int8Array(this.source.length);
+    }
+    const { points, source, shiftX, shiftY, copies } = this;
+    copies.fill(0);
     const order = this.order;
     for (let k = 0; k < n; k++) {
       points[2 * k] = siteX[order[k]];
@@ -245,6 +321,7 @@ export class PlanarVoronoi {
         const sy0 = py && y < marginY;
         const sy1 = py && y >= H - marginY;
         if (!(sx0 || sx1 || sy0 || sy1)) continue;
+        copies[i] = (sx0 ? COPY_X_PLUS : 0) | (sx1 ? COPY_X_MINUS : 0) | (sy0 ? COPY_Y_PLUS : 0) | (sy1 ? COPY_Y_MINUS : 0);
         for (let a = 0; a < 3; a++) {
           if ((a === 1 && !sx0) || (a === 2 && !sx1)) continue;
           const ox = a === 0 ? 0 : a === 1 ? W : -W;
@@ -254,6 +331,8 @@ export class PlanarVoronoi {
             points[2 * p] = x + ox;
             points[2 * p + 1] = y + oy;
             source[p - n] = i;
+            shiftX[p - n] = a === 0 ? 0 : a === 1 ? 1 : -1;
+            shiftY[p - n] = b === 0 ? 0 : b === 1 ? 1 : -1;
             p++;
           }
         }
