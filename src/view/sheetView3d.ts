@@ -16,6 +16,7 @@ import { closedCellsMaterial, disposeClosedCells, setClosedPaint } from './close
 import { sheetBounds, sheetPose, solidPose, type CameraPose, type SheetBounds } from './cameraFit';
 import { surfaceTexture } from './surfaceTexture';
 import { surfaceGeometry } from './surfaceGeometry';
+import { disposeOutline, surfaceOutline } from './pickOverlay';
 import { acceleratePicking } from './pickAcceleration';
 import type { CellSolid } from './cellSolid';
 import { CellSolidDisplay } from './cellSolidMesh';
@@ -105,7 +106,26 @@ export class SheetView3D {
   setSelected(id: number): void {
     if (id === this.selected) return;
     this.selected = id;
-    this.repaint();
+    if (this.stack?.closed) this.repaint();
+    else {
+      // Planes and tubes: the cell's outline laid over the pictures, which stay as they are.
+      this.placeOutlines();
+      this.requestRender();
+    }
+  }
+
+  /** The picked cell's outline on every planar surface (pickOverlay.ts), replacing the last one. */
+  private placeOutlines(): void {
+    const stack = this.stack;
+    this.meshes.forEach((mesh, k) => {
+      for (const old of mesh.children.filter((c) => c.name === 'picked-cell')) {
+        mesh.remove(old);
+        disposeOutline(old);
+      }
+      const surface = stack?.surfaces[k];
+      const outline = stack && surface ? surfaceOutline(stack, surface, this.selected, this.clip) : null;
+      if (outline) mesh.add(outline);
+    });
   }
 
   /** The picked cell or the stripes changed: closed surfaces take new uniforms, sheets a new picture. */
@@ -289,6 +309,7 @@ export class SheetView3D {
   private clearMeshes(): void {
     for (const mesh of this.meshes) {
       this.inner.remove(mesh);
+      for (const child of mesh.children) disposeOutline(child);
       mesh.geometry.dispose();
       (mesh.material as THREE.MeshBasicMaterial).map?.dispose();
     }
@@ -308,7 +329,8 @@ export class SheetView3D {
         const material = this.closedMaterial(surface.index);
         mesh = new THREE.Mesh(closedSurfaceGeometry(stack, surface, material), material);
       } else {
-        const paint = { highlightScutoids: this.highlight, selected: this.selected };
+        // The picked cell is an overlay (placeOutlines): the picture is drawn without it.
+        const paint = { highlightScutoids: this.highlight, selected: -1 };
         const material = this.material('textured', surface.index);
         material.map = surfaceTexture(stack, surface, paint, this.renderer.capabilities.getMaxAnisotropy());
         mesh = new THREE.Mesh(surfaceGeometry((config as Config).surface, surface.image.grid, surface.offset), material);
@@ -333,6 +355,7 @@ export class SheetView3D {
       box,
       config.surface.kind === 'tube',
     );
+    if (!closed) this.placeOutlines();
     this.updateClip();
   }
 

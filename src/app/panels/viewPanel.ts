@@ -16,7 +16,7 @@ import { hoverText, renderCellInfo } from '../view/cellInfo';
 import type { CellSolid } from '../../view/cellSolid';
 import { cellSolidPly } from '../model/ply';
 import { download } from './exports';
-import { drawUnrolled } from '../view/unrolled';
+import { drawUnrolled, pickUnrolled } from '../view/unrolled';
 
 /** A pointer that moved more than this between down and up was a drag (orbit), not a click. */
 const CLICK_SLOP_PX = 4;
@@ -197,7 +197,8 @@ export class ViewPanel {
     document.body.dataset.selectedCell = String(cell);
     this.view?.setSelected(cell);
     this.updateSolid();
-    if (this.stack) this.drawUnrolled();
+    // Planes and tubes: only the picked cell's patch changes (unrolledPick.ts).
+    if (this.stack && !pickUnrolled(this.unrolled, this.stack, cell)) this.drawUnrolled();
     renderCellInfo(this.cellInfo, this.stack, cell);
   }
 
