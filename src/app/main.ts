@@ -180,6 +180,11 @@ bindExports($('.exports'), {
   view: () => viewPanel.view,
   viewState: () => viewPanel.viewState(),
   onOpen: (file, name) => openInPage(file, name),
+  onOpenProgress: (line, fraction) => {
+    statusLine.textContent = line;
+    progress.max = 1;
+    progress.value = fraction;
+  },
 });
 
 /** Shows an opened project (exactly as saved) or result JSON (drawn from its cells, or re-run). */

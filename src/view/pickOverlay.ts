@@ -134,43 +134,52 @@ export function outlinePositions(
   return { triangles: new Float32Array(triangles), border: new Float32Array(border) };
 }
 
-const FILL = new THREE.MeshBasicMaterial({ color: 0xffffff, side: THREE.DoubleSide, polygonOffset: true, polygonOffsetFactor: -2, polygonOffsetUnits: -8 });
-const LINE = new THREE.LineBasicMaterial({ color: 0x141414 });
+/** The outline's fill and border materials; one pair per view, kept (their shader programs too). */
+export interface OutlineMaterials {
+  readonly fill: THREE.MeshBasicMaterial;
+  readonly line: THREE.LineBasicMaterial;
+}
 
-/** The picked cell's overlay on one surface, for `clip` (the view's cut); added to the surface's mesh. */
-export function outlineObject(positions: { triangles: Float32Array; border: Float32Array }, clip: THREE.Plane): THREE.Group {
+/** Materials of outlines cut by `clip` (the view's cut). */
+export function outlineMaterials(clip: THREE.Plane): OutlineMaterials {
+  return {
+    // White, pulled towards the camera: drawn over the picture it lies on.
+    fill: new THREE.MeshBasicMaterial({
+      color: 0xffffff,
+      side: THREE.DoubleSide,
+      polygonOffset: true,
+      polygonOffsetFactor: -2,
+      polygonOffsetUnits: -8,
+      clippingPlanes: [clip],
+    }),
+    line: new THREE.LineBasicMaterial({ color: 0x141414, clippingPlanes: [clip] }),
+  };
+}
+
+/** The picked cell's overlay on one surface; added to the surface's mesh. */
+export function outlineObject(positions: { triangles: Float32Array; border: Float32Array }, materials: OutlineMaterials): THREE.Group {
   const group = new THREE.Group();
   group.name = 'picked-cell';
   const fill = new THREE.BufferGeometry();
   fill.setAttribute('position', new THREE.BufferAttribute(positions.triangles, 3));
-  const fillMaterial = FILL.clone();
-  fillMaterial.clippingPlanes = [clip];
-  const lineMaterial = LINE.clone();
-  lineMaterial.clippingPlanes = [clip];
-  lineMaterial.polygonOffset = true;
   const line = new THREE.BufferGeometry();
   line.setAttribute('position', new THREE.BufferAttribute(positions.border, 3));
-  group.add(new THREE.Mesh(fill, fillMaterial), new THREE.LineSegments(line, lineMaterial));
-  // Drawn after the surface it lies on, so the offset fill wins the depth test.
-  group.renderOrder = 1;
+  group.add(new THREE.Mesh(fill, materials.fill), new THREE.LineSegments(line, materials.line));
+  // Drawn after the surface it lies on.
   group.traverse((o) => (o.renderOrder = 1));
   return group;
 }
 
-/** Frees an overlay's geometries and materials. */
+/** Frees an overlay's geometries (its materials are the view's). */
 export function disposeOutline(group: THREE.Object3D): void {
-  group.traverse((o) => {
-    const m = o as THREE.Mesh;
-    m.geometry?.dispose();
-    (m.material as THREE.Material | undefined)?.dispose();
-  });
+  group.traverse((o) => (o as THREE.Mesh).geometry?.dispose());
 }
 
 /** Cell `id`'s overlay on a plane's or tube's `surface` of `stack`, or null (none picked, or no such cell). */
-export function surfaceOutline(stack: ViewStack, surface: ViewSurface, id: number, clip: THREE.Plane): THREE.Group | null {
+export function surfaceOutline(stack: ViewStack, surface: ViewSurface, id: number, materials: OutlineMaterials): THREE.Group | null {
   if (id < 0 || id >= surface.cells.length || stack.closed) return null;
   const { grid } = surface.image;
   const polygon = cellOutline(grid, outlineCells(surface.cells), id);
   if (polygon.length < 6) return null;
-  return outlineObject(outlinePositions((stack.result.config as Config).surface, grid, surface.offset, polygon), clip);
+  return outlineObject(outlinePositions((stack.result.config as Config).surface, grid, surface.offset, polygon), materials);
 }

@@ -16,7 +16,8 @@ import { closedCellsMaterial, disposeClosedCells, setClosedPaint } from './close
 import { sheetBounds, sheetPose, solidPose, type CameraPose, type SheetBounds } from './cameraFit';
 import { surfaceTexture } from './surfaceTexture';
 import { surfaceGeometry } from './surfaceGeometry';
-import { disposeOutline, surfaceOutline } from './pickOverlay';
+import { PickOutlines } from './pickOutlines';
+import { uploadNextBand } from './bandedTexture';
 import { acceleratePicking } from './pickAcceleration';
 import type { CellSolid } from './cellSolid';
 import { CellSolidDisplay } from './cellSolidMesh';
@@ -60,6 +61,8 @@ export class SheetView3D {
   private readonly resizeObserver: ResizeObserver;
   /** The picked cell's solid (cellSolid.ts, cellSolidMesh.ts), in the sheet's frame. */
   private readonly solid: CellSolidDisplay;
+  /** The picked cell on planes and tubes: an outline over the pictures (pickOverlay.ts). */
+  private readonly outlines: PickOutlines;
 
   /** Throws when the canvas cannot give a WebGL context (the caller says so in the page). */
   constructor(
@@ -74,6 +77,7 @@ export class SheetView3D {
     this.scene.add(this.group);
     this.group.add(this.inner);
     this.solid = new CellSolidDisplay(this.scene, this.camera, this.inner);
+    this.outlines = new PickOutlines(this.renderer, this.clip);
     this.controls = new OrbitControls(this.camera, canvas);
     this.controls.addEventListener('change', () => this.requestRender());
     // Arrow keys pan when the canvas has the focus (it is focusable: tabindex 0).
@@ -109,23 +113,9 @@ export class SheetView3D {
     if (this.stack?.closed) this.repaint();
     else {
       // Planes and tubes: the cell's outline laid over the pictures, which stay as they are.
-      this.placeOutlines();
+      this.outlines.place(this.meshes, this.stack, id);
       this.requestRender();
     }
-  }
-
-  /** The picked cell's outline on every planar surface (pickOverlay.ts), replacing the last one. */
-  private placeOutlines(): void {
-    const stack = this.stack;
-    this.meshes.forEach((mesh, k) => {
-      for (const old of mesh.children.filter((c) => c.name === 'picked-cell')) {
-        mesh.remove(old);
-        disposeOutline(old);
-      }
-      const surface = stack?.surfaces[k];
-      const outline = stack && surface ? surfaceOutline(stack, surface, this.selected, this.clip) : null;
-      if (outline) mesh.add(outline);
-    });
   }
 
   /** The picked cell or the stripes changed: closed surfaces take new uniforms, sheets a new picture. */
@@ -248,6 +238,10 @@ export class SheetView3D {
     this.frame = 0;
     this.updateClip();
     this.renderer.render(this.scene, this.camera);
+    // A large picture still uploading (bandedTexture.ts): its next band in the next frame.
+    let uploading = false;
+    for (const mesh of this.meshes) uploading = uploadNextBand((mesh.material as THREE.MeshBasicMaterial).map) || uploading;
+    if (uploading) this.requestRender();
   }
 
   requestRender(): void {
@@ -259,6 +253,8 @@ export class SheetView3D {
   }
 
   toBlob(type = 'image/png'): Promise<Blob> {
+    // Every band of a picture still uploading, now: the file shows the whole picture.
+    for (const mesh of this.meshes) while (uploadNextBand((mesh.material as THREE.MeshBasicMaterial).map));
     this.renderNow();
     return new Promise((resolve, reject) => this.canvas.toBlob((blob) => (blob ? resolve(blob) : reject(new Error('the view could not be encoded'))), type));
   }
@@ -309,7 +305,7 @@ export class SheetView3D {
   private clearMeshes(): void {
     for (const mesh of this.meshes) {
       this.inner.remove(mesh);
-      for (const child of mesh.children) disposeOutline(child);
+      this.outlines.clear(mesh);
       mesh.geometry.dispose();
       (mesh.material as THREE.MeshBasicMaterial).map?.dispose();
     }
@@ -329,7 +325,7 @@ export class SheetView3D {
         const material = this.closedMaterial(surface.index);
         mesh = new THREE.Mesh(closedSurfaceGeometry(stack, surface, material), material);
       } else {
-        // The picked cell is an overlay (placeOutlines): the picture is drawn without it.
+        // The picked cell is an overlay (pickOutlines.ts): the picture is drawn without it.
         const paint = { highlightScutoids: this.highlight, selected: -1 };
         const material = this.material('textured', surface.index);
         material.map = surfaceTexture(stack, surface, paint, this.renderer.capabilities.getMaxAnisotropy());
@@ -355,7 +351,10 @@ export class SheetView3D {
       box,
       config.surface.kind === 'tube',
     );
-    if (!closed) this.placeOutlines();
+    if (!closed) {
+      this.outlines.place(this.meshes, stack, this.selected);
+      this.outlines.warm(this.meshes[0], this.camera, this.scene);
+    }
     this.updateClip();
   }
 

@@ -1,7 +1,8 @@
 import { describe, expect, it } from 'vitest';
 import type { Grid } from '../../src/core/grid';
 import { mulberry32 } from '../../src/core/mesh/generate';
-import { candidateIds, cellOutline, type OutlineCells } from '../../src/view/cellOutline';
+import { exactVoronoi } from '../../src/core/exact';
+import { candidateIds, cellOutline, exactCell, type OutlineCells } from '../../src/view/cellOutline';
 
 /** Random sites (µm) on `grid`, every site a "neighbour" of every other (brute force). */
 function allSites(grid: Grid, n: number, seed: number): { sites: [number, number][]; cells: (neighbours: (id: number) => number[]) => OutlineCells } {
@@ -88,6 +89,22 @@ describe('cellOutline (the picked cell drawn alone)', () => {
       for (let id = 0; id < n; id++) {
         expect(candidateIds(ringed, id)).not.toContain(id);
         expect(area(cellOutline(grid, ringed, id))).toBeCloseTo(area(outlines[id]), 6);
+      }
+    });
+  }
+});
+
+describe('exactCell (a picked cell and its neighbours, alone)', () => {
+  for (const [name, grid] of GRIDS) {
+    it(`${name}: the neighbours and polygon of core/exact.ts's exact cells of the whole surface`, () => {
+      const n = 200;
+      const { sites } = allSites(grid, n, 11);
+      const voronoi = exactVoronoi(grid, sites.flatMap(([x, y]) => [x / grid.texelX, y / grid.texelY]));
+      const cells: OutlineCells = { length: n, site: (id) => sites[id], neighbours: (id) => voronoi.cells[id].neighbours };
+      for (let id = 0; id < n; id++) {
+        const cell = exactCell(grid, cells, id);
+        expect(cell.neighbours).toEqual(Array.from(voronoi.cells[id].neighbours));
+        expect(area(cell.polygon) * grid.texelX * grid.texelY).toBeCloseTo(voronoi.cells[id].area, 6);
       }
     });
   }

@@ -17,6 +17,7 @@ import type { CellSolid } from '../../view/cellSolid';
 import { cellSolidPly } from '../model/ply';
 import { download } from './exports';
 import { drawUnrolled, pickUnrolled } from '../view/unrolled';
+import { selectCellRow } from './cellTableView';
 
 /** A pointer that moved more than this between down and up was a drag (orbit), not a click. */
 const CLICK_SLOP_PX = 4;
@@ -200,6 +201,8 @@ export class ViewPanel {
     // Planes and tubes: only the picked cell's patch changes (unrolledPick.ts).
     if (this.stack && !pickUnrolled(this.unrolled, this.stack, cell)) this.drawUnrolled();
     renderCellInfo(this.cellInfo, this.stack, cell);
+    const table = document.querySelector<HTMLElement>('#cell-table');
+    if (table) selectCellRow(table, cell);
   }
 
   /** What a project file keeps of the view. */
