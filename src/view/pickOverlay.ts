@@ -72,7 +72,15 @@ export function facetPieces(polygon: ArrayLike<number>, width: number, segments:
  * Segment (x0, y0)-(x1, y1) cut where it crosses facet edges (multiples of `step`): each part
  * with its facet, moved into [0, width] on a periodic axis.
  */
-export function splitEdge(x0: number, y0: number, x1: number, y1: number, step: number, segments: number, periodic: boolean): [number, number, number, number, number][] {
+export function splitEdge(
+  x0: number,
+  y0: number,
+  x1: number,
+  y1: number,
+  step: number,
+  segments: number,
+  periodic: boolean,
+): [number, number, number, number, number][] {
   const cuts = [0, 1];
   if (x1 !== x0) {
     const lo = Math.min(x0, x1);

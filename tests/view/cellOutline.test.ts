@@ -99,7 +99,10 @@ describe('exactCell (a picked cell and its neighbours, alone)', () => {
     it(`${name}: the neighbours and polygon of core/exact.ts's exact cells of the whole surface`, () => {
       const n = 200;
       const { sites } = allSites(grid, n, 11);
-      const voronoi = exactVoronoi(grid, sites.flatMap(([x, y]) => [x / grid.texelX, y / grid.texelY]));
+      const voronoi = exactVoronoi(
+        grid,
+        sites.flatMap(([x, y]) => [x / grid.texelX, y / grid.texelY]),
+      );
       const cells: OutlineCells = { length: n, site: (id) => sites[id], neighbours: (id) => voronoi.cells[id].neighbours };
       for (let id = 0; id < n; id++) {
         const cell = exactCell(grid, cells, id);
