@@ -198,6 +198,8 @@ async function openInPage(file: OpenedFile, name: string): Promise<void> {
     statusLine.textContent = `Opened ${name}: ${rerunNote(file.result, stack)}`;
     return;
   }
+  // The form's rebuild and the views in tasks of their own (issue 27: no task over 50 ms).
+  await nextTask();
   await show(file.output, config, false, true);
   if (file.kind === 'project' && stack) viewPanel.restore(stack, file.view);
   saveConfig(config, openedLink);

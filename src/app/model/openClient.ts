@@ -39,6 +39,8 @@ export class ResultOpener {
     if (opened.kind === 'result-rerun') return { kind: 'result-rerun', result };
     const output: SheetOutput = { result, labelImages: opened.labelImages };
     rememberPictures(output, opened.presented);
+    // The worker's reply ends its task here; the page draws the result in the next ones.
+    await new Promise((resolve) => setTimeout(resolve, 0));
     return { kind: 'result', output, drawnFrom: 'cells' };
   }
 

@@ -161,14 +161,18 @@ export class ViewPanel {
     }
   }
 
-  show(stack: ViewStack): void {
+  /** Shows `stack`; the unrolled pictures in the next task unless `deferUnrolled` is false. */
+  show(stack: ViewStack, deferUnrolled = true): void {
     this.stack = stack;
     if (this.selected >= stack.result.cells.length) this.selected = -1;
     this.view?.setSelected(this.selected);
     this.view?.setStack(stack);
     this.view?.acceleratePicking();
     this.updateSolid();
-    this.drawUnrolled();
+    // In a task of its own: copying two large pictures in (a 100,000-cell result) would make one
+    // task of it and the 3D view's rebuild (issue 27).
+    if (deferUnrolled) setTimeout(() => this.stack === stack && this.drawUnrolled(), 0);
+    else this.drawUnrolled();
     renderCellInfo(this.cellInfo, stack, this.selected);
     this.cellField.max = String(stack.result.cells.length - 1);
     this.toggles.replaceChildren();
@@ -227,7 +231,7 @@ export class ViewPanel {
     this.view?.setHighlightScutoids(state.highlightScutoids);
     this.selected = state.selectedCell ?? -1;
     this.solidBox.checked = state.cellSolid === true;
-    this.show(stack);
+    this.show(stack, false);
     this.select(this.selected);
     if (state.camera) this.view?.setCameraState(state.camera);
     this.cut.value = String(state.cut);
