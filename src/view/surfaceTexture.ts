@@ -28,6 +28,10 @@ export function surfaceTexture(stack: ViewStack, surface: ViewSurface, paint: Su
   else if (picture) texture = new THREE.Texture(picture);
   else {
     const canvas = document.createElement('canvas');
+    // A software canvas, as the worker's (workerPictures.ts): the same pixels whichever drew them
+    // (an accelerated canvas antialiases the borders otherwise, so a project reopened on the page
+    // did not look exactly as saved once the worker's pictures were kept through picks).
+    canvas.getContext('2d', { willReadFrequently: true });
     drawExactCells(canvas, surface, { ...paint, ...PICTURE_LAYOUT.texture(surface), valid: stack.valid, scutoid: stack.scutoid });
     texture = new THREE.CanvasTexture(canvas);
   }
