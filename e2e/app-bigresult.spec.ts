@@ -90,11 +90,15 @@ test("a 25,000-cell result opens and picks without long main-thread tasks; its t
   // The table: a bounded number of rows in the DOM, and they are the file's cells.
   await page.locator('#cells-title').click();
   const box = page.locator('#cell-table');
+  await expect(box).toBeVisible();
+  // Opening the details redraws the rows in the next frame (cellTableView.ts).
+  await frames(page, 3);
   const rows = box.locator('tbody tr:not(.spacer)');
   expect(await rows.count()).toBeGreaterThan(0);
   expect(await rows.count()).toBeLessThanOrEqual(100);
   await expect(box.locator('table')).toHaveAttribute('aria-rowcount', String(n + 1));
-  const rowHeight = (await rows.first().boundingBox())!.height;
+  const rowHeight = await box.evaluate((el) => el.querySelector('tbody tr:not(.spacer)')!.getBoundingClientRect().height);
+  expect(rowHeight).toBeGreaterThan(0);
   await box.evaluate((el, top) => (el.scrollTop = top), rowHeight * 12_345);
   await frames(page, 3);
   const shown = await rows.evaluateAll((trs) => trs.map((tr) => [...tr.children].map((c) => c.textContent ?? '')));
