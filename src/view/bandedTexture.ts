@@ -40,3 +40,10 @@ export function bandRows(width: number, height: number, row: number): [number, n
   const perBand = Math.max(1, Math.floor(BAND_BYTES / (4 * Math.max(1, width))));
   return [row, Math.min(height, row + perBand)];
 }
+
+/** uploadNextBand of every mesh's map; whether any band was queued. */
+export function uploadNextBands(meshes: readonly THREE.Mesh[]): boolean {
+  let queued = false;
+  for (const mesh of meshes) queued = uploadNextBand((mesh.material as THREE.MeshBasicMaterial).map) || queued;
+  return queued;
+}

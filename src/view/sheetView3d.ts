@@ -17,7 +17,7 @@ import { sheetBounds, sheetPose, solidPose, type CameraPose, type SheetBounds } 
 import { surfaceTexture } from './surfaceTexture';
 import { surfaceGeometry } from './surfaceGeometry';
 import { PickOutlines } from './pickOutlines';
-import { uploadNextBand } from './bandedTexture';
+import { uploadNextBands } from './bandedTexture';
 import { acceleratePicking } from './pickAcceleration';
 import type { CellSolid } from './cellSolid';
 import { CellSolidDisplay } from './cellSolidMesh';
@@ -239,9 +239,7 @@ export class SheetView3D {
     this.updateClip();
     this.renderer.render(this.scene, this.camera);
     // A large picture still uploading (bandedTexture.ts): its next band in the next frame.
-    let uploading = false;
-    for (const mesh of this.meshes) uploading = uploadNextBand((mesh.material as THREE.MeshBasicMaterial).map) || uploading;
-    if (uploading) this.requestRender();
+    if (uploadNextBands(this.meshes)) this.requestRender();
   }
 
   requestRender(): void {
@@ -254,7 +252,7 @@ export class SheetView3D {
 
   toBlob(type = 'image/png'): Promise<Blob> {
     // Every band of a picture still uploading, now: the file shows the whole picture.
-    for (const mesh of this.meshes) while (uploadNextBand((mesh.material as THREE.MeshBasicMaterial).map));
+    while (uploadNextBands(this.meshes));
     this.renderNow();
     return new Promise((resolve, reject) => this.canvas.toBlob((blob) => (blob ? resolve(blob) : reject(new Error('the view could not be encoded'))), type));
   }
