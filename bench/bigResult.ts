@@ -3,7 +3,8 @@
 // app opens a CLI result with its cells side file; time to open (choose -> pictures on screen)
 // and the longest main-thread task then; frame times while the 3D view orbits (pointer drags),
 // beside the same orbit on the app's own small default result in the same run (the baseline);
-// picking latency (a click on the 3D view -> the cell panel names the cell).
+// picking latency (a click on the 3D view -> the cell panel names the cell) and the longest
+// main-thread task while picking; the cell table's rows in the DOM.
 // Options: --port P (default 5187).
 import { chromium, type Page } from '@playwright/test';
 import { createServer } from 'vite';
@@ -94,6 +95,8 @@ try {
   const big = await orbit(page);
   const orbitTasks = await page.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks.splice(0));
   const bigPicks = await picks(page);
+  const pickTasks = await page.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks.splice(0));
+  const rows = await page.evaluate(() => document.querySelectorAll('#cell-table tbody tr').length);
   console.log(`\nissue 27: a big result in the page (headless Chromium, SwiftShader); ${cells.slice(0, 120)}`);
   console.log(
     `open (choose both files -> pictures on screen): ${fmt(openMs)}; longest main-thread task ${fmt(Math.max(0, ...openTasks))} (${openTasks.length} over 50 ms)`,
@@ -101,7 +104,10 @@ try {
   console.log(
     `orbit frame interval: big median ${fmt(quantile(big, 0.5))}, p95 ${fmt(quantile(big, 0.95))} | small default (baseline) median ${fmt(quantile(small, 0.5))}, p95 ${fmt(quantile(small, 0.95))}; longest task while orbiting the big one ${fmt(Math.max(0, ...orbitTasks))}`,
   );
-  console.log(`pick (click -> cell panel): big median ${fmt(quantile(bigPicks, 0.5))} | small (baseline) median ${fmt(quantile(smallPicks, 0.5))}`);
+  console.log(
+    `pick (click -> cell panel): big median ${fmt(quantile(bigPicks, 0.5))}; longest main-thread task while picking ${fmt(Math.max(0, ...pickTasks))} (${pickTasks.length} over 50 ms) | small (baseline) median ${fmt(quantile(smallPicks, 0.5))}`,
+  );
+  console.log(`cell table rows in the DOM: ${rows}`);
 } finally {
   await browser.close();
   await server.close();

@@ -1,7 +1,7 @@
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
-import { downloadExport, linkTo, runs, waitForRun } from './appHelpers';
+import { downloadExport, linkTo, runs, unrolledWhitePixels, waitForRun } from './appHelpers';
 import { cliRun, runCli, tempDir } from './cli';
 import { readPngDpi, readPngText } from '../src/app/model/pngText';
 import { SIDE_COLORS } from '../src/view/sideColors';
@@ -255,14 +255,7 @@ test('a picked cell: its id, sides per surface, neighbours won and lost (matchin
   await expect(page.locator('#cell-info')).toContainText(`basal ${sides[0]}`);
   await expect(page.locator('body')).toHaveAttribute('data-selected-cell', String(id));
   // White on every unrolled surface: each canvas now has white pixels.
-  const white = await page.evaluate(() =>
-    [...document.querySelectorAll<HTMLCanvasElement>('#unrolled canvas')].map((c) => {
-      const d = c.getContext('2d')!.getImageData(0, 0, c.width, c.height).data;
-      let count = 0;
-      for (let k = 0; k < d.length; k += 4) if (d[k] === 255 && d[k + 1] === 255 && d[k + 2] === 255) count++;
-      return count;
-    }),
-  );
+  const white = await unrolledWhitePixels(page);
   expect(white.every((c) => c > 20)).toBe(true);
   // A click in the 3D view picks too (the sheet fills the view's centre).
   const box = (await page.locator('#view3d').boundingBox())!;

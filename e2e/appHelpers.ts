@@ -82,3 +82,15 @@ export function injectedScriptRuns(page: Page): Promise<boolean> {
     return (window as unknown as { __injected?: boolean }).__injected === true;
   });
 }
+
+/** White pixels (the picked cell's fill) on each unrolled canvas. */
+export function unrolledWhitePixels(page: Page): Promise<number[]> {
+  return page.evaluate(() =>
+    [...document.querySelectorAll<HTMLCanvasElement>('#unrolled canvas')].map((c) => {
+      const d = c.getContext('2d')!.getImageData(0, 0, c.width, c.height).data;
+      let count = 0;
+      for (let k = 0; k < d.length; k += 4) if (d[k] === 255 && d[k + 1] === 255 && d[k + 2] === 255) count++;
+      return count;
+    }),
+  );
+}

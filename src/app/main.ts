@@ -180,6 +180,11 @@ bindExports($('.exports'), {
   view: () => viewPanel.view,
   viewState: () => viewPanel.viewState(),
   onOpen: (file, name) => openInPage(file, name),
+  onOpenProgress: (line, fraction) => {
+    statusLine.textContent = line;
+    progress.max = 1;
+    progress.value = fraction;
+  },
 });
 
 /** Shows an opened project (exactly as saved) or result JSON (drawn from its cells, or re-run). */
@@ -193,6 +198,8 @@ async function openInPage(file: OpenedFile, name: string): Promise<void> {
     statusLine.textContent = `Opened ${name}: ${rerunNote(file.result, stack)}`;
     return;
   }
+  // The form's rebuild and the views in tasks of their own (issue 27: no task over 50 ms).
+  await nextTask();
   await show(file.output, config, false, true);
   if (file.kind === 'project' && stack) viewPanel.restore(stack, file.view);
   saveConfig(config, openedLink);

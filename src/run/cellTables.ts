@@ -118,9 +118,14 @@ export function cellTable(surface: SurfaceAdjacency, placeAll: (position: Float6
 
 /** The JSON's cell records from a table. */
 export function cellRecordsOf(table: CellTable): CellRecord[] {
+  return cellRecordsRange(table, 0, table.count);
+}
+
+/** Cells `from` to `to` - 1 of cellRecordsOf (the page builds a large result's records in slices). */
+export function cellRecordsRange(table: CellTable, from: number, to: number): CellRecord[] {
   const cells: CellRecord[] = [];
   const { position: p, surface: s, neighbourOffsets: offsets, neighbourIds: ids, neighbourLengths: lengths } = table;
-  for (let id = 0; id < table.count; id++) {
+  for (let id = from; id < to; id++) {
     const neighbours = [];
     for (let k = offsets[id]; k < offsets[id + 1]; k++) neighbours.push({ id: ids[k], length: lengths[k] });
     cells.push({
@@ -154,9 +159,14 @@ export function analysisCellTable(cells: CellStatistics): AnalysisCellTable {
 
 /** The JSON's per-cell statistics records from a table (as analysisRecord writes them). */
 export function analysisCellRecordsOf(table: AnalysisCellTable): CellStatisticsRecord[] {
+  return analysisCellRecordsRange(table, 0, table.count);
+}
+
+/** Cells `from` to `to` - 1 of analysisCellRecordsOf. */
+export function analysisCellRecordsRange(table: AnalysisCellTable, from: number, to: number): CellStatisticsRecord[] {
   const n = table.count;
   const surfaces = n > 0 ? table.sides.length / n : 0;
-  return cellStatisticsRecords(table, (id) => Array.from({ length: surfaces }, (_, k) => table.sides[k * n + id]));
+  return cellStatisticsRecords(table, (id) => Array.from({ length: surfaces }, (_, k) => table.sides[k * n + id]), from, to);
 }
 
 const CELL_COLUMNS = ['position', 'surface', 'area', 'touchesBorder', 'neighbourOffsets', 'neighbourIds', 'neighbourLengths'] as const;

@@ -16,6 +16,8 @@ import { closedCellsMaterial, disposeClosedCells, setClosedPaint } from './close
 import { sheetBounds, sheetPose, solidPose, type CameraPose, type SheetBounds } from './cameraFit';
 import { surfaceTexture } from './surfaceTexture';
 import { surfaceGeometry } from './surfaceGeometry';
+import { PickOutlines } from './pickOutlines';
+import { uploadNextBands } from './bandedTexture';
 import { acceleratePicking } from './pickAcceleration';
 import type { CellSolid } from './cellSolid';
 import { CellSolidDisplay } from './cellSolidMesh';
@@ -59,6 +61,8 @@ export class SheetView3D {
   private readonly resizeObserver: ResizeObserver;
   /** The picked cell's solid (cellSolid.ts, cellSolidMesh.ts), in the sheet's frame. */
   private readonly solid: CellSolidDisplay;
+  /** The picked cell on planes and tubes: an outline over the pictures (pickOverlay.ts). */
+  private readonly outlines: PickOutlines;
 
   /** Throws when the canvas cannot give a WebGL context (the caller says so in the page). */
   constructor(
@@ -73,6 +77,7 @@ export class SheetView3D {
     this.scene.add(this.group);
     this.group.add(this.inner);
     this.solid = new CellSolidDisplay(this.scene, this.camera, this.inner);
+    this.outlines = new PickOutlines(this.renderer, this.clip);
     this.controls = new OrbitControls(this.camera, canvas);
     this.controls.addEventListener('change', () => this.requestRender());
     // Arrow keys pan when the canvas has the focus (it is focusable: tabindex 0).
@@ -105,7 +110,12 @@ export class SheetView3D {
   setSelected(id: number): void {
     if (id === this.selected) return;
     this.selected = id;
-    this.repaint();
+    if (this.stack?.closed) this.repaint();
+    else {
+      // Planes and tubes: the cell's outline laid over the pictures, which stay as they are.
+      this.outlines.place(this.meshes, this.stack, id);
+      this.requestRender();
+    }
   }
 
   /** The picked cell or the stripes changed: closed surfaces take new uniforms, sheets a new picture. */
@@ -228,6 +238,8 @@ export class SheetView3D {
     this.frame = 0;
     this.updateClip();
     this.renderer.render(this.scene, this.camera);
+    // A large picture still uploading (bandedTexture.ts): its next band in the next frame.
+    if (uploadNextBands(this.meshes)) this.requestRender();
   }
 
   requestRender(): void {
@@ -239,6 +251,8 @@ export class SheetView3D {
   }
 
   toBlob(type = 'image/png'): Promise<Blob> {
+    // Every band of a picture still uploading, now: the file shows the whole picture.
+    while (uploadNextBands(this.meshes));
     this.renderNow();
     return new Promise((resolve, reject) => this.canvas.toBlob((blob) => (blob ? resolve(blob) : reject(new Error('the view could not be encoded'))), type));
   }
@@ -289,6 +303,7 @@ export class SheetView3D {
   private clearMeshes(): void {
     for (const mesh of this.meshes) {
       this.inner.remove(mesh);
+      this.outlines.clear(mesh);
       mesh.geometry.dispose();
       (mesh.material as THREE.MeshBasicMaterial).map?.dispose();
     }
@@ -308,7 +323,8 @@ export class SheetView3D {
         const material = this.closedMaterial(surface.index);
         mesh = new THREE.Mesh(closedSurfaceGeometry(stack, surface, material), material);
       } else {
-        const paint = { highlightScutoids: this.highlight, selected: this.selected };
+        // The picked cell is an overlay (pickOutlines.ts): the picture is drawn without it.
+        const paint = { highlightScutoids: this.highlight, selected: -1 };
         const material = this.material('textured', surface.index);
         material.map = surfaceTexture(stack, surface, paint, this.renderer.capabilities.getMaxAnisotropy());
         mesh = new THREE.Mesh(surfaceGeometry((config as Config).surface, surface.image.grid, surface.offset), material);
@@ -333,6 +349,10 @@ export class SheetView3D {
       box,
       config.surface.kind === 'tube',
     );
+    if (!closed) {
+      this.outlines.place(this.meshes, stack, this.selected);
+      this.outlines.warm(this.meshes[0], this.camera, this.scene);
+    }
     this.updateClip();
   }
 

@@ -6,6 +6,7 @@
 import { headlineMethod } from '../core/config/analysisMethods';
 import { surfaceLayout } from '../core/config/surfaceLayout';
 import type { AnalysisRecord, CellRecord, LabelImage, SheetOutput, SheetResult } from '../run';
+import { analysisColumns } from '../run/lazyRecords';
 
 export interface ViewSurface {
   readonly index: number;
@@ -66,11 +67,13 @@ export function viewStack(output: SheetOutput): ViewStack {
   const analysis = primaryAnalysis(result);
   const n = result.cells.length;
   const records = result.surfaces ?? [];
+  // A large opened result's analysis as columns (run/lazyRecords.ts): read without making records.
+  const columns = analysisColumns(analysis?.cells);
   const surfaces: ViewSurface[] = labelImages.map((image, k) => {
     const record = k === 0 ? null : records[k - 1];
     const cells = k === 0 ? result.cells : (record?.cells ?? []);
-    const sides = new Int32Array(n);
-    for (let i = 0; i < n; i++) {
+    const sides = columns && columns.count === n ? columns.sides.slice(k * n, (k + 1) * n) : new Int32Array(n);
+    for (let i = 0; i < n && !(columns && columns.count === n); i++) {
       const fromAnalysis = analysis?.cells[i]?.sides[k];
       sides[i] = fromAnalysis ?? cells[i]?.neighbours.length ?? 0;
     }
@@ -87,7 +90,11 @@ export function viewStack(output: SheetOutput): ViewStack {
   });
   const valid = new Uint8Array(n);
   const scutoid = new Uint8Array(n);
-  for (let i = 0; i < n; i++) {
+  if (columns && columns.count === n) {
+    valid.set(columns.valid);
+    scutoid.set(columns.scutoid);
+  }
+  for (let i = 0; i < n && !(columns && columns.count === n); i++) {
     const stats = analysis?.cells[i];
     valid[i] = stats ? (stats.valid ? 1 : 0) : result.cells[i]?.touchesBorder ? 0 : 1;
     scutoid[i] = stats?.scutoid ? 1 : 0;

@@ -10,8 +10,13 @@ import type { SurfaceConfig } from '../core/config';
 import type { Grid } from '../core/grid';
 import { embed } from '../core/surface';
 
+/** Flat facets around the surface (a tube's circle as a 128-gon; a plane is one facet). */
+export function surfaceSegments(surface: SurfaceConfig): number {
+  return surface.kind === 'tube' ? 128 : 1;
+}
+
 export function surfaceGeometry(surface: SurfaceConfig, grid: Grid, offset: number): THREE.BufferGeometry {
-  const segmentsX = surface.kind === 'tube' ? 128 : 1;
+  const segmentsX = surfaceSegments(surface);
   const segmentsY = 1;
   const positions: number[] = [];
   const uvs: number[] = [];

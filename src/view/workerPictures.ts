@@ -2,7 +2,8 @@
  * The views' pictures of a result drawn in the pipeline's worker (src/view/viewWorker.ts), so the
  * page's main thread does not draw them after every result: on planes and tubes the exact cells
  * of every surface (exactCells.ts) for the 3D view's textures and for the unrolled diagrams, on
- * closed surfaces and in drafts (a slider being dragged) the painted label images (paintSurface). Drawn on
+ * closed surfaces, in drafts (a slider being dragged) and above MAX_POLYGON_CELLS cells the painted label
+ * images (paintSurface). Drawn on
  * software canvases there (an accelerated canvas would rasterize in the GPU process, which also
  * draws the page's frames) and sent as transferred ImageBitmaps / RGBA bytes.
  *
@@ -11,7 +12,7 @@
  * drawn with the same options (highlight, picked cell), else the views draw as before.
  */
 import type { LabelImage, SheetOutput } from '../run';
-import { drawExactCells, exactScale } from './exactCells';
+import { drawExactCells, drawnByTexels, exactScale } from './exactCells';
 import { flipRows, paintSurface } from './sideColors';
 import { viewStack, type ViewSurface } from './stack';
 
@@ -61,14 +62,25 @@ export function drawPictures(output: SheetOutput, request: PictureRequest): { pr
     drawExactCells(canvas, surface, { ...options, ...PICTURE_LAYOUT[kind](surface) });
     return canvas.transferToImageBitmap();
   };
-  const planar = !stack.closed && !request.draft;
-  const texture = stack.surfaces.map((s) => (planar ? draw(s, 'texture') : null));
-  const unrolled = stack.surfaces.map((s) => (planar ? draw(s, 'unrolled') : null));
-  const rgba = stack.surfaces.map((s) => (planar ? null : paintSurface(s, options)));
+  // Exact polygons on planes and tubes, unless a draft or too many cells (exactCells.ts, MAX_POLYGON_CELLS).
+  const byPolygons = (s: ViewSurface) => !stack.closed && !request.draft && !drawnByTexels(s);
+  const texture = stack.surfaces.map((s) => (byPolygons(s) ? draw(s, 'texture') : null));
+  const rgba = stack.surfaces.map((s) => (byPolygons(s) ? null : paintSurface(s, options)));
+  // Very many cells (not a draft): the unrolled picture too, flipped here, so the page only copies it.
+  const unrolled = stack.surfaces.map((s, k) =>
+    byPolygons(s) ? draw(s, 'unrolled') : !stack.closed && !request.draft ? flippedBitmap(rgba[k]!, s.image.grid.width, s.image.grid.height) : null,
+  );
   const transfer: Transferable[] = [];
   for (const bitmap of [...texture, ...unrolled]) if (bitmap) transfer.push(bitmap);
   for (const bytes of rgba) if (bytes) transfer.push(bytes.buffer as ArrayBuffer);
   return { presented: { ...request, texture, unrolled, rgba }, transfer };
+}
+
+/** An ImageBitmap of `rgba` (row 0 = y 0) with y = 0 at the bottom (the unrolled view). */
+function flippedBitmap(rgba: Uint8ClampedArray, width: number, height: number): ImageBitmap {
+  const canvas = new OffscreenCanvas(width, height);
+  canvas.getContext('2d', { willReadFrequently: true })!.putImageData(new ImageData(flipRows(rgba, width, height), width, height), 0, 0);
+  return canvas.transferToImageBitmap();
 }
 
 interface Kept extends PictureRequest {

@@ -20,8 +20,13 @@ export interface CellTable {
 }
 
 export function cellTable(stack: ViewStack): CellTable {
+  return { header: cellTableHeader(stack), rows: stack.result.cells.map((_, i) => cellRow(stack, i)) };
+}
+
+/** The table's column names. */
+export function cellTableHeader(stack: ViewStack): string[] {
   const names = stack.surfaces.map((s) => s.name.replace(/\s+/g, '_'));
-  const header = [
+  return [
     'id',
     'valid',
     'scutoid',
@@ -31,24 +36,26 @@ export function cellTable(stack: ViewStack): CellTable {
     // Closed surfaces: the site's parameter direction as longitude / latitude.
     ...(stack.closed ? ['longitude_deg', 'latitude_deg'] : ['u_um', 'v_um']),
   ];
-  const rows = stack.result.cells.map((cell, i) => {
-    const stats = stack.analysis?.cells[i];
-    return [
-      cell.id,
-      stack.valid[i],
-      stack.scutoid[i],
-      ...stack.surfaces.map((s) => s.sides[i]),
-      stats?.won ?? '',
-      stats?.lost ?? '',
-      stats?.transitions ?? '',
-      stats?.neighbours3D ?? '',
-      ...stack.surfaces.map((s) => round(s.cells[i]?.area ?? Number.NaN, 3)),
-      ...stack.surfaces.map((s) => (s.cells[i]?.neighbours ?? []).map((n) => n.id).join(' ')),
-      round(cell.surface[0], 3),
-      round(cell.surface[1], 3),
-    ];
-  });
-  return { header, rows };
+}
+
+/** Row `i` of the table (cell i): built one at a time, so the page shows only the rows in view. */
+export function cellRow(stack: ViewStack, i: number): (string | number)[] {
+  const cell = stack.result.cells[i];
+  const stats = stack.analysis?.cells[i];
+  return [
+    cell.id,
+    stack.valid[i],
+    stack.scutoid[i],
+    ...stack.surfaces.map((s) => s.sides[i]),
+    stats?.won ?? '',
+    stats?.lost ?? '',
+    stats?.transitions ?? '',
+    stats?.neighbours3D ?? '',
+    ...stack.surfaces.map((s) => round(s.cells[i]?.area ?? Number.NaN, 3)),
+    ...stack.surfaces.map((s) => (s.cells[i]?.neighbours ?? []).map((n) => n.id).join(' ')),
+    round(cell.surface[0], 3),
+    round(cell.surface[1], 3),
+  ];
 }
 
 /** The engine that ran, in words, with why (not the config's "auto"). */

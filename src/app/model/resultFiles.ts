@@ -25,8 +25,14 @@ export const MAX_CELLS_FILE_BYTES = 1024 * 1024 * 1024;
 
 const isSideFile = (file: GivenFile) => /\.cells\.bin$/i.test(file.name) || /\.bin$/i.test(file.name);
 
+/**
+ * Opens a result JSON (`data`, parsed) with its side file off the main thread (openClient.ts);
+ * without one, the pair is opened here.
+ */
+export type SideFileOpener = (data: unknown, record: CellsFileRecord, side: GivenFile, name: string) => Promise<OpenedFile>;
+
 /** The file opened from `files` (one JSON, or a result JSON and its side file) and its name. */
-export async function openFiles(files: readonly GivenFile[]): Promise<{ file: OpenedFile; name: string }> {
+export async function openFiles(files: readonly GivenFile[], openSide?: SideFileOpener): Promise<{ file: OpenedFile; name: string }> {
   if (files.length === 0) throw new Error('No file was given.');
   const sides = files.filter(isSideFile);
   const jsons = files.filter((f) => !isSideFile(f));
@@ -56,6 +62,7 @@ export async function openFiles(files: readonly GivenFile[]): Promise<{ file: Op
     throw new Error(`${json.name}: its cells are in ${record.path}, not in ${side.name}; choose or drop ${json.name} with ${record.path}.`);
   }
   if (side.size > MAX_CELLS_FILE_BYTES) throw new Error(`${side.name}: ${side.size} bytes; a cells file over 1 GiB is refused.`);
+  if (openSide) return { file: await openSide(data, record, side, json.name), name: `${json.name} + ${side.name}` };
   let result: SheetResult;
   try {
     const tables = decodeCellsFile(record, new Uint8Array(await side.arrayBuffer()));

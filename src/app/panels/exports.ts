@@ -13,7 +13,8 @@ import { cellsVtk } from '../model/vtk';
 import { unrolledSvg } from '../model/svg';
 import { projectJson, type OpenedFile, type ViewState } from '../model/project';
 import { openSections, prepareSections } from '../model/projectSections';
-import { openFiles } from '../model/resultFiles';
+import { openFiles, type SideFileOpener } from '../model/resultFiles';
+import { ResultOpener } from '../model/openClient';
 import { figurePng, figureSize } from '../view/figure';
 import type { SheetView3D } from '../../view/sheetView3d';
 import type { ViewStack } from '../../view/stack';
@@ -40,6 +41,8 @@ export interface ExportSources {
   viewState(): ViewState;
   /** Shows an opened project or result file; `note` says where it came from. */
   onOpen(file: OpenedFile, name: string): Promise<void> | void;
+  /** Where opening a large file stands: a line and the fraction done (0..1). */
+  onOpenProgress?(line: string, fraction: number): void;
 }
 
 /** The export buttons this module adds beside the page's own (index.html has the first five). */
@@ -97,12 +100,25 @@ function baseName(stack: ViewStack): string {
 
 export function bindExports(root: HTMLElement, sources: ExportSources): void {
   const more = addControls(root);
+  // A result with its cells side file opens in a worker (model/openWorker.ts, issue 27).
+  const opener = typeof Worker === 'undefined' ? null : new ResultOpener();
+  const openSide: SideFileOpener | undefined = opener
+    ? (data, record, side, name) =>
+        opener.open({
+          data,
+          record,
+          side: side as File,
+          name,
+          highlightScutoids: sources.viewState().highlightScutoids,
+          onProgress: (line, fraction) => sources.onOpenProgress?.(`Opening ${name}: ${line}`, fraction),
+        })
+    : undefined;
   more.file.addEventListener('change', async () => {
     const chosen = [...(more.file.files ?? [])];
     more.file.value = '';
     if (chosen.length === 0) return;
     try {
-      const { file, name } = await openFiles(chosen);
+      const { file, name } = await openFiles(chosen, openSide);
       await sources.onOpen(file, name);
       if (file.kind === 'project') await openSections(file.sections, name);
     } catch (error) {

@@ -5,7 +5,8 @@
  */
 import { describeEngine } from '../../run';
 import { describeOmitted } from '../../core/analysis/headline';
-import { cellTable } from '../model/cellRows';
+import { renderCellTable } from './cellTableView';
+import { tableRow } from './tableRow';
 import { byConstruction, noValidCells } from '../../core/analysis/byConstruction';
 import { analysisByMethod, methodCaption, type ViewStack } from '../../view/stack';
 
@@ -57,7 +58,8 @@ export function renderResults(root: HTMLElement, stack: ViewStack): void {
     run.dataset.voronoiK = String(last + 1);
   }
   const table = root.querySelector<HTMLElement>('#cell-table');
-  if (table) table.replaceChildren(cellTableElement(stack));
+  // Only the rows in view are in the DOM (cellTableView.ts).
+  if (table) renderCellTable(table, stack);
 }
 
 /** Where the other realizations of the headline are: running (done of n), stopped, or failed. */
@@ -136,29 +138,16 @@ export function timings(t: { setupMs: number; lloydMs: number; adjacencyMs: numb
   return `${ms(t.totalMs)} in all (adjacency and analysis ${ms(t.adjacencyMs)}; the seeded surface was reused from an earlier run, where setup took ${ms(t.setupMs)} and Lloyd ${ms(t.lloydMs)})`;
 }
 
-function row(cells: (string | number)[], header = false, key?: string, value?: number): HTMLTableRowElement {
-  const tr = document.createElement('tr');
-  cells.forEach((text, k) => {
-    const cell = document.createElement(header || k === 0 ? 'th' : 'td');
-    cell.textContent = String(text);
-    if (!header && k === 0) cell.setAttribute('scope', 'row');
-    tr.append(cell);
-  });
-  if (key) tr.dataset.key = key;
-  if (value !== undefined) tr.dataset.value = String(value);
-  return tr;
-}
-
 function summaryTable(stack: ViewStack): HTMLTableElement {
   const table = document.createElement('table');
   table.className = 'summary';
   // The headline's method first: its values are the rows' data-value.
   const order = stack.analysis?.method === 'exact' ? (['exact', 'labels'] as const) : (['labels', 'exact'] as const);
   const methods = order.map((m) => analysisByMethod(stack.result, m)).filter((a) => a !== null);
-  table.append(row([`seed ${stack.result.config.seed} (the cells shown)`, ...methods.map((a) => a.method)], true));
+  table.append(tableRow([`seed ${stack.result.config.seed} (the cells shown)`, ...methods.map((a) => a.method)], true));
   const line = (key: keyof (typeof methods)[number]['summary'], label: string, digits: number) => {
     const values = methods.map((a) => a.summary[key] as number);
-    table.append(row([label, ...values.map((v) => fmt(v, digits))], false, String(key), values[0]));
+    table.append(tableRow([label, ...values.map((v) => fmt(v, digits))], false, String(key), values[0]));
   };
   line('percentScutoids', '% scutoids', 2);
   line('scutoids', 'scutoids', 0);
@@ -171,26 +160,9 @@ function summaryTable(stack: ViewStack): HTMLTableElement {
   surfaces.forEach((s, k) => {
     const name = stack.surfaces[k]?.name ?? s.label ?? `surface ${k}`;
     const values = methods.map((a) => a.summary.perSurface[k]?.meanSides ?? Number.NaN);
-    table.append(row([`mean sides, ${name}`, ...values.map((v) => fmt(v, 3))], false, `meanSides.${k}`, values[0]));
+    table.append(tableRow([`mean sides, ${name}`, ...values.map((v) => fmt(v, 3))], false, `meanSides.${k}`, values[0]));
     const hex = methods.map((a) => 100 * (a.summary.perSurface[k]?.polygonDistribution[3] ?? Number.NaN));
-    table.append(row([`% hexagons, ${name}`, ...hex.map((v) => fmt(v, 1))], false, `hexagons.${k}`, hex[0]));
+    table.append(tableRow([`% hexagons, ${name}`, ...hex.map((v) => fmt(v, 1))], false, `hexagons.${k}`, hex[0]));
   });
-  return table;
-}
-
-function cellTableElement(stack: ViewStack): HTMLTableElement {
-  const { header, rows } = cellTable(stack);
-  const table = document.createElement('table');
-  table.className = 'cells';
-  const head = document.createElement('thead');
-  head.append(row(header, true));
-  const body = document.createElement('tbody');
-  for (const cells of rows) {
-    const tr = row(cells);
-    if (cells[2] === 1) tr.className = 'scutoid';
-    else if (cells[1] === 0) tr.className = 'border';
-    body.append(tr);
-  }
-  table.append(head, body);
   return table;
 }

@@ -16,7 +16,8 @@ import { hoverText, renderCellInfo } from '../view/cellInfo';
 import type { CellSolid } from '../../view/cellSolid';
 import { cellSolidPly } from '../model/ply';
 import { download } from './exports';
-import { drawUnrolled } from '../view/unrolled';
+import { drawUnrolled, pickUnrolled } from '../view/unrolled';
+import { selectCellRow } from './cellTableView';
 
 /** A pointer that moved more than this between down and up was a drag (orbit), not a click. */
 const CLICK_SLOP_PX = 4;
@@ -160,14 +161,18 @@ export class ViewPanel {
     }
   }
 
-  show(stack: ViewStack): void {
+  /** Shows `stack`; the unrolled pictures in the next task unless `deferUnrolled` is false. */
+  show(stack: ViewStack, deferUnrolled = true): void {
     this.stack = stack;
     if (this.selected >= stack.result.cells.length) this.selected = -1;
     this.view?.setSelected(this.selected);
     this.view?.setStack(stack);
     this.view?.acceleratePicking();
     this.updateSolid();
-    this.drawUnrolled();
+    // In a task of its own: copying two large pictures in (a 100,000-cell result) would make one
+    // task of it and the 3D view's rebuild (issue 27).
+    if (deferUnrolled) setTimeout(() => this.stack === stack && this.drawUnrolled(), 0);
+    else this.drawUnrolled();
     renderCellInfo(this.cellInfo, stack, this.selected);
     this.cellField.max = String(stack.result.cells.length - 1);
     this.toggles.replaceChildren();
@@ -197,8 +202,11 @@ export class ViewPanel {
     document.body.dataset.selectedCell = String(cell);
     this.view?.setSelected(cell);
     this.updateSolid();
-    if (this.stack) this.drawUnrolled();
+    // Planes and tubes: only the picked cell's patch changes (unrolledPick.ts).
+    if (this.stack && !pickUnrolled(this.unrolled, this.stack, cell)) this.drawUnrolled();
     renderCellInfo(this.cellInfo, this.stack, cell);
+    const table = document.querySelector<HTMLElement>('#cell-table');
+    if (table) selectCellRow(table, cell);
   }
 
   /** What a project file keeps of the view. */
@@ -223,7 +231,7 @@ export class ViewPanel {
     this.view?.setHighlightScutoids(state.highlightScutoids);
     this.selected = state.selectedCell ?? -1;
     this.solidBox.checked = state.cellSolid === true;
-    this.show(stack);
+    this.show(stack, false);
     this.select(this.selected);
     if (state.camera) this.view?.setCameraState(state.camera);
     this.cut.value = String(state.cut);

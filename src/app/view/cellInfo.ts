@@ -7,7 +7,7 @@
  * method that made its numbers, and where the neighbour ids come from another method than the
  * flags, the panel says so (issue 26: never mixed silently).
  */
-import { surfacePolygons } from '../../view/cellPolygons';
+import { exactCell, outlineCells } from '../../view/cellOutline';
 import type { ViewStack, ViewSurface } from '../../view/stack';
 
 export interface CellSummary {
@@ -24,7 +24,9 @@ export interface CellSummary {
 }
 
 export function neighbourIds(stack: ViewStack, surface: ViewSurface, id: number): number[] {
-  if (!stack.closed) return Array.from(surfacePolygons(surface).cells[id]?.neighbours ?? []);
+  // The cell's own exact polygon (cellOutline.ts): the same neighbours as the whole surface's
+  // exact cells, at a pick's cost whatever the cell count (issue 27).
+  if (!stack.closed) return id >= 0 && id < surface.cells.length ? exactCell(surface.image.grid, outlineCells(surface.cells), id).neighbours : [];
   return (surface.cells[id]?.neighbours ?? []).map((n) => n.id).sort((a, b) => a - b);
 }
 

@@ -14,6 +14,7 @@ import { drawExactCells, drawnByTexels } from '../../view/exactCells';
 import { PICTURE_LAYOUT, workerPicture, workerRgba } from '../../view/workerPictures';
 import { flipRows, paintSurface } from '../../view/sideColors';
 import type { ViewStack, ViewSurface } from '../../view/stack';
+import { drawUnrolledPick } from './unrolledPick';
 
 export interface UnrolledOptions {
   /** Picked cell (-1: none). */
@@ -41,7 +42,8 @@ export function drawUnrolled(container: HTMLElement, stack: ViewStack, highlight
     // A software canvas: pictures are copied in, never drawn, and an accelerated canvas's
     // uploads took the (software) GPU process ~90 ms per result, delaying the page's frames.
     const context = () => canvas.getContext('2d', { willReadFrequently: true });
-    const paint = { highlightScutoids, valid: stack.valid, scutoid: stack.scutoid, selected: options.selected ?? -1 };
+    // Planes and tubes: the picked cell is a patch over the picture (unrolledPick.ts).
+    const paint = { highlightScutoids, valid: stack.valid, scutoid: stack.scutoid, selected: stack.closed ? (options.selected ?? -1) : -1 };
     if (stack.closed) {
       const rgba = workerRgba(surface, paint) ?? paintSurface(surface, paint);
       const n = width;
@@ -62,6 +64,7 @@ export function drawUnrolled(container: HTMLElement, stack: ViewStack, highlight
         else context()?.drawImage(picture, 0, 0);
       } else drawExactCells(canvas, surface, { ...paint, ...PICTURE_LAYOUT.unrolled(surface) });
       canvas.setAttribute('aria-label', `unrolled ${surface.name} surface, exact cells, ${width} x ${height} texels`);
+      drawUnrolledPick(canvas, surface, options.selected ?? -1);
     }
     canvas.addEventListener('click', (event) => {
       const cell = cellAt(canvas, surface, stack.closed, event);
@@ -72,6 +75,18 @@ export function drawUnrolled(container: HTMLElement, stack: ViewStack, highlight
     figure.append(canvas, caption);
     container.append(figure);
   }
+}
+
+/**
+ * Shows cell `id` (-1: none) picked on the unrolled planes or tubes of `stack` drawn in
+ * `container`, without redrawing their pictures; false for closed surfaces (redraw them).
+ */
+export function pickUnrolled(container: HTMLElement, stack: ViewStack, id: number): boolean {
+  if (stack.closed) return false;
+  const canvases = container.querySelectorAll<HTMLCanvasElement>('figure.unrolled canvas');
+  if (canvases.length !== stack.surfaces.length) return false;
+  canvases.forEach((canvas, k) => drawUnrolledPick(canvas, stack.surfaces[k], id));
+  return true;
 }
 
 /** The cell under a click on a surface's canvas (its label image's texel), -1 for none. */

@@ -57,16 +57,22 @@ export interface CellStatisticsColumns {
   readonly neighbours3D: ArrayLike<number>;
 }
 
-/** One record per cell of the columns, `sidesOf` giving a cell's sides on each surface. */
-export function cellStatisticsRecords(c: CellStatisticsColumns, sidesOf: (id: number) => number[]): CellStatisticsRecord[] {
-  return Array.from(c.valid, (valid, id) => ({
-    id,
-    valid: valid === 1,
-    scutoid: c.scutoid[id] === 1,
-    won: c.won[id],
-    lost: c.lost[id],
-    transitions: c.transitions[id],
-    neighbours3D: c.neighbours3D[id],
-    sides: sidesOf(id),
-  }));
+/**
+ * One record per cell of the columns, `sidesOf` giving a cell's sides on each surface; cells
+ * `from` to `to` - 1 only when given (the page builds a large result's records in slices).
+ */
+export function cellStatisticsRecords(c: CellStatisticsColumns, sidesOf: (id: number) => number[], from = 0, to = c.valid.length): CellStatisticsRecord[] {
+  return Array.from({ length: Math.max(0, to - from) }, (_, k) => {
+    const id = from + k;
+    return {
+      id,
+      valid: c.valid[id] === 1,
+      scutoid: c.scutoid[id] === 1,
+      won: c.won[id],
+      lost: c.lost[id],
+      transitions: c.transitions[id],
+      neighbours3D: c.neighbours3D[id],
+      sides: sidesOf(id),
+    };
+  });
 }

@@ -14,6 +14,10 @@ import type { SheetOutput } from '../result';
 import { SheetRunner } from '../runSheet';
 import { WORKER_KEEP_SEEDED } from '../seededCache';
 import type { FromWorker, SerializedError, ToWorker } from './protocol';
+import { withLazyCellRecords } from '../lazyRecords';
+
+/** Results of more cells than this are sent as columns (SheetOutput.tables), their lists empty. */
+export const COLUMNS_ABOVE_CELLS = 20_000;
 
 /** What this module uses of the worker's global scope (the DOM typings describe a window). */
 interface WorkerScope {
@@ -57,18 +61,23 @@ export function servePipeline(presenter?: Presenter): void {
       return;
     }
     try {
+      // A large result travels as columns (issue 27): its 300,000 records took the page's main
+      // thread ~2.7 s to receive at 100,000 cells; the page reads them lazily (lazyRecords.ts).
+      const columns = message.config.cells > COLUMNS_ABOVE_CELLS;
       const output = await sheets.run(message.config, {
         signal: controller.signal,
         onIteration: (record, maxIterations) => post({ type: 'iteration', id: message.id, record, maxIterations }),
         ...(message.densityImage ? { densityImage: message.densityImage } : {}),
         ...(message.meshFile ? { meshFile: message.meshFile } : {}),
+        ...(columns ? { cellTables: true } : {}),
       });
       if (message.views === false) {
         // Label images are most of the message (and lazily drawn ones would be drawn to send them).
-        post({ type: 'result', id: message.id, output: { result: output.result, labelImages: [] } });
+        post({ type: 'result', id: message.id, output: { result: output.result, labelImages: [], ...(output.tables ? { tables: output.tables } : {}) } });
         return;
       }
-      const presentation = presenter && message.present !== undefined ? presenter(output, message.present) : null;
+      const shown = output.tables ? { ...output, result: withLazyCellRecords(output.result, output.tables) } : output;
+      const presentation = presenter && message.present !== undefined ? presenter(shown, message.present) : null;
       post({ type: 'result', id: message.id, output, ...(presentation ? { presented: presentation.presented } : {}) }, presentation?.transfer ?? []);
     } catch (error) {
       post({ type: 'error', id: message.id, error: serialize(error) });

@@ -4,6 +4,7 @@ import type { RunOptions } from '../family';
 import type { SheetOutput } from '../result';
 import { SheetRunner } from '../runSheet';
 import { WORKER_KEEP_SEEDED } from '../seededCache';
+import { withLazyCellRecords } from '../lazyRecords';
 import type { FromWorker, SerializedError, ToWorker } from './protocol';
 
 /** Where a WorkerSheetRunner computes. */
@@ -97,7 +98,10 @@ export class WorkerSheetRunner {
       case 'result':
         this.pending.delete(message.id);
         if (message.presented !== undefined) pending.callbacks.onPresented?.(message.presented);
-        pending.resolve(message.output);
+        // A large result came as columns (servePipeline.ts): its records are made when read.
+        pending.resolve(
+          message.output.tables ? { ...message.output, result: withLazyCellRecords(message.output.result, message.output.tables) } : message.output,
+        );
         return;
       case 'error':
         this.pending.delete(message.id);
