@@ -1,10 +1,10 @@
-import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
 import { decodeCellsFile, type CellsFileRecord, type ResultCellTables } from '../src/run/cellTables';
 import { unrolledWhitePixels, waitForRun } from './appHelpers';
+import { runCli, tempDir } from './cli';
+import { installLongTaskObserver, takeLongTasks } from './pages/longTasks';
 
 /**
  * Issue 27: a big CLI result (25,000 cells, over the 20,000 above which the page draws texels)
@@ -38,14 +38,11 @@ interface Files {
 }
 
 function writeResult(): Files {
-  const dir = mkdtempSync(join(tmpdir(), 'bigresult-'));
+  const dir = tempDir('bigresult');
   const configPath = join(dir, 'config.json');
   writeFileSync(configPath, JSON.stringify(CONFIG));
   const json = join(dir, 'big.json');
-  // xvfb-run: the CLI's headless-gl needs an X display, and Playwright's runner has none.
-  execFileSync('xvfb-run', ['-a', process.execPath, 'tests/cli/fromSource.mjs', 'run', configPath, '--out', json, '--cells-file', '--realizations', '1'], {
-    stdio: 'pipe',
-  });
+  runCli(['run', configPath, '--out', json, '--cells-file', '--realizations', '1'], { timeout: 240_000 });
   const data = JSON.parse(readFileSync(json, 'utf8')) as { cellsFile: CellsFileRecord; surfaces: { name: string }[] };
   const side = join(dir, 'big.cells.bin');
   const tables = decodeCellsFile(data.cellsFile, new Uint8Array(readFileSync(side)));
@@ -53,7 +50,7 @@ function writeResult(): Files {
   return { json, side, tables, surfaces: [last === 'apical' ? 'basal' : 'apical', ...data.surfaces.map((s) => s.name)] };
 }
 
-const longTasks = (page: Page) => page.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks.splice(0));
+const longTasks = takeLongTasks;
 const frames = (page: Page, n: number) =>
   page.evaluate(
     (n) =>
@@ -70,11 +67,7 @@ test("a 25,000-cell result opens and picks without long main-thread tasks; its t
   const files = writeResult();
   const n = files.tables.cells.count;
   expect(n).toBe(CONFIG.cells);
-  await page.addInitScript(() => {
-    const w = window as unknown as { longTasks: number[] };
-    w.longTasks = [];
-    new PerformanceObserver((list) => list.getEntries().forEach((entry) => w.longTasks.push(entry.duration))).observe({ type: 'longtask' });
-  });
+  await installLongTaskObserver(page);
   await page.goto('/');
   await waitForRun(page);
   await longTasks(page);

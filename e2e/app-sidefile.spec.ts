@@ -1,9 +1,8 @@
-import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
-import { runs, waitForRun } from './appHelpers';
+import { linkTo, runs, waitForRun } from './appHelpers';
+import { runCli, tempDir } from './cli';
 
 /**
  * Issue 27: `tissue-sheet run --cells-file` writes RESULT.json + RESULT.cells.bin; the page opens
@@ -11,7 +10,6 @@ import { runs, waitForRun } from './appHelpers';
  * one file alone with a message naming the other.
  */
 const TUBE = { resolution: 128, cells: 60, seed: 6, lloyd: { maxIterations: 3 }, sheet: { surfaceRatio: 2 } };
-const linkTo = (config: unknown) => `/?config=${encodeURIComponent(JSON.stringify(config))}`;
 
 interface Result {
   cells: { id: number; neighbours: { id: number }[] }[];
@@ -24,11 +22,10 @@ async function resultOf(page: Page): Promise<Result> {
 }
 
 test('a result with its cells side file opens when both files are chosen; one alone names the other', async ({ page }) => {
-  const dir = mkdtempSync(join(tmpdir(), 'sidefile-'));
+  const dir = tempDir('sidefile');
   const configPath = join(dir, 'config.json');
   writeFileSync(configPath, JSON.stringify({ ...TUBE, seed: 12 }));
-  // xvfb-run: the CLI's headless-gl needs an X display, and Playwright's runner has none.
-  const cli = (args: string[]) => execFileSync('xvfb-run', ['-a', process.execPath, 'tests/cli/fromSource.mjs', 'run', configPath, ...args], { stdio: 'pipe' });
+  const cli = (args: string[]) => runCli(['run', configPath, ...args]);
   cli(['--out', join(dir, 'plain.json')]);
   cli(['--out', join(dir, 'big.json'), '--cells-file']);
   const plain = JSON.parse(readFileSync(join(dir, 'plain.json'), 'utf8')) as Result;
