@@ -7,6 +7,7 @@
 import type { MeasuredResult, ModelComparison } from '../core/measure';
 import type { LayerPicture } from './measurePicture';
 import type { FromMeasureWorker, MeasureRequestOptions, ToMeasureWorker } from './measureProtocol';
+import { requestWorker } from './workerRequest';
 
 /** Largest file read (as the CLI): 1 GiB. */
 export const MAX_MEASURE_FILE_BYTES = 2 ** 30;
@@ -48,42 +49,27 @@ export class MeasureClient {
     if (id !== this.latest) throw new MeasureFileError(null, 'superseded by a newer measurement');
     const message: ToMeasureWorker = { type: 'measure', id, files: files.map((f, k) => ({ name: f.name, bytes: buffers[k] })), options };
     const worker = this.start();
-    return new Promise<void>((resolve, reject) => {
-      const stop = () => {
-        worker.removeEventListener('message', listen);
-        worker.removeEventListener('error', crashed);
-      };
-      const fail = (error: MeasureFileError) => {
-        stop();
-        reject(error);
-      };
-      const listen = (event: MessageEvent<FromMeasureWorker>) => {
-        const data = event.data;
-        if (data.id !== id) return;
-        if (id !== this.latest) return fail(new MeasureFileError(null, 'superseded by a newer measurement'));
+    return requestWorker<FromMeasureWorker>({
+      worker,
+      id,
+      message,
+      transfer: buffers,
+      isLatest: () => id === this.latest,
+      superseded: () => new MeasureFileError(null, 'superseded by a newer measurement'),
+      crashed: (details) => new MeasureFileError(null, `the measuring worker stopped (${details})`),
+      onCrash: () => {
+        if (this.worker === worker) this.worker = null;
+      },
+      handle: (data, finish) => {
         if (data.type === 'progress') callbacks.onProgress?.(data.line);
         else if (data.type === 'measured') {
           callbacks.onMeasured?.(data.result, data.pictures);
-          if (options.realizations <= 0) {
-            stop();
-            resolve();
-          }
+          if (options.realizations <= 0) finish.done();
         } else if (data.type === 'compared') {
           callbacks.onCompared?.(data.comparison, data.note);
-          stop();
-          resolve();
-        } else fail(new MeasureFileError(data.file, data.message));
-      };
-      // A worker that cannot start, or dies (e.g. out of memory), fails the request and is replaced next time.
-      const crashed = (event: ErrorEvent) => {
-        event.preventDefault();
-        worker.terminate();
-        if (this.worker === worker) this.worker = null;
-        fail(new MeasureFileError(null, `the measuring worker stopped (${event.message || 'no details'})`));
-      };
-      worker.addEventListener('message', listen);
-      worker.addEventListener('error', crashed);
-      worker.postMessage(message, buffers);
+          finish.done();
+        } else finish.fail(new MeasureFileError(data.file, data.message));
+      },
     });
   }
 

@@ -12,33 +12,13 @@ import type { Grid } from '../core/grid';
 import { embed } from '../core/surface';
 import { surfaceSegments } from './surfaceGeometry';
 import { cellOutline, outlineCells } from './cellOutline';
+import { clipHalfPlane } from './cellSolidSection';
 import type { ViewStack, ViewSurface } from './stack';
 
 /** The part of convex `polygon` (x, y pairs) with a <= x <= b. */
 export function clipStrip(polygon: readonly number[], a: number, b: number): number[] {
-  let out = clipX(polygon, a, 1);
-  out = clipX(out, b, -1);
-  return out.length >= 6 ? out : [];
-}
-
-/** Keeps sign * (x - at) >= 0. */
-function clipX(polygon: readonly number[], at: number, sign: number): number[] {
-  const out: number[] = [];
-  const n = polygon.length / 2;
-  for (let k = 0; k < n; k++) {
-    const ax = polygon[2 * k];
-    const ay = polygon[2 * k + 1];
-    const bx = polygon[(2 * k + 2) % polygon.length];
-    const by = polygon[(2 * k + 3) % polygon.length];
-    const fa = sign * (ax - at);
-    const fb = sign * (bx - at);
-    if (fa >= 0) out.push(ax, ay);
-    if ((fa > 0 && fb < 0) || (fa < 0 && fb > 0)) {
-      const t = fa / (fa - fb);
-      out.push(ax + t * (bx - ax), ay + t * (by - ay));
-    }
-  }
-  return out;
+  const out = clipHalfPlane(clipHalfPlane(Float64Array.from(polygon), -1, 0, -a), 1, 0, b);
+  return out.length >= 6 ? Array.from(out) : [];
 }
 
 /**
@@ -173,8 +153,10 @@ export function outlineObject(positions: { triangles: Float32Array; border: Floa
   const line = new THREE.BufferGeometry();
   line.setAttribute('position', new THREE.BufferAttribute(positions.border, 3));
   group.add(new THREE.Mesh(fill, materials.fill), new THREE.LineSegments(line, materials.line));
-  // Drawn after the surface it lies on.
-  group.traverse((o) => (o.renderOrder = 1));
+  // Drawn after the surface it lies on, before the cell's solid (cellSolidMesh.ts, 1000). Not on
+  // the group itself: three.js sorts a Group's children by its renderOrder first (groupOrder), so
+  // a group at 1 would be drawn after the solid, hiding it.
+  for (const child of group.children) child.renderOrder = 1;
   return group;
 }
 

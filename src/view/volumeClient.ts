@@ -8,6 +8,7 @@ import type { VolumeComparison, VolumeMeasuredResult, VolumeModelDrawing } from 
 import { MAX_MEASURE_FILE_BYTES, MeasureFileError } from './measureClient';
 import type { FromVolumeWorker, ToVolumeWorker, VolumeRequestOptions } from './volumeProtocol';
 import type { CellShape, DrawnSurface } from './volumeSurfaces';
+import { requestWorker } from './workerRequest';
 
 export interface VolumeCallbacks {
   onProgress?(line: string): void;
@@ -61,37 +62,21 @@ export class VolumeClient {
     handle: (data: Exclude<FromVolumeWorker, { type: 'error' }>, done: () => void) => void,
   ): Promise<void> {
     const worker = (this.worker ??= this.createWorker());
-    return new Promise<void>((resolve, reject) => {
-      const stop = () => {
-        worker.removeEventListener('message', listen);
-        worker.removeEventListener('error', crashed);
-      };
-      const listen = (event: MessageEvent<FromVolumeWorker>) => {
-        const data = event.data;
-        if (data.id !== id) return;
-        if (id !== this.latest) {
-          stop();
-          reject(new MeasureFileError(null, 'superseded by a newer measurement'));
-        } else if (data.type === 'error') {
-          stop();
-          reject(new MeasureFileError(data.file, data.message));
-        } else
-          handle(data, () => {
-            stop();
-            resolve();
-          });
-      };
-      // A worker that cannot start, or dies (e.g. out of memory), fails the request and is replaced next time.
-      const crashed = (event: ErrorEvent) => {
-        event.preventDefault();
-        worker.terminate();
+    return requestWorker<FromVolumeWorker>({
+      worker,
+      id,
+      message,
+      transfer,
+      isLatest: () => id === this.latest,
+      superseded: () => new MeasureFileError(null, 'superseded by a newer measurement'),
+      crashed: (details) => new MeasureFileError(null, `the volume-measuring worker stopped (${details})`),
+      onCrash: () => {
         if (this.worker === worker) this.worker = null;
-        stop();
-        reject(new MeasureFileError(null, `the volume-measuring worker stopped (${event.message || 'no details'})`));
-      };
-      worker.addEventListener('message', listen);
-      worker.addEventListener('error', crashed);
-      worker.postMessage(message, transfer);
+      },
+      handle: (data, finish) => {
+        if (data.type === 'error') finish.fail(new MeasureFileError(data.file, data.message));
+        else handle(data, finish.done);
+      },
     });
   }
 }

@@ -12,6 +12,7 @@ import { withLazyCellRecords } from '../../run/lazyRecords';
 import { rememberPictures } from '../../view/workerPictures';
 import type { OpenedFile } from './project';
 import type { FromOpenWorker, ToOpenWorker } from './openProtocol';
+import { requestWorker } from '../../view/workerRequest';
 
 export interface OpenRequest {
   data: unknown;
@@ -44,44 +45,35 @@ export class ResultOpener {
     return { kind: 'result', output, drawnFrom: 'cells' };
   }
 
-  private ask(id: number, request: OpenRequest, progress: (line: string, fraction: number) => void) {
+  private async ask(id: number, request: OpenRequest, progress: (line: string, fraction: number) => void) {
     const worker = (this.worker ??= this.createWorker());
-    type Done = Extract<FromOpenWorker, { type: 'opened' | 'error' }>;
-    return new Promise<Done>((resolve, reject) => {
-      const stop = () => {
-        worker.removeEventListener('message', listen);
-        worker.removeEventListener('error', crashed);
-      };
-      const listen = (event: MessageEvent<FromOpenWorker>) => {
-        const data = event.data;
-        if (data.id !== id) return;
-        if (id !== this.latest) {
-          stop();
-          reject(new Error('superseded by a newer file'));
-        } else if (data.type === 'progress') progress(data.line, data.fraction);
-        else {
-          stop();
-          resolve(data);
-        }
-      };
-      const crashed = (event: ErrorEvent) => {
-        event.preventDefault();
-        stop();
-        worker.terminate();
+    let answer: Extract<FromOpenWorker, { type: 'opened' | 'error' }> | null = null;
+    const message: ToOpenWorker = {
+      id,
+      data: request.data,
+      record: request.record,
+      side: request.side,
+      name: request.name,
+      highlightScutoids: request.highlightScutoids,
+    };
+    await requestWorker<FromOpenWorker>({
+      worker,
+      id,
+      message,
+      isLatest: () => id === this.latest,
+      superseded: () => new Error('superseded by a newer file'),
+      crashed: (details) => new Error(`${request.name}: the worker opening it stopped (${details})`),
+      onCrash: () => {
         if (this.worker === worker) this.worker = null;
-        reject(new Error(`${request.name}: the worker opening it stopped (${event.message || 'no details; perhaps out of memory'})`));
-      };
-      worker.addEventListener('message', listen);
-      worker.addEventListener('error', crashed);
-      const message: ToOpenWorker = {
-        id,
-        data: request.data,
-        record: request.record,
-        side: request.side,
-        name: request.name,
-        highlightScutoids: request.highlightScutoids,
-      };
-      worker.postMessage(message);
+      },
+      handle: (data, finish) => {
+        if (data.type === 'progress') progress(data.line, data.fraction);
+        else {
+          answer = data;
+          finish.done();
+        }
+      },
     });
+    return answer!;
   }
 }
