@@ -68,12 +68,14 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
 
     mkdirSync(options.out, { recursive: true });
     release = lockDirectory(options.out, log);
+    // One `git` call for both records (a process start each).
+    let commit: string | null | undefined;
     const record = (extra: Record<string, unknown>) =>
       writeFileAtomic(
         join(options.out, 'sweep.json'),
         JSON.stringify(
           {
-            software: { name: 'tissue-sheet', version, commit: gitCommit() },
+            software: { name: 'tissue-sheet', version, commit: commit === undefined ? (commit = gitCommit()) : commit },
             renderer: context.capabilities.renderer,
             started,
             ...(shard ? { shard: { index: shard.index, count: shard.count, of: layout.runs.length } } : {}),
