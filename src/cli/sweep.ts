@@ -15,7 +15,19 @@ import { appendFileSync, mkdirSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { ConfigError, validateAnyConfig, type AnyConfig } from '../core/config';
 import { surfaceLayout } from '../core/config/surfaceLayout';
-import { parseShard, planResume, ResumeError, runSweep, shardRuns, SweepSpecError, validateSweepSpec, type Shard } from '../core/sweep';
+import {
+  flintstonesProblems,
+  parseShard,
+  planResume,
+  ResumeError,
+  runSweep,
+  shardRuns,
+  sortRowsByRuns,
+  SweepSpecError,
+  validateSweepSpec,
+  type FlintstonesFitter,
+  type Shard,
+} from '../core/sweep';
 import { createHeadlessContext } from '../node/headless';
 import { chooseEngine } from '../run/enginePolicy';
 import { SheetRunner, sweepSummary } from '../run/index';
@@ -27,6 +39,7 @@ import { lockDirectory } from './lock';
 import { checkOutDir, writeFileAtomic } from './output';
 import { checkRunnable, computeBudget, loadInputs, readJsonFile, type RunInputs } from './prepare';
 import { Sources } from './sources';
+import { cachedFitter, fitAll } from './sweepFits';
 import { defaultWorkers, SweepThreadLost, SweepWorkers } from './sweepWorkers';
 import { gitCommit, readRunsFile, sweepLayout, writeAggregates, type Run } from './sweepFiles';
 
@@ -55,12 +68,14 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
 
     mkdirSync(options.out, { recursive: true });
     release = lockDirectory(options.out, log);
+    // One `git` call for both records (a process start each).
+    let commit: string | null | undefined;
     const record = (extra: Record<string, unknown>) =>
       writeFileAtomic(
         join(options.out, 'sweep.json'),
         JSON.stringify(
           {
-            software: { name: 'tissue-sheet', version, commit: gitCommit() },
+            software: { name: 'tissue-sheet', version, commit: commit === undefined ? (commit = gitCommit()) : commit },
             renderer: context.capabilities.renderer,
             started,
             ...(shard ? { shard: { index: shard.index, count: shard.count, of: layout.runs.length } } : {}),
@@ -141,6 +156,7 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
       return next;
     };
     let result;
+    let fit: FlintstonesFitter | undefined;
     try {
       result = await runSweep<AnyConfig & Record<string, unknown>, Record<string, unknown>>({
         runs,
@@ -189,6 +205,11 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
           log(`${p.phase === 'done' ? 'done' : 'FAILED'} ${p.finished}/${p.total} ${p.run.key}  (${p.skipped} resumed, ~${eta.toFixed(0)} s left)`);
         },
       });
+      // The Flintstones fits on the threads, idle now (the files are the same: sweepFits.ts).
+      if (pool?.usable && !result.aborted && !signal.aborted) {
+        const problems = flintstonesProblems(sortRowsByRuns(result.rows, layout.ordered), layout.runs, layout.fields);
+        fit = cachedFitter(await fitAll(problems, (points) => pool.fit(points)));
+      }
     } catch (error) {
       if (signal.aborted) throw new InterruptedError(`interrupted; finished runs are in ${csvPath}: rerun the same command to resume`);
       throw error;
@@ -196,7 +217,7 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
       signal.removeEventListener('abort', stopThreads);
       await pool?.close();
     }
-    writeAggregates(options.out, result.rows, layout, log);
+    writeAggregates(options.out, result.rows, layout, log, fit);
     record({ runs: runs.length, ended: new Date().toISOString(), computed: result.completed, resumed: result.skipped });
     if (result.aborted) throw new InterruptedError(`interrupted after ${result.completed} runs; rerun the same command to resume`);
     log(

@@ -26,6 +26,7 @@ import {
   sweepFlintstones,
   TEXT_COLUMNS,
   variedFields,
+  type FlintstonesFitter,
   type ResumeSpec,
   type SweepRun,
   type ValidSweepSpec,
@@ -94,13 +95,15 @@ export function sweepLayout(spec: ValidSweepSpec, pointConfig: (run: Run) => Any
 /**
  * Writes aggregate.csv, aggregate.json ({ points, flintstones }) and, when some group can be
  * fitted, flintstones.csv. Rows are taken in write order first, so the aggregate does not depend
- * on the order runs finished or shards were merged in.
+ * on the order runs finished or shards were merged in. `fit`: how a group's points are fitted
+ * (default sweepFitter; the sweep passes fits its threads made, sweepFits.ts).
  */
 export function writeAggregates(
   out: string,
   rows: readonly Record<string, string>[],
   layout: SweepLayout,
   log: (line: string) => void,
+  fit?: FlintstonesFitter,
 ): { flintstones: number } {
   const sorted = sortRowsByRuns(rows, layout.ordered);
   const numeric = aggregateColumns(layout.summary, TEXT_COLUMNS);
@@ -117,7 +120,7 @@ export function writeAggregates(
       );
     }
   }
-  const fits = sweepFlintstones(sorted, layout.runs, layout.fields);
+  const fits = sweepFlintstones(sorted, layout.runs, layout.fields, fit);
   const fitted = fits.filter((f) => f.parameters !== null);
   for (const fit of fits.filter((f) => f.illConditioned).slice(0, 3)) {
     log(

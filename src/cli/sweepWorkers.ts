@@ -21,10 +21,12 @@ import { isMainThread, parentPort, Worker, workerData } from 'node:worker_thread
 import { ConfigError, validateAnyConfig } from '../core/config';
 import { flatSummary, flattenSummary } from '../core/sweep';
 import { flatKeys, flatValues } from '../core/sweep/flatValues';
+import type { FlintstonesPoint } from '../core/analysis/flintstones';
 import type { GpuCapabilities, GpuContext } from '../gpu/context';
 import { SheetRunner, sweepSummary } from '../run/index';
 import { InputError } from './errors';
 import type { RunInputs } from './prepare';
+import { fitOutcome, type FitOutcome } from './sweepFits';
 
 /** One run as a thread receives it. */
 export interface WorkerRun {
@@ -39,7 +41,7 @@ interface WorkerSetup {
   readonly inputs: [string, RunInputs][];
 }
 
-type ToWorker = { type: 'task'; id: number; runs: WorkerRun[] } | { type: 'abort' };
+type ToWorker = { type: 'task'; id: number; runs: WorkerRun[] } | { type: 'fit'; id: number; points: readonly FlintstonesPoint[] } | { type: 'abort' };
 interface SerializedError {
   name: string;
   message: string;
@@ -55,6 +57,8 @@ type FromWorker =
   /** The summaries of a task's runs, in the order they finished, in one message (fewer messages cost less than many). */
   | { type: 'dones'; id: number; items: DoneMessage[] }
   | { type: 'failed'; id: number; error: SerializedError }
+  /** A Flintstones fit (sweepFits.ts). */
+  | { type: 'fitted'; id: number; outcome: FitOutcome }
   | { type: 'finished'; id: number };
 type DoneMessage = { type: 'done'; id: number; key: string; layout: number; keys?: string[]; numbers: Float64Array; others: [number, unknown][] };
 
@@ -79,7 +83,7 @@ interface Slot {
   current: {
     id: number;
     done: (key: string, summary: Record<string, unknown>) => void;
-    resolve: () => void;
+    resolve: (value?: unknown) => void;
     reject: (error: unknown) => void;
   } | null;
 }
@@ -126,19 +130,39 @@ export class SweepWorkers {
    * `affinity` (it still holds that Lloyd run); `done` gets each run's summary as it finishes.
    */
   async run(runs: WorkerRun[], affinity: string, done: (key: string, summary: Record<string, unknown>) => void): Promise<void> {
-    // Wait for a free thread (callers may run more tasks at once than there are threads).
+    const slot = await this.claim((free) => free.find((s) => s.affinity === affinity) ?? free.find((s) => s.affinity === null) ?? free[0]);
+    slot.affinity = affinity;
+    const id = this.nextId++;
+    return new Promise<void>((resolve, reject) => {
+      slot.current = { id, done, resolve: () => resolve(), reject };
+      slot.worker.postMessage({ type: 'task', id, runs } satisfies ToWorker);
+    });
+  }
+
+  /** Fits the Flintstones law to `points` on a free thread (sweepFits.ts); the thread keeps its Lloyd run. */
+  async fit(points: readonly FlintstonesPoint[]): Promise<FitOutcome> {
+    const slot = await this.claim((free) => free[0]);
+    const id = this.nextId++;
+    return new Promise<FitOutcome>((resolve, reject) => {
+      slot.current = { id, done: () => {}, resolve: (value) => resolve(value as FitOutcome), reject };
+      slot.worker.postMessage({ type: 'fit', id, points } satisfies ToWorker);
+    });
+  }
+
+  /**
+   * A free thread chosen by `pick`, once there is one (callers may ask for more at once than
+   * there are threads), taken at once (marked busy before any other caller runs: the caller
+   * then sets its own `current`).
+   */
+  private async claim(pick: (free: Slot[]) => Slot): Promise<Slot> {
     while (!this.slots.some((s) => s.current === null && !s.reserved)) {
       if (this.slots.every((s) => s.reserved)) throw new SweepThreadLost('no sweep worker thread is left (they failed or exited)');
       await new Promise<void>((wake) => this.waiting.push(wake));
     }
-    const free = this.slots.filter((s) => s.current === null && !s.reserved);
-    const slot = free.find((s) => s.affinity === affinity) ?? free.find((s) => s.affinity === null) ?? free[0];
-    slot.affinity = affinity;
-    const id = this.nextId++;
-    return new Promise<void>((resolve, reject) => {
-      slot.current = { id, done, resolve, reject };
-      slot.worker.postMessage({ type: 'task', id, runs } satisfies ToWorker);
-    });
+    const slot = pick(this.slots.filter((s) => s.current === null && !s.reserved));
+    // No message has id 0 (ids start at 1).
+    slot.current = { id: 0, done: () => {}, resolve: () => {}, reject: () => {} };
+    return slot;
   }
 
   /** Asks every thread to stop its task at the next iteration (the task then fails with an AbortError). */
@@ -183,6 +207,9 @@ export class SweepWorkers {
     } else if (message.type === 'failed') {
       this.release(slot);
       current.reject(deserializeError(message.error));
+    } else if (message.type === 'fitted') {
+      this.release(slot);
+      current.resolve(message.outcome);
     } else {
       this.release(slot);
       current.resolve();
@@ -263,6 +290,11 @@ function startWorker(setup: WorkerSetup): void {
   port.on('message', (message: ToWorker) => {
     if (message.type === 'abort') {
       controller.abort();
+      return;
+    }
+    if (message.type === 'fit') {
+      const { id, points } = message;
+      queue = queue.then(() => send({ type: 'fitted', id, outcome: fitOutcome(points) }));
       return;
     }
     const { id, runs } = message;

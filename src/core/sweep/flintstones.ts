@@ -13,7 +13,7 @@
  *   error exceeds its parameter's magnitude (the data do not pin it down, e.g. ratios that stop
  *   before the curve bends); the parameters are still written, flagged, with the reason.
  */
-import { fitFlintstones, type FlintstonesParameters } from '../analysis/flintstones';
+import { fitFlintstones, type FlintstonesFit, type FlintstonesParameters, type FlintstonesPoint } from '../analysis/flintstones';
 import { validateAnyConfig } from '../config';
 import { formatCsv } from './csv';
 import type { Config, SweepRun } from './expand';
@@ -49,16 +49,46 @@ export interface SweepFlintstonesFit {
 
 const finiteOrNull = (x: number): number | null => (Number.isFinite(x) ? x : null);
 
+/** Fits the law to one group's points (s, n3D) with the sweep's anchor; throws as fitFlintstones does. */
+export type FlintstonesFitter = (points: readonly FlintstonesPoint[]) => FlintstonesFit;
+
+/** The sweep's fit of one group's points: fitFlintstones with the lab's anchor. */
+export const sweepFitter: FlintstonesFitter = (points) => fitFlintstones(points, { anchor: FLINTSTONES_ANCHOR });
+
 /**
  * One fit per Voronoi k and combination of the other varied fields (see the module comment).
  * `rows` are runs.csv rows (key, fields, metrics as text), `runs` the expanded spec (for each
- * row's configuration). Groups are in order of first appearance in `rows`.
+ * row's configuration). Groups are in order of first appearance in `rows`. `fit` fits a group's
+ * points (sweepFitter; the CLI passes one that takes fits computed on its threads from the same
+ * points, see flintstonesProblems).
  */
 export function sweepFlintstones<C extends Config>(
   rows: readonly Record<string, string>[],
   runs: readonly SweepRun<C>[],
   fields: readonly string[],
+  fit: FlintstonesFitter = sweepFitter,
 ): SweepFlintstonesFit[] {
+  return flintstonesGroups(rows, runs, fields).map(({ group, voronoi, rows: members }) => fitGroup(group, voronoi, members, fit));
+}
+
+/**
+ * The points each fit of sweepFlintstones(rows, runs, fields) is given, in its order, for the
+ * groups that are fitted: so they can be fitted elsewhere (the CLI's threads) beforehand.
+ */
+export function flintstonesProblems<C extends Config>(
+  rows: readonly Record<string, string>[],
+  runs: readonly SweepRun<C>[],
+  fields: readonly string[],
+): FlintstonesPoint[][] {
+  return flintstonesGroups(rows, runs, fields)
+    .map(({ rows: members }) => groupPoints(members))
+    .filter(({ ratios }) => ratios > FREE_PARAMETERS)
+    .map(({ points }) => points);
+}
+
+type GroupRows = { group: Record<string, string>; voronoi: number; rows: { s: number; row: Record<string, string> }[] };
+
+function flintstonesGroups<C extends Config>(rows: readonly Record<string, string>[], runs: readonly SweepRun<C>[], fields: readonly string[]): GroupRows[] {
   const byKey = new Map(runs.map((r) => [r.key, r]));
   // Validated (defaults filled in: lloyd.maxIterations need not be in the spec), once per grid point.
   const configs = new Map<string, unknown>();
@@ -67,7 +97,7 @@ export function sweepFlintstones<C extends Config>(
     return configs.get(run.pointKey);
   };
   const groupFields = fields.filter((f) => f !== FLINTSTONES_RATIO && f !== 'lloyd.maxIterations');
-  const groups = new Map<string, { group: Record<string, string>; voronoi: number; rows: { s: number; row: Record<string, string> }[] }>();
+  const groups = new Map<string, GroupRows>();
   for (const row of rows) {
     const run = byKey.get(row.key);
     if (!run) continue;
@@ -83,14 +113,19 @@ export function sweepFlintstones<C extends Config>(
     if (!entry) groups.set(id, (entry = { group, voronoi: iterations + 1, rows: [] }));
     entry.rows.push({ s, row });
   }
-  return [...groups.values()].map(({ group, voronoi, rows: members }) => fitGroup(group, voronoi, members));
+  return [...groups.values()];
 }
 
-function fitGroup(group: Record<string, string>, voronoi: number, members: { s: number; row: Record<string, string> }[]): SweepFlintstonesFit {
+/** A group's metric and points (runs with a finite value of it, in row order). */
+function groupPoints(members: GroupRows['rows']): { metric: string; points: FlintstonesPoint[]; ratios: number } {
   const valueOf = (row: Record<string, string>, metric: string) => (row[metric] === undefined || row[metric] === '' ? NaN : Number(row[metric]));
   const metric = FLINTSTONES_METRICS.find((m) => members.some(({ row }) => Number.isFinite(valueOf(row, m)))) ?? FLINTSTONES_METRICS[0];
   const points = members.map(({ s, row }) => ({ s, n: valueOf(row, metric) })).filter((p) => Number.isFinite(p.n));
-  const ratios = new Set(points.map((p) => p.s)).size;
+  return { metric, points, ratios: new Set(points.map((p) => p.s)).size };
+}
+
+function fitGroup(group: Record<string, string>, voronoi: number, members: GroupRows['rows'], fitter: FlintstonesFitter): SweepFlintstonesFit {
+  const { metric, points, ratios } = groupPoints(members);
   const empty = {
     group,
     voronoi,
@@ -111,7 +146,7 @@ function fitGroup(group: Record<string, string>, voronoi: number, members: { s: 
   }
   let fit;
   try {
-    fit = fitFlintstones(points, { anchor: FLINTSTONES_ANCHOR });
+    fit = fitter(points);
   } catch (error) {
     return { ...empty, note: `no fit: ${(error as Error).message.replace(/^fitFlintstones: /, '')}` };
   }
