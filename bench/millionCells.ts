@@ -1,7 +1,8 @@
-// `npx tsx bench/millionCells.ts [--cells 1000000] [--iterations 10] [--dir /tmp/tissue-sheet-million]`:
+// `npx tsx bench/millionCells.ts [--cells 1000000] [--iterations 10] [--workers N] [--dir /tmp/tissue-sheet-million]`:
 // issue 27's million cells. Runs `tissue-sheet run` (from the sources, a fresh process under
 // /usr/bin/time -v, xvfb-run when there is no display) on a periodic plane of N cells (exact
-// engine, 10 Lloyd iterations, a thickness, exact analysis on both surfaces), and prints its wall
+// engine, 10 Lloyd iterations, a thickness, exact analysis on both surfaces; the headline over
+// the default 5 realizations, on `--workers N` threads, default the cores), and prints its wall
 // time, CPU time and peak RSS against the targets (60 s, 4 GB), the sizes written, the time to
 // read the side file back, and, as the baseline timed in the same run, d3-delaunay's Delaunay +
 // Voronoi of as many random points (median of 5: 3 before the run, 2 after). Asserts nothing.
@@ -20,6 +21,7 @@ function option(name: string, fallback: string): string {
 
 const cells = Number(option('cells', '1000000'));
 const iterations = Number(option('iterations', '10'));
+const workers = option('workers', '');
 const dir = option('dir', '/tmp/tissue-sheet-million');
 mkdirSync(dir, { recursive: true });
 const side = 10000;
@@ -58,7 +60,7 @@ function timeD3(rounds: number): void {
 const loadBefore = loadavg()[0].toFixed(1);
 timeD3(3);
 
-const command = [process.execPath, 'tests/cli/fromSource.mjs', 'run', configPath, '--out', out, '--force'];
+const command = [process.execPath, 'tests/cli/fromSource.mjs', 'run', configPath, '--out', out, '--force', ...(workers ? ['--workers', workers] : [])];
 const wrapped = process.env.DISPLAY ? ['/usr/bin/time', '-v', ...command] : ['/usr/bin/time', '-v', 'xvfb-run', '-a', ...command];
 const run = spawnSync(wrapped[0], wrapped.slice(1), { encoding: 'utf8' });
 if (run.status !== 0) throw new Error(`tissue-sheet run failed (${run.status}):\n${run.stderr.slice(-2000)}`);
@@ -81,7 +83,8 @@ const t = result.timings;
 
 console.log(`load average before/after: ${loadBefore} / ${loadavg()[0].toFixed(1)}`);
 console.log(
-  `tissue-sheet run: ${cells} cells, periodic plane ${resolution}² texels, ${iterations} Lloyd iterations, exact engine, thickness 5, exact analysis on 2 surfaces`,
+  `tissue-sheet run: ${cells} cells, periodic plane ${resolution}² texels, ${iterations} Lloyd iterations, exact engine, thickness 5, exact analysis on 2 surfaces, ` +
+    `headline over ${result.headline?.realizations ?? 1} realizations, --workers ${workers || 'default (the cores)'}`,
 );
 console.log('| figure | value | against |');
 console.log('|---|---|---|');

@@ -17,7 +17,10 @@ export interface CliOptions {
   maxRuns?: number;
   /** Sweeps: "I/N" or "slurm" (parsed by parseShard). */
   shard?: string;
-  /** Sweeps: worker threads for the exact-engine runs (default: the machine's cores). */
+  /**
+   * Threads for exact-engine work (default: the machine's cores): sweeps' runs; `run`'s
+   * realizations (the main thread counting as one; 1: all on the main thread).
+   */
   workers?: number;
   /** run: realizations the headline is over (seeds seed, seed + 1, ...; default DEFAULT_REALIZATIONS). */
   realizations?: number;
@@ -62,7 +65,7 @@ export function parseArgs(args: string[], form: string, sweep = false): CliOptio
       if (!Number.isInteger(n) || n < 1 || n > MAX_REALIZATIONS)
         throw new InputError(`--realizations: must be a whole number from 1 to ${MAX_REALIZATIONS} (got ${JSON.stringify(v)})`);
       options.realizations = n;
-    } else if (sweep && name === '--workers') {
+    } else if (name === '--workers') {
       const v = value();
       const n = Number(v);
       if (!Number.isInteger(n) || n < 1 || n > 1024) throw new InputError(`--workers: must be an integer from 1 to 1024 (got ${JSON.stringify(v)})`);

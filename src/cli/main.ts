@@ -28,8 +28,9 @@ Options:
   --max-runs N      sweep: accept up to N runs (default 100000)
   --shard I/N       sweep: compute only shard I of N (1 <= I <= N); every run is in exactly
                     one shard; "slurm" takes I and N from SLURM_ARRAY_TASK_ID/_MIN/_COUNT
-  --workers N       sweep: worker threads for the exact-engine runs (default: the machine's
-                    cores); the files are the same whatever N
+  --workers N       threads for the exact-engine work (default: the machine's cores): sweep's
+                    runs; run's realizations (the main thread one of the N; 1: none); the
+                    files are the same whatever N
 
 Progress goes to stderr. Exit codes:
   0    done
@@ -45,7 +46,11 @@ type Command = (args: string[], signal: AbortSignal, log: (line: string) => void
 
 const commands: Record<string, Command> = {
   run: (args, signal, log) =>
-    runCommand(parseArgs(args, 'run CONFIG.json --out RESULT.json [--realizations N] [--force] [--allow-network] [--allow-large] [--cells-file]'), signal, log),
+    runCommand(
+      parseArgs(args, 'run CONFIG.json --out RESULT.json [--realizations N] [--workers N] [--force] [--allow-network] [--allow-large] [--cells-file]'),
+      signal,
+      log,
+    ),
   sweep: (args, signal, log) =>
     sweepCommand(
       parseArgs(args, 'sweep SWEEP.json --out DIR [--force] [--allow-network] [--allow-large] [--max-runs N] [--shard I/N|slurm] [--workers N]', true),

@@ -7,16 +7,21 @@
  */
 import { dirname } from 'node:path';
 import { describeHeadline } from '../core/analysis/headline';
-import { DEFAULT_REALIZATIONS, headlineOverRealizations } from '../core/analysis/realizations';
+import type { Headline } from '../core/analysis/headline';
+import { DEFAULT_REALIZATIONS, headlineOverRealizations, realizationSeeds } from '../core/analysis/realizations';
 import { ConfigError, validateAnyConfig } from '../core/config';
+import { surfaceLayout } from '../core/config/surfaceLayout';
 import { createHeadlessContext } from '../node/headless';
+import { chooseEngine } from '../run/enginePolicy';
 import { describeEngine, runSheet } from '../run/index';
 import { findForbiddenKey } from '../core/sweep';
 import { InputError, InterruptedError } from './errors';
 import type { CliOptions } from './args';
 import { cellsFilePath, checkOutFile, isOurCellsFile, MAX_CELL_RECORDS_IN_JSON, writeResult } from './output';
 import { checkRunnable, computeBudget, loadInputs, readJsonFile } from './prepare';
+import { RealizationThreads } from './realizationThreads';
 import { Sources } from './sources';
+import { defaultWorkers } from './threads';
 
 export async function runCommand(options: CliOptions, signal: AbortSignal, log: (line: string) => void): Promise<void> {
   const json = readJsonFile(options.input, 'config');
@@ -33,8 +38,27 @@ export async function runCommand(options: CliOptions, signal: AbortSignal, log: 
   const sources = new Sources({ baseDir: dirname(options.input), allowNetwork: options.allowNetwork });
   const inputs = await loadInputs(config, sources);
   const context = createHeadlessContext();
+  let threads: RealizationThreads | null = null;
   try {
     checkRunnable(config, computeBudget(context.capabilities.maxTextureSize, options.allowLarge));
+    // The headline is the mean over realizations (seeds seed, seed + 1, ...): the file is
+    // realization 1's, the one drawn; the others only give their headline. On the exact engine
+    // they run on threads from the start, beside realization 1 (realizationThreads.ts).
+    const n = options.realizations ?? DEFAULT_REALIZATIONS;
+    const seeds = realizationSeeds(config.seed, n);
+    let r = 1;
+    const reported = (seed: number, headline: Headline | null, where = '') => {
+      const value = headline?.percentScutoids;
+      log(`realization ${++r} of ${n} (seed ${seed}${where}): ${typeof value === 'number' ? `${value.toFixed(1)} % scutoids` : 'no % scutoids'}`);
+    };
+    const exact = chooseEngine(config, surfaceLayout(config).name, context.capabilities).name === 'exact';
+    const threadCount = exact && !inputs.meshFile ? Math.min((options.workers ?? defaultWorkers()) - 1, n - 1) : 0;
+    if (threadCount > 0) {
+      threads = new RealizationThreads(threadCount, config, seeds, context.capabilities, inputs, (index, headline) =>
+        reported(seeds[index], headline, ', on a thread'),
+      );
+      log(`realizations 2–${n} on ${threadCount} worker thread${threadCount > 1 ? 's' : ''}, and on this one after realization 1`);
+    }
     const { result: drawn, tables } = await runSheet(config, context, {
       ...inputs,
       signal,
@@ -45,18 +69,15 @@ export async function runCommand(options: CliOptions, signal: AbortSignal, log: 
     });
     if (signal.aborted) throw new InterruptedError('interrupted; nothing was written');
     checkFinite(drawn.lloyd.finalEnergy);
-    // The headline is the mean over realizations (seeds seed, seed + 1, ...): the file is
-    // realization 1's, the one drawn; the others only give their headline.
-    const n = options.realizations ?? DEFAULT_REALIZATIONS;
-    let r = 1;
-    const headline = await headlineOverRealizations(config.seed, n, drawn.headline, async (seed) => {
+    // Another realization gives only its headline: no cell tables, no records built.
+    const runOne = async (seed: number) => {
       if (signal.aborted) throw new InterruptedError('interrupted; nothing was written');
-      const { result: other } = await runSheet({ ...config, seed }, context, { ...inputs, signal, cellTables });
+      const { result: other } = await runSheet({ ...config, seed }, context, { ...inputs, signal, views: false });
       if (signal.aborted) throw new InterruptedError('interrupted; nothing was written');
-      const value = other.headline?.percentScutoids;
-      log(`realization ${++r} of ${n} (seed ${seed}): ${typeof value === 'number' ? `${value.toFixed(1)} % scutoids` : 'no % scutoids'}`);
+      reported(seed, other.headline);
       return other.headline;
-    });
+    };
+    const headline = threads ? await threads.headline(drawn.headline, runOne, signal) : await headlineOverRealizations(config.seed, n, drawn.headline, runOne);
     const result = { ...drawn, headline };
     const side = writeResult(options.out, result, tables, [options.input], options.force);
     log(
@@ -66,6 +87,7 @@ export async function runCommand(options: CliOptions, signal: AbortSignal, log: 
     // Last, the number a biologist reads: result.headline, with its method and Voronoi k.
     log(`headline: ${describeHeadline(result.headline)}`);
   } finally {
+    await threads?.close();
     context.dispose();
   }
 }

@@ -14,19 +14,18 @@
  * the sources through tsx's loader when the CLI runs from TypeScript) and the code at the end
  * starts the thread's loop when it finds its workerData.
  */
-import { createRequire } from 'node:module';
-import { availableParallelism } from 'node:os';
-import { pathToFileURL } from 'node:url';
-import { isMainThread, parentPort, Worker, workerData } from 'node:worker_threads';
-import { ConfigError, validateAnyConfig } from '../core/config';
+import { isMainThread, parentPort, type Worker, workerData } from 'node:worker_threads';
+import { validateAnyConfig } from '../core/config';
 import { flatSummary, flattenSummary } from '../core/sweep';
 import { flatKeys, flatValues } from '../core/sweep/flatValues';
 import type { FlintstonesPoint } from '../core/analysis/flintstones';
-import type { GpuCapabilities, GpuContext } from '../gpu/context';
+import type { GpuCapabilities } from '../gpu/context';
 import { SheetRunner, sweepSummary } from '../run/index';
-import { InputError } from './errors';
 import type { RunInputs } from './prepare';
 import { fitOutcome, type FitOutcome } from './sweepFits';
+import { capabilitiesOnly, deserializeError, newThread, serializeError, type SerializedError } from './threads';
+
+export { defaultWorkers } from './threads';
 
 /** One run as a thread receives it. */
 export interface WorkerRun {
@@ -42,12 +41,6 @@ interface WorkerSetup {
 }
 
 type ToWorker = { type: 'task'; id: number; runs: WorkerRun[] } | { type: 'fit'; id: number; points: readonly FlintstonesPoint[] } | { type: 'abort' };
-interface SerializedError {
-  name: string;
-  message: string;
-  field?: string;
-  stack?: string;
-}
 type FromWorker =
   /**
    * A run's summary, flattened (flattenSummary): its values, and the number of its key list
@@ -65,11 +58,6 @@ type DoneMessage = { type: 'done'; id: number; key: string; layout: number; keys
 /** A thread failed or exited under a task: its runs not reported yet can be computed elsewhere. */
 export class SweepThreadLost extends Error {
   override readonly name = 'SweepThreadLost';
-}
-
-/** The default number of threads: the machine's cores. */
-export function defaultWorkers(): number {
-  return Math.max(1, availableParallelism());
 }
 
 interface Slot {
@@ -103,7 +91,7 @@ export class SweepWorkers {
       inputs: [...inputs].map(([key, value]) => [key, value.densityImage ? { densityImage: value.densityImage } : {}]),
     };
     for (let k = 0; k < size; k++) {
-      const worker = newWorker(setup);
+      const worker = newThread(import.meta.url, setup);
       const slot: Slot = { worker, affinity: null, reserved: false, layouts: new Map(), current: null };
       worker.on('message', (message: FromWorker) => this.receive(slot, message));
       worker.on('error', (error) =>
@@ -224,57 +212,6 @@ export class SweepWorkers {
     // No thread left: nobody would wake the waiting callers.
     if (this.slots.every((s) => s.reserved)) for (const wake of this.waiting.splice(0)) wake();
   }
-}
-
-/**
- * A thread running this file. From the TypeScript sources (tests, `npx tsx`) the thread first
- * registers tsx's loader (`--import` in a worker's execArgv does not reach its entry in Node 20).
- */
-function newWorker(setup: WorkerSetup): Worker {
-  const entry = import.meta.url;
-  if (!entry.endsWith('.ts')) return new Worker(new URL(entry), { workerData: setup });
-  const api = pathToFileURL(createRequire(entry).resolve('tsx/esm/api')).href;
-  const code = `import(${JSON.stringify(api)}).then((tsx) => { tsx.register(); return import(${JSON.stringify(entry)}); });`;
-  return new Worker(code, { eval: true, workerData: setup });
-}
-
-function serializeError(error: unknown): SerializedError {
-  if (error instanceof Error) {
-    const field = (error as { field?: unknown }).field;
-    return { name: error.name, message: error.message, ...(typeof field === 'string' ? { field } : {}), ...(error.stack ? { stack: error.stack } : {}) };
-  }
-  return { name: 'Error', message: String(error) };
-}
-
-/** The error a thread threw, as the class the CLI maps to its exit code where it is one of ours. */
-function deserializeError(e: SerializedError): Error {
-  let error: Error;
-  if (e.name === 'ConfigError') error = new ConfigError(e.field ?? '', e.message);
-  else if (e.name === 'InputError') error = new InputError(e.message);
-  else if (e.name === 'AbortError') error = new DOMException(e.message, 'AbortError');
-  else {
-    error = new Error(e.message);
-    error.name = e.name;
-  }
-  if (e.stack) error.stack = e.stack;
-  return error;
-}
-
-/** A context for the exact engine only: the capabilities the engine policy reads, no GL. */
-function capabilitiesOnly(capabilities: GpuCapabilities): GpuContext {
-  const noGl = (): never => {
-    throw new Error('a sweep worker thread has no GL context: GPU runs stay on the main thread');
-  };
-  return {
-    capabilities,
-    get renderer() {
-      return noGl();
-    },
-    get gl() {
-      return noGl();
-    },
-    dispose() {},
-  };
 }
 
 /** The thread's loop: tasks one at a time, each run's summary sent as it finishes. */

@@ -30,6 +30,17 @@ const small = {
   sheet: { surfaceRatio: 1.8, layers: 1 },
 };
 
+/** A result file without what depends on the clock. */
+function withoutTimings(path: string): unknown {
+  const result = JSON.parse(readFileSync(path, 'utf8'));
+  delete result.timings;
+  for (const record of result.lloyd.iterations) {
+    delete record.diagramMs;
+    delete record.centroidMs;
+  }
+  return result;
+}
+
 describe('tissue-sheet run', () => {
   it('writes the documented result, with progress on stderr', () => {
     const out = join(dir, 'result.json');
@@ -59,13 +70,7 @@ describe('tissue-sheet run', () => {
     const outs = [1, 2].map((k) => {
       const out = join(dir, `again${k}.json`);
       expect(cli(['run', join(dir, 'small.json'), '--out', out]).status).toBe(0);
-      const result = JSON.parse(readFileSync(out, 'utf8'));
-      delete result.timings;
-      for (const record of result.lloyd.iterations) {
-        delete record.diagramMs;
-        delete record.centroidMs;
-      }
-      return result;
+      return withoutTimings(out);
     });
     expect(outs[1]).toEqual(outs[0]);
   });
@@ -452,5 +457,76 @@ describe('closed surfaces through the CLI (issue 24)', () => {
     expect(result.headline.byConstruction.reason).toBe('concentric-spheres');
     expect(result.byConstruction.reason).toBe('concentric-spheres');
     expect(run.stderr.trim().split('\n').pop()).toMatch(/headline: 0\.0 % scutoids .*Concentric spheres/);
+  });
+});
+
+// `tissue-sheet run`'s other realizations on worker threads (src/cli/realizationThreads.ts): the
+// result file does not depend on the number of threads, and Ctrl-C stops the threads and writes
+// nothing.
+/** A small tube on the exact CPU engine (the only engine whose realizations go to threads). */
+const exactTube = {
+  surface: { kind: 'tube', radius: 40, length: 400 },
+  resolution: 128,
+  cells: 60,
+  seed: 11,
+  engine: 'exact',
+  lloyd: { maxIterations: 3 },
+  sheet: { surfaceRatio: 1.8, layers: 1 },
+};
+
+describe('tissue-sheet run --workers N (realizations on threads)', () => {
+  it('gives the same result file with 1 thread (all on the main thread) and 2', () => {
+    // Realizations long enough (about 0.25 s each, 20 of them) that the thread, which takes about a
+    // second to start from the sources (several on a loaded machine), computes some of them before
+    // the main thread has done them all.
+    const config = writeJson('exact-tube.json', { ...exactTube, cells: 3000, resolution: 512, lloyd: { maxIterations: 10 } });
+    const seeds = Array.from({ length: 20 }, (_, k) => 11 + k);
+    const results = ['1', '2'].map((workers) => {
+      const out = join(dir, `exact-tube-${workers}.json`);
+      const run = cli(['run', config, '--out', out, '--realizations', '20', '--workers', workers]);
+      expect(run.status, run.stderr).toBe(0);
+      // Every realization is reported once, whichever thread computed it.
+      for (const seed of seeds.slice(1)) expect(run.stderr.match(new RegExp(`realization \\d+ of 20 \\(seed ${seed}\\b`, 'g'))).toHaveLength(1);
+      // Threads only where asked: --workers 1 keeps every realization on the main thread.
+      if (workers === '1') expect(run.stderr).not.toMatch(/thread/);
+      else {
+        expect(run.stderr).toMatch(/realizations 2–20 on 1 worker thread/);
+        expect(run.stderr).toMatch(/\(seed \d+, on a thread\)/);
+      }
+      return withoutTimings(out);
+    });
+    const headline = (results[0] as { headline: { realizations: number; realizationSeeds: number[]; realizationValues: unknown[] } }).headline;
+    expect(headline.realizations).toBe(20);
+    expect(headline.realizationSeeds).toEqual(seeds);
+    expect(headline.realizationValues.every((v) => typeof v === 'number')).toBe(true);
+    expect(results[1]).toEqual(results[0]);
+  });
+
+  it('refuses --workers that is not a whole number from 1', () => {
+    const run = spawnSync(process.execPath, [bin, 'run', writeJson('bad-workers.json', exactTube), '--out', join(dir, 'bad.out.json'), '--workers', '0'], {
+      encoding: 'utf8',
+    });
+    expect(run.status).toBe(2);
+    expect(run.stderr).toMatch(/--workers: must be an integer from 1 to 1024/);
+  });
+
+  it('stops on Ctrl-C while threads compute realizations: exit 130, threads stopped, nothing written', async () => {
+    // Many realizations, so that most are still to come when the signal lands.
+    const config = writeJson('many.json', { ...exactTube, cells: 400, lloyd: { maxIterations: 5 } });
+    const out = join(dir, 'interrupted.json');
+    const child = spawn(process.execPath, [bin, 'run', config, '--out', out, '--realizations', '60', '--workers', '3'], { env: process.env });
+    let stderr = '';
+    const code = await new Promise<number | null>((resolve) => {
+      child.stderr.on('data', (chunk) => {
+        stderr += chunk;
+        if (/realization \d+ of 60/.test(stderr) && !child.killed) child.kill('SIGINT');
+      });
+      // The process exits only once its threads are stopped (a live thread keeps it running).
+      child.on('exit', (status) => resolve(status));
+    });
+    expect(code, stderr).toBe(130);
+    expect(stderr).toMatch(/interrupt/);
+    expect(stderr).not.toMatch(/realization 60 of 60/);
+    expect(existsSync(out)).toBe(false);
   });
 });
