@@ -55,11 +55,8 @@ const MARGIN_SPACINGS = 4;
  */
 const LAYER_MARGIN_SPACINGS = 2;
 
-/** Which periodic copies of a site the band holds: at +L (site near 0) and -L (near L) per axis. */
-const COPY_X_PLUS = 1;
-const COPY_X_MINUS = 2;
-const COPY_Y_PLUS = 4;
-const COPY_Y_MINUS = 8;
+/** Which periodic copies of a site the band holds, one bit each: at +L (site near 0) and -L (near L) per axis. */
+const COPY = { xPlus: 1, xMinus: 2, yPlus: 4, yMinus: 8 } as const;
 
 export class PlanarVoronoi {
   readonly count: number;
@@ -231,10 +228,10 @@ export class PlanarVoronoi {
     let marginY = H;
     for (let i = 0; i < n; i++) {
       const c = copies[i];
-      if (!(c & COPY_X_PLUS)) marginX = Math.min(marginX, siteX[i]);
-      if (!(c & COPY_X_MINUS)) marginX = Math.min(marginX, W - siteX[i]);
-      if (!(c & COPY_Y_PLUS)) marginY = Math.min(marginY, siteY[i]);
-      if (!(c & COPY_Y_MINUS)) marginY = Math.min(marginY, H - siteY[i]);
+      if (!(c & COPY.xPlus)) marginX = Math.min(marginX, siteX[i]);
+      if (!(c & COPY.xMinus)) marginX = Math.min(marginX, W - siteX[i]);
+      if (!(c & COPY.yPlus)) marginY = Math.min(marginY, siteY[i]);
+      if (!(c & COPY.yMinus)) marginY = Math.min(marginY, H - siteY[i]);
     }
     this.marginX = marginX;
     this.marginY = marginY;
@@ -321,7 +318,7 @@ export class PlanarVoronoi {
         const sy0 = py && y < marginY;
         const sy1 = py && y >= H - marginY;
         if (!(sx0 || sx1 || sy0 || sy1)) continue;
-        copies[i] = (sx0 ? COPY_X_PLUS : 0) | (sx1 ? COPY_X_MINUS : 0) | (sy0 ? COPY_Y_PLUS : 0) | (sy1 ? COPY_Y_MINUS : 0);
+        copies[i] = (sx0 ? COPY.xPlus : 0) | (sx1 ? COPY.xMinus : 0) | (sy0 ? COPY.yPlus : 0) | (sy1 ? COPY.yMinus : 0);
         for (let a = 0; a < 3; a++) {
           if ((a === 1 && !sx0) || (a === 2 && !sx1)) continue;
           const ox = a === 0 ? 0 : a === 1 ? W : -W;
