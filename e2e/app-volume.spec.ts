@@ -13,7 +13,7 @@ import { parseCsv } from '../src/core/sweep';
 import { readPngText } from '../src/app/model/pngText';
 import { png16, randomSites, rasterizeVoronoi } from '../tests/measure/images';
 import { writeTiff } from '../tests/measure/tiffWriter';
-import { download } from './appHelpers';
+import { download, expectNoLongTasks } from './appHelpers';
 import { runCli, tempDir } from './cli';
 import { installLongTaskObserver, takeLongTasks } from './pages/longTasks';
 import { labelData, permutedLabels, shellVolume, volumePages } from '../tests/measure/volumes';
@@ -139,11 +139,7 @@ test.describe('measure a volume in the app', () => {
     await type(page, '#volume-voxel-z', '0.75');
     await page.locator('#measure-again').click();
     await expect(page.locator('#measure')).toHaveAttribute('data-state', 'compared', { timeout: 150_000 });
-    const longTasks = await takeLongTasks(page);
-    expect(
-      longTasks.filter((d) => d > 50),
-      `long tasks ${longTasks.join(', ')} ms`,
-    ).toEqual([]);
+    await expectNoLongTasks(page);
 
     // The CLI's numbers, measured and model (same seed, same realizations).
     const s = cli.analyses[0].summary;
@@ -191,11 +187,7 @@ test.describe('measure a volume in the app', () => {
     await expect(modelInfo).toContainText(
       `Model cell ${pickedModel}: ${drawnModel.valid[pickedModel - 1] ? 'valid' : 'left out'}, ${drawnModel.scutoid[pickedModel - 1] ? 'a scutoid' : 'not a scutoid'}`,
     );
-    const modelTasks = await takeLongTasks(page);
-    expect(
-      modelTasks.filter((d) => d > 50),
-      `long tasks ${modelTasks.join(', ')} ms`,
-    ).toEqual([]);
+    await expectNoLongTasks(page);
 
     // Pick the cell in the middle of the tissue's basal view (top row): its neighbours on both sides and its shape.
     box = (await canvas.boundingBox())!;

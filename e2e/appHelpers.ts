@@ -1,5 +1,6 @@
 import { readFileSync } from 'node:fs';
-import type { Browser, Page } from '@playwright/test';
+import { expect, type Browser, type Page } from '@playwright/test';
+import { takeLongTasks } from './pages/longTasks';
 
 /** How many runs the app has finished (the body's data-runs). */
 export async function runs(page: Page): Promise<number> {
@@ -93,4 +94,13 @@ export function unrolledWhitePixels(page: Page): Promise<number[]> {
       return count;
     }),
   );
+}
+
+/** Fails the test if the page had a task over 50 ms since the last take (their durations in the message). */
+export async function expectNoLongTasks(page: Page): Promise<void> {
+  const tasks = await takeLongTasks(page);
+  expect(
+    tasks.filter((d) => d > 50),
+    `long tasks ${tasks.join(', ')} ms`,
+  ).toEqual([]);
 }
