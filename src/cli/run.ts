@@ -52,7 +52,10 @@ export async function runCommand(options: CliOptions, signal: AbortSignal, log: 
       log(`realization ${++r} of ${n} (seed ${seed}${where}): ${typeof value === 'number' ? `${value.toFixed(1)} % scutoids` : 'no % scutoids'}`);
     };
     const exact = chooseEngine(config, surfaceLayout(config).name, context.capabilities).name === 'exact';
-    const threadCount = exact && !inputs.meshFile ? Math.min((options.workers ?? defaultWorkers()) - 1, n - 1) : 0;
+    // At most one thread a core beyond this one (at least one where asked): each holds a whole
+    // run, so threads past the cores add memory, not speed.
+    const cores = Math.max(2, defaultWorkers());
+    const threadCount = exact && !inputs.meshFile ? Math.min((options.workers ?? cores) - 1, n - 1, cores - 1) : 0;
     if (threadCount > 0) {
       threads = new RealizationThreads(threadCount, config, seeds, context.capabilities, inputs, (index, headline) =>
         reported(seeds[index], headline, ', on a thread'),
