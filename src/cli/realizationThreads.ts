@@ -64,6 +64,8 @@ export class RealizationThreads {
     capabilities: GpuCapabilities,
     inputs: RunInputs,
     private readonly onDone: (index: number, headline: Headline | null) => void,
+    /** The threads' module (this one; tests give one that fails or exits on purpose). */
+    entry: string = import.meta.url,
   ) {
     this.headlines = new Array<Headline | null | undefined>(seeds.length);
     this.next = new Int32Array(new SharedArrayBuffer(4));
@@ -79,7 +81,7 @@ export class RealizationThreads {
     };
     this.running = count;
     for (let k = 0; k < count; k++) {
-      const thread = newThread(import.meta.url, setup);
+      const thread = newThread(entry, setup);
       let over = false;
       const end = () => {
         if (over) return;
