@@ -19,7 +19,8 @@ import type { MeasureRequestOptions } from '../../view/measureProtocol';
 import { MeasureLayers } from '../view/measureLayers';
 import { MeasureChart, renderHeadline, summaryTable } from './measureStats';
 import { LayerAssign } from './layerAssign';
-import { VOLUME_OPTIONS, VOLUME_RESULTS, VolumePanel } from './volumePanel';
+import { VolumePanel } from './volumePanel';
+import { VOLUME_OPTIONS, VOLUME_RESULTS } from './volumeText';
 import './measurePanel.css';
 
 const TEMPLATE = `
