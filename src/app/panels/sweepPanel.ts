@@ -12,7 +12,7 @@
  * Reference curves (the shipped set, or the user's file) can be laid over the chart
  * (referenceOverlay.ts); they are never part of the downloads.
  */
-import { validateConfigDraft, type ConfigDraft as Config } from '../../core/config';
+import type { ConfigDraft as Config } from '../../core/config';
 import { readRunsCsv, FLINTSTONES_RATIO, sweepFlintstones } from '../../core/sweep';
 import { computeContext, isAbort } from '../../view/pageRunner';
 import { methodsOnRenderer } from '../../core/config/analysisMethods';
@@ -22,22 +22,13 @@ import { version } from '../../version';
 import { download } from './exports';
 import { downloadChart } from './chartExports';
 import { FIELDS } from './fields';
+import { SweepForm } from './sweepForm';
 import { SweepChart } from './sweepChart';
 import { ReferenceOverlay } from './referenceOverlay';
 
 export interface SweepPanelEvents {
   config(): Config;
   onError(message: string): void;
-}
-
-/** The "Voronoi k" choice: sweeps lloyd.maxIterations = k - 1 with tolerance 0. */
-const VORONOI_K = 'voronoi-k';
-const NUMERIC_KINDS = new Set(['number', 'integer', 'range', 'optional-number']);
-
-interface Choice {
-  value: string;
-  label: string;
-  integer: boolean;
 }
 
 export class SweepPanel {
@@ -51,7 +42,7 @@ export class SweepPanel {
   private spec: unknown = null;
   private runsCsv = '';
   private aggregateCsv = '';
-  private readonly field: HTMLSelectElement;
+  private readonly form: SweepForm;
 
   constructor(
     private readonly root: HTMLElement,
@@ -63,9 +54,7 @@ export class SweepPanel {
     (root.querySelector<HTMLElement>('#chart-sweep') ?? root).after(fits);
     this.flintstones = new FlintstonesChart(fits);
     this.reference = new ReferenceOverlay(root.querySelector<HTMLElement>('#chart-sweep') ?? root, this.chart);
-    this.field = document.createElement('select');
-    this.field.name = 'sweep-field';
-    this.field.setAttribute('aria-label', 'field to sweep');
+    this.form = new SweepForm(root, () => events.config(), (text) => this.status(text));
     this.buildControls();
     this.button('run').addEventListener('click', () => void this.runNew());
     this.button('cancel').addEventListener('click', () => this.controller?.abort());
@@ -84,13 +73,13 @@ export class SweepPanel {
       this.button(`fit-${kind}`).addEventListener('click', () => void this.figure(kind, 'fit'));
     }
     this.root.querySelector<HTMLInputElement>('[name="sweep-load"]')!.addEventListener('change', (event) => void this.load(event.target as HTMLInputElement));
-    this.refreshChoices();
-    this.root.querySelector('.sweep-controls')?.addEventListener('focusin', () => this.refreshChoices());
+    this.form.refresh();
+    this.root.querySelector('.sweep-controls')?.addEventListener('focusin', () => this.form.refresh());
   }
 
   /** The configuration changed (a result is shown): the fields that can be varied follow it. */
   configChanged(): void {
-    this.refreshChoices();
+    this.form.refresh();
   }
 
   /** The tidy runs.csv of the sweep on screen (the CLI's columns). */
@@ -101,7 +90,7 @@ export class SweepPanel {
   private buildControls(): void {
     const controls = this.root.querySelector<HTMLElement>('.sweep-controls')!;
     const label = document.createElement('label');
-    label.append('vary ', this.field);
+    label.append('vary ', this.form.field);
     controls.prepend(label);
     const status = controls.querySelector('[data-sweep="status"]');
     const extra = document.createElement('span');
@@ -118,99 +107,12 @@ export class SweepPanel {
     controls.insertBefore(extra, status);
   }
 
-  /** The numeric fields shown for the current configuration, and Voronoi k. */
-  private refreshChoices(): void {
-    let config: Config;
-    try {
-      config = this.events.config();
-    } catch {
-      return;
-    }
-    const choices: Choice[] = [{ value: VORONOI_K, label: 'Voronoi k (Lloyd iterations + 1)', integer: true }];
-    for (const spec of FIELDS) {
-      if (spec.set || !NUMERIC_KINDS.has(spec.kind) || (spec.show && !spec.show(config))) continue;
-      choices.push({ value: spec.path, label: spec.unit ? `${spec.label} (${spec.unit})` : spec.label, integer: spec.kind === 'integer' });
-    }
-    const previous = this.field.value || (config.surface.kind === 'tube' ? 'sheet.surfaceRatio' : 'sheet.thickness');
-    this.field.replaceChildren(
-      ...choices.map((c) => {
-        const option = new Option(c.label, c.value);
-        option.dataset.integer = String(c.integer);
-        return option;
-      }),
-    );
-    const announce = this.field.dataset.shown === 'true';
-    this.field.dataset.shown = 'true';
-    if (choices.some((c) => c.value === previous)) {
-      this.field.value = previous;
-      return;
-    }
-    // The field varied is not one of this configuration any more (e.g. the tube's wall is now
-    // set by thickness): its counterpart is taken, and the change is said, never silent.
-    const counterpart = previous === 'sheet.surfaceRatio' ? 'sheet.thickness' : previous === 'sheet.thickness' ? 'sheet.surfaceRatio' : null;
-    const next = counterpart && choices.some((c) => c.value === counterpart) ? counterpart : (choices[1]?.value ?? VORONOI_K);
-    this.field.value = next;
-    if (announce) {
-      const name = (value: string) => FIELDS.find((f) => f.path === value)?.label ?? (value === VORONOI_K ? 'Voronoi k' : value);
-      this.status(`vary: ${name(previous)} is not a field of this configuration now; the sweep varies ${name(next)} instead.`);
-      this.root.dataset.varyChanged = `${previous}->${next}`;
-    }
-  }
-
-  /** A loaded sweep's spec in the sweep's form: the field varied, from, to, points, realizations. */
-  private showSpecInForm(spec: unknown): void {
-    const s = spec as { vary?: Record<string, unknown[]>; realizations?: number };
-    const [path, values] = Object.entries(s.vary ?? {})[0] ?? [];
-    if (!path || !Array.isArray(values) || values.length === 0) return;
-    const voronoi = path === 'lloyd.maxIterations';
-    const numbers = values.map(Number).map((v) => (voronoi ? v + 1 : v));
-    const value = voronoi ? VORONOI_K : path;
-    if (![...this.field.options].some((o) => o.value === value)) this.field.append(new Option(FIELDS.find((f) => f.path === path)?.label ?? path, value));
-    this.field.value = value;
-    this.field.dataset.shown = 'true';
-    this.input('from').value = String(Math.min(...numbers));
-    this.input('to').value = String(Math.max(...numbers));
-    this.input('steps').value = String(numbers.length);
-    this.input('realizations').value = String(s.realizations ?? 1);
-  }
-
   private button(name: string): HTMLButtonElement {
     return this.root.querySelector<HTMLButtonElement>(`[data-sweep="${name}"]`)!;
   }
 
-  private input(name: string): HTMLInputElement {
-    return this.root.querySelector<HTMLInputElement>(`[name="sweep-${name}"]`)!;
-  }
-
   private status(text: string): void {
     this.root.querySelector<HTMLElement>('[data-sweep="status"]')!.textContent = text;
-  }
-
-  /** The CLI sweep spec of the form: the chosen field from..to in points, realizations. */
-  private specFromForm(): unknown {
-    this.refreshChoices();
-    // The form's config as it stands: a default resolution stays null, so each grid point gets
-    // the default of its own cells and surface (as the CLI gives a spec that leaves it out).
-    const base = structuredClone(validateConfigDraft(this.events.config()));
-    const choice = this.field.value;
-    const integer = this.field.selectedOptions[0]?.dataset.integer === 'true';
-    const from = Number(this.input('from').value);
-    const to = Number(this.input('to').value);
-    const steps = Math.max(1, Math.min(50, Math.round(Number(this.input('steps').value))));
-    if (!Number.isFinite(from) || !Number.isFinite(to)) throw new Error('Sweep: give numbers for "from" and "to".');
-    let values = Array.from({ length: steps }, (_, k) => Number((from + (steps > 1 ? ((to - from) * k) / (steps - 1) : 0)).toPrecision(6)));
-    if (integer) values = [...new Set(values.map(Math.round))];
-    const realizations = Math.max(1, Math.min(1000, Math.round(Number(this.input('realizations').value) || 1)));
-    let path = choice;
-    if (choice === VORONOI_K) {
-      // Voronoi k is k - 1 Lloyd iterations, all of them: no early stop.
-      path = 'lloyd.maxIterations';
-      values = values.map((k) => k - 1);
-      base.lloyd = { ...base.lloyd, tolerance: 0 };
-    }
-    if (path === 'sheet.surfaceRatio') base.sheet = { ...base.sheet, thickness: 0 };
-    if (path === 'sheet.thickness') base.sheet = { ...base.sheet, surfaceRatio: null };
-    return { base, vary: { [path]: values }, realizations, seed: base.seed, seedMode: 'per-realization' };
   }
 
   private chartFor(plan: SweepPlan, spec: unknown): void {
@@ -229,7 +131,7 @@ export class SweepPanel {
   private async runNew(): Promise<void> {
     let spec: unknown;
     try {
-      spec = this.specFromForm();
+      spec = this.form.spec();
     } catch (error) {
       this.refuse(error);
       return;
@@ -386,7 +288,7 @@ export class SweepPanel {
       this.spec = spec;
       this.runsCsv = csv;
       this.aggregateCsv = '';
-      this.showSpecInForm(spec);
+      this.form.show(spec);
       this.chartFor(plan, spec);
       const rows = readRunsCsv(csv).rows;
       this.chart.add(rows);
