@@ -10,6 +10,7 @@ import { describeHeadline } from '../core/analysis/headline';
 import type { Headline } from '../core/analysis/headline';
 import { DEFAULT_REALIZATIONS, headlineOverRealizations, realizationSeeds } from '../core/analysis/realizations';
 import { ConfigError, validateAnyConfig } from '../core/config';
+import { threadsWithinBudget } from '../core/config/limits';
 import { surfaceLayout } from '../core/config/surfaceLayout';
 import { createHeadlessContext } from '../node/headless';
 import { chooseEngine } from '../run/enginePolicy';
@@ -40,7 +41,8 @@ export async function runCommand(options: CliOptions, signal: AbortSignal, log: 
   const context = createHeadlessContext();
   let threads: RealizationThreads | null = null;
   try {
-    checkRunnable(config, computeBudget(context.capabilities.maxTextureSize, options.allowLarge));
+    const budget = computeBudget(context.capabilities.maxTextureSize, options.allowLarge);
+    checkRunnable(config, budget);
     // The headline is the mean over realizations (seeds seed, seed + 1, ...): the file is
     // realization 1's, the one drawn; the others only give their headline. On the exact engine
     // they run on threads from the start, beside realization 1 (realizationThreads.ts).
@@ -55,7 +57,14 @@ export async function runCommand(options: CliOptions, signal: AbortSignal, log: 
     // At most one thread a core beyond this one (at least one where asked): each holds a whole
     // run, so threads past the cores add memory, not speed.
     const cores = Math.max(2, defaultWorkers());
-    const threadCount = exact && !inputs.meshFile ? Math.min((options.workers ?? cores) - 1, n - 1, cores - 1) : 0;
+    const wanted = exact ? Math.min((options.workers ?? cores) - 1, n - 1, cores - 1) : 0;
+    // Each thread holds a whole run: no more than the memory budget holds beside this one.
+    const threadCount = threadsWithinBudget(config, estimate, budget, wanted);
+    if (threadCount < wanted) {
+      log(
+        `memory: ${threadCount} of ${wanted} realization thread${wanted > 1 ? 's' : ''} fit the memory limit beside this run; the rest of the realizations run here`,
+      );
+    }
     if (threadCount > 0) {
       threads = new RealizationThreads(threadCount, config, seeds, context.capabilities, inputs, (index, headline) =>
         reported(seeds[index], headline, ', on a thread'),

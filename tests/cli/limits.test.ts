@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { ConfigError, validateAnyConfig } from '../../src/core/config';
-import { checkBudget, checkLimits, estimateRun, MAX_EXTENT_UM, MIN_EXTENT_UM } from '../../src/core/config/limits';
+import { checkBudget, checkLimits, estimateRun, MAX_EXTENT_UM, MIN_EXTENT_UM, threadsWithinBudget } from '../../src/core/config/limits';
 import { surfaceLayout } from '../../src/core/config/surfaceLayout';
 
 const budget = { maxTextureSize: 16384, maxWork: 2 ** 34, maxBytes: 8 * 2 ** 30 };
@@ -59,5 +59,42 @@ describe('scale guards', () => {
     expect(() => checkBudget(config, { ...budget, maxWork: e.work - 1 }, 'raise it')).toThrow(/texel-floods .* above the limit of .*raise it/);
     expect(() => checkBudget(config, { ...budget, maxBytes: e.bytes - 1 }, 'raise it')).toThrow(/memory/);
     expect(checkBudget(config, { ...budget, maxWork: e.work, maxBytes: e.bytes }, '')).toEqual(e);
+  });
+
+  it('starts no more realization threads than the memory budget holds beside the run (each holds a whole run)', () => {
+    const million = validateAnyConfig({
+      surface: { kind: 'plane', width: 10000, height: 10000, periodicX: true, periodicY: true },
+      resolution: 4100,
+      cells: 1_000_000,
+      engine: 'exact',
+      sheet: { thickness: 5, adjacency: 'exact' },
+    });
+    const e = estimateRun(million);
+    const within = (maxBytes: number, wanted = 7) => threadsWithinBudget(million, e, { ...budget, maxBytes }, wanted);
+    expect(within(Infinity)).toBe(7);
+    expect(within(Infinity, 0)).toBe(0);
+    expect(within(e.bytes)).toBe(0);
+    expect(within(e.bytes - 1)).toBe(0);
+    // A thread costs at least the cells' share of the run, at most the whole run again plus the thread.
+    const one = (() => {
+      let lo = e.bytes;
+      let hi = 4 * e.bytes;
+      while (hi - lo > 1) {
+        const mid = Math.floor((lo + hi) / 2);
+        if (within(mid) >= 1) hi = mid;
+        else lo = mid;
+      }
+      return hi - e.bytes;
+    })();
+    expect(one).toBeGreaterThan(e.cellBytes / 2);
+    expect(one).toBeLessThan(e.bytes + 2 ** 28);
+    expect(within(e.bytes + 3 * one)).toBe(3);
+    // More memory never means fewer threads.
+    let last = 0;
+    for (let gib = 1; gib <= 16; gib++) {
+      const n = within(gib * 2 ** 30);
+      expect(n).toBeGreaterThanOrEqual(last);
+      last = n;
+    }
   });
 });

@@ -39,11 +39,21 @@ const KEPT_BYTES_PER_TEXEL = 8;
 /**
  * Per cell: the Lloyd run (the exact engine's triangulation of the sites and their copies near
  * the seams, cell sums; GPU: site buffers) and, per surface of the stack, its adjacency, the
- * analysis's neighbour sets and the result's cell columns. Measured: a 1,000,000-cell periodic
- * plane, 2 surfaces, exact engine, peaks at 0.6 GB (docs/benchmark.md); this estimate says 0.9.
+ * analysis's neighbour sets and the result's cell columns. Measured with `tissue-sheet run
+ * --workers 1` (peak RSS, /usr/bin/time -v) on a periodic plane, 10 iterations, a thickness, exact
+ * engine: 572 MB at 250,000 cells and 863 MB at 500,000, 1.16 kB a cell on 2 surfaces (the result
+ * drawn, kept while the other realizations run one at a time); this estimate says 1.22 kB.
  */
-const BYTES_PER_CELL = 400;
-const BYTES_PER_CELL_PER_SURFACE = 250;
+const BYTES_PER_CELL = 560;
+const BYTES_PER_CELL_PER_SURFACE = 330;
+/**
+ * Each realization computed on a thread beside the drawn one (`run --workers`): a whole run
+ * without cell tables. Measured as above with 2 threads: 0.89 kB a cell more on 2 surfaces and
+ * about 90 MB for the thread itself.
+ */
+const THREAD_BYTES = 96 * 2 ** 20;
+const THREAD_BYTES_PER_CELL = 400;
+const THREAD_BYTES_PER_CELL_PER_SURFACE = 250;
 
 export interface ComputeBudget {
   /** The GPU's MAX_TEXTURE_SIZE. */
@@ -90,6 +100,18 @@ export function estimateRun(config: AnyConfig): RunEstimate {
     bytes: texelBytes + cellBytes,
     cellBytes,
   };
+}
+
+/**
+ * How many of `wanted` realization threads fit the memory budget beside the run itself (each
+ * holds a whole run at a time): threads are for speed, so fewer are started where the memory
+ * would not hold them, rather than the run refused.
+ */
+export function threadsWithinBudget(config: AnyConfig, estimate: RunEstimate, budget: ComputeBudget, wanted: number): number {
+  const texelBytes = estimate.bytes - estimate.cellBytes;
+  const perThread = THREAD_BYTES + texelBytes + config.cells * (THREAD_BYTES_PER_CELL + THREAD_BYTES_PER_CELL_PER_SURFACE * estimate.surfaces);
+  const room = Math.floor((budget.maxBytes - estimate.bytes) / perThread);
+  return Math.max(0, Math.min(wanted, room));
 }
 
 /** Refuses lengths outside [MIN_EXTENT_UM, MAX_EXTENT_UM] (see the module comment). */
