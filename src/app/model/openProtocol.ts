@@ -1,11 +1,16 @@
 /**
  * Messages between the page and the worker that opens a result with its cells side file
- * (openWorker.ts, openClient.ts; issue 27).
+ * (openWorker.ts, openClient.ts; issue 27), and then holds it for the pictures of another
+ * scutoid highlight and for the exports built from its cells.
  */
 import type { CellsFileRecord } from '../../run/cellTables';
-import type { LabelImage } from '../../run';
+import type { LabelImage, SheetResult } from '../../run';
+import type { ExportRequest } from './exportFiles';
 
-export interface ToOpenWorker {
+export type ToOpenWorker = OpenMessage | PicturesMessage | ExportMessage;
+
+export interface OpenMessage {
+  readonly type: 'open';
   readonly id: number;
   /** The result JSON, parsed (small: its cell lists are null). */
   readonly data: unknown;
@@ -16,6 +21,25 @@ export interface ToOpenWorker {
   readonly name: string;
   /** The pictures' scutoid stripes. */
   readonly highlightScutoids: boolean;
+}
+
+/** Requests about the result opened by request `opened` (refused when the worker holds another). */
+interface HeldMessage {
+  readonly id: number;
+  readonly opened: number;
+}
+
+/** The pictures of the held result with these scutoid stripes (no picked cell: an overlay). */
+export interface PicturesMessage extends HeldMessage {
+  readonly type: 'pictures';
+  readonly highlightScutoids: boolean;
+}
+
+/** An export of the held result as the page shows it (`shown`: its result without cell lists). */
+export interface ExportMessage extends HeldMessage {
+  readonly type: 'export';
+  readonly shown: SheetResult;
+  readonly request: ExportRequest;
 }
 
 export type FromOpenWorker =
@@ -34,4 +58,7 @@ export type FromOpenWorker =
       /** The pictures (view/workerPictures.ts), for rememberPictures. */
       readonly presented: unknown;
     }
+  | { readonly type: 'pictures'; readonly id: number; readonly presented: unknown }
+  /** The export's file (a Blob: passed by reference, never copied on the page's thread). */
+  | { readonly type: 'exported'; readonly id: number; readonly file: Blob }
   | { readonly type: 'error'; readonly id: number; readonly message: string };
