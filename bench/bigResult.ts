@@ -48,7 +48,25 @@ async function toggles(page: Page): Promise<string[]> {
   return out;
 }
 
+/** Each saved file opened again (the project, the result JSON with its cells inline): ms to "Opened", and the long tasks. */
+async function reopen(page: Page, paths: string[]): Promise<string[]> {
+  const out: string[] = [];
+  for (const path of paths) {
+    await takeTasks(page);
+    console.log(`open ${path}…`);
+    await page.evaluate(() => (document.querySelector('#status')!.textContent = ''));
+    const started = Date.now();
+    await page.locator('#open-file').setInputFiles([path]);
+    await page.waitForFunction(() => /^Opened /.test(document.querySelector('#status')?.textContent ?? ''), null, { timeout: 600_000 });
+    const ms = Date.now() - started;
+    await frames(page, 30);
+    out.push(`reopen ${path.split('/').pop()}: ${fmt(ms)}; ${tasksLine(await takeTasks(page))}`);
+  }
+  return out;
+}
+
 /** Each export downloaded: ms from the click to the file, and the long tasks; saved under --save. */
+const saved: string[] = [];
 async function exportsOf(page: Page): Promise<string[]> {
   const out: string[] = [];
   for (const key of ['ply', 'vtk', 'svg', 'json', 'project']) {
@@ -61,6 +79,7 @@ async function exportsOf(page: Page): Promise<string[]> {
     await frames(page, 2);
     if (saveDir) writeFileSync(join(saveDir, file.suggestedFilename()), readFileSync(path));
     out.push(`export ${key}: ${fmt(ms)}; ${tasksLine(await takeTasks(page))}`);
+    if (saveDir && (key === 'json' || key === 'project')) saved.push(join(saveDir, file.suggestedFilename()));
   }
   return out;
 }
@@ -147,6 +166,7 @@ try {
   const rows = await page.evaluate(() => document.querySelectorAll('#cell-table tbody tr').length);
   const toggled = await toggles(page);
   const exported = await exportsOf(page);
+  const reopened = await reopen(page, saved.reverse());
   console.log(`\nissue 27: a big result in the page (headless Chromium, SwiftShader); ${cells.slice(0, 120)}`);
   console.log(
     `open (choose both files -> pictures on screen): ${fmt(openMs)}; longest main-thread task ${fmt(Math.max(0, ...openTasks))} (${openTasks.length} over 50 ms)`,
@@ -158,7 +178,7 @@ try {
     `pick (click -> cell panel): big median ${fmt(quantile(bigPicks, 0.5))}; longest main-thread task while picking ${fmt(Math.max(0, ...pickTasks))} (${pickTasks.length} over 50 ms) | small (baseline) median ${fmt(quantile(smallPicks, 0.5))}`,
   );
   console.log(`cell table rows in the DOM: ${rows}`);
-  for (const line of [...toggled, ...exported]) console.log(line);
+  for (const line of [...toggled, ...exported, ...reopened]) console.log(line);
 } finally {
   await browser.close();
   await server.close();

@@ -37,6 +37,7 @@ const LONGEST_MS = 200;
 const OVER_50_MS_AT_MOST = 3;
 
 interface Files {
+  dir: string;
   json: string;
   side: string;
   data: SheetResult & { cellsFile: CellsFileRecord };
@@ -56,7 +57,7 @@ function writeResult(): Files {
   const bytes = new Uint8Array(readFileSync(side));
   const tables = decodeCellsFile(data.cellsFile, bytes);
   const last = data.surfaces[data.surfaces.length - 1]?.name;
-  return { json, side, data, bytes, tables, surfaces: [last === 'apical' ? 'basal' : 'apical', ...data.surfaces.map((s) => s.name)] };
+  return { dir, json, side, data, bytes, tables, surfaces: [last === 'apical' ? 'basal' : 'apical', ...data.surfaces.map((s) => s.name)] };
 }
 
 const longTasks = takeLongTasks;
@@ -184,9 +185,15 @@ test("a 25,000-cell result opens, picks, toggles its scutoid stripes and exports
   const opened = openParsed(withCellRecords(files.data, files.tables), 'big.json');
   if (opened.kind !== 'result') throw new Error(`opened as ${opened.kind}`);
   const stack = viewStack(opened.output);
+  const picked = await page.locator('body').getAttribute('data-selected-cell');
+  const savedFiles: string[] = [];
   await longTasks(page);
   for (const kind of ['ply', 'vtk', 'svg', 'json', 'project'] as const) {
     const file = await downloadExport(page, kind);
+    if (kind === 'json' || kind === 'project') {
+      savedFiles.push(join(files.dir, file.name));
+      writeFileSync(savedFiles[savedFiles.length - 1], file.bytes);
+    }
     const saved = kind === 'project' ? (JSON.parse(file.text) as { view: ExportRequest['view']; sections?: Record<string, unknown>; savedAt: string }) : null;
     const request: ExportRequest = saved
       ? { kind, view: saved.view, sections: saved.sections, savedAt: saved.savedAt }
@@ -197,4 +204,21 @@ test("a 25,000-cell result opens, picks, toggles its scutoid stripes and exports
   const exporting = await longTasks(page);
   expect(Math.max(0, ...exporting), `tasks while exporting: ${exporting.join(', ')} ms`).toBeLessThan(LONGEST_MS);
   expect(exporting.filter((d) => d > 50).length, `tasks while exporting: ${exporting.join(', ')} ms`).toBeLessThanOrEqual(OVER_50_MS_AT_MOST);
+
+  // The saved project and result JSON (cells inline: 28 and 51 MB) open again, parsed in the worker.
+  for (const path of savedFiles.reverse()) {
+    await page.evaluate(() => (document.querySelector('#status')!.textContent = ''));
+    await longTasks(page);
+    await page.locator('#open-file').setInputFiles([path]);
+    await expect(page.locator('#status')).toContainText(/^Opened /, { timeout: 120_000 });
+    await frames(page, 30);
+    const reopening = await longTasks(page);
+    expect(Math.max(0, ...reopening), `tasks while opening ${path}: ${reopening.join(', ')} ms`).toBeLessThan(LONGEST_MS);
+    expect(reopening.filter((d) => d > 50).length, `tasks while opening ${path}: ${reopening.join(', ')} ms`).toBeLessThanOrEqual(OVER_50_MS_AT_MOST);
+    await expect(page.locator('#percent-scutoids')).toHaveAttribute('data-drawn', /\d/);
+    if (path.endsWith('.tissue-sheet.json')) {
+      await expect(page.locator('#status')).toContainText('Opened project');
+      await expect(page.locator('body')).toHaveAttribute('data-selected-cell', picked!);
+    }
+  }
 });

@@ -102,6 +102,8 @@ export class SheetView3D {
   }
 
   setHighlightScutoids(on: boolean): void {
+    // Unchanged (a project restoring its view): no second repaint of large pictures.
+    if (on === this.highlight) return;
     this.highlight = on;
     this.repaint();
   }

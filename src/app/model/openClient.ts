@@ -59,15 +59,36 @@ export class ResultOpener {
       highlightScutoids: request.highlightScutoids,
     };
     const opened = await this.ask(message, request.name, () => id === this.latestOpen, progress);
+    const bytes = opened.type === 'opened' ? opened.bytes : undefined;
+    return this.received(id, opened, (result) => withLazyCellRecords(result, decodeCellsFile(request.record, new Uint8Array(bytes!))));
+  }
+
+  /**
+   * A large project or result JSON with its cells inline, read and parsed in the worker (a
+   * 25,000-cell project held the main thread ~0.5 s in JSON.parse and checks, issue 27).
+   */
+  async openJson(file: Blob, name: string, highlightScutoids: boolean, onProgress?: (line: string, fraction: number) => void): Promise<OpenedFile> {
+    const id = ++this.lastId;
+    this.latestOpen = id;
+    this.held = null;
+    const opened = await this.ask({ type: 'open-json', id, file, name, highlightScutoids }, name, () => id === this.latestOpen, onProgress);
+    return this.received(id, opened, (result) =>
+      opened.type === 'opened' && opened.tables ? withLazyCellRecords(result, opened.tables) : (opened as { records: SheetResult }).records,
+    );
+  }
+
+  /** The page's file from the worker's reply; `withCells` gives the result its cell lists. */
+  private async received(id: number, opened: Reply, withCells: (stripped: SheetResult) => SheetResult): Promise<OpenedFile> {
     if (opened.type !== 'opened') throw new Error(opened.type === 'error' ? opened.message : `unexpected reply ${opened.type}`);
     // Records made when read (run/lazyRecords.ts): the page reads a few of 300,000.
-    const result = withLazyCellRecords(opened.result as SheetResult, decodeCellsFile(request.record, new Uint8Array(opened.bytes)));
+    const result = withCells(opened.result as SheetResult);
     if (opened.kind === 'result-rerun') return { kind: 'result-rerun', result };
     const output: SheetOutput = { result, labelImages: opened.labelImages };
     rememberPictures(output, opened.presented);
     this.held = { opened: id, images: opened.labelImages };
     // The worker's reply ends its task here; the page draws the result in the next ones.
     await new Promise((resolve) => setTimeout(resolve, 0));
+    if (opened.kind === 'project') return { kind: 'project', output, view: opened.view!, sections: opened.sections };
     return { kind: 'result', output, drawnFrom: 'cells' };
   }
 

@@ -14,8 +14,9 @@
  */
 import { decodeCellsFile, withCellRecords, type CellsFileRecord } from '../../run/cellTables';
 import type { SheetOutput, SheetResult } from '../../run';
-import { openParsed } from './project';
-import type { ExportMessage, FromOpenWorker, OpenMessage, PicturesMessage, ToOpenWorker } from './openProtocol';
+import { openParsed, parseFileJson, type OpenedFile } from './project';
+import { resultCellTables, tableBuffers } from '../../run/recordTables';
+import type { ExportMessage, FromOpenWorker, OpenJsonMessage, OpenMessage, PicturesMessage, ToOpenWorker } from './openProtocol';
 import { drawPictures } from '../../view/workerPictures';
 import { EXPORT_FILES, exportText, heldStack, withoutCells } from './exportFiles';
 
@@ -32,6 +33,7 @@ self.onmessage = async (event: MessageEvent<ToOpenWorker>) => {
   const message = event.data;
   try {
     if (message.type === 'open') await open(message);
+    else if (message.type === 'open-json') await openJson(message);
     else if (message.type === 'pictures') pictures(message);
     else exported(message);
   } catch (error) {
@@ -86,4 +88,38 @@ async function open(message: OpenMessage): Promise<void> {
     ...labelImages.map((image) => image.labels.buffer as ArrayBuffer),
     ...transfer,
   ]);
+}
+
+/**
+ * A large project or result JSON (cells inline): parsed and checked here, its records sent back
+ * as transferred columns (run/recordTables.ts), its label images and pictures as for a side file.
+ */
+async function openJson(message: OpenJsonMessage): Promise<void> {
+  held = null;
+  const { id, name } = message;
+  post({ type: 'progress', id, line: `Reading ${name}…`, fraction: 0.05 });
+  const data = parseFileJson(await message.file.text(), name);
+  post({ type: 'progress', id, line: 'Checking it…', fraction: 0.2 });
+  const opened: OpenedFile = openParsed(data, name);
+  const result = opened.kind === 'result-rerun' ? opened.result : opened.output.result;
+  const tables = resultCellTables(result);
+  const columns = tables ? tableBuffers(tables) : [];
+  const reply = {
+    type: 'opened' as const,
+    id,
+    kind: opened.kind,
+    result: withoutCells(result),
+    ...(tables ? { tables } : { records: result }),
+    ...(opened.kind === 'project' ? { view: opened.view, sections: opened.sections } : {}),
+  };
+  if (opened.kind === 'result-rerun') {
+    post({ ...reply, labelImages: [], presented: undefined }, columns);
+    return;
+  }
+  post({ type: 'progress', id, line: 'Painting the pictures…', fraction: 0.7 });
+  const highlightScutoids = opened.kind === 'project' ? opened.view.highlightScutoids : message.highlightScutoids;
+  const { presented, transfer } = drawPictures(opened.output, { highlightScutoids, selected: -1 });
+  const labelImages = opened.output.labelImages;
+  held = { opened: id, output: { result, labelImages: labelImages.map((image) => ({ ...image, labels: image.labels.slice() })) } };
+  post({ ...reply, labelImages, presented }, [...columns, ...labelImages.map((image) => image.labels.buffer as ArrayBuffer), ...transfer]);
 }

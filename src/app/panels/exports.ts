@@ -13,7 +13,7 @@ import { withPngText } from '../model/pngText';
 import { EXPORT_FILES, exportText, type ExportRequest } from '../model/exportFiles';
 import type { OpenedFile, ViewState } from '../model/project';
 import { openSections, prepareSections, savedSections } from '../model/projectSections';
-import { openFiles, type SideFileOpener } from '../model/resultFiles';
+import { openFiles, type SideFileOpener, type WholeFileOpener } from '../model/resultFiles';
 import { ResultOpener } from '../model/openClient';
 import { figurePng, figureSize } from '../view/figure';
 import type { SheetView3D } from '../../view/sheetView3d';
@@ -114,12 +114,18 @@ export function bindExports(root: HTMLElement, sources: ExportSources): ResultOp
           onProgress: (line, fraction) => sources.onOpenProgress?.(`Opening ${name}: ${line}`, fraction),
         })
     : undefined;
+  const openWhole: WholeFileOpener | undefined = opener
+    ? (json, name) =>
+        opener.openJson(json as File, name, sources.viewState().highlightScutoids, (line, fraction) =>
+          sources.onOpenProgress?.(`Opening ${name}: ${line}`, fraction),
+        )
+    : undefined;
   more.file.addEventListener('change', async () => {
     const chosen = [...(more.file.files ?? [])];
     more.file.value = '';
     if (chosen.length === 0) return;
     try {
-      const { file, name } = await openFiles(chosen, openSide);
+      const { file, name } = await openFiles(chosen, openSide, openWhole);
       await sources.onOpen(file, name);
       if (file.kind === 'project') await openSections(file.sections, name);
     } catch (error) {
