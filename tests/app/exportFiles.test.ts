@@ -6,10 +6,9 @@
  * themselves (ply.ts, vtk.ts, svg.ts, project.ts, JSON.stringify).
  */
 import { describe, expect, it } from 'vitest';
-import { validateAnyConfig } from '../../src/core/config';
 import { withCellRecords } from '../../src/run/cellTables';
 import { withLazyCellRecords } from '../../src/run/lazyRecords';
-import { SheetRunner } from '../../src/run/runSheet';
+import { runLayeredTube } from '../run/layeredTube';
 import { viewStack } from '../../src/view/stack';
 import { exportText, heldStack, withoutCells, type ExportRequest } from '../../src/app/model/exportFiles';
 import { cellsPly } from '../../src/app/model/ply';
@@ -22,15 +21,7 @@ const context = useHeadlessContext();
 
 describe('exportFiles', () => {
   it("the worker's files of a held result are the page's, byte for byte, with the page's headline", async () => {
-    const config = validateAnyConfig({
-      surface: { kind: 'tube', radius: 40, length: 300 },
-      resolution: 128,
-      cells: 50,
-      engine: 'exact',
-      lloyd: { maxIterations: 2 },
-      sheet: { surfaceRatio: 2, layers: 1 },
-    });
-    const output = await new SheetRunner(context).run(config, { cellTables: true });
+    const output = await runLayeredTube(context);
     // The page: lazy records, and a headline of its own (realizations combined after opening).
     const opened = withLazyCellRecords(withoutCells(output.result), output.tables!);
     const headline = { ...opened.headline!, realizations: 7 };

@@ -4,11 +4,10 @@
  * a record the columns cannot hold exactly gives null (the records are then sent as they are).
  */
 import { describe, expect, it } from 'vitest';
-import { validateAnyConfig } from '../../src/core/config';
 import { withCellRecords } from '../../src/run/cellTables';
 import { withLazyCellRecords } from '../../src/run/lazyRecords';
 import { analysisTableOfRecords, cellTableOfRecords, resultCellTables, tableBuffers } from '../../src/run/recordTables';
-import { SheetRunner } from '../../src/run/runSheet';
+import { runLayeredTube } from './layeredTube';
 import type { SheetResult } from '../../src/run';
 import { useHeadlessContext } from '../gpu/context';
 
@@ -16,15 +15,7 @@ const context = useHeadlessContext();
 
 describe('recordTables', () => {
   it("a result file's records, through columns and back, are the file's (JSON for JSON)", async () => {
-    const config = validateAnyConfig({
-      surface: { kind: 'tube', radius: 40, length: 300 },
-      resolution: 128,
-      cells: 50,
-      engine: 'exact',
-      lloyd: { maxIterations: 2 },
-      sheet: { surfaceRatio: 2, layers: 1 },
-    });
-    const output = await new SheetRunner(context).run(config, { cellTables: true });
+    const output = await runLayeredTube(context);
     // As a file holds it: the records written out and parsed back.
     const text = JSON.stringify(withCellRecords(output.result, output.tables!));
     const file = JSON.parse(text) as SheetResult;
