@@ -153,7 +153,13 @@ try {
   await page.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks.splice(0));
   const started = Date.now();
   await page.locator('#open-file').setInputFiles([json, side]);
-  await page.waitForFunction(() => /^Opened /.test(document.querySelector('#status')?.textContent ?? ''), null, { timeout: 600_000 });
+  await page
+    .waitForFunction(() => /^Opened /.test(document.querySelector('#status')?.textContent ?? '') || document.querySelector('.error-main'), null, {
+      timeout: 600_000,
+    })
+    .catch((error: Error) => console.log(`not opened: ${error.message}`));
+  const refused = await page.evaluate(() => document.querySelector('.error-main')?.textContent ?? null);
+  if (refused) throw new Error(`not opened: ${refused}`);
   await page.evaluate(() => new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve))));
   const openMs = Date.now() - started;
   const openTasks = await page.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks.splice(0));

@@ -95,6 +95,8 @@ export class SheetView3D {
    */
   setStack(stack: ViewStack): void {
     const previous = this.stack;
+    // The same stack again (a project restoring its view after it was shown): nothing to rebuild.
+    if (stack === previous) return;
     this.stack = stack;
     this.rebuild();
     if (!previous || geometryKey(previous) !== geometryKey(stack)) this.fitCamera();

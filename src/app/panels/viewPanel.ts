@@ -247,7 +247,9 @@ export class ViewPanel {
     this.view?.setHighlightScutoids(state.highlightScutoids);
     this.selected = state.selectedCell ?? -1;
     this.solidBox.checked = state.cellSolid === true;
-    this.show(stack, false);
+    // The unrolled pictures in a task of their own, as after a run (a 100,000-cell project: the
+    // 3D view's rebuild and the copies in one task held the main thread ~250 ms, issue 27).
+    this.show(stack);
     this.select(this.selected);
     if (state.camera) this.view?.setCameraState(state.camera);
     this.cut.value = String(state.cut);
