@@ -4,8 +4,14 @@
 // and the longest main-thread task then; frame times while the 3D view orbits (pointer drags),
 // beside the same orbit on the app's own small default result in the same run (the baseline);
 // picking latency (a click on the 3D view -> the cell panel names the cell) and the longest
-// main-thread task while picking; the cell table's rows in the DOM.
-// Options: --port P (default 5187).
+// main-thread task while picking; the cell table's rows in the DOM; the scutoid highlight
+// toggled off and on, and each export of the big result (PLY, VTK, SVG, result JSON, project):
+// the time from the click to the picture shown / the file downloaded and the main thread's
+// longest task meanwhile.
+// Options: --port P (default 5187); --save DIR writes the downloaded exports there (to compare
+// two trees' files byte for byte).
+import { readFileSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
 import { chromium, type Page } from '@playwright/test';
 import { createServer } from 'vite';
 import { chromiumArgs } from '../playwright.config';
@@ -16,6 +22,67 @@ const portIndex = process.argv.indexOf('--port');
 const port = portIndex >= 0 ? Number(process.argv[portIndex + 1]) : 5187;
 const quantile = (xs: number[], q: number) => [...xs].sort((a, b) => a - b)[Math.min(xs.length - 1, Math.floor(q * xs.length))];
 const fmt = (ms: number) => `${ms.toFixed(0)} ms`;
+const saveIndex = process.argv.indexOf('--save');
+const saveDir = saveIndex >= 0 ? process.argv[saveIndex + 1] : null;
+const takeTasks = (page: Page) => page.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks.splice(0));
+const frames = async (page: Page, n: number) => {
+  for (let k = 0; k < n; k++) await page.evaluate(() => new Promise((resolve) => requestAnimationFrame(resolve)));
+};
+const tasksLine = (tasks: number[]) => `longest task ${fmt(Math.max(0, ...tasks))} (${tasks.filter((d) => d > 50).length} over 50 ms)`;
+
+/** The scutoid highlight toggled off then on: ms to the pictures shown (body data-stripes), and the long tasks. */
+async function toggles(page: Page): Promise<string[]> {
+  const out: string[] = [];
+  for (const on of [false, true]) {
+    await takeTasks(page);
+    console.log(`highlight ${on ? 'on' : 'off'}…`);
+    const started = Date.now();
+    await page.locator('#highlight').setChecked(on, { force: true, timeout: 10_000 });
+    const want = on ? 'on' : 'off';
+    await page.evaluate(async (want) => {
+      while ((document.body.dataset.stripes ?? want) !== want) await new Promise((resolve) => setTimeout(resolve, 10));
+    }, want);
+    await frames(page, 3);
+    out.push(`highlight ${on ? 'on' : 'off'}: ${fmt(Date.now() - started)}; ${tasksLine(await takeTasks(page))}`);
+  }
+  return out;
+}
+
+/** Each saved file opened again (the project, the result JSON with its cells inline): ms to "Opened", and the long tasks. */
+async function reopen(page: Page, paths: string[]): Promise<string[]> {
+  const out: string[] = [];
+  for (const path of paths) {
+    await takeTasks(page);
+    console.log(`open ${path}…`);
+    await page.evaluate(() => (document.querySelector('#status')!.textContent = ''));
+    const started = Date.now();
+    await page.locator('#open-file').setInputFiles([path]);
+    await page.waitForFunction(() => /^Opened /.test(document.querySelector('#status')?.textContent ?? ''), null, { timeout: 600_000 });
+    const ms = Date.now() - started;
+    await frames(page, 30);
+    out.push(`reopen ${path.split('/').pop()}: ${fmt(ms)}; ${tasksLine(await takeTasks(page))}`);
+  }
+  return out;
+}
+
+/** Each export downloaded: ms from the click to the file, and the long tasks; saved under --save. */
+const saved: string[] = [];
+async function exportsOf(page: Page): Promise<string[]> {
+  const out: string[] = [];
+  for (const key of ['ply', 'vtk', 'svg', 'json', 'project']) {
+    await takeTasks(page);
+    console.log(`export ${key}…`);
+    const started = Date.now();
+    const [file] = await Promise.all([page.waitForEvent('download', { timeout: 300_000 }), page.locator(`[data-export="${key}"]`).click()]);
+    const path = await file.path();
+    const ms = Date.now() - started;
+    await frames(page, 2);
+    if (saveDir) writeFileSync(join(saveDir, file.suggestedFilename()), readFileSync(path));
+    out.push(`export ${key}: ${fmt(ms)}; ${tasksLine(await takeTasks(page))}`);
+    if (saveDir && (key === 'json' || key === 'project')) saved.push(join(saveDir, file.suggestedFilename()));
+  }
+  return out;
+}
 
 const server = await createServer({ server: { port, strictPort: true }, logLevel: 'error' });
 await server.listen();
@@ -86,7 +153,13 @@ try {
   await page.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks.splice(0));
   const started = Date.now();
   await page.locator('#open-file').setInputFiles([json, side]);
-  await page.waitForFunction(() => /^Opened /.test(document.querySelector('#status')?.textContent ?? ''), null, { timeout: 600_000 });
+  await page
+    .waitForFunction(() => /^Opened /.test(document.querySelector('#status')?.textContent ?? '') || document.querySelector('.error-main'), null, {
+      timeout: 600_000,
+    })
+    .catch((error: Error) => console.log(`not opened: ${error.message}`));
+  const refused = await page.evaluate(() => document.querySelector('.error-main')?.textContent ?? null);
+  if (refused) throw new Error(`not opened: ${refused}`);
   await page.evaluate(() => new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve))));
   const openMs = Date.now() - started;
   const openTasks = await page.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks.splice(0));
@@ -97,6 +170,9 @@ try {
   const bigPicks = await picks(page);
   const pickTasks = await page.evaluate(() => (window as unknown as { longTasks: number[] }).longTasks.splice(0));
   const rows = await page.evaluate(() => document.querySelectorAll('#cell-table tbody tr').length);
+  const toggled = await toggles(page);
+  const exported = await exportsOf(page);
+  const reopened = await reopen(page, saved.reverse());
   console.log(`\nissue 27: a big result in the page (headless Chromium, SwiftShader); ${cells.slice(0, 120)}`);
   console.log(
     `open (choose both files -> pictures on screen): ${fmt(openMs)}; longest main-thread task ${fmt(Math.max(0, ...openTasks))} (${openTasks.length} over 50 ms)`,
@@ -108,6 +184,7 @@ try {
     `pick (click -> cell panel): big median ${fmt(quantile(bigPicks, 0.5))}; longest main-thread task while picking ${fmt(Math.max(0, ...pickTasks))} (${pickTasks.length} over 50 ms) | small (baseline) median ${fmt(quantile(smallPicks, 0.5))}`,
   );
   console.log(`cell table rows in the DOM: ${rows}`);
+  for (const line of [...toggled, ...exported, ...reopened]) console.log(line);
 } finally {
   await browser.close();
   await server.close();

@@ -1,8 +1,12 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
-import { decodeCellsFile, type CellsFileRecord, type ResultCellTables } from '../src/run/cellTables';
-import { unrolledWhitePixels, waitForRun } from './appHelpers';
+import { decodeCellsFile, withCellRecords, type CellsFileRecord, type ResultCellTables } from '../src/run/cellTables';
+import type { SheetResult } from '../src/run';
+import { openParsed } from '../src/app/model/project';
+import { exportText, type ExportRequest } from '../src/app/model/exportFiles';
+import { viewStack } from '../src/view/stack';
+import { downloadExport, unrolledWhitePixels, waitForRun } from './appHelpers';
 import { runCli, tempDir } from './cli';
 import { installLongTaskObserver, takeLongTasks } from './pages/longTasks';
 
@@ -10,8 +14,10 @@ import { installLongTaskObserver, takeLongTasks } from './pages/longTasks';
  * Issue 27: a big CLI result (25,000 cells, over the 20,000 above which the page draws texels)
  * opens and picks with the main thread free: the side file, the label images and the pictures
  * are made in a worker, the records when read, the cell table shows only the rows in view, and
- * a pick lays the cell's outline over the pictures instead of repainting them. Checked against
- * the files the CLI wrote (decoded here, in Node).
+ * a pick lays the cell's outline over the pictures instead of repainting them; the scutoid
+ * highlight's pictures and the exports are made in the worker holding the result. Checked against
+ * the files the CLI wrote (decoded here, in Node), the exports byte for byte against the page's
+ * own builders run here on those files (what the main thread wrote before).
  */
 const CONFIG = {
   surface: { kind: 'tube', radius: 300, length: 2400 },
@@ -31,8 +37,11 @@ const LONGEST_MS = 200;
 const OVER_50_MS_AT_MOST = 3;
 
 interface Files {
+  dir: string;
   json: string;
   side: string;
+  data: SheetResult & { cellsFile: CellsFileRecord };
+  bytes: Uint8Array;
   tables: ResultCellTables;
   surfaces: string[];
 }
@@ -43,11 +52,12 @@ function writeResult(): Files {
   writeFileSync(configPath, JSON.stringify(CONFIG));
   const json = join(dir, 'big.json');
   runCli(['run', configPath, '--out', json, '--cells-file', '--realizations', '1'], { timeout: 240_000 });
-  const data = JSON.parse(readFileSync(json, 'utf8')) as { cellsFile: CellsFileRecord; surfaces: { name: string }[] };
+  const data = JSON.parse(readFileSync(json, 'utf8')) as SheetResult & { cellsFile: CellsFileRecord };
   const side = join(dir, 'big.cells.bin');
-  const tables = decodeCellsFile(data.cellsFile, new Uint8Array(readFileSync(side)));
+  const bytes = new Uint8Array(readFileSync(side));
+  const tables = decodeCellsFile(data.cellsFile, bytes);
   const last = data.surfaces[data.surfaces.length - 1]?.name;
-  return { json, side, tables, surfaces: [last === 'apical' ? 'basal' : 'apical', ...data.surfaces.map((s) => s.name)] };
+  return { dir, json, side, data, bytes, tables, surfaces: [last === 'apical' ? 'basal' : 'apical', ...data.surfaces.map((s) => s.name)] };
 }
 
 const longTasks = takeLongTasks;
@@ -62,7 +72,9 @@ const frames = (page: Page, n: number) =>
     n,
   );
 
-test("a 25,000-cell result opens and picks without long main-thread tasks; its table and picked cell are the file's", async ({ page }) => {
+test("a 25,000-cell result opens, picks, toggles its scutoid stripes and exports without long main-thread tasks; its table, picked cell and files are the file's", async ({
+  page,
+}) => {
   test.setTimeout(300_000);
   const files = writeResult();
   const n = files.tables.cells.count;
@@ -144,4 +156,69 @@ test("a 25,000-cell result opens and picks without long main-thread tasks; its t
   // The picked cell is white on every unrolled surface (a patch over the picture).
   const white = await unrolledWhitePixels(page);
   expect(white.every((c) => c > 5)).toBe(true);
+
+  // The scutoid stripes off and on again: the worker's pictures, shown without long tasks.
+  const unrolledSum = () =>
+    page.evaluate(() =>
+      [...document.querySelectorAll<HTMLCanvasElement>('#unrolled canvas')].map((c) => {
+        const d = c.getContext('2d')!.getImageData(0, 0, c.width, c.height).data;
+        let sum = 0;
+        for (let k = 0; k < d.length; k += 4) sum += d[k];
+        return sum;
+      }),
+    );
+  const striped = await unrolledSum();
+  for (const on of [false, true]) {
+    await longTasks(page);
+    await page.locator('#highlight').setChecked(on);
+    await expect(page.locator('body')).toHaveAttribute('data-stripes', on ? 'on' : 'off', { timeout: 60_000 });
+    await frames(page, 30);
+    const toggling = await longTasks(page);
+    expect(Math.max(0, ...toggling), `tasks while toggling: ${toggling.join(', ')} ms`).toBeLessThan(LONGEST_MS);
+    expect(toggling.filter((d) => d > 50).length, `tasks while toggling: ${toggling.join(', ')} ms`).toBeLessThanOrEqual(OVER_50_MS_AT_MOST);
+    const sums = await unrolledSum();
+    if (on) expect(sums).toEqual(striped);
+    else sums.forEach((sum, k) => expect(sum).not.toBe(striped[k]));
+  }
+
+  // The exports, built in the worker: the bytes the page's builders make of the CLI's files here.
+  const opened = openParsed(withCellRecords(files.data, files.tables), 'big.json');
+  if (opened.kind !== 'result') throw new Error(`opened as ${opened.kind}`);
+  const stack = viewStack(opened.output);
+  const picked = await page.locator('body').getAttribute('data-selected-cell');
+  const savedFiles: string[] = [];
+  await longTasks(page);
+  for (const kind of ['ply', 'vtk', 'svg', 'json', 'project'] as const) {
+    const file = await downloadExport(page, kind);
+    if (kind === 'json' || kind === 'project') {
+      savedFiles.push(join(files.dir, file.name));
+      writeFileSync(savedFiles[savedFiles.length - 1], file.bytes);
+    }
+    const saved = kind === 'project' ? (JSON.parse(file.text) as { view: ExportRequest['view']; sections?: Record<string, unknown>; savedAt: string }) : null;
+    const request: ExportRequest = saved
+      ? { kind, view: saved.view, sections: saved.sections, savedAt: saved.savedAt }
+      : { kind, widthMm: Number(await page.locator('#figure-width').inputValue()) };
+    expect(file.text === exportText(stack, request), `${kind} export equals the page's builder`).toBe(true);
+  }
+  await frames(page, 3);
+  const exporting = await longTasks(page);
+  expect(Math.max(0, ...exporting), `tasks while exporting: ${exporting.join(', ')} ms`).toBeLessThan(LONGEST_MS);
+  expect(exporting.filter((d) => d > 50).length, `tasks while exporting: ${exporting.join(', ')} ms`).toBeLessThanOrEqual(OVER_50_MS_AT_MOST);
+
+  // The saved project and result JSON (cells inline: 28 and 51 MB) open again, parsed in the worker.
+  for (const path of savedFiles.reverse()) {
+    await page.evaluate(() => (document.querySelector('#status')!.textContent = ''));
+    await longTasks(page);
+    await page.locator('#open-file').setInputFiles([path]);
+    await expect(page.locator('#status')).toContainText(/^Opened /, { timeout: 120_000 });
+    await frames(page, 30);
+    const reopening = await longTasks(page);
+    expect(Math.max(0, ...reopening), `tasks while opening ${path}: ${reopening.join(', ')} ms`).toBeLessThan(LONGEST_MS);
+    expect(reopening.filter((d) => d > 50).length, `tasks while opening ${path}: ${reopening.join(', ')} ms`).toBeLessThanOrEqual(OVER_50_MS_AT_MOST);
+    await expect(page.locator('#percent-scutoids')).toHaveAttribute('data-drawn', /\d/);
+    if (path.endsWith('.tissue-sheet.json')) {
+      await expect(page.locator('#status')).toContainText('Opened project');
+      await expect(page.locator('body')).toHaveAttribute('data-selected-cell', picked!);
+    }
+  }
 });

@@ -172,7 +172,7 @@ const sweep = new SweepPanel($('#sweep'), {
   onError: showError,
 });
 mountLloydMovie($('#cells-title').closest('section')!, { config: () => validateAnyConfig(controls.config), onError: showError });
-bindExports($('.exports'), {
+const opener = bindExports($('.exports'), {
   stack: () => stack,
   sweepCsv: () => sweep.csv,
   viewPng: () => viewPanel.toBlob(),
@@ -185,7 +185,8 @@ bindExports($('.exports'), {
     progress.max = 1;
     progress.value = fraction;
   },
-});
+}); // A large opened result's pictures with the stripes toggled: drawn in the worker holding it.
+viewPanel.picturesElsewhere = (shown, on) => (opener?.holds(shown) ? opener.pictures(shown, on) : Promise.resolve(false));
 
 /** Shows an opened project (exactly as saved) or result JSON (drawn from its cells, or re-run). */
 async function openInPage(file: OpenedFile, name: string): Promise<void> {

@@ -7,19 +7,27 @@
 import { exactVoronoi, type ExactVoronoi } from '../core/exact';
 import type { ViewSurface } from './stack';
 
-const cache = new WeakMap<ViewSurface, ExactVoronoi>();
+/**
+ * Kept by the surface's cell list and grid: a stack made again for the same result (a new
+ * headline, or each export in the worker holding an opened result: exportFiles.ts) reuses them.
+ */
+const cache = new WeakMap<object, { grid: ViewSurface['image']['grid']; voronoi: ExactVoronoi }>();
 
-/** Exact Voronoi cells of `surface`'s sites, polygons in texel units (cached per surface). */
+/** Exact Voronoi cells of `surface`'s sites, polygons in texel units (cached per cell list and grid). */
 export function surfacePolygons(surface: ViewSurface): ExactVoronoi {
-  const known = cache.get(surface);
-  if (known) return known;
   const { grid } = surface.image;
+  const known = cache.get(surface.cells);
+  if (known && sameGrid(known.grid, grid)) return known.voronoi;
   const sites = new Float64Array(surface.cells.length * 2);
   surface.cells.forEach((cell, i) => {
     sites[2 * i] = cell.surface[0] / grid.texelX;
     sites[2 * i + 1] = cell.surface[1] / grid.texelY;
   });
   const voronoi = exactVoronoi(grid, sites);
-  cache.set(surface, voronoi);
+  cache.set(surface.cells, { grid, voronoi });
   return voronoi;
+}
+
+function sameGrid(a: ViewSurface['image']['grid'], b: ViewSurface['image']['grid']): boolean {
+  return a === b || JSON.stringify(a) === JSON.stringify(b);
 }

@@ -95,6 +95,8 @@ export class SheetView3D {
    */
   setStack(stack: ViewStack): void {
     const previous = this.stack;
+    // The same stack again (a project restoring its view after it was shown): nothing to rebuild.
+    if (stack === previous) return;
     this.stack = stack;
     this.rebuild();
     if (!previous || geometryKey(previous) !== geometryKey(stack)) this.fitCamera();
@@ -102,6 +104,8 @@ export class SheetView3D {
   }
 
   setHighlightScutoids(on: boolean): void {
+    // Unchanged (a project restoring its view): no second repaint of large pictures.
+    if (on === this.highlight) return;
     this.highlight = on;
     this.repaint();
   }

@@ -3,7 +3,7 @@ import { mkdtempSync, readFileSync, statSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { basename, join } from 'node:path';
 import { beforeAll, describe, expect, it } from 'vitest';
-import { openFiles, type GivenFile } from '../../src/app/model/resultFiles';
+import { openFiles, WORKER_JSON_BYTES, type GivenFile, type WholeFileOpener } from '../../src/app/model/resultFiles';
 
 /**
  * The page opens a result written with a cells side file (issue 27): the same configuration is
@@ -89,5 +89,23 @@ describe('opening a result with its cells side file', () => {
   it('a plain result JSON still opens alone', async () => {
     const { file } = await openFiles([given(join(dir, 'plain.json'))]);
     expect(file.kind).toBe('result');
+  });
+
+  it('a JSON over WORKER_JSON_BYTES chosen alone goes whole to the worker; a smaller one, or one with a side file, does not', async () => {
+    const asked: string[] = [];
+    const whole: WholeFileOpener = async (json, name) => {
+      asked.push(name);
+      return openFiles([json]).then((opened) => opened.file);
+    };
+    const plain = given(join(dir, 'plain.json'));
+    const large = { ...plain, size: WORKER_JSON_BYTES + 1 };
+    expect((await openFiles([large], undefined, whole)).file.kind).toBe('result');
+    expect(asked).toEqual(['plain.json']);
+    await openFiles([plain], undefined, whole);
+    expect(asked).toEqual(['plain.json']);
+    const side = given(join(dir, 'big.cells.bin'));
+    const pair = await openFiles([{ ...given(join(dir, 'big.json')), size: WORKER_JSON_BYTES + 1 }, side], undefined, whole);
+    expect(pair.name).toBe('big.json + big.cells.bin');
+    expect(asked).toEqual(['plain.json']);
   });
 });

@@ -3,10 +3,9 @@
  * makes all at once, seen as arrays by every way the page and the exports read them.
  */
 import { describe, expect, it } from 'vitest';
-import { validateAnyConfig } from '../../src/core/config';
 import { withCellRecords } from '../../src/run/cellTables';
 import { analysisColumns, lazyRecords, withLazyCellRecords } from '../../src/run/lazyRecords';
-import { SheetRunner } from '../../src/run/runSheet';
+import { runLayeredTube } from './layeredTube';
 import { viewStack } from '../../src/view/stack';
 import { useHeadlessContext } from '../gpu/context';
 
@@ -38,15 +37,7 @@ describe('lazyRecords', () => {
   });
 
   it("a run's side-file columns: the lists withCellRecords makes, and the analysis's columns", async () => {
-    const config = validateAnyConfig({
-      surface: { kind: 'tube', radius: 40, length: 300 },
-      resolution: 128,
-      cells: 50,
-      engine: 'exact',
-      lloyd: { maxIterations: 2 },
-      sheet: { surfaceRatio: 2, layers: 1 },
-    });
-    const output = await new SheetRunner(context).run(config, { cellTables: true });
+    const output = await runLayeredTube(context);
     const eager = withCellRecords(output.result, output.tables!);
     const lazy = withLazyCellRecords(output.result, output.tables!);
     expect(JSON.parse(JSON.stringify(lazy))).toEqual(JSON.parse(JSON.stringify(eager)));

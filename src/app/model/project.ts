@@ -60,12 +60,21 @@ export interface ProjectFile {
   sections?: Record<string, unknown>;
 }
 
-export function projectJson(output: SheetOutput, view: ViewState): string {
+/**
+ * The project file of `output` as the page shows it; `sections` and `savedAt` are the page's
+ * (given by a worker that builds the file: model/exportFiles.ts).
+ */
+export function projectJson(
+  output: SheetOutput,
+  view: ViewState,
+  sections: Record<string, unknown> | undefined = savedSections(),
+  savedAt = new Date().toISOString(),
+): string {
   const file: ProjectFile = {
     format: PROJECT_FORMAT,
     formatVersion: PROJECT_FORMAT_VERSION,
     software: output.result.software,
-    savedAt: new Date().toISOString(),
+    savedAt,
     result: output.result,
     labelImages: output.labelImages.map((image) => ({
       name: image.name,
@@ -74,7 +83,7 @@ export function projectJson(output: SheetOutput, view: ViewState): string {
       ...(image.positions ? { positions: toBase64(new Uint8Array(image.positions.buffer, image.positions.byteOffset, image.positions.byteLength)) } : {}),
     })),
     view,
-    sections: savedSections(),
+    sections,
   };
   return JSON.stringify(file);
 }

@@ -31,8 +31,22 @@ const isSideFile = (file: GivenFile) => /\.cells\.bin$/i.test(file.name) || /\.b
  */
 export type SideFileOpener = (data: unknown, record: CellsFileRecord, side: GivenFile, name: string) => Promise<OpenedFile>;
 
+/**
+ * A JSON over this many bytes chosen alone (a project, or a result with its cells inline) is
+ * read, parsed and checked off the main thread when the page can (openWhole): a 25,000-cell
+ * project (28 MB) held it ~0.5 s (issue 27). A result JSON with a side file is ~15 kB.
+ */
+export const WORKER_JSON_BYTES = 4 * 1024 * 1024;
+
+/** Opens a large JSON chosen alone off the main thread (openClient.ts). */
+export type WholeFileOpener = (json: GivenFile, name: string) => Promise<OpenedFile>;
+
 /** The file opened from `files` (one JSON, or a result JSON and its side file) and its name. */
-export async function openFiles(files: readonly GivenFile[], openSide?: SideFileOpener): Promise<{ file: OpenedFile; name: string }> {
+export async function openFiles(
+  files: readonly GivenFile[],
+  openSide?: SideFileOpener,
+  openWhole?: WholeFileOpener,
+): Promise<{ file: OpenedFile; name: string }> {
   if (files.length === 0) throw new Error('No file was given.');
   const sides = files.filter(isSideFile);
   const jsons = files.filter((f) => !isSideFile(f));
@@ -47,6 +61,7 @@ export async function openFiles(files: readonly GivenFile[], openSide?: SideFile
   }
   const json = jsons[0];
   if (json.size > MAX_JSON_BYTES) throw new Error(`${json.name}: ${json.size} bytes; a project or result file over 256 MiB is refused.`);
+  if (openWhole && sides.length === 0 && json.size > WORKER_JSON_BYTES) return { file: await openWhole(json, json.name), name: json.name };
   const data = parseFileJson(await json.text(), json.name);
   const record = cellsFileOf(data);
   if (!record) {

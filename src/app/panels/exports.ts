@@ -4,16 +4,16 @@
  * unrolled surfaces as SVG, a figure PNG at a chosen DPI and width (legend, scale bar), and a
  * project file (result, label images, view state); and opening a project or a CLI result JSON. Each carries its provenance: version,
  * seed and the full configuration (CSV and PLY comment lines, PNG tEXt chunks). File names carry the seed and the
- * surface, so several exports of a session stay apart.
+ * surface, so several exports of a session stay apart. The files built from the cells come from
+ * model/exportFiles.ts: here, or for a large result opened with its side file in the worker that
+ * holds it (model/openClient.ts; issue 27), the same bytes.
  */
 import { cellCsv, provenanceText } from '../model/cellRows';
 import { withPngText } from '../model/pngText';
-import { cellsPly } from '../model/ply';
-import { cellsVtk } from '../model/vtk';
-import { unrolledSvg } from '../model/svg';
-import { projectJson, type OpenedFile, type ViewState } from '../model/project';
-import { openSections, prepareSections } from '../model/projectSections';
-import { openFiles, type SideFileOpener } from '../model/resultFiles';
+import { EXPORT_FILES, exportText, type ExportRequest } from '../model/exportFiles';
+import type { OpenedFile, ViewState } from '../model/project';
+import { openSections, prepareSections, savedSections } from '../model/projectSections';
+import { openFiles, type SideFileOpener, type WholeFileOpener } from '../model/resultFiles';
 import { ResultOpener } from '../model/openClient';
 import { figurePng, figureSize } from '../view/figure';
 import type { SheetView3D } from '../../view/sheetView3d';
@@ -98,7 +98,8 @@ function baseName(stack: ViewStack): string {
   return `tissue-sheet-${config.surface.kind}-seed${config.seed}`;
 }
 
-export function bindExports(root: HTMLElement, sources: ExportSources): void {
+/** Binds the export buttons and the file opener; returns the worker client holding an opened large result (null without workers). */
+export function bindExports(root: HTMLElement, sources: ExportSources): ResultOpener | null {
   const more = addControls(root);
   // A result with its cells side file opens in a worker (model/openWorker.ts, issue 27).
   const opener = typeof Worker === 'undefined' ? null : new ResultOpener();
@@ -113,12 +114,18 @@ export function bindExports(root: HTMLElement, sources: ExportSources): void {
           onProgress: (line, fraction) => sources.onOpenProgress?.(`Opening ${name}: ${line}`, fraction),
         })
     : undefined;
+  const openWhole: WholeFileOpener | undefined = opener
+    ? (json, name) =>
+        opener.openJson(json as File, name, sources.viewState().highlightScutoids, (line, fraction) =>
+          sources.onOpenProgress?.(`Opening ${name}: ${line}`, fraction),
+        )
+    : undefined;
   more.file.addEventListener('change', async () => {
     const chosen = [...(more.file.files ?? [])];
     more.file.value = '';
     if (chosen.length === 0) return;
     try {
-      const { file, name } = await openFiles(chosen, openSide);
+      const { file, name } = await openFiles(chosen, openSide, openWhole);
       await sources.onOpen(file, name);
       if (file.kind === 'project') await openSections(file.sections, name);
     } catch (error) {
@@ -126,9 +133,9 @@ export function bindExports(root: HTMLElement, sources: ExportSources): void {
     }
   });
   const actions: Record<string, () => Promise<void> | void> = {
-    json: () => withStack((s) => download(`${baseName(s)}.json`, JSON.stringify(s.result, null, 2), 'application/json')),
+    json: () => built({ kind: 'json' }),
     cells: () => withStack((s) => download(`${baseName(s)}-cells.csv`, cellCsv(s), 'text/csv')),
-    ply: () => withStack((s) => download(`${baseName(s)}-cells.ply`, cellsPly(s), 'application/octet-stream')),
+    ply: () => built({ kind: 'ply' }),
     png: async () => {
       // An empty view is refused: a blank picture would pass for a result.
       const stack = sources.stack();
@@ -137,13 +144,12 @@ export function bindExports(root: HTMLElement, sources: ExportSources): void {
       const tagged = withPngText(png, provenanceText(stack, '3D view of a tissue-sheet result'));
       download(`${baseName(stack)}-view.png`, new Blob([tagged as BlobPart], { type: 'image/png' }));
     },
-    vtk: () => withStack((s) => download(`${baseName(s)}-cells.vtk`, cellsVtk(s), 'application/octet-stream')),
-    svg: () =>
-      withStack((s) => {
-        const widthMm = Number(more.width.value);
-        figureSize({ dpi: 300, widthMm }, 1); // the width is checked as for the PNG (20 to 500 mm)
-        download(`${baseName(s)}-unrolled.svg`, unrolledSvg(s, { widthMm }), 'image/svg+xml');
-      }),
+    vtk: () => built({ kind: 'vtk' }),
+    svg: () => {
+      const widthMm = Number(more.width.value);
+      figureSize({ dpi: 300, widthMm }, 1); // the width is checked as for the PNG (20 to 500 mm)
+      return built({ kind: 'svg', widthMm });
+    },
     figure: async () => {
       const stack = sources.stack();
       if (!stack) throw new Error('Nothing to save yet: the view is empty until a run has finished.');
@@ -153,13 +159,7 @@ export function bindExports(root: HTMLElement, sources: ExportSources): void {
     },
     project: async () => {
       await prepareSections();
-      withStack((s) =>
-        download(
-          `${baseName(s)}.tissue-sheet.json`,
-          projectJson({ result: s.result, labelImages: s.surfaces.map((surface) => surface.image) }, sources.viewState()),
-          'application/json',
-        ),
-      );
+      await built({ kind: 'project', view: sources.viewState(), sections: savedSections(), savedAt: new Date().toISOString() });
     },
     sweep: () => {
       const csv = sources.sweepCsv();
@@ -167,11 +167,18 @@ export function bindExports(root: HTMLElement, sources: ExportSources): void {
       download('tissue-sheet-sweep.csv', csv, 'text/csv');
     },
   };
-  const withStack = (action: (stack: ViewStack) => void) => {
+  const withStack = <T>(action: (stack: ViewStack) => T): T => {
     const stack = sources.stack();
     if (!stack) throw new Error('Nothing to export yet: run a sheet first.');
-    action(stack);
+    return action(stack);
   };
+  // A file built from the cells: in the worker holding a large opened result, else here.
+  const built = (request: ExportRequest) =>
+    withStack(async (s) => {
+      const { type, suffix } = EXPORT_FILES[request.kind];
+      const file = (opener?.holds(s) ? await opener.exportFile(s, request) : null) ?? exportText(s, request);
+      download(`${baseName(s)}${suffix}`, file, type);
+    });
   for (const button of root.querySelectorAll<HTMLButtonElement>('[data-export]')) {
     button.addEventListener('click', async () => {
       try {
@@ -181,4 +188,5 @@ export function bindExports(root: HTMLElement, sources: ExportSources): void {
       }
     });
   }
+  return opener;
 }

@@ -37,6 +37,11 @@ export class ViewPanel {
   private solid: CellSolid | null = null;
   private readonly hoverTip: HTMLElement;
   private selected = -1;
+  /**
+   * Draws the pictures of `stack` with the stripes on or off off the main thread when it can
+   * (a large opened result: model/openClient.ts), true when they are then kept for the views.
+   */
+  picturesElsewhere: ((stack: ViewStack, highlightScutoids: boolean) => Promise<boolean>) | null = null;
 
   constructor(
     root: HTMLElement,
@@ -57,10 +62,7 @@ export class ViewPanel {
     this.highlight = root.querySelector<HTMLInputElement>('#highlight')!;
     this.cut = root.querySelector<HTMLInputElement>('#cut')!;
     this.cut.addEventListener('input', () => this.view?.setCut(Number(this.cut.value)));
-    this.highlight.addEventListener('change', () => {
-      this.view?.setHighlightScutoids(this.highlight.checked);
-      this.drawUnrolled();
-    });
+    this.highlight.addEventListener('change', () => void this.showHighlight(this.highlight.checked));
     root.querySelector<HTMLButtonElement>('#reset-camera')!.addEventListener('click', () => this.view?.resetCamera());
 
     // The picked cell: a field (keyboard) and a description (announced politely).
@@ -209,6 +211,20 @@ export class ViewPanel {
     if (table) selectCellRow(table, cell);
   }
 
+  /**
+   * The scutoid stripes on or off: a large opened result's pictures are drawn in the worker
+   * holding it first (a repaint took the main thread ~0.4 s at 25,000 cells, issue 27), then
+   * shown; body data-stripes says which are on screen.
+   */
+  private async showHighlight(on: boolean): Promise<void> {
+    const stack = this.stack;
+    if (stack && this.picturesElsewhere) await this.picturesElsewhere(stack, on).catch(() => false);
+    if (this.stack !== stack || this.highlight.checked !== on) return; // a newer result or toggle
+    this.view?.setHighlightScutoids(on);
+    this.drawUnrolled();
+    document.body.dataset.stripes = on ? 'on' : 'off';
+  }
+
   /** What a project file keeps of the view. */
   viewState(): ViewState {
     return {
@@ -231,7 +247,9 @@ export class ViewPanel {
     this.view?.setHighlightScutoids(state.highlightScutoids);
     this.selected = state.selectedCell ?? -1;
     this.solidBox.checked = state.cellSolid === true;
-    this.show(stack, false);
+    // The unrolled pictures in a task of their own, as after a run (a 100,000-cell project: the
+    // 3D view's rebuild and the copies in one task held the main thread ~250 ms, issue 27).
+    this.show(stack);
     this.select(this.selected);
     if (state.camera) this.view?.setCameraState(state.camera);
     this.cut.value = String(state.cut);
