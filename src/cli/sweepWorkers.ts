@@ -34,13 +34,22 @@ export interface WorkerRun {
   readonly config: unknown;
 }
 
+/** What a thread needs before its first task: the main context's capabilities and the density images. */
 interface WorkerSetup {
-  readonly tissueSheetSweepWorker: true;
   readonly capabilities: GpuCapabilities;
   readonly inputs: [string, RunInputs][];
 }
 
-type ToWorker = { type: 'task'; id: number; runs: WorkerRun[] } | { type: 'fit'; id: number; points: readonly FlintstonesPoint[] } | { type: 'abort' };
+/** A thread's workerData: it is a sweep thread; its setup comes as its first message. */
+interface WorkerMark {
+  readonly tissueSheetSweepWorker: true;
+}
+
+type ToWorker =
+  | { type: 'setup'; setup: WorkerSetup }
+  | { type: 'task'; id: number; runs: WorkerRun[] }
+  | { type: 'fit'; id: number; points: readonly FlintstonesPoint[] }
+  | { type: 'abort' };
 type FromWorker =
   /**
    * A run's summary, flattened (flattenSummary): its values, and the number of its key list
@@ -82,26 +91,46 @@ export class SweepWorkers {
   private waiting: (() => void)[] = [];
   private nextId = 1;
   private closed = false;
+  /** Fits sent and not answered yet, by message id, and the thread whose turn is next. */
+  private readonly fits = new Map<number, { slot: Slot; resolve: (outcome: FitOutcome) => void; reject: (error: unknown) => void }>();
+  private fitTurn = 0;
 
-  constructor(size: number, capabilities: GpuCapabilities, inputs: Map<string, RunInputs>) {
-    const setup: WorkerSetup = {
-      tissueSheetSweepWorker: true,
-      capabilities: { ...capabilities },
-      // Threads only run planes and tubes (exact engine): no mesh crosses.
-      inputs: [...inputs].map(([key, value]) => [key, value.densityImage ? { densityImage: value.densityImage } : {}]),
-    };
+  /**
+   * `size` threads; with `capabilities` they are set up at once, else `setUp` must be called
+   * before any task (the threads load their modules meanwhile: the sweep starts them before it
+   * opens its GL context and checks the grid, which the capabilities come from).
+   */
+  constructor(size: number, capabilities?: GpuCapabilities, inputs: Map<string, RunInputs> = new Map()) {
+    const mark: WorkerMark = { tissueSheetSweepWorker: true };
     for (let k = 0; k < size; k++) {
-      const worker = newThread(import.meta.url, setup);
+      const worker = newThread(import.meta.url, mark);
       const slot: Slot = { worker, affinity: null, reserved: false, layouts: new Map(), current: null };
       worker.on('message', (message: FromWorker) => this.receive(slot, message));
       worker.on('error', (error) =>
         this.lost(slot, new SweepThreadLost(`a sweep worker thread failed: ${error instanceof Error ? error.message : String(error)}`)),
       );
       worker.on('exit', (code) => {
-        if (!this.closed) this.lost(slot, new SweepThreadLost(`a sweep worker thread exited (code ${code})`));
+        if (!this.closed && this.slots.includes(slot)) this.lost(slot, new SweepThreadLost(`a sweep worker thread exited (code ${code})`));
       });
       this.slots.push(slot);
     }
+    if (capabilities) this.setUp(capabilities, inputs);
+  }
+
+  /** Gives every thread the main context's capabilities and the density images (once, before any task). */
+  setUp(capabilities: GpuCapabilities, inputs: Map<string, RunInputs>): void {
+    const setup: WorkerSetup = {
+      capabilities: { ...capabilities },
+      // Threads only run planes and tubes (exact engine): no mesh crosses.
+      inputs: [...inputs].map(([key, value]) => [key, value.densityImage ? { densityImage: value.densityImage } : {}]),
+    };
+    for (const slot of this.slots) slot.worker.postMessage({ type: 'setup', setup } satisfies ToWorker);
+  }
+
+  /** Keeps `size` threads (started before the sweep knew how many it needs), ending the others. */
+  async shrink(size: number): Promise<void> {
+    const extra = this.slots.splice(Math.max(0, size));
+    await Promise.all(extra.map((slot) => slot.worker.terminate()));
   }
 
   get size(): number {
@@ -127,12 +156,19 @@ export class SweepWorkers {
     });
   }
 
-  /** Fits the Flintstones law to `points` on a free thread (sweepFits.ts); the thread keeps its Lloyd run. */
-  async fit(points: readonly FlintstonesPoint[]): Promise<FitOutcome> {
-    const slot = await this.claim((free) => free[0]);
+  /**
+   * Fits the Flintstones law to `points` on a thread (sweepFits.ts), the threads taking turns.
+   * The request goes out at once, queued behind what the thread is doing, not when a thread is
+   * free: the main thread computes the aggregate meanwhile and has no time to hand out fits one
+   * by one. A thread lost fails its fits (the caller then fits those itself).
+   */
+  fit(points: readonly FlintstonesPoint[]): Promise<FitOutcome> {
+    const live = this.slots.filter((s) => !s.reserved);
+    if (live.length === 0) return Promise.reject(new SweepThreadLost('no sweep worker thread is left (they failed or exited)'));
+    const slot = live[this.fitTurn++ % live.length];
     const id = this.nextId++;
     return new Promise<FitOutcome>((resolve, reject) => {
-      slot.current = { id, done: () => {}, resolve: (value) => resolve(value as FitOutcome), reject };
+      this.fits.set(id, { slot, resolve, reject });
       slot.worker.postMessage({ type: 'fit', id, points } satisfies ToWorker);
     });
   }
@@ -175,6 +211,12 @@ export class SweepWorkers {
       return;
     }
     if (message.type === 'done' && message.keys) slot.layouts.set(message.layout, message.keys);
+    const fit = message.type === 'fitted' ? this.fits.get(message.id) : undefined;
+    if (message.type === 'fitted') {
+      this.fits.delete(message.id);
+      fit?.resolve(message.outcome);
+      return;
+    }
     const current = slot.current;
     if (!current || current.id !== message.id) return;
     if (message.type === 'done') {
@@ -195,9 +237,6 @@ export class SweepWorkers {
     } else if (message.type === 'failed') {
       this.release(slot);
       current.reject(deserializeError(message.error));
-    } else if (message.type === 'fitted') {
-      this.release(slot);
-      current.resolve(message.outcome);
     } else {
       this.release(slot);
       current.resolve();
@@ -205,6 +244,11 @@ export class SweepWorkers {
   }
 
   private lost(slot: Slot, error: unknown): void {
+    for (const [id, fit] of this.fits) {
+      if (fit.slot !== slot) continue;
+      this.fits.delete(id);
+      fit.reject(error);
+    }
     const current = slot.current;
     slot.reserved = true;
     this.release(slot);
@@ -214,17 +258,22 @@ export class SweepWorkers {
   }
 }
 
-/** The thread's loop: tasks one at a time, each run's summary sent as it finishes. */
-function startWorker(setup: WorkerSetup): void {
+/** The thread's loop: its setup first, then tasks one at a time, each run's summary sent as it finishes. */
+function startWorker(): void {
   const port = parentPort!;
-  const runner = new SheetRunner(capabilitiesOnly(setup.capabilities));
-  const inputs = new Map(setup.inputs);
+  let runner: SheetRunner | null = null;
+  let inputs = new Map<string, RunInputs>();
   let controller = new AbortController();
   /** Per summary shape (flatValues): its layout number, keys, and whether its values line up with the keys. */
   const layouts = new Map<string, { layout: number; keys: string[]; aligned: boolean }>();
   let queue: Promise<void> = Promise.resolve();
   const send = (message: FromWorker) => port.postMessage(message);
   port.on('message', (message: ToWorker) => {
+    if (message.type === 'setup') {
+      runner = new SheetRunner(capabilitiesOnly(message.setup.capabilities));
+      inputs = new Map(message.setup.inputs);
+      return;
+    }
     if (message.type === 'abort') {
       controller.abort();
       return;
@@ -239,6 +288,8 @@ function startWorker(setup: WorkerSetup): void {
       if (controller.signal.aborted) controller = new AbortController();
       const { signal } = controller;
       try {
+        const sheets = runner;
+        if (!sheets) throw new Error('a sweep worker thread got a task before its setup');
         // Fewer Lloyd iterations first: one Lloyd run then serves every Voronoi k of the task.
         const order = runs.map((run, k) => ({ run, k, config: validateAnyConfig(run.config) }));
         order.sort((a, b) => a.config.lloyd.maxIterations - b.config.lloyd.maxIterations || a.k - b.k);
@@ -254,7 +305,7 @@ function startWorker(setup: WorkerSetup): void {
         };
         try {
           for (const { run, config } of order) {
-            const output = await runner.run(config, { ...inputs.get(run.pointKey), signal, views: false });
+            const output = await sheets.run(config, { ...inputs.get(run.pointKey), signal, views: false });
             // Flat values cross faster than the nested summary (a structured clone per key); the
             // keys are made once per shape of summary (flatValues).
             const summary = sweepSummary(output.result);
@@ -289,4 +340,4 @@ function startWorker(setup: WorkerSetup): void {
   });
 }
 
-if (!isMainThread && (workerData as Partial<WorkerSetup> | null)?.tissueSheetSweepWorker === true) startWorker(workerData as WorkerSetup);
+if (!isMainThread && (workerData as Partial<WorkerMark> | null)?.tissueSheetSweepWorker === true) startWorker();

@@ -32,6 +32,7 @@ import { csvField, flattenSummary, formatCsvRow, readCsvTable } from './csv';
 import { fileHeader, plainColumn } from './units';
 import type { Config, SweepRun } from './expand';
 import { valueText } from './expand';
+import { keepTypedCells } from './typedCells';
 
 export type SweepRunner<C extends Config, S> = (config: C, run: SweepRun<C>) => Promise<S>;
 
@@ -156,6 +157,7 @@ export function runCells<C extends Config>(
     const field = typeof v === 'number' || typeof v === 'bigint' || typeof v === 'boolean' || text === '' ? text : csvField(v);
     line += k === 0 ? field : `,${field}`;
   }
+  keepTypedCells(row, header, cells);
   return { cells, row, line: `${line}\r\n` };
 }
 
@@ -196,6 +198,11 @@ export function readRunsCsv(text: string): ReturnType<typeof readCsvTable> {
   return { ...table, header: plain, rows };
 }
 
+/** A finished run waiting for its turn in the file, with its row when it could be formatted already. */
+type Finished<C extends Config, S> =
+  | { readonly run: SweepRun<C>; readonly summary: S; readonly cells?: undefined }
+  | { readonly run: SweepRun<C>; readonly summary?: undefined; readonly cells: { row: Record<string, string>; line: string } };
+
 export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, S>): Promise<RunSweepResult<C>> {
   const { runs, fields, runner } = options;
   const existing = readRunsCsv(options.existingCsv ?? '');
@@ -233,23 +240,40 @@ export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, 
   // Rows go out in `runs` order: finished summaries wait in `ready` until every run before them
   // has finished (or failed); appends are serialized through `writes`.
   const position = new Map(remaining.map((run, k) => [run.key, k]));
-  const ready = new Map<number, { run: SweepRun<C>; summary: S } | null>();
+  const ready = new Map<number, Finished<C, S> | null>();
   let cursor = 0;
   let writes: Promise<void> = Promise.resolve();
   /** The 'done' progress of each finished run, given once its row is appended. */
   const announcements = new Map<string, () => void>();
-  const writeRows = (items: { run: SweepRun<C>; summary: S }[]): Promise<void> => {
+  // The file's header, when it is fixed before any run (given, or the existing file's): a row is
+  // then formatted as soon as its run finishes, while later runs are still computing, instead of
+  // when every run before it has finished (most rows of a sweep wait for the last realization).
+  const fixedHeader = header ?? (options.summaryColumns ? [...baseColumns(fields), ...options.summaryColumns] : null);
+  const formatted = (run: SweepRun<C>, summary: S): Finished<C, S> => {
+    if (!fixedHeader) return { run, summary };
+    try {
+      // The summary is not kept once its row is made (it would live on until the row's turn).
+      return { run, cells: runCells(run, fields, summary, fixedHeader, options.runValues?.(run)) };
+    } catch {
+      // A row that cannot be made fails when its turn comes to be written, as it always did.
+      return { run, summary };
+    }
+  };
+  const writeRows = (items: Finished<C, S>[]): Promise<void> => {
     if (items.length === 0) return writes;
     // One append per row (the header with the first), as a caller reading each append expects.
     writes = writes.then(async () => {
-      for (const { run, summary } of items) {
+      for (const item of items) {
+        const { run } = item;
         let text = '';
         if (!header) {
+          // No row is formatted before the header is fixed (`formatted`): the item has its summary.
+          const summary = item.summary as S;
           const summaryColumns = options.summaryColumns ?? Object.keys(flattenSummary(summary)).filter((c) => !baseColumns(fields).includes(c));
           header = [...baseColumns(fields), ...summaryColumns];
           text += formatCsvRow(fileHeader(header));
         }
-        const { row, line } = runCells(run, fields, summary, header, options.runValues?.(run));
+        const { row, line } = item.cells ?? runCells(run, fields, item.summary, header, options.runValues?.(run));
         text += line;
         await options.append(text);
         rows.push(row);
@@ -264,7 +288,7 @@ export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, 
   };
   /** Appends the finished prefix; `all`: every finished row, past gaps too (the sweep stopped). */
   const flush = (all = false): Promise<void> => {
-    const items: { run: SweepRun<C>; summary: S }[] = [];
+    const items: Finished<C, S>[] = [];
     while (cursor < remaining.length && (ready.has(cursor) || all)) {
       const item = ready.get(cursor);
       ready.delete(cursor);
@@ -277,7 +301,7 @@ export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, 
   const settle = (run: SweepRun<C>, summary: S | null): Promise<void> => {
     const at = position.get(run.key);
     if (at === undefined || at < cursor || ready.has(at)) throw new Error(`run ${run.key}: reported twice or not a run of this sweep`);
-    ready.set(at, summary === null ? null : { run, summary });
+    ready.set(at, summary === null ? null : formatted(run, summary));
     return flush();
   };
 
