@@ -76,7 +76,7 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
     await early?.close();
   }
 
-  async function sweepWith(started: SweepWorkers | null): Promise<void> {
+  async function sweepWith(prestarted: SweepWorkers | null): Promise<void> {
     const sources = new Sources({ baseDir: dirname(options.input), allowNetwork: options.allowNetwork });
     const inputs = new Map<string, RunInputs>();
     for (const run of layout.runs) {
@@ -157,9 +157,9 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
       const groups = new Set(runs.filter((run) => !doneKeys.has(run.key) && onThreads(run)).map((run) => layout.reuseGroup(run)));
       const threads = Math.min(workers, groups.size);
       // The threads started above, as many as needed (never fewer: `threads` counts a subset of their tasks).
-      const pool = threads > 0 ? (started ?? new SweepWorkers(threads)) : null;
-      if (started && started !== pool) await started.close();
-      else if (started) await started.shrink(threads);
+      const pool = threads > 0 ? (prestarted ?? new SweepWorkers(threads)) : null;
+      if (prestarted && prestarted !== pool) await prestarted.close();
+      else if (prestarted) await prestarted.shrink(threads);
       early = pool;
       pool?.setUp(context.capabilities, inputs);
       const stopThreads = () => pool?.abort();
