@@ -180,7 +180,7 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
       let result;
       let fit: Promise<FlintstonesFitter> | undefined;
       try {
-        result = await runSweep<AnyConfig & Record<string, unknown>, Record<string, unknown>>({
+        result = await runSweep<AnyConfig & Record<string, unknown>, unknown>({
           runs,
           fields,
           summaryColumns: [...layout.geometry, ...summary],

@@ -16,7 +16,7 @@
  */
 import { isMainThread, parentPort, type Worker, workerData } from 'node:worker_threads';
 import { validateAnyConfig } from '../core/config';
-import { flatSummary, flattenSummary } from '../core/sweep';
+import { flatList, flattenSummary } from '../core/sweep';
 import { flatKeys, flatValues } from '../core/sweep/flatValues';
 import type { FlintstonesPoint } from '../core/analysis/flintstones';
 import type { GpuCapabilities } from '../gpu/context';
@@ -79,7 +79,7 @@ interface Slot {
   readonly layouts: Map<number, string[]>;
   current: {
     id: number;
-    done: (key: string, summary: Record<string, unknown>) => void;
+    done: (key: string, summary: unknown) => void;
     resolve: (value?: unknown) => void;
     reject: (error: unknown) => void;
   } | null;
@@ -146,7 +146,7 @@ export class SweepWorkers {
    * Computes `runs` in one thread, preferring a free thread whose last task had the same
    * `affinity` (it still holds that Lloyd run); `done` gets each run's summary as it finishes.
    */
-  async run(runs: WorkerRun[], affinity: string, done: (key: string, summary: Record<string, unknown>) => void): Promise<void> {
+  async run(runs: WorkerRun[], affinity: string, done: (key: string, summary: unknown) => void): Promise<void> {
     const slot = await this.claim((free) => free.find((s) => s.affinity === affinity) ?? free.find((s) => s.affinity === null) ?? free[0]);
     slot.affinity = affinity;
     const id = this.nextId++;
@@ -223,11 +223,11 @@ export class SweepWorkers {
       try {
         const keys = slot.layouts.get(message.layout);
         if (!keys || keys.length !== message.numbers.length) throw new Error('a sweep worker thread sent a summary without its keys');
-        const summary: Record<string, unknown> = {};
-        for (let k = 0; k < keys.length; k++) summary[keys[k]] = message.numbers[k];
-        for (const [k, value] of message.others) summary[keys[k]] = value;
-        // Already flat: the row is made from it as it is (no second copy per run).
-        current.done(message.key, flatSummary(summary));
+        const values: unknown[] = Array.from(message.numbers);
+        for (const [k, value] of message.others) values[k] = value;
+        // Already flat, as its key list and values: the row is made from them as they are
+        // (no object of hundreds of keys per run).
+        current.done(message.key, flatList(keys, values));
       } catch (error) {
         // The thread goes on with its task; its messages for it are ignored from now on.
         slot.reserved = true;

@@ -133,7 +133,6 @@ export function runCells<C extends Config>(
   header: readonly string[],
   values?: Readonly<Record<string, unknown>>,
 ): { cells: unknown[]; row: Record<string, string>; line: string } {
-  const flat = isFlatSummary(summary) ? summary : flattenSummary(summary);
   const base = new Map<string, unknown>([
     ['key', run.key],
     ['realization', run.realization],
@@ -142,10 +141,18 @@ export function runCells<C extends Config>(
   for (const f of fields) base.set(f, valueText(run.point[f]));
   if (values) for (const [k, v] of Object.entries(values)) base.set(k, v);
   const known = headerSet(header);
-  for (const c in flat) {
-    if (!known.has(c) && !base.has(c)) throw new Error(`run ${run.key}: its summary has a column "${c}" that the sweep's header lacks`);
+  let cells: unknown[];
+  if (isFlatList(summary)) {
+    // Values by position: where each header column's value is, once per key list and header.
+    const at = listPositions(summary.keys, header, known, base, run.key);
+    cells = header.map((h, k) => (base.has(h) ? base.get(h) : at[k] >= 0 ? summary.values[at[k]] : undefined));
+  } else {
+    const flat = isFlatSummary(summary) ? summary : flattenSummary(summary);
+    for (const c in flat) {
+      if (!known.has(c) && !base.has(c)) throw new Error(`run ${run.key}: its summary has a column "${c}" that the sweep's header lacks`);
+    }
+    cells = header.map((h) => (base.has(h) ? base.get(h) : Object.prototype.hasOwnProperty.call(flat, h) ? flat[h] : undefined));
   }
-  const cells = header.map((h) => (base.has(h) ? base.get(h) : Object.prototype.hasOwnProperty.call(flat, h) ? flat[h] : undefined));
   const row: Record<string, string> = {};
   // The record's text from the same conversions (a number's text is its CSV field as it is:
   // String(n) never needs quotes), so each number is turned into text once.
@@ -175,6 +182,51 @@ export const FLAT_SUMMARY: unique symbol = Symbol('flat sweep summary');
 /** A flat summary (column -> number or text), marked so that it is not flattened again. */
 export function flatSummary(values: Record<string, unknown>): Record<string, unknown> {
   return Object.defineProperty(values, FLAT_SUMMARY, { value: true, enumerable: false });
+}
+
+/**
+ * A flat summary as its column names and values side by side (a sweep thread's message), so no
+ * object of hundreds of keys is built per run; the names are one array per shape of summary.
+ */
+export interface FlatList {
+  readonly keys: readonly string[];
+  readonly values: readonly unknown[];
+}
+
+const FLAT_LIST: unique symbol = Symbol('flat sweep summary as a key list');
+
+/** Marks `keys` (unique column names) and `values` as one flat summary for runCells. */
+export function flatList(keys: readonly string[], values: readonly unknown[]): FlatList {
+  return Object.defineProperty({ keys, values }, FLAT_LIST, { value: true, enumerable: false });
+}
+
+function isFlatList(summary: unknown): summary is FlatList {
+  return typeof summary === 'object' && summary !== null && (summary as { [FLAT_LIST]?: boolean })[FLAT_LIST] === true;
+}
+
+/** Per key list, per header: the position in the list of each header column's value (-1: none). */
+const listPositionsKept = new WeakMap<readonly string[], WeakMap<readonly string[], Int32Array>>();
+
+/**
+ * Where each of `header`'s columns is in `keys`, checking (as for a record) that every key is a
+ * header column or a base column; the check depends on the base's columns only through the
+ * fields and run values, the same for every run of a sweep, but is repeated where a key is missing.
+ */
+function listPositions(keys: readonly string[], header: readonly string[], known: Set<string>, base: Map<string, unknown>, runKey: string): Int32Array {
+  let byHeader = listPositionsKept.get(keys);
+  const kept = byHeader?.get(header);
+  if (kept) return kept;
+  const index = new Map(keys.map((k, n) => [k, n]));
+  for (const c of keys) {
+    if (!known.has(c) && !base.has(c)) throw new Error(`run ${runKey}: its summary has a column "${c}" that the sweep's header lacks`);
+  }
+  const at = Int32Array.from(header, (h) => index.get(h) ?? -1);
+  // Kept only where every key is a header column: the check then holds for any base.
+  if (keys.every((c) => known.has(c))) {
+    if (!byHeader) listPositionsKept.set(keys, (byHeader = new WeakMap()));
+    byHeader.set(header, at);
+  }
+  return at;
 }
 
 function isFlatSummary(summary: unknown): summary is Record<string, unknown> {
