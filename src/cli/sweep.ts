@@ -39,7 +39,7 @@ import { lockDirectory } from './lock';
 import { checkOutDir, writeFileAtomic } from './output';
 import { checkRunnable, computeBudget, loadInputs, readJsonFile, type RunInputs } from './prepare';
 import { Sources } from './sources';
-import { cachedFitter, fitAll } from './sweepFits';
+import { cachedFitter, fitOutcomes } from './sweepFits';
 import { defaultWorkers, SweepThreadLost, SweepWorkers } from './sweepWorkers';
 import { gitCommit, readRunsFile, sweepLayout, writeAggregates, type Run } from './sweepFiles';
 
@@ -261,7 +261,7 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
         // while this thread computes the aggregate (writeAggregates awaits them for the fits).
         if (pool?.usable && !result.aborted && !signal.aborted) {
           const problems = flintstonesProblems(sortRowsByRuns(result.rows, layout.ordered), layout.runs, layout.fields);
-          fit = fitAll(problems, (points) => pool.fit(points)).then(cachedFitter);
+          fit = pool.fitMany(problems).then((outcomes) => cachedFitter(fitOutcomes(problems, outcomes)));
         }
       } catch (error) {
         rowsFile.close();

@@ -58,3 +58,13 @@ export async function fitAll(
   );
   return outcomes;
 }
+
+/** The outcomes computed for `problems` (null: not fitted there), by their points (cachedFitter's map). */
+export function fitOutcomes(problems: readonly (readonly FlintstonesPoint[])[], outcomes: readonly (FitOutcome | null)[]): Map<string, FitOutcome> {
+  const byPoints = new Map<string, FitOutcome>();
+  problems.forEach((points, k) => {
+    const outcome = outcomes[k];
+    if (outcome) byPoints.set(pointsKey(points), outcome);
+  });
+  return byPoints;
+}

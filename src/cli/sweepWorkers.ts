@@ -49,6 +49,8 @@ type ToWorker =
   | { type: 'setup'; setup: WorkerSetup }
   | { type: 'task'; id: number; runs: WorkerRun[] }
   | { type: 'fit'; id: number; points: readonly FlintstonesPoint[] }
+  /** Fits taken from `problems` one at a time by every thread, the next index from the shared counter. */
+  | { type: 'fits'; id: number; problems: readonly (readonly FlintstonesPoint[])[]; counter: SharedArrayBuffer }
   | { type: 'abort' };
 type FromWorker =
   /**
@@ -60,7 +62,9 @@ type FromWorker =
   | { type: 'dones'; id: number; items: DoneMessage[] }
   | { type: 'failed'; id: number; error: SerializedError }
   /** A Flintstones fit (sweepFits.ts). */
-  | { type: 'fitted'; id: number; outcome: FitOutcome }
+  | { type: 'fitted'; id: number; outcome: FitOutcome; index?: number }
+  /** A thread found no fit of a `fits` message left to take. */
+  | { type: 'fitsDone'; id: number }
   | { type: 'finished'; id: number };
 type DoneMessage = { type: 'done'; id: number; key: string; layout: number; keys?: string[]; numbers: Float64Array; others: [number, unknown][] };
 
@@ -94,6 +98,8 @@ export class SweepWorkers {
   /** Fits sent and not answered yet, by message id, and the thread whose turn is next. */
   private readonly fits = new Map<number, { slot: Slot; resolve: (outcome: FitOutcome) => void; reject: (error: unknown) => void }>();
   private fitTurn = 0;
+  /** fitMany's batches by message id: the outcomes so far and the threads still taking fits. */
+  private readonly batches = new Map<number, { outcomes: (FitOutcome | null)[]; waiting: Set<Slot>; resolve: () => void }>();
 
   /**
    * `size` threads; with `capabilities` they are set up at once, else `setUp` must be called
@@ -174,6 +180,25 @@ export class SweepWorkers {
   }
 
   /**
+   * Fits every problem on the threads, each thread taking the next one left as it gets free (a
+   * counter they share: fits differ a lot in cost, a few of them do not converge and take most
+   * of the time, so fits dealt out in turn left one thread with the slow ones). Every request
+   * goes out at once, queued behind what a thread is doing: the main thread computes the
+   * aggregate meanwhile. Null for a problem no thread fitted (a thread lost: the caller fits it).
+   */
+  fitMany(problems: readonly (readonly FlintstonesPoint[])[]): Promise<(FitOutcome | null)[]> {
+    const outcomes: (FitOutcome | null)[] = problems.map(() => null);
+    const live = this.slots.filter((s) => !s.reserved);
+    if (live.length === 0 || problems.length === 0) return Promise.resolve(outcomes);
+    const id = this.nextId++;
+    const counter = new SharedArrayBuffer(4);
+    return new Promise((resolve) => {
+      this.batches.set(id, { outcomes, waiting: new Set(live), resolve: () => resolve(outcomes) });
+      for (const slot of live) slot.worker.postMessage({ type: 'fits', id, problems, counter } satisfies ToWorker);
+    });
+  }
+
+  /**
    * A free thread chosen by `pick`, once there is one (callers may ask for more at once than
    * there are threads), taken at once (marked busy before any other caller runs: the caller
    * then sets its own `current`).
@@ -211,6 +236,12 @@ export class SweepWorkers {
       return;
     }
     if (message.type === 'done' && message.keys) slot.layouts.set(message.layout, message.keys);
+    const batch = message.type === 'fitted' || message.type === 'fitsDone' ? this.batches.get(message.id) : undefined;
+    if (batch) {
+      if (message.type === 'fitted' && message.index !== undefined) batch.outcomes[message.index] = message.outcome;
+      else if (message.type === 'fitsDone') this.doneWithBatch(message.id, slot);
+      return;
+    }
     const fit = message.type === 'fitted' ? this.fits.get(message.id) : undefined;
     if (message.type === 'fitted') {
       this.fits.delete(message.id);
@@ -243,7 +274,18 @@ export class SweepWorkers {
     }
   }
 
+  /** `slot` takes no more fits of batch `id`; the batch ends when no thread does. */
+  private doneWithBatch(id: number, slot: Slot): void {
+    const batch = this.batches.get(id);
+    if (!batch) return;
+    batch.waiting.delete(slot);
+    if (batch.waiting.size > 0) return;
+    this.batches.delete(id);
+    batch.resolve();
+  }
+
   private lost(slot: Slot, error: unknown): void {
+    for (const id of [...this.batches.keys()]) this.doneWithBatch(id, slot);
     for (const [id, fit] of this.fits) {
       if (fit.slot !== slot) continue;
       this.fits.delete(id);
@@ -276,6 +318,17 @@ function startWorker(): void {
     }
     if (message.type === 'abort') {
       controller.abort();
+      return;
+    }
+    if (message.type === 'fits') {
+      const { id, problems } = message;
+      const next = new Int32Array(message.counter);
+      queue = queue.then(() => {
+        for (let k = Atomics.add(next, 0, 1); k < problems.length; k = Atomics.add(next, 0, 1)) {
+          send({ type: 'fitted', id, index: k, outcome: fitOutcome(problems[k]) });
+        }
+        send({ type: 'fitsDone', id });
+      });
       return;
     }
     if (message.type === 'fit') {
