@@ -156,16 +156,17 @@ export function runCells<C extends Config>(
   const row: Record<string, string> = {};
   // The record's text from the same conversions (a number's text is its CSV field as it is:
   // String(n) never needs quotes), so each number is turned into text once.
-  let line = '';
+  const parts: string[] = new Array<string>(header.length);
   for (let k = 0; k < header.length; k++) {
     const v = cells[k];
     const text = v === null || v === undefined ? '' : typeof v === 'string' ? v : typeof v === 'object' ? JSON.stringify(v) : String(v);
     row[header[k]] = text;
-    const field = typeof v === 'number' || typeof v === 'bigint' || typeof v === 'boolean' || text === '' ? text : csvField(v);
-    line += k === 0 ? field : `,${field}`;
+    parts[k] = typeof v === 'number' || typeof v === 'bigint' || typeof v === 'boolean' || text === '' ? text : csvField(v);
   }
   keepTypedCells(row, header, cells);
-  return { cells, row, line: `${line}\r\n` };
+  // One flat string now (a join), not a chain of hundreds of concatenations flattened when the
+  // row is written: rows are made as runs finish, written in a burst after the last one.
+  return { cells, row, line: `${parts.join(',')}\r\n` };
 }
 
 /** Each header's column names as a set, made once per header (runCells runs once per run). */
