@@ -59,7 +59,7 @@ type FromWorker =
    */
   | DoneMessage
   /** The summaries of a task's runs, in the order they finished, in one message (fewer messages cost less than many). */
-  | { type: 'dones'; id: number; items: DoneMessage[] }
+  | { type: 'dones'; id: number; items: PackedDone[]; numbers: Float64Array }
   | { type: 'failed'; id: number; error: SerializedError }
   /** A Flintstones fit (sweepFits.ts). */
   | { type: 'fitted'; id: number; outcome: FitOutcome; index?: number }
@@ -67,6 +67,8 @@ type FromWorker =
   | { type: 'fitsDone'; id: number }
   | { type: 'finished'; id: number };
 type DoneMessage = { type: 'done'; id: number; key: string; layout: number; keys?: string[]; numbers: Float64Array; others: [number, unknown][] };
+/** A run's summary in a task's message: its numbers are `length` values from `at` in the message's one array. */
+type PackedDone = Omit<DoneMessage, 'numbers'> & { at: number; length: number };
 
 /** A thread failed or exited under a task: its runs not reported yet can be computed elsewhere. */
 export class SweepThreadLost extends Error {
@@ -232,7 +234,7 @@ export class SweepWorkers {
 
   private receive(slot: Slot, message: FromWorker): void {
     if (message.type === 'dones') {
-      for (const item of message.items) this.receive(slot, item);
+      for (const { at, length, ...item } of message.items) this.receive(slot, { ...item, numbers: message.numbers.subarray(at, at + length) });
       return;
     }
     if (message.type === 'done' && message.keys) slot.layouts.set(message.layout, message.keys);
@@ -349,11 +351,17 @@ function startWorker(): void {
         // A task's summaries go out together when it ends, or as they are when it fails.
         const batch: DoneMessage[] = [];
         const flush = () => {
-          if (batch.length > 0)
-            port.postMessage(
-              { type: 'dones', id, items: batch } satisfies FromWorker,
-              batch.map((item) => item.numbers.buffer as ArrayBuffer),
-            );
+          if (batch.length > 0) {
+            // All the numbers in one transferred array (one per run cost more to send).
+            const numbers = new Float64Array(batch.reduce((n, item) => n + item.numbers.length, 0));
+            let at = 0;
+            const items = batch.map(({ numbers: own, ...item }): PackedDone => {
+              numbers.set(own, at);
+              at += own.length;
+              return { ...item, at: at - own.length, length: own.length };
+            });
+            port.postMessage({ type: 'dones', id, items, numbers } satisfies FromWorker, [numbers.buffer]);
+          }
           batch.length = 0;
         };
         try {
