@@ -48,7 +48,6 @@ interface WorkerMark {
 type ToWorker =
   | { type: 'setup'; setup: WorkerSetup }
   | { type: 'task'; id: number; runs: WorkerRun[] }
-  | { type: 'fit'; id: number; points: readonly FlintstonesPoint[] }
   /** Fits taken from `problems` one at a time by every thread, the next index from the shared counter. */
   | { type: 'fits'; id: number; problems: readonly (readonly FlintstonesPoint[])[]; counter: SharedArrayBuffer }
   | { type: 'abort' };
@@ -62,7 +61,7 @@ type FromWorker =
   | { type: 'dones'; id: number; items: PackedDone[]; numbers: Float64Array }
   | { type: 'failed'; id: number; error: SerializedError }
   /** A Flintstones fit (sweepFits.ts). */
-  | { type: 'fitted'; id: number; outcome: FitOutcome; index?: number }
+  | { type: 'fitted'; id: number; outcome: FitOutcome; index: number }
   /** A thread found no fit of a `fits` message left to take. */
   | { type: 'fitsDone'; id: number }
   | { type: 'finished'; id: number };
@@ -97,9 +96,6 @@ export class SweepWorkers {
   private waiting: (() => void)[] = [];
   private nextId = 1;
   private closed = false;
-  /** Fits sent and not answered yet, by message id, and the thread whose turn is next. */
-  private readonly fits = new Map<number, { slot: Slot; resolve: (outcome: FitOutcome) => void; reject: (error: unknown) => void }>();
-  private fitTurn = 0;
   /** fitMany's batches by message id: the outcomes so far and the threads still taking fits. */
   private readonly batches = new Map<number, { outcomes: (FitOutcome | null)[]; waiting: Set<Slot>; resolve: () => void }>();
 
@@ -165,23 +161,6 @@ export class SweepWorkers {
   }
 
   /**
-   * Fits the Flintstones law to `points` on a thread (sweepFits.ts), the threads taking turns.
-   * The request goes out at once, queued behind what the thread is doing, not when a thread is
-   * free: the main thread computes the aggregate meanwhile and has no time to hand out fits one
-   * by one. A thread lost fails its fits (the caller then fits those itself).
-   */
-  fit(points: readonly FlintstonesPoint[]): Promise<FitOutcome> {
-    const live = this.slots.filter((s) => !s.reserved);
-    if (live.length === 0) return Promise.reject(new SweepThreadLost('no sweep worker thread is left (they failed or exited)'));
-    const slot = live[this.fitTurn++ % live.length];
-    const id = this.nextId++;
-    return new Promise<FitOutcome>((resolve, reject) => {
-      this.fits.set(id, { slot, resolve, reject });
-      slot.worker.postMessage({ type: 'fit', id, points } satisfies ToWorker);
-    });
-  }
-
-  /**
    * Fits every problem on the threads, each thread taking the next one left as it gets free (a
    * counter they share: fits differ a lot in cost, a few of them do not converge and take most
    * of the time, so fits dealt out in turn left one thread with the slow ones). Every request
@@ -240,16 +219,12 @@ export class SweepWorkers {
     if (message.type === 'done' && message.keys) slot.layouts.set(message.layout, message.keys);
     const batch = message.type === 'fitted' || message.type === 'fitsDone' ? this.batches.get(message.id) : undefined;
     if (batch) {
-      if (message.type === 'fitted' && message.index !== undefined) batch.outcomes[message.index] = message.outcome;
+      if (message.type === 'fitted') batch.outcomes[message.index] = message.outcome;
       else if (message.type === 'fitsDone') this.doneWithBatch(message.id, slot);
       return;
     }
-    const fit = message.type === 'fitted' ? this.fits.get(message.id) : undefined;
-    if (message.type === 'fitted') {
-      this.fits.delete(message.id);
-      fit?.resolve(message.outcome);
-      return;
-    }
+    // A fit of a batch that ended (its thread was counted lost): nobody waits for it.
+    if (message.type === 'fitted' || message.type === 'fitsDone') return;
     const current = slot.current;
     if (!current || current.id !== message.id) return;
     if (message.type === 'done') {
@@ -288,11 +263,6 @@ export class SweepWorkers {
 
   private lost(slot: Slot, error: unknown): void {
     for (const id of [...this.batches.keys()]) this.doneWithBatch(id, slot);
-    for (const [id, fit] of this.fits) {
-      if (fit.slot !== slot) continue;
-      this.fits.delete(id);
-      fit.reject(error);
-    }
     const current = slot.current;
     slot.reserved = true;
     this.release(slot);
@@ -331,11 +301,6 @@ function startWorker(): void {
         }
         send({ type: 'fitsDone', id });
       });
-      return;
-    }
-    if (message.type === 'fit') {
-      const { id, points } = message;
-      queue = queue.then(() => send({ type: 'fitted', id, outcome: fitOutcome(points) }));
       return;
     }
     const { id, runs } = message;
