@@ -167,7 +167,7 @@ export async function mergeCommand(args: string[], log: (line: string) => void):
       join(options.out, 'runs.csv'),
       formatCsvRow(fileHeader(layout.header)) + rows.map((r) => formatCsvRow(layout.header.map((h) => r[h]))).join(''),
     );
-    writeAggregates(options.out, rows, layout, log);
+    await writeAggregates(options.out, rows, layout, log);
     const renderers = [...new Set(records.map((r) => String(r.record.renderer)))];
     writeFileAtomic(
       join(options.out, 'sweep.json'),

@@ -11,9 +11,9 @@
  * Rows are appended as runs finish; aggregate.csv/json and sweep.json are written atomically.
  * Ctrl-C stops after the current run (exit 130); rerunning the same command resumes.
  */
-import { appendFileSync, mkdirSync } from 'node:fs';
+import { appendFileSync, closeSync, mkdirSync, openSync, writeSync } from 'node:fs';
 import { dirname, join } from 'node:path';
-import { ConfigError, validateAnyConfig, type AnyConfig } from '../core/config';
+import { ConfigError, engineNameFor, validateAnyConfig, type AnyConfig } from '../core/config';
 import { surfaceLayout } from '../core/config/surfaceLayout';
 import {
   flintstonesProblems,
@@ -39,11 +39,41 @@ import { lockDirectory } from './lock';
 import { checkOutDir, writeFileAtomic } from './output';
 import { checkRunnable, computeBudget, loadInputs, readJsonFile, type RunInputs } from './prepare';
 import { Sources } from './sources';
-import { cachedFitter, fitAll } from './sweepFits';
+import { cachedFitter, fitOutcomes } from './sweepFits';
 import { defaultWorkers, SweepThreadLost, SweepWorkers } from './sweepWorkers';
 import { gitCommit, readRunsFile, sweepLayout, writeAggregates, type Run } from './sweepFiles';
 
-export async function sweepCommand(options: CliOptions, signal: AbortSignal, log: (line: string) => void): Promise<void> {
+export async function sweepCommand(options: CliOptions, signal: AbortSignal, writeLine: (line: string) => void): Promise<void> {
+  const lines = batchedLines(writeLine);
+  try {
+    await sweepLogging(options, signal, lines.log);
+  } finally {
+    lines.flush();
+  }
+}
+
+/**
+ * Lines written together once per turn of the event loop, in order: a sweep logs a line per run,
+ * and most rows (so most lines) come at once after the last run, where thousands of writes to
+ * stderr took a tenth of a second. A run's line still follows its row into runs.csv, at the
+ * next turn of the event loop.
+ */
+function batchedLines(writeLine: (line: string) => void): { log: (line: string) => void; flush: () => void } {
+  let pending: string[] = [];
+  const flush = () => {
+    if (pending.length > 0) writeLine(pending.join('\n'));
+    pending = [];
+  };
+  return {
+    log(line) {
+      if (pending.length === 0) setImmediate(flush);
+      pending.push(line);
+    },
+    flush,
+  };
+}
+
+async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line: string) => void): Promise<void> {
   const started = new Date().toISOString();
   const shard: Shard | null = options.shard === undefined ? null : parseShard(options.shard, process.env);
   const spec = validateSweepSpec(readJsonFile(options.input, 'sweep spec'), { maxRuns: options.maxRuns, raiseHint: 'pass --max-runs N to raise the limit' });
@@ -54,178 +84,208 @@ export async function sweepCommand(options: CliOptions, signal: AbortSignal, log
   const layout = sweepLayout(spec, (run) => pointConfig(run, (c) => checkRunnable(c, computeBudget(Number.MAX_SAFE_INTEGER, options.allowLarge))));
   const { fields, summary } = layout;
   const runs = shard ? shardRuns(layout.runs, shard, layout.reuseGroup) : layout.ordered;
-  const sources = new Sources({ baseDir: dirname(options.input), allowNetwork: options.allowNetwork });
-  const inputs = new Map<string, RunInputs>();
-  for (const run of layout.runs) {
-    if (inputs.has(run.pointKey)) continue;
-    inputs.set(run.pointKey, await atPoint(run, () => loadInputs(validateAnyConfig(run.config), sources)));
-  }
-  const context = createHeadlessContext();
-  let release = () => {};
+  // A grid point's config (the same for all its runs but for `seed`: for the engine, chain and
+  // iterations; a run itself is computed from its own config).
+  const valid = new Map<string, AnyConfig>();
+  const configOf = (run: Run): AnyConfig => {
+    let config = valid.get(run.pointKey);
+    if (!config) valid.set(run.pointKey, (config = validateAnyConfig(run.config)));
+    return config;
+  };
+  // The threads start now, before the inputs, the GL context and the checks below (about half a
+  // second on this thread), and load their modules meanwhile; they get the context's
+  // capabilities once it exists (setUp), and those the sweep turns out not to need (runs resumed,
+  // runs on the GPU engine) are ended then. At most one per task that the exact engine could
+  // compute on some renderer (engine "exact", or "auto" on a software one).
+  const workers = options.workers ?? defaultWorkers();
+  const exactGroups = new Set(runs.filter((run) => engineNameFor(configOf(run), { softwareRenderer: true }) === 'exact').map(layout.reuseGroup));
+  let early: SweepWorkers | null = Math.min(workers, exactGroups.size) > 0 ? new SweepWorkers(Math.min(workers, exactGroups.size)) : null;
   try {
-    const budget = computeBudget(context.capabilities.maxTextureSize, options.allowLarge);
-    for (const run of layout.runs) if (run.realization === 0) pointConfig(run, (c) => checkRunnable(c, budget));
-
-    mkdirSync(options.out, { recursive: true });
-    release = lockDirectory(options.out, log);
-    // One `git` call for both records (a process start each).
-    let commit: string | null | undefined;
-    const record = (extra: Record<string, unknown>) =>
-      writeFileAtomic(
-        join(options.out, 'sweep.json'),
-        JSON.stringify(
-          {
-            software: { name: 'tissue-sheet', version, commit: commit === undefined ? (commit = gitCommit()) : commit },
-            renderer: context.capabilities.renderer,
-            started,
-            ...(shard ? { shard: { index: shard.index, count: shard.count, of: layout.runs.length } } : {}),
-            ...extra,
-            spec,
-          },
-          null,
-          2,
-        ) + '\n',
-      );
-    record({ runs: runs.length });
-
-    const csvPath = join(options.out, 'runs.csv');
-    const existing = readRunsFile(csvPath) ?? '';
-    let plan;
-    try {
-      plan = planResume(existing, { ...layout.resume, runs }, csvPath);
-    } catch (error) {
-      if (error instanceof ResumeError) throw new InputError(error.message);
-      throw error;
-    }
-    for (const bad of plan.rejected.slice(0, 20)) {
-      log(
-        `warning: ${csvPath}:${bad.line}: ${bad.reason}; ${bad.reason.startsWith('duplicate') ? 'dropped (the first row is kept)' : 'dropped, the run is computed again'}`,
-      );
-    }
-    if (plan.rejected.length > 20) log(`warning: ${csvPath}: ${plan.rejected.length - 20} more bad rows dropped`);
-    if (plan.rejected.length > 0) {
-      appendFileSync(join(options.out, 'runs.rejected.csv'), plan.rejected.map((r) => (r.text.endsWith('\n') ? r.text : `${r.text}\r\n`)).join(''));
-      log(`warning: ${plan.rejected.length} rows moved to ${join(options.out, 'runs.rejected.csv')}`);
-    }
-    if (plan.rewrite) writeFileAtomic(csvPath, plan.cleanText);
-
-    // Tasks: the runs sharing a seeded surface (same config but for `sheet`, same seed), computed
-    // by one SheetRunner, which relaxes the surface once for every ratio or thickness and keeps
-    // the layers and validity its runs share. Tasks of one Lloyd run (same config but for `sheet`
-    // and `lloyd.maxIterations`) start next to each other, fewer iterations first: a thread that
-    // still holds that Lloyd run continues it to the next Voronoi k. Exact-engine tasks go to
-    // worker threads, GPU tasks run here on the one GL context; rows are written in the sweep's
-    // order (runSweep), so the files are the same whatever the number of threads.
-    // A grid point's config (the same for all its runs but for `seed`: for the engine, chain and
-    // iterations; a run itself is computed from its own config).
-    const valid = new Map<string, AnyConfig>();
-    const configOf = (run: Run): AnyConfig => {
-      let config = valid.get(run.pointKey);
-      if (!config) valid.set(run.pointKey, (config = validateAnyConfig(run.config)));
-      return config;
-    };
-    const onThreads = (run: Run) => chooseEngine(configOf(run), surfaceLayout(configOf(run)).name, context.capabilities).name === 'exact';
-    const chains = new Map<string, string>();
-    const chainOf = (run: Run): string => {
-      const id = `${run.pointKey}#${run.seed}`;
-      let key = chains.get(id);
-      if (key === undefined) chains.set(id, (key = chainKey({ ...configOf(run), seed: run.seed })));
-      return key;
-    };
-    const firstOfChain = new Map<string, number>();
-    runs.forEach((run, k) => {
-      const chain = chainOf(run);
-      if (!firstOfChain.has(chain)) firstOfChain.set(chain, k);
-    });
-    const iterationsOf = (run: Run) => configOf(run).lloyd.maxIterations;
-    const doneKeys = new Set(plan.rows.map((row) => row.key));
-    const groups = new Set(runs.filter((run) => !doneKeys.has(run.key) && onThreads(run)).map((run) => layout.reuseGroup(run)));
-    const threads = Math.min(options.workers ?? defaultWorkers(), groups.size);
-    const pool = threads > 0 ? new SweepWorkers(threads, context.capabilities, inputs) : null;
-    const stopThreads = () => pool?.abort();
-    signal.addEventListener('abort', stopThreads);
-    const runner = new SheetRunner(context);
-    let mainThread: Promise<void> = Promise.resolve();
-    const runHere = (task: Run[], done: (run: Run, summary: Record<string, unknown>) => void): Promise<void> => {
-      const next = mainThread.then(async () => {
-        const order = [...task].sort((a, b) => iterationsOf(a) - iterationsOf(b));
-        for (const run of order)
-          done(run, sweepSummary((await runner.run(validateAnyConfig(run.config), { ...inputs.get(run.pointKey), signal, views: false })).result));
-      });
-      mainThread = next.catch(() => {});
-      return next;
-    };
-    let result;
-    let fit: FlintstonesFitter | undefined;
-    try {
-      result = await runSweep<AnyConfig & Record<string, unknown>, Record<string, unknown>>({
-        runs,
-        fields,
-        summaryColumns: [...layout.geometry, ...summary],
-        existingCsv: plan.cleanText,
-        append: (text) => appendFileSync(csvPath, text),
-        // Each row carries its run's base geometry beside what the run measured.
-        runValues: layout.geometryOf,
-        runner: async (config, run) =>
-          sweepSummary((await runner.run(validateAnyConfig(config), { ...inputs.get(run.pointKey), signal, views: false })).result),
-        tasks: {
-          key: layout.reuseGroup,
-          before: (a, b) => firstOfChain.get(chainOf(a))! - firstOfChain.get(chainOf(b))! || iterationsOf(a) - iterationsOf(b),
-          run: async (task, done) => {
-            if (!pool?.usable || !onThreads(task[0])) return runHere(task, done);
-            const byKey = new Map(task.map((run) => [run.key, run]));
-            const reported = new Set<string>();
-            try {
-              await pool.run(
-                task.map((run) => ({ key: run.key, pointKey: run.pointKey, config: run.config })),
-                chainOf(task[0]),
-                (key, summary) => {
-                  reported.add(key);
-                  done(byKey.get(key)!, summary);
-                },
-              );
-            } catch (error) {
-              // A thread that failed or exited (not a run that failed): the main thread computes
-              // the task's other runs, the same numbers.
-              if (!(error instanceof SweepThreadLost) || signal.aborted) throw error;
-              log(`warning: ${error.message}; its runs are computed on the main thread`);
-              await runHere(
-                task.filter((run) => !reported.has(run.key)),
-                done,
-              );
-            }
-          },
-        },
-        // One lane per thread, and one for the main thread's GPU runs.
-        concurrency: threads + 1,
-        signal,
-        onProgress: (p) => {
-          if (p.phase === 'start') return;
-          const eta = p.finished > 0 ? ((p.elapsedMs / p.finished) * (p.total - p.finished)) / 1000 : 0;
-          log(`${p.phase === 'done' ? 'done' : 'FAILED'} ${p.finished}/${p.total} ${p.run.key}  (${p.skipped} resumed, ~${eta.toFixed(0)} s left)`);
-        },
-      });
-      // The Flintstones fits on the threads, idle now (the files are the same: sweepFits.ts).
-      if (pool?.usable && !result.aborted && !signal.aborted) {
-        const problems = flintstonesProblems(sortRowsByRuns(result.rows, layout.ordered), layout.runs, layout.fields);
-        fit = cachedFitter(await fitAll(problems, (points) => pool.fit(points)));
-      }
-    } catch (error) {
-      if (signal.aborted) throw new InterruptedError(`interrupted; finished runs are in ${csvPath}: rerun the same command to resume`);
-      throw error;
-    } finally {
-      signal.removeEventListener('abort', stopThreads);
-      await pool?.close();
-    }
-    writeAggregates(options.out, result.rows, layout, log, fit);
-    record({ runs: runs.length, ended: new Date().toISOString(), computed: result.completed, resumed: result.skipped });
-    if (result.aborted) throw new InterruptedError(`interrupted after ${result.completed} runs; rerun the same command to resume`);
-    log(
-      `sweep: ${result.completed} runs computed, ${result.skipped} resumed${shard ? ` (shard ${shard.index}/${shard.count}: ${runs.length} of ${layout.runs.length} runs)` : ''} -> ${options.out}`,
-    );
+    await sweepWith(early);
   } finally {
-    release();
-    context.dispose();
+    await early?.close();
+  }
+
+  async function sweepWith(prestarted: SweepWorkers | null): Promise<void> {
+    const sources = new Sources({ baseDir: dirname(options.input), allowNetwork: options.allowNetwork });
+    const inputs = new Map<string, RunInputs>();
+    for (const run of layout.runs) {
+      if (inputs.has(run.pointKey)) continue;
+      inputs.set(run.pointKey, await atPoint(run, () => loadInputs(validateAnyConfig(run.config), sources)));
+    }
+    const context = createHeadlessContext();
+    let release = () => {};
+    try {
+      const budget = computeBudget(context.capabilities.maxTextureSize, options.allowLarge);
+      for (const run of layout.runs) if (run.realization === 0) pointConfig(run, (c) => checkRunnable(c, budget));
+
+      mkdirSync(options.out, { recursive: true });
+      release = lockDirectory(options.out, log);
+      // One `git` call for both records (a process start each).
+      let commit: string | null | undefined;
+      const record = (extra: Record<string, unknown>) =>
+        writeFileAtomic(
+          join(options.out, 'sweep.json'),
+          JSON.stringify(
+            {
+              software: { name: 'tissue-sheet', version, commit: commit === undefined ? (commit = gitCommit()) : commit },
+              renderer: context.capabilities.renderer,
+              started,
+              ...(shard ? { shard: { index: shard.index, count: shard.count, of: layout.runs.length } } : {}),
+              ...extra,
+              spec,
+            },
+            null,
+            2,
+          ) + '\n',
+        );
+      record({ runs: runs.length });
+
+      const csvPath = join(options.out, 'runs.csv');
+      const existing = readRunsFile(csvPath) ?? '';
+      let plan;
+      try {
+        plan = planResume(existing, { ...layout.resume, runs }, csvPath);
+      } catch (error) {
+        if (error instanceof ResumeError) throw new InputError(error.message);
+        throw error;
+      }
+      for (const bad of plan.rejected.slice(0, 20)) {
+        log(
+          `warning: ${csvPath}:${bad.line}: ${bad.reason}; ${bad.reason.startsWith('duplicate') ? 'dropped (the first row is kept)' : 'dropped, the run is computed again'}`,
+        );
+      }
+      if (plan.rejected.length > 20) log(`warning: ${csvPath}: ${plan.rejected.length - 20} more bad rows dropped`);
+      if (plan.rejected.length > 0) {
+        appendFileSync(join(options.out, 'runs.rejected.csv'), plan.rejected.map((r) => (r.text.endsWith('\n') ? r.text : `${r.text}\r\n`)).join(''));
+        log(`warning: ${plan.rejected.length} rows moved to ${join(options.out, 'runs.rejected.csv')}`);
+      }
+      if (plan.rewrite) writeFileAtomic(csvPath, plan.cleanText);
+
+      // Tasks: the runs sharing a seeded surface (same config but for `sheet`, same seed), computed
+      // by one SheetRunner, which relaxes the surface once for every ratio or thickness and keeps
+      // the layers and validity its runs share. Tasks of one Lloyd run (same config but for `sheet`
+      // and `lloyd.maxIterations`) start next to each other, fewer iterations first: a thread that
+      // still holds that Lloyd run continues it to the next Voronoi k. Exact-engine tasks go to
+      // worker threads, GPU tasks run here on the one GL context; rows are written in the sweep's
+      // order (runSweep), so the files are the same whatever the number of threads.
+      const onThreads = (run: Run) => chooseEngine(configOf(run), surfaceLayout(configOf(run)).name, context.capabilities).name === 'exact';
+      const chains = new Map<string, string>();
+      const chainOf = (run: Run): string => {
+        const id = `${run.pointKey}#${run.seed}`;
+        let key = chains.get(id);
+        if (key === undefined) chains.set(id, (key = chainKey({ ...configOf(run), seed: run.seed })));
+        return key;
+      };
+      const firstOfChain = new Map<string, number>();
+      runs.forEach((run, k) => {
+        const chain = chainOf(run);
+        if (!firstOfChain.has(chain)) firstOfChain.set(chain, k);
+      });
+      const iterationsOf = (run: Run) => configOf(run).lloyd.maxIterations;
+      const doneKeys = new Set(plan.rows.map((row) => row.key));
+      const groups = new Set(runs.filter((run) => !doneKeys.has(run.key) && onThreads(run)).map((run) => layout.reuseGroup(run)));
+      const threads = Math.min(workers, groups.size);
+      // The threads started above, as many as needed (never fewer: `threads` counts a subset of their tasks).
+      const pool = threads > 0 ? (prestarted ?? new SweepWorkers(threads)) : null;
+      if (prestarted && prestarted !== pool) await prestarted.close();
+      else if (prestarted) await prestarted.shrink(threads);
+      early = pool;
+      pool?.setUp(context.capabilities, inputs);
+      const stopThreads = () => pool?.abort();
+      signal.addEventListener('abort', stopThreads);
+      const runner = new SheetRunner(context);
+      let mainThread: Promise<void> = Promise.resolve();
+      const runHere = (task: Run[], done: (run: Run, summary: Record<string, unknown>) => void): Promise<void> => {
+        const next = mainThread.then(async () => {
+          const order = [...task].sort((a, b) => iterationsOf(a) - iterationsOf(b));
+          for (const run of order)
+            done(run, sweepSummary((await runner.run(validateAnyConfig(run.config), { ...inputs.get(run.pointKey), signal, views: false })).result));
+        });
+        mainThread = next.catch(() => {});
+        return next;
+      };
+      // One descriptor for the rows (appendFileSync opened and closed the file for each of them).
+      const rowsFile = appender(csvPath);
+      let result;
+      let fit: Promise<FlintstonesFitter> | undefined;
+      try {
+        result = await runSweep<AnyConfig & Record<string, unknown>, unknown>({
+          runs,
+          fields,
+          summaryColumns: [...layout.geometry, ...summary],
+          existingCsv: plan.cleanText,
+          append: (text) => rowsFile.append(text),
+          // Each row carries its run's base geometry beside what the run measured.
+          runValues: layout.geometryOf,
+          runner: async (config, run) =>
+            sweepSummary((await runner.run(validateAnyConfig(config), { ...inputs.get(run.pointKey), signal, views: false })).result),
+          tasks: {
+            key: layout.reuseGroup,
+            before: (a, b) => firstOfChain.get(chainOf(a))! - firstOfChain.get(chainOf(b))! || iterationsOf(a) - iterationsOf(b),
+            run: async (task, done) => {
+              if (!pool?.usable || !onThreads(task[0])) return runHere(task, done);
+              const byKey = new Map(task.map((run) => [run.key, run]));
+              const reported = new Set<string>();
+              try {
+                await pool.run(
+                  task.map((run) => ({ key: run.key, pointKey: run.pointKey, config: run.config })),
+                  chainOf(task[0]),
+                  (key, summary) => {
+                    reported.add(key);
+                    done(byKey.get(key)!, summary);
+                  },
+                );
+              } catch (error) {
+                // A thread that failed or exited (not a run that failed): the main thread computes
+                // the task's other runs, the same numbers.
+                if (!(error instanceof SweepThreadLost) || signal.aborted) throw error;
+                log(`warning: ${error.message}; its runs are computed on the main thread`);
+                await runHere(
+                  task.filter((run) => !reported.has(run.key)),
+                  done,
+                );
+              }
+            },
+          },
+          // One lane per thread, and one for the main thread's GPU runs.
+          concurrency: threads + 1,
+          signal,
+          onProgress: (p) => {
+            if (p.phase === 'start') return;
+            const eta = p.finished > 0 ? ((p.elapsedMs / p.finished) * (p.total - p.finished)) / 1000 : 0;
+            log(`${p.phase === 'done' ? 'done' : 'FAILED'} ${p.finished}/${p.total} ${p.run.key}  (${p.skipped} resumed, ~${eta.toFixed(0)} s left)`);
+          },
+        });
+        // The Flintstones fits on the threads, idle now (the files are the same: sweepFits.ts),
+        // while this thread computes the aggregate (writeAggregates awaits them for the fits).
+        if (pool?.usable && !result.aborted && !signal.aborted) {
+          const problems = flintstonesProblems(sortRowsByRuns(result.rows, layout.ordered), layout.runs, layout.fields);
+          fit = pool.fitMany(problems).then((outcomes) => cachedFitter(fitOutcomes(problems, outcomes)));
+        }
+      } catch (error) {
+        rowsFile.close();
+        await pool?.close();
+        if (signal.aborted) throw new InterruptedError(`interrupted; finished runs are in ${csvPath}: rerun the same command to resume`);
+        throw error;
+      } finally {
+        signal.removeEventListener('abort', stopThreads);
+      }
+      rowsFile.close();
+      try {
+        await writeAggregates(options.out, result.rows, layout, log, fit);
+      } finally {
+        await pool?.close();
+      }
+      record({ runs: runs.length, ended: new Date().toISOString(), computed: result.completed, resumed: result.skipped });
+      if (result.aborted) throw new InterruptedError(`interrupted after ${result.completed} runs; rerun the same command to resume`);
+      log(
+        `sweep: ${result.completed} runs computed, ${result.skipped} resumed${shard ? ` (shard ${shard.index}/${shard.count}: ${runs.length} of ${layout.runs.length} runs)` : ''} -> ${options.out}`,
+      );
+    } finally {
+      release();
+      context.dispose();
+    }
   }
 }
 
@@ -248,4 +308,20 @@ async function atPoint<T>(run: Run, load: () => Promise<T>): Promise<T> {
     if (error instanceof InputError && run.pointKey) throw new InputError(`grid point ${run.pointKey}: ${error.message}`);
     throw error;
   }
+}
+
+/** Appends text to a file through one descriptor, opened on the first append; `close` is idempotent. */
+function appender(path: string): { append: (text: string) => void; close: () => void } {
+  let fd: number | null = null;
+  return {
+    append(text) {
+      fd ??= openSync(path, 'a');
+      const bytes = Buffer.from(text, 'utf8');
+      for (let at = 0; at < bytes.length;) at += writeSync(fd, bytes, at, bytes.length - at);
+    },
+    close() {
+      if (fd !== null) closeSync(fd);
+      fd = null;
+    },
+  };
 }

@@ -98,15 +98,16 @@ export function sweepLayout(spec: ValidSweepSpec, pointConfig: (run: Run) => Any
  * on the order runs finished or shards were merged in. `fit`: how a group's points are fitted
  * (default sweepFitter; the sweep passes fits its threads made, sweepFits.ts).
  */
-export function writeAggregates(
+export async function writeAggregates(
   out: string,
   rows: readonly Record<string, string>[],
   layout: SweepLayout,
   log: (line: string) => void,
-  fit?: FlintstonesFitter,
-): { flintstones: number } {
+  fit?: FlintstonesFitter | Promise<FlintstonesFitter | undefined>,
+): Promise<{ flintstones: number }> {
   const sorted = sortRowsByRuns(rows, layout.ordered);
   const numeric = aggregateColumns(layout.summary, TEXT_COLUMNS);
+  // The aggregate while the fits (a promise: the sweep's threads) are computed elsewhere.
   const aggregate = aggregateRows(sorted, layout.fields, numeric);
   for (const point of aggregate.points) {
     const partial = Object.entries(point.stats).filter(([, s]) => s.n > 0 && s.missing > 0);
@@ -120,7 +121,9 @@ export function writeAggregates(
       );
     }
   }
-  const fits = sweepFlintstones(sorted, layout.runs, layout.fields, fit);
+  const aggregateCsv = aggregateToCsv(aggregate);
+  const points = aggregateToJson(aggregate);
+  const fits = sweepFlintstones(sorted, layout.runs, layout.fields, await fit);
   const fitted = fits.filter((f) => f.parameters !== null);
   for (const fit of fits.filter((f) => f.illConditioned).slice(0, 3)) {
     log(
@@ -129,8 +132,8 @@ export function writeAggregates(
         .join('')}: ${fit.parameters ? 'ill-conditioned' : 'not fitted'} (${fit.note})`,
     );
   }
-  writeFileAtomic(join(out, 'aggregate.csv'), aggregateToCsv(aggregate));
-  writeFileAtomic(join(out, 'aggregate.json'), JSON.stringify({ points: aggregateToJson(aggregate), flintstones: fits }, null, 2) + '\n');
+  writeFileAtomic(join(out, 'aggregate.csv'), aggregateCsv);
+  writeFileAtomic(join(out, 'aggregate.json'), JSON.stringify({ points, flintstones: fits }, null, 2) + '\n');
   if (fitted.length > 0) writeFileAtomic(join(out, 'flintstones.csv'), flintstonesToCsv(fits, layout.fields));
   return { flintstones: fitted.length };
 }

@@ -38,23 +38,12 @@ export function cachedFitter(outcomes: ReadonlyMap<string, FitOutcome>): Flintst
   };
 }
 
-/**
- * Fits each problem with `fit` (a thread), all at once (the pool queues them on its free
- * threads); a problem whose fit failed for another reason than the law (a thread lost) is left
- * out, and so fitted by the main thread later.
- */
-export async function fitAll(
-  problems: readonly (readonly FlintstonesPoint[])[],
-  fit: (points: readonly FlintstonesPoint[]) => Promise<FitOutcome>,
-): Promise<Map<string, FitOutcome>> {
-  const outcomes = new Map<string, FitOutcome>();
-  await Promise.all(
-    problems.map((points) =>
-      fit(points).then(
-        (outcome) => void outcomes.set(pointsKey(points), outcome),
-        () => {},
-      ),
-    ),
-  );
-  return outcomes;
+/** The outcomes computed for `problems` (null: not fitted there), by their points (cachedFitter's map). */
+export function fitOutcomes(problems: readonly (readonly FlintstonesPoint[])[], outcomes: readonly (FitOutcome | null)[]): Map<string, FitOutcome> {
+  const byPoints = new Map<string, FitOutcome>();
+  problems.forEach((points, k) => {
+    const outcome = outcomes[k];
+    if (outcome) byPoints.set(pointsKey(points), outcome);
+  });
+  return byPoints;
 }

@@ -16,7 +16,7 @@
  */
 import { isMainThread, parentPort, type Worker, workerData } from 'node:worker_threads';
 import { validateAnyConfig } from '../core/config';
-import { flatSummary, flattenSummary } from '../core/sweep';
+import { flatList, flattenSummary } from '../core/sweep';
 import { flatKeys, flatValues } from '../core/sweep/flatValues';
 import type { FlintstonesPoint } from '../core/analysis/flintstones';
 import type { GpuCapabilities } from '../gpu/context';
@@ -34,13 +34,23 @@ export interface WorkerRun {
   readonly config: unknown;
 }
 
+/** What a thread needs before its first task: the main context's capabilities and the density images. */
 interface WorkerSetup {
-  readonly tissueSheetSweepWorker: true;
   readonly capabilities: GpuCapabilities;
   readonly inputs: [string, RunInputs][];
 }
 
-type ToWorker = { type: 'task'; id: number; runs: WorkerRun[] } | { type: 'fit'; id: number; points: readonly FlintstonesPoint[] } | { type: 'abort' };
+/** A thread's workerData: it is a sweep thread; its setup comes as its first message. */
+interface WorkerMark {
+  readonly tissueSheetSweepWorker: true;
+}
+
+type ToWorker =
+  | { type: 'setup'; setup: WorkerSetup }
+  | { type: 'task'; id: number; runs: WorkerRun[] }
+  /** Fits taken from `problems` one at a time by every thread, the next index from the shared counter. */
+  | { type: 'fits'; id: number; problems: readonly (readonly FlintstonesPoint[])[]; counter: SharedArrayBuffer }
+  | { type: 'abort' };
 type FromWorker =
   /**
    * A run's summary, flattened (flattenSummary): its values, and the number of its key list
@@ -48,12 +58,16 @@ type FromWorker =
    */
   | DoneMessage
   /** The summaries of a task's runs, in the order they finished, in one message (fewer messages cost less than many). */
-  | { type: 'dones'; id: number; items: DoneMessage[] }
+  | { type: 'dones'; id: number; items: PackedDone[]; numbers: Float64Array }
   | { type: 'failed'; id: number; error: SerializedError }
   /** A Flintstones fit (sweepFits.ts). */
-  | { type: 'fitted'; id: number; outcome: FitOutcome }
+  | { type: 'fitted'; id: number; outcome: FitOutcome; index: number }
+  /** A thread found no fit of a `fits` message left to take. */
+  | { type: 'fitsDone'; id: number }
   | { type: 'finished'; id: number };
 type DoneMessage = { type: 'done'; id: number; key: string; layout: number; keys?: string[]; numbers: Float64Array; others: [number, unknown][] };
+/** A run's summary in a task's message: its numbers are `length` values from `at` in the message's one array. */
+type PackedDone = Omit<DoneMessage, 'numbers'> & { at: number; length: number };
 
 /** A thread failed or exited under a task: its runs not reported yet can be computed elsewhere. */
 export class SweepThreadLost extends Error {
@@ -70,7 +84,7 @@ interface Slot {
   readonly layouts: Map<number, string[]>;
   current: {
     id: number;
-    done: (key: string, summary: Record<string, unknown>) => void;
+    done: (key: string, summary: unknown) => void;
     resolve: (value?: unknown) => void;
     reject: (error: unknown) => void;
   } | null;
@@ -82,26 +96,45 @@ export class SweepWorkers {
   private waiting: (() => void)[] = [];
   private nextId = 1;
   private closed = false;
+  /** fitMany's batches by message id: the outcomes so far and the threads still taking fits. */
+  private readonly batches = new Map<number, { outcomes: (FitOutcome | null)[]; waiting: Set<Slot>; resolve: () => void }>();
 
-  constructor(size: number, capabilities: GpuCapabilities, inputs: Map<string, RunInputs>) {
-    const setup: WorkerSetup = {
-      tissueSheetSweepWorker: true,
-      capabilities: { ...capabilities },
-      // Threads only run planes and tubes (exact engine): no mesh crosses.
-      inputs: [...inputs].map(([key, value]) => [key, value.densityImage ? { densityImage: value.densityImage } : {}]),
-    };
+  /**
+   * `size` threads; with `capabilities` they are set up at once, else `setUp` must be called
+   * before any task (the threads load their modules meanwhile: the sweep starts them before it
+   * opens its GL context and checks the grid, which the capabilities come from).
+   */
+  constructor(size: number, capabilities?: GpuCapabilities, inputs: Map<string, RunInputs> = new Map()) {
+    const mark: WorkerMark = { tissueSheetSweepWorker: true };
     for (let k = 0; k < size; k++) {
-      const worker = newThread(import.meta.url, setup);
+      const worker = newThread(import.meta.url, mark);
       const slot: Slot = { worker, affinity: null, reserved: false, layouts: new Map(), current: null };
       worker.on('message', (message: FromWorker) => this.receive(slot, message));
       worker.on('error', (error) =>
         this.lost(slot, new SweepThreadLost(`a sweep worker thread failed: ${error instanceof Error ? error.message : String(error)}`)),
       );
       worker.on('exit', (code) => {
-        if (!this.closed) this.lost(slot, new SweepThreadLost(`a sweep worker thread exited (code ${code})`));
+        if (!this.closed && this.slots.includes(slot)) this.lost(slot, new SweepThreadLost(`a sweep worker thread exited (code ${code})`));
       });
       this.slots.push(slot);
     }
+    if (capabilities) this.setUp(capabilities, inputs);
+  }
+
+  /** Gives every thread the main context's capabilities and the density images (once, before any task). */
+  setUp(capabilities: GpuCapabilities, inputs: Map<string, RunInputs>): void {
+    const setup: WorkerSetup = {
+      capabilities: { ...capabilities },
+      // Threads only run planes and tubes (exact engine): no mesh crosses.
+      inputs: [...inputs].map(([key, value]) => [key, value.densityImage ? { densityImage: value.densityImage } : {}]),
+    };
+    for (const slot of this.slots) slot.worker.postMessage({ type: 'setup', setup } satisfies ToWorker);
+  }
+
+  /** Keeps `size` threads (started before the sweep knew how many it needs), ending the others. */
+  async shrink(size: number): Promise<void> {
+    const extra = this.slots.splice(Math.max(0, size));
+    await Promise.all(extra.map((slot) => slot.worker.terminate()));
   }
 
   get size(): number {
@@ -117,7 +150,7 @@ export class SweepWorkers {
    * Computes `runs` in one thread, preferring a free thread whose last task had the same
    * `affinity` (it still holds that Lloyd run); `done` gets each run's summary as it finishes.
    */
-  async run(runs: WorkerRun[], affinity: string, done: (key: string, summary: Record<string, unknown>) => void): Promise<void> {
+  async run(runs: WorkerRun[], affinity: string, done: (key: string, summary: unknown) => void): Promise<void> {
     const slot = await this.claim((free) => free.find((s) => s.affinity === affinity) ?? free.find((s) => s.affinity === null) ?? free[0]);
     slot.affinity = affinity;
     const id = this.nextId++;
@@ -127,13 +160,22 @@ export class SweepWorkers {
     });
   }
 
-  /** Fits the Flintstones law to `points` on a free thread (sweepFits.ts); the thread keeps its Lloyd run. */
-  async fit(points: readonly FlintstonesPoint[]): Promise<FitOutcome> {
-    const slot = await this.claim((free) => free[0]);
+  /**
+   * Fits every problem on the threads, each thread taking the next one left as it gets free (a
+   * counter they share: fits differ a lot in cost, a few of them do not converge and take most
+   * of the time, so fits dealt out in turn left one thread with the slow ones). Every request
+   * goes out at once, queued behind what a thread is doing: the main thread computes the
+   * aggregate meanwhile. Null for a problem no thread fitted (a thread lost: the caller fits it).
+   */
+  fitMany(problems: readonly (readonly FlintstonesPoint[])[]): Promise<(FitOutcome | null)[]> {
+    const outcomes: (FitOutcome | null)[] = problems.map(() => null);
+    const live = this.slots.filter((s) => !s.reserved);
+    if (live.length === 0 || problems.length === 0) return Promise.resolve(outcomes);
     const id = this.nextId++;
-    return new Promise<FitOutcome>((resolve, reject) => {
-      slot.current = { id, done: () => {}, resolve: (value) => resolve(value as FitOutcome), reject };
-      slot.worker.postMessage({ type: 'fit', id, points } satisfies ToWorker);
+    const counter = new SharedArrayBuffer(4);
+    return new Promise((resolve) => {
+      this.batches.set(id, { outcomes, waiting: new Set(live), resolve: () => resolve(outcomes) });
+      for (const slot of live) slot.worker.postMessage({ type: 'fits', id, problems, counter } satisfies ToWorker);
     });
   }
 
@@ -171,21 +213,29 @@ export class SweepWorkers {
 
   private receive(slot: Slot, message: FromWorker): void {
     if (message.type === 'dones') {
-      for (const item of message.items) this.receive(slot, item);
+      for (const { at, length, ...item } of message.items) this.receive(slot, { ...item, numbers: message.numbers.subarray(at, at + length) });
       return;
     }
     if (message.type === 'done' && message.keys) slot.layouts.set(message.layout, message.keys);
+    const batch = message.type === 'fitted' || message.type === 'fitsDone' ? this.batches.get(message.id) : undefined;
+    if (batch) {
+      if (message.type === 'fitted') batch.outcomes[message.index] = message.outcome;
+      else if (message.type === 'fitsDone') this.doneWithBatch(message.id, slot);
+      return;
+    }
+    // A fit of a batch that ended (its thread was counted lost): nobody waits for it.
+    if (message.type === 'fitted' || message.type === 'fitsDone') return;
     const current = slot.current;
     if (!current || current.id !== message.id) return;
     if (message.type === 'done') {
       try {
         const keys = slot.layouts.get(message.layout);
         if (!keys || keys.length !== message.numbers.length) throw new Error('a sweep worker thread sent a summary without its keys');
-        const summary: Record<string, unknown> = {};
-        for (let k = 0; k < keys.length; k++) summary[keys[k]] = message.numbers[k];
-        for (const [k, value] of message.others) summary[keys[k]] = value;
-        // Already flat: the row is made from it as it is (no second copy per run).
-        current.done(message.key, flatSummary(summary));
+        const values: unknown[] = Array.from(message.numbers);
+        for (const [k, value] of message.others) values[k] = value;
+        // Already flat, as its key list and values: the row is made from them as they are
+        // (no object of hundreds of keys per run).
+        current.done(message.key, flatList(keys, values));
       } catch (error) {
         // The thread goes on with its task; its messages for it are ignored from now on.
         slot.reserved = true;
@@ -195,16 +245,24 @@ export class SweepWorkers {
     } else if (message.type === 'failed') {
       this.release(slot);
       current.reject(deserializeError(message.error));
-    } else if (message.type === 'fitted') {
-      this.release(slot);
-      current.resolve(message.outcome);
     } else {
       this.release(slot);
       current.resolve();
     }
   }
 
+  /** `slot` takes no more fits of batch `id`; the batch ends when no thread does. */
+  private doneWithBatch(id: number, slot: Slot): void {
+    const batch = this.batches.get(id);
+    if (!batch) return;
+    batch.waiting.delete(slot);
+    if (batch.waiting.size > 0) return;
+    this.batches.delete(id);
+    batch.resolve();
+  }
+
   private lost(slot: Slot, error: unknown): void {
+    for (const id of [...this.batches.keys()]) this.doneWithBatch(id, slot);
     const current = slot.current;
     slot.reserved = true;
     this.release(slot);
@@ -214,24 +272,35 @@ export class SweepWorkers {
   }
 }
 
-/** The thread's loop: tasks one at a time, each run's summary sent as it finishes. */
-function startWorker(setup: WorkerSetup): void {
+/** The thread's loop: its setup first, then tasks one at a time, each run's summary sent as it finishes. */
+function startWorker(): void {
   const port = parentPort!;
-  const runner = new SheetRunner(capabilitiesOnly(setup.capabilities));
-  const inputs = new Map(setup.inputs);
+  let runner: SheetRunner | null = null;
+  let inputs = new Map<string, RunInputs>();
   let controller = new AbortController();
   /** Per summary shape (flatValues): its layout number, keys, and whether its values line up with the keys. */
   const layouts = new Map<string, { layout: number; keys: string[]; aligned: boolean }>();
   let queue: Promise<void> = Promise.resolve();
   const send = (message: FromWorker) => port.postMessage(message);
   port.on('message', (message: ToWorker) => {
+    if (message.type === 'setup') {
+      runner = new SheetRunner(capabilitiesOnly(message.setup.capabilities));
+      inputs = new Map(message.setup.inputs);
+      return;
+    }
     if (message.type === 'abort') {
       controller.abort();
       return;
     }
-    if (message.type === 'fit') {
-      const { id, points } = message;
-      queue = queue.then(() => send({ type: 'fitted', id, outcome: fitOutcome(points) }));
+    if (message.type === 'fits') {
+      const { id, problems } = message;
+      const next = new Int32Array(message.counter);
+      queue = queue.then(() => {
+        for (let k = Atomics.add(next, 0, 1); k < problems.length; k = Atomics.add(next, 0, 1)) {
+          send({ type: 'fitted', id, index: k, outcome: fitOutcome(problems[k]) });
+        }
+        send({ type: 'fitsDone', id });
+      });
       return;
     }
     const { id, runs } = message;
@@ -239,22 +308,30 @@ function startWorker(setup: WorkerSetup): void {
       if (controller.signal.aborted) controller = new AbortController();
       const { signal } = controller;
       try {
+        const sheets = runner;
+        if (!sheets) throw new Error('a sweep worker thread got a task before its setup');
         // Fewer Lloyd iterations first: one Lloyd run then serves every Voronoi k of the task.
         const order = runs.map((run, k) => ({ run, k, config: validateAnyConfig(run.config) }));
         order.sort((a, b) => a.config.lloyd.maxIterations - b.config.lloyd.maxIterations || a.k - b.k);
         // A task's summaries go out together when it ends, or as they are when it fails.
         const batch: DoneMessage[] = [];
         const flush = () => {
-          if (batch.length > 0)
-            port.postMessage(
-              { type: 'dones', id, items: batch } satisfies FromWorker,
-              batch.map((item) => item.numbers.buffer as ArrayBuffer),
-            );
+          if (batch.length > 0) {
+            // All the numbers in one transferred array (one per run cost more to send).
+            const numbers = new Float64Array(batch.reduce((n, item) => n + item.numbers.length, 0));
+            let at = 0;
+            const items = batch.map(({ numbers: own, ...item }): PackedDone => {
+              numbers.set(own, at);
+              at += own.length;
+              return { ...item, at: at - own.length, length: own.length };
+            });
+            port.postMessage({ type: 'dones', id, items, numbers } satisfies FromWorker, [numbers.buffer]);
+          }
           batch.length = 0;
         };
         try {
           for (const { run, config } of order) {
-            const output = await runner.run(config, { ...inputs.get(run.pointKey), signal, views: false });
+            const output = await sheets.run(config, { ...inputs.get(run.pointKey), signal, views: false });
             // Flat values cross faster than the nested summary (a structured clone per key); the
             // keys are made once per shape of summary (flatValues).
             const summary = sweepSummary(output.result);
@@ -289,4 +366,4 @@ function startWorker(setup: WorkerSetup): void {
   });
 }
 
-if (!isMainThread && (workerData as Partial<WorkerSetup> | null)?.tissueSheetSweepWorker === true) startWorker(workerData as WorkerSetup);
+if (!isMainThread && (workerData as Partial<WorkerMark> | null)?.tissueSheetSweepWorker === true) startWorker();

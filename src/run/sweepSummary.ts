@@ -12,7 +12,7 @@ export function sweepSummary(result: SheetResult): Record<string, unknown> {
     const s = analysis.summary;
     const perSurface: Record<string, unknown> = {};
     s.perSurface.forEach((surface, k) => {
-      const name = (surface.label ?? `surface${k}`).replace(/\s+/g, '');
+      const name = columnName(surface.label ?? `surface${k}`);
       const polygons: Record<string, number> = {};
       SIDE_CLASSES.forEach((sides, c) => (polygons[sides] = surface.polygonDistribution[c]));
       perSurface[name] = { meanSides: surface.meanSides, polygons };
@@ -30,4 +30,16 @@ export function sweepSummary(result: SheetResult): Record<string, unknown> {
     };
   }
   return summary;
+}
+
+/** A surface's label without white space (its column prefix), once per label: a sweep asks thousands of times. */
+const columnNames = new Map<string, string>();
+function columnName(label: string): string {
+  let name = columnNames.get(label);
+  if (name === undefined) {
+    name = label.replace(/\s+/g, '');
+    // Labels are few (the layers of a stack); a bound keeps odd callers from growing it.
+    if (columnNames.size < 10_000) columnNames.set(label, name);
+  }
+  return name;
 }

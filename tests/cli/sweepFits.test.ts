@@ -7,7 +7,7 @@ import { afterAll, describe, expect, it } from 'vitest';
 import { anchoredB, flintstonesLaw, type FlintstonesFit, type FlintstonesPoint } from '../../src/core/analysis/flintstones';
 import { Random } from '../../src/core/random';
 import { expandSweep, flintstonesProblems, sweepFitter, sweepFlintstones } from '../../src/core/sweep';
-import { cachedFitter, fitAll, fitOutcome, pointsKey, type FitOutcome } from '../../src/cli/sweepFits';
+import { cachedFitter, fitOutcome, fitOutcomes, pointsKey, type FitOutcome } from '../../src/cli/sweepFits';
 import { SweepWorkers } from '../../src/cli/sweepWorkers';
 
 const RATIOS = [1, 1.25, 1.5, 1.75, 2, 2.5, 3, 4, 5, 6, 8, 10];
@@ -75,22 +75,22 @@ describe('Flintstones fits made elsewhere', () => {
     const pool = new SweepWorkers(2, { renderer: 'test', maxTextureSize: 4096, floatBlend: false, softwareRenderer: true }, new Map());
     afterAll(() => pool.close());
 
-    it('equal the main thread fits bit for bit, and the aggregate is the same', async () => {
+    it('taken one at a time by every thread (fitMany) equal the main thread fits bit for bit, and the aggregate is the same', async () => {
       const { runs, rows, fields } = sweep();
       const problems = flintstonesProblems(rows, runs, fields);
-      // More fits at once than threads: each waits for a free one.
-      const twice = [...problems, ...problems.map((points) => points.map((p) => ({ ...p, n: p.n + 0.01 })))];
-      const outcomes = await fitAll(twice, (points) => pool.fit(points));
-      expect(outcomes.size).toBe(twice.length);
-      for (const points of twice) {
+      // More problems than threads, some of them the same points, one that cannot be fitted.
+      const flat = [1, 2, 3, 4, 5].map((s) => ({ s, n: 6 - s }));
+      const many = [...problems, flat, ...problems.map((points) => points.map((p) => ({ ...p, n: p.n + 0.02 }))), ...problems];
+      const outcomes = await pool.fitMany(many);
+      expect(outcomes.length).toBe(many.length);
+      many.forEach((points, k) => {
         const here = fitOutcome(points);
-        expect(outcomes.get(pointsKey(points))).toEqual(here);
-        if ('fit' in here)
-          expect(Float64Array.from((outcomes.get(pointsKey(points)) as { fit: FlintstonesFit }).fit.covariance)).toEqual(
-            Float64Array.from(here.fit.covariance),
-          );
-      }
-      expect(JSON.stringify(sweepFlintstones(rows, runs, fields, cachedFitter(outcomes)))).toBe(JSON.stringify(sweepFlintstones(rows, runs, fields)));
+        expect(outcomes[k]).toEqual(here);
+        if ('fit' in here) expect(Float64Array.from((outcomes[k] as { fit: FlintstonesFit }).fit.covariance)).toEqual(Float64Array.from(here.fit.covariance));
+      });
+      const byPoints = fitOutcomes(many, outcomes);
+      expect(JSON.stringify(sweepFlintstones(rows, runs, fields, cachedFitter(byPoints)))).toBe(JSON.stringify(sweepFlintstones(rows, runs, fields)));
+      expect(await pool.fitMany([])).toEqual([]);
     });
   });
 });

@@ -91,8 +91,8 @@ interface FitData {
   readonly w: Float64Array;
   /** Scratch: the law at each ratio, and the residuals either side of a parameter. */
   readonly law: Float64Array;
-  readonly plus: number[];
-  readonly minus: number[];
+  readonly plus: Float64Array;
+  readonly minus: Float64Array;
 }
 
 function fitData(points: readonly FlintstonesPoint[]): FitData {
@@ -110,12 +110,12 @@ function fitData(points: readonly FlintstonesPoint[]): FitData {
     n: Float64Array.from(points, (q) => q.n),
     w: Float64Array.from(points, (q) => (q.sigma ? 1 / q.sigma : 1)),
     law: new Float64Array(ratios.length),
-    plus: new Array<number>(points.length),
-    minus: new Array<number>(points.length),
+    plus: new Float64Array(points.length),
+    minus: new Float64Array(points.length),
   };
 }
 
-function residuals(theta: number[], data: FitData, anchor: number | null, out: number[]): number {
+function residuals(theta: number[], data: FitData, anchor: number | null, out: Float64Array): number {
   const p = parametersOf(theta, anchor);
   const { law, at, n, w } = data;
   for (let i = 0; i < law.length; i++) law[i] = flintstonesLaw(data.ratios[i], p);
@@ -154,7 +154,7 @@ function jacobian(theta: number[], data: FitData, anchor: number | null, J = new
 /** Solves A x = y for a small symmetric positive definite A (Cholesky); null when singular. */
 function solveSpd(A: number[][], y: number[]): number[] | null {
   const n = y.length;
-  const L = Array.from({ length: n }, () => new Array(n).fill(0));
+  const L = zeroMatrix(n);
   for (let i = 0; i < n; i++) {
     for (let j = 0; j <= i; j++) {
       let sum = A[i][j];
@@ -180,10 +180,17 @@ function solveSpd(A: number[][], y: number[]): number[] | null {
   return x;
 }
 
+/** An n x n matrix of zeros (rows as arrays; a plain loop: Array.from with a mapper cost the fits a good part of their time). */
+function zeroMatrix(n: number): number[][] {
+  const rows: number[][] = [];
+  for (let i = 0; i < n; i++) rows.push(new Array<number>(n).fill(0));
+  return rows;
+}
+
 /** JᵀJ and Jᵀr of the row-major m x p Jacobian (summed over the rows in order). */
 function normalEquations(J: Float64Array, p: number, r: ArrayLike<number>): { A: number[][]; g: number[] } {
   const m = J.length / p;
-  const A = Array.from({ length: p }, () => new Array<number>(p).fill(0));
+  const A = zeroMatrix(p);
   const g = new Array<number>(p).fill(0);
   for (let k = 0; k < m; k++) {
     const row = k * p;
@@ -199,10 +206,11 @@ function normalEquations(J: Float64Array, p: number, r: ArrayLike<number>): { A:
 
 function levenbergMarquardt(start: number[], data: FitData, anchor: number | null, sMin: number, maxIterations: number) {
   let theta = start.slice();
-  const r: number[] = new Array(data.at.length);
-  const trial: number[] = new Array(data.at.length);
+  const r = new Float64Array(data.at.length);
+  const trial = new Float64Array(data.at.length);
   let chi = residuals(theta, data, anchor, r);
   const J = new Float64Array(data.at.length * theta.length);
+  const damped = zeroMatrix(theta.length);
   let lambda = 1e-3;
   let iterations = 0;
   let converged = false;
@@ -211,7 +219,8 @@ function levenbergMarquardt(start: number[], data: FitData, anchor: number | nul
     const { A, g } = normalEquations(J, theta.length, r);
     let improved = false;
     while (lambda < 1e12) {
-      const damped = A.map((row, i) => row.map((v, j) => (i === j ? v * (1 + lambda) + 1e-15 : v)));
+      // A with its diagonal damped, into one matrix reused across tries.
+      for (let i = 0; i < A.length; i++) for (let j = 0; j < A.length; j++) damped[i][j] = i === j ? A[i][j] * (1 + lambda) + 1e-15 : A[i][j];
       const step = solveSpd(damped, g);
       if (step) {
         const next = theta.map((t, i) => t + step[i]);
@@ -221,7 +230,7 @@ function levenbergMarquardt(start: number[], data: FitData, anchor: number | nul
             const relative = (chi - chiNext) / Math.max(chi, 1e-300);
             theta = next;
             chi = chiNext;
-            for (let k = 0; k < r.length; k++) r[k] = trial[k];
+            r.set(trial);
             lambda = Math.max(lambda / 10, 1e-12);
             improved = true;
             if (relative < 1e-12) converged = true;

@@ -22,6 +22,7 @@
  */
 import { tQuantile975 } from '../analysis/realizations';
 import { formatCsv } from './csv';
+import { columnPosition, typedCellsOf } from './typedCells';
 import { columnUnit, fileColumn } from './units';
 
 export const RESERVED_COLUMNS = ['key', 'realization', 'seed'] as const;
@@ -50,12 +51,20 @@ const isNumeric = (cell: string): boolean => cell === 'NaN' || (cell.trim() !== 
 
 /** Mean, sample SD, SE and count of the finite values; `missing` counts the others. */
 export function meanSd(values: readonly number[]): ColumnStats {
-  const finite = values.filter(Number.isFinite);
-  const n = finite.length;
+  // Sums from 0 in the values' order (as a reduce over the finite values), without their copy.
+  let n = 0;
+  let sum = 0;
+  for (const v of values) {
+    if (!Number.isFinite(v)) continue;
+    sum += v;
+    n++;
+  }
   const missing = values.length - n;
   if (n === 0) return { mean: NaN, sd: NaN, se: NaN, n, missing };
-  const mean = finite.reduce((a, b) => a + b, 0) / n;
-  const sd = n < 2 ? NaN : Math.sqrt(finite.reduce((a, b) => a + (b - mean) ** 2, 0) / (n - 1));
+  const mean = sum / n;
+  let squares = 0;
+  if (n >= 2) for (const v of values) if (Number.isFinite(v)) squares += (v - mean) ** 2;
+  const sd = n < 2 ? NaN : Math.sqrt(squares / (n - 1));
   return { mean, sd, se: sd / Math.sqrt(n), n, missing };
 }
 
@@ -88,11 +97,21 @@ export function aggregateRows(rows: readonly Record<string, string>[], fields: r
     const point: Record<string, string> = {};
     for (const f of fields) point[f] = g[0][f] ?? '';
     const stats: Record<string, ColumnStats> = {};
+    // A row the sweep made keeps its numbers (typedCells.ts): the same values as its text parsed.
+    const typed = g.map(typedCellsOf);
     for (const c of numeric) {
-      // Number() of a cell that is not a number (text, "NaN") is NaN, left out as missing; a
-      // blank cell would read as 0, so it is NaN too.
+      let header: readonly string[] | null = null;
+      let at = -1;
       stats[c] = meanSd(
-        g.map((r) => {
+        g.map((r, i) => {
+          const cells = typed[i];
+          if (cells) {
+            if (cells.header !== header) at = columnPosition((header = cells.header), c);
+            const value = at < 0 ? undefined : cells.cells[at];
+            if (typeof value === 'number') return value;
+          }
+          // Number() of a cell that is not a number (text, "NaN") is NaN, left out as missing; a
+          // blank cell would read as 0, so it is NaN too.
           const cell = r[c];
           return cell === undefined || cell.trim() === '' ? NaN : Number(cell);
         }),

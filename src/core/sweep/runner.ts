@@ -32,6 +32,7 @@ import { csvField, flattenSummary, formatCsvRow, readCsvTable } from './csv';
 import { fileHeader, plainColumn } from './units';
 import type { Config, SweepRun } from './expand';
 import { valueText } from './expand';
+import { keepTypedCells } from './typedCells';
 
 export type SweepRunner<C extends Config, S> = (config: C, run: SweepRun<C>) => Promise<S>;
 
@@ -132,7 +133,6 @@ export function runCells<C extends Config>(
   header: readonly string[],
   values?: Readonly<Record<string, unknown>>,
 ): { cells: unknown[]; row: Record<string, string>; line: string } {
-  const flat = isFlatSummary(summary) ? summary : flattenSummary(summary);
   const base = new Map<string, unknown>([
     ['key', run.key],
     ['realization', run.realization],
@@ -141,22 +141,32 @@ export function runCells<C extends Config>(
   for (const f of fields) base.set(f, valueText(run.point[f]));
   if (values) for (const [k, v] of Object.entries(values)) base.set(k, v);
   const known = headerSet(header);
-  for (const c in flat) {
-    if (!known.has(c) && !base.has(c)) throw new Error(`run ${run.key}: its summary has a column "${c}" that the sweep's header lacks`);
+  let cells: unknown[];
+  if (isFlatList(summary)) {
+    // Values by position: where each header column's value is, once per key list and header.
+    const at = listPositions(summary.keys, header, known, base, run.key);
+    cells = header.map((h, k) => (base.has(h) ? base.get(h) : at[k] >= 0 ? summary.values[at[k]] : undefined));
+  } else {
+    const flat = isFlatSummary(summary) ? summary : flattenSummary(summary);
+    for (const c in flat) {
+      if (!known.has(c) && !base.has(c)) throw new Error(`run ${run.key}: its summary has a column "${c}" that the sweep's header lacks`);
+    }
+    cells = header.map((h) => (base.has(h) ? base.get(h) : Object.prototype.hasOwnProperty.call(flat, h) ? flat[h] : undefined));
   }
-  const cells = header.map((h) => (base.has(h) ? base.get(h) : Object.prototype.hasOwnProperty.call(flat, h) ? flat[h] : undefined));
   const row: Record<string, string> = {};
   // The record's text from the same conversions (a number's text is its CSV field as it is:
   // String(n) never needs quotes), so each number is turned into text once.
-  let line = '';
+  const parts: string[] = new Array<string>(header.length);
   for (let k = 0; k < header.length; k++) {
     const v = cells[k];
     const text = v === null || v === undefined ? '' : typeof v === 'string' ? v : typeof v === 'object' ? JSON.stringify(v) : String(v);
     row[header[k]] = text;
-    const field = typeof v === 'number' || typeof v === 'bigint' || typeof v === 'boolean' || text === '' ? text : csvField(v);
-    line += k === 0 ? field : `,${field}`;
+    parts[k] = typeof v === 'number' || typeof v === 'bigint' || typeof v === 'boolean' || text === '' ? text : csvField(v);
   }
-  return { cells, row, line: `${line}\r\n` };
+  keepTypedCells(row, header, cells);
+  // One flat string now (a join), not a chain of hundreds of concatenations flattened when the
+  // row is written: rows are made as runs finish, written in a burst after the last one.
+  return { cells, row, line: `${parts.join(',')}\r\n` };
 }
 
 /** Each header's column names as a set, made once per header (runCells runs once per run). */
@@ -173,6 +183,51 @@ export const FLAT_SUMMARY: unique symbol = Symbol('flat sweep summary');
 /** A flat summary (column -> number or text), marked so that it is not flattened again. */
 export function flatSummary(values: Record<string, unknown>): Record<string, unknown> {
   return Object.defineProperty(values, FLAT_SUMMARY, { value: true, enumerable: false });
+}
+
+/**
+ * A flat summary as its column names and values side by side (a sweep thread's message), so no
+ * object of hundreds of keys is built per run; the names are one array per shape of summary.
+ */
+export interface FlatList {
+  readonly keys: readonly string[];
+  readonly values: readonly unknown[];
+}
+
+const FLAT_LIST: unique symbol = Symbol('flat sweep summary as a key list');
+
+/** Marks `keys` (unique column names) and `values` as one flat summary for runCells. */
+export function flatList(keys: readonly string[], values: readonly unknown[]): FlatList {
+  return Object.defineProperty({ keys, values }, FLAT_LIST, { value: true, enumerable: false });
+}
+
+function isFlatList(summary: unknown): summary is FlatList {
+  return typeof summary === 'object' && summary !== null && (summary as { [FLAT_LIST]?: boolean })[FLAT_LIST] === true;
+}
+
+/** Per key list, per header: the position in the list of each header column's value (-1: none). */
+const listPositionsKept = new WeakMap<readonly string[], WeakMap<readonly string[], Int32Array>>();
+
+/**
+ * Where each of `header`'s columns is in `keys`, checking (as for a record) that every key is a
+ * header column or a base column; the check depends on the base's columns only through the
+ * fields and run values, the same for every run of a sweep, but is repeated where a key is missing.
+ */
+function listPositions(keys: readonly string[], header: readonly string[], known: Set<string>, base: Map<string, unknown>, runKey: string): Int32Array {
+  let byHeader = listPositionsKept.get(keys);
+  const kept = byHeader?.get(header);
+  if (kept) return kept;
+  const index = new Map(keys.map((k, n) => [k, n]));
+  for (const c of keys) {
+    if (!known.has(c) && !base.has(c)) throw new Error(`run ${runKey}: its summary has a column "${c}" that the sweep's header lacks`);
+  }
+  const at = Int32Array.from(header, (h) => index.get(h) ?? -1);
+  // Kept only where every key is a header column: the check then holds for any base.
+  if (keys.every((c) => known.has(c))) {
+    if (!byHeader) listPositionsKept.set(keys, (byHeader = new WeakMap()));
+    byHeader.set(header, at);
+  }
+  return at;
 }
 
 function isFlatSummary(summary: unknown): summary is Record<string, unknown> {
@@ -195,6 +250,11 @@ export function readRunsCsv(text: string): ReturnType<typeof readCsvTable> {
   const rows = table.rows.map((row) => Object.fromEntries(table.header.map((h, k) => [plain[k], row[h]])));
   return { ...table, header: plain, rows };
 }
+
+/** A finished run waiting for its turn in the file, with its row when it could be formatted already. */
+type Finished<C extends Config, S> =
+  | { readonly run: SweepRun<C>; readonly summary: S; readonly cells?: undefined }
+  | { readonly run: SweepRun<C>; readonly summary?: undefined; readonly cells: { row: Record<string, string>; line: string } };
 
 export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, S>): Promise<RunSweepResult<C>> {
   const { runs, fields, runner } = options;
@@ -233,23 +293,40 @@ export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, 
   // Rows go out in `runs` order: finished summaries wait in `ready` until every run before them
   // has finished (or failed); appends are serialized through `writes`.
   const position = new Map(remaining.map((run, k) => [run.key, k]));
-  const ready = new Map<number, { run: SweepRun<C>; summary: S } | null>();
+  const ready = new Map<number, Finished<C, S> | null>();
   let cursor = 0;
   let writes: Promise<void> = Promise.resolve();
   /** The 'done' progress of each finished run, given once its row is appended. */
   const announcements = new Map<string, () => void>();
-  const writeRows = (items: { run: SweepRun<C>; summary: S }[]): Promise<void> => {
+  // The file's header, when it is fixed before any run (given, or the existing file's): a row is
+  // then formatted as soon as its run finishes, while later runs are still computing, instead of
+  // when every run before it has finished (most rows of a sweep wait for the last realization).
+  const fixedHeader = header ?? (options.summaryColumns ? [...baseColumns(fields), ...options.summaryColumns] : null);
+  const formatted = (run: SweepRun<C>, summary: S): Finished<C, S> => {
+    if (!fixedHeader) return { run, summary };
+    try {
+      // The summary is not kept once its row is made (it would live on until the row's turn).
+      return { run, cells: runCells(run, fields, summary, fixedHeader, options.runValues?.(run)) };
+    } catch {
+      // A row that cannot be made fails when its turn comes to be written, as it always did.
+      return { run, summary };
+    }
+  };
+  const writeRows = (items: Finished<C, S>[]): Promise<void> => {
     if (items.length === 0) return writes;
     // One append per row (the header with the first), as a caller reading each append expects.
     writes = writes.then(async () => {
-      for (const { run, summary } of items) {
+      for (const item of items) {
+        const { run } = item;
         let text = '';
         if (!header) {
+          // No row is formatted before the header is fixed (`formatted`): the item has its summary.
+          const summary = item.summary as S;
           const summaryColumns = options.summaryColumns ?? Object.keys(flattenSummary(summary)).filter((c) => !baseColumns(fields).includes(c));
           header = [...baseColumns(fields), ...summaryColumns];
           text += formatCsvRow(fileHeader(header));
         }
-        const { row, line } = runCells(run, fields, summary, header, options.runValues?.(run));
+        const { row, line } = item.cells ?? runCells(run, fields, item.summary, header, options.runValues?.(run));
         text += line;
         await options.append(text);
         rows.push(row);
@@ -264,7 +341,7 @@ export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, 
   };
   /** Appends the finished prefix; `all`: every finished row, past gaps too (the sweep stopped). */
   const flush = (all = false): Promise<void> => {
-    const items: { run: SweepRun<C>; summary: S }[] = [];
+    const items: Finished<C, S>[] = [];
     while (cursor < remaining.length && (ready.has(cursor) || all)) {
       const item = ready.get(cursor);
       ready.delete(cursor);
@@ -277,7 +354,7 @@ export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, 
   const settle = (run: SweepRun<C>, summary: S | null): Promise<void> => {
     const at = position.get(run.key);
     if (at === undefined || at < cursor || ready.has(at)) throw new Error(`run ${run.key}: reported twice or not a run of this sweep`);
-    ready.set(at, summary === null ? null : { run, summary });
+    ready.set(at, summary === null ? null : formatted(run, summary));
     return flush();
   };
 
