@@ -14,6 +14,7 @@
 import { appendFileSync, closeSync, mkdirSync, openSync, writeSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { ConfigError, engineNameFor, validateAnyConfig, type AnyConfig } from '../core/config';
+import { estimateRun, threadsWithinBudget, type RunEstimate } from '../core/config/limits';
 import { surfaceLayout } from '../core/config/surfaceLayout';
 import {
   flintstonesProblems,
@@ -117,7 +118,15 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
     let release = () => {};
     try {
       const budget = computeBudget(context.capabilities.maxTextureSize, options.allowLarge);
-      for (const run of layout.runs) if (run.realization === 0) pointConfig(run, (c) => checkRunnable(c, budget));
+      // The largest grid point's run (memory): what each thread may hold beside this thread's run.
+      let largest: { config: AnyConfig; estimate: RunEstimate } | undefined;
+      for (const run of layout.runs) {
+        if (run.realization !== 0) continue;
+        const config = pointConfig(run, (c) => checkRunnable(c, budget));
+        const estimate = estimateRun(config);
+        if (!largest || estimate.bytes > largest.estimate.bytes) largest = { config, estimate };
+      }
+      const threadsForLargestPoint = (wanted: number) => (largest ? threadsWithinBudget(largest.config, largest.estimate, budget, wanted) : wanted);
 
       mkdirSync(options.out, { recursive: true });
       release = lockDirectory(options.out, log);
@@ -185,7 +194,12 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
       const iterationsOf = (run: Run) => configOf(run).lloyd.maxIterations;
       const doneKeys = new Set(plan.rows.map((row) => row.key));
       const groups = new Set(runs.filter((run) => !doneKeys.has(run.key) && onThreads(run)).map((run) => layout.reuseGroup(run)));
-      const threads = Math.min(workers, groups.size);
+      // Each thread holds a run at a time beside this thread's: no more than the memory budget
+      // holds beside the largest grid point's run.
+      const wanted = Math.min(workers, groups.size);
+      const threads = wanted > 0 ? threadsForLargestPoint(wanted) : 0;
+      if (threads < wanted)
+        log(`memory: ${threads} of ${wanted} worker thread${wanted > 1 ? 's' : ''} fit the memory limit beside a run of the largest grid point`);
       // The threads started above, as many as needed (never fewer: `threads` counts a subset of their tasks).
       const pool = threads > 0 ? (prestarted ?? new SweepWorkers(threads)) : null;
       if (prestarted && prestarted !== pool) await prestarted.close();
