@@ -18,7 +18,7 @@
 //     [--cells 200] [--json bench/out/labelAccuracy.json]
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { dirname } from 'node:path';
-import { validateAnyConfig, type ClosedConfig, type ConfigInput } from '../src/core/config';
+import { validateConfig, type ClosedConfig, type ConfigInput } from '../src/core/config';
 import { createHeadlessContext } from '../src/node/headless';
 import { SheetRunner } from '../src/run/runSheet';
 import type { AnalysisRecord } from '../src/core/analysis/record';
@@ -91,7 +91,7 @@ try {
         minContactUm = 0;
       for (const seed of seeds) {
         for (const thickness of thicknesses) {
-          const config = validateAnyConfig({
+          const config = validateConfig({
             surface: surfaces[name],
             cells,
             seed,

@@ -6,7 +6,7 @@
  *   xvfb-run -a npx tsx bench/sweepInProcess.ts [--realizations 2]
  */
 import { readFileSync } from 'node:fs';
-import { validateAnyConfig } from '../src/core/config';
+import { validateConfig } from '../src/core/config';
 import { expandSweep, validateSweepSpec } from '../src/core/sweep';
 import { createHeadlessContext } from '../src/node/headless';
 import { SheetRunner, sweepSummary } from '../src/run/index';
@@ -16,7 +16,7 @@ const at = args.indexOf('--realizations');
 const realizations = at >= 0 ? Number(args[at + 1]) : 2;
 const spec = validateSweepSpec({ ...JSON.parse(readFileSync(new URL('../examples/published-tube-sweep-lab.json', import.meta.url), 'utf8')), realizations });
 const runs = expandSweep(spec);
-const configs = runs.map((run) => validateAnyConfig(run.config));
+const configs = runs.map((run) => validateConfig(run.config));
 const order = runs.map((run, k) => ({ run, k, config: configs[k] }));
 order.sort((a, b) => a.run.realization - b.run.realization || a.config.lloyd.maxIterations - b.config.lloyd.maxIterations || a.k - b.k);
 const context = createHeadlessContext();

@@ -1,5 +1,5 @@
 import { expect, test } from '@playwright/test';
-import { defaultResolution, validateAnyConfig } from '../src/core/config';
+import { defaultResolution, validateConfig } from '../src/core/config';
 import { downloadExport, linkTo, runs, waitForRun } from './appHelpers';
 import { cliRun } from './cli';
 
@@ -36,11 +36,11 @@ test('a link, the element and the CLI run the same config with the schema defaul
     const exact = d.result.analyses.find((a) => a.method === 'exact')!;
     return { config: el.config, percent: exact.summary.percentScutoids, voronoiK: d.headline?.voronoiK };
   });
-  expect(element.config).toEqual(validateAnyConfig(TUBE));
+  expect(element.config).toEqual(validateConfig(TUBE));
   expect(element.voronoiK).toBe(51);
 
   const cli = cliRun<{ config: unknown; analyses: { method: string; summary: { percentScutoids: number } }[] }>(TUBE).result;
-  expect(cli.config).toEqual(validateAnyConfig(TUBE));
+  expect(cli.config).toEqual(validateConfig(TUBE));
   // The same sites, the same exact analysis, whichever entry point ran them.
   expect(element.percent).toBeCloseTo(app, 9);
   expect(cli.analyses.find((a: { method: string }) => a.method === 'exact')!.summary.percentScutoids).toBeCloseTo(element.percent, 9);
@@ -50,7 +50,7 @@ test("the app's default resolution follows the cells until one is typed", async 
   const sphere = { surface: { kind: 'sphere', radius: 40 }, cells: 60, seed: 3, lloyd: { maxIterations: 1 }, sheet: { thickness: 5 } };
   await page.goto(linkTo(sphere));
   await waitForRun(page);
-  const resolutionOf = (cells: number) => defaultResolution(validateAnyConfig({ ...sphere, cells }));
+  const resolutionOf = (cells: number) => defaultResolution(validateConfig({ ...sphere, cells }));
   await expect(page.locator('#run-info')).toContainText(`cube map 6 x ${resolutionOf(60)}²`);
   await expect(page.locator('#field-resolution')).toHaveAttribute('placeholder', `default: ${resolutionOf(60)}`);
 

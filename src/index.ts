@@ -45,10 +45,10 @@ export type { ByConstruction } from './core/analysis/byConstruction';
 // configuration (planes, tubes and closed surfaces); `PlanarConfig` and `ClosedConfig` its two
 // layouts. validateConfig fills every default and resolves the resolution; validateConfigDraft
 // keeps a default resolution null, as forms and links do.
-export { validateAnyConfig as validateConfig, validateConfigDraft, ConfigError, configSchema, defaultResolution, isClosedConfig } from './core/config/index';
+export { validateConfig, validateConfigDraft, ConfigError, configSchema, defaultResolution, isClosedConfig } from './core/config/index';
 export type {
-  AnyConfig as Config,
-  Config as PlanarConfig,
+  Config,
+  PlanarConfig,
   ClosedConfig,
   ConfigDraft,
   ConfigInput,

@@ -3,7 +3,7 @@
 // path (LatestRunner.live on the page's shared runner, as src/app/main.ts runs a drag), with the
 // longest main-thread task of each.
 import '../../src/element/index';
-import { validateAnyConfig, type ConfigInput } from '../../src/core/config';
+import { validateConfig, type ConfigInput } from '../../src/core/config';
 import { LatestRunner } from '../../src/view/pageRunner';
 import type { TissueSheetElement } from '../../src/element/TissueSheetElement';
 
@@ -43,7 +43,7 @@ async function elementChanges(input: { attributes: Record<string, string>; attri
 /** The app's slider path: LatestRunner.live on the shared runner, each value after the last. */
 async function appChanges(input: { config: ConfigInput; field: 'surfaceRatio' | 'thickness'; values: number[] }): Promise<Changes> {
   const runner = new LatestRunner();
-  const base = validateAnyConfig(input.config);
+  const base = validateConfig(input.config);
   await runner.start({ config: base });
   await new Promise((resolve) => setTimeout(resolve, 100));
   longTasks.length = 0;

@@ -2,7 +2,7 @@
 // (the baseline: a SheetRunner on a page WebGL2 context, as before issue 15) and in the worker
 // (WorkerSheetRunner), with the longest main-thread task of each; and <tissue-sheet>.sweep().
 import '../../src/element/index';
-import { validateAnyConfig, type ConfigInput } from '../../src/core/config';
+import { validateConfig, type ConfigInput } from '../../src/core/config';
 import { createCanvasContext, SheetRunner, WorkerSheetRunner } from '../../src/run';
 
 const longTasks: number[] = [];
@@ -16,7 +16,7 @@ async function ratioChanges(input: { config: ConfigInput; ratios: number[]; wher
     input.where === 'page'
       ? new SheetRunner(createCanvasContext(document.createElement('canvas')))
       : new WorkerSheetRunner(() => createCanvasContext(document.createElement('canvas')));
-  const base = validateAnyConfig(input.config);
+  const base = validateConfig(input.config);
   await runner.run(base);
   longTasks.length = 0;
   const ms: number[] = [];

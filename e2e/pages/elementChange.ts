@@ -2,7 +2,7 @@
 // attribute change, the page's long tasks around it, and fresh runs of the same configuration
 // on a runner of their own (nothing cached) to compare it with.
 import '../../src/element/index';
-import type { AnyConfig } from '../../src/core/config';
+import type { Config } from '../../src/core/config';
 import type { TissueSheetElement } from '../../src/element/TissueSheetElement';
 import { createCanvasContext, WorkerSheetRunner, type SheetResult } from '../../src/run';
 import { observeLongTasks } from './longTasks';
@@ -41,7 +41,7 @@ async function change(input: { attributes: Record<string, string>; attribute: st
 }
 
 /** Fresh runs of `config` for `seeds` on a runner of its own (nothing cached): their numbers and headlines. */
-async function fresh(input: { config: AnyConfig; seeds: number[] }) {
+async function fresh(input: { config: Config; seeds: number[] }) {
   const runner = new WorkerSheetRunner(() => createCanvasContext(document.createElement('canvas')));
   try {
     const runs = [];

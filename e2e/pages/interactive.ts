@@ -1,7 +1,7 @@
 // Test page: <tissue-sheet>.sweep() with its sweep-progress events and cancellation, and the
 // page's long tasks while it runs; the pictures the pipeline's worker draws against the page's.
 import '../../src/element/index';
-import { validateAnyConfig } from '../../src/core/config';
+import { validateConfig } from '../../src/core/config';
 import type { TissueSheetSweepProgressDetail } from '../../src/element/events';
 import { drawExactCells } from '../../src/view/exactCells';
 import { runInPage } from '../../src/view/pageRunner';
@@ -80,7 +80,7 @@ function differing(a: Uint8ClampedArray, b: Uint8ClampedArray): number {
  * compared with what the views draw on the page without them (drawExactCells, paintSurface).
  */
 async function pictures(config: unknown) {
-  const valid = validateAnyConfig(config);
+  const valid = validateConfig(config);
   const options = (stack: ViewStack) => ({ highlightScutoids: true, selected: -1, valid: stack.valid, scutoid: stack.scutoid });
   const full = viewStack(await runInPage({ config: valid }));
   const draft = viewStack(await runInPage({ config: valid, pictures: { highlightScutoids: true, selected: -1, draft: true } }));

@@ -1,6 +1,6 @@
 // Test page: the pipeline in its Web Worker against the same pipeline on the page, and the
 // page's longest task while the worker computes.
-import { validateAnyConfig, type ConfigInput } from '../../src/core/config';
+import { validateConfig, type ConfigInput } from '../../src/core/config';
 import { createCanvasContext, SheetRunner } from '../../src/run';
 import { WorkerSheetRunner } from '../../src/run/worker/workerRunner';
 import { observeLongTasks } from './longTasks';
@@ -23,7 +23,7 @@ function comparable(result: unknown): string {
 }
 
 async function compareWorkerAndPage(input: ConfigInput) {
-  const config = validateAnyConfig(input);
+  const config = validateConfig(input);
   const worker = new WorkerSheetRunner(pageContext);
   const iterations: number[] = [];
   const inWorker = await longTasksDuring(() => worker.run(config, { onIteration: (record) => iterations.push(record.iteration) }));
@@ -44,7 +44,7 @@ async function fallBack(input: ConfigInput) {
   const runner = new WorkerSheetRunner(pageContext, () => {
     throw new Error('no workers in this test');
   });
-  const output = await runner.run(validateAnyConfig(input));
+  const output = await runner.run(validateConfig(input));
   return { site: runner.site, cells: output.result.cells.length };
 }
 
@@ -52,13 +52,13 @@ async function fallBack(input: ConfigInput) {
 async function cancelThenRun(input: ConfigInput) {
   const runner = new WorkerSheetRunner(pageContext);
   const controller = new AbortController();
-  const first = runner.run(validateAnyConfig({ ...input, lloyd: { maxIterations: 200, tolerance: 0 } }), { signal: controller.signal });
+  const first = runner.run(validateConfig({ ...input, lloyd: { maxIterations: 200, tolerance: 0 } }), { signal: controller.signal });
   setTimeout(() => controller.abort(), 20);
   const firstError = await first.then(
     () => 'finished',
     (error: Error) => error.name,
   );
-  const second = await runner.run(validateAnyConfig(input));
+  const second = await runner.run(validateConfig(input));
   runner.dispose();
   return { firstError, cells: second.result.cells.length };
 }
@@ -66,7 +66,7 @@ async function cancelThenRun(input: ConfigInput) {
 /** A result-only run (a sweep's): the same result, no label images sent back. */
 async function resultOnly(input: ConfigInput) {
   const runner = new WorkerSheetRunner(pageContext);
-  const config = validateAnyConfig(input);
+  const config = validateConfig(input);
   const full = await runner.run(config);
   const bare = await runner.run(config, { views: false });
   runner.dispose();

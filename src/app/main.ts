@@ -3,7 +3,7 @@
  * charts, the sweep and the exports. The configuration lives in the URL and in localStorage;
  * errors are shown in words and leave the previous result on screen.
  */
-import { ConfigError, validateAnyConfig, validateConfigDraft, type AnyConfig, type ConfigDraft as Config } from '../core/config';
+import { ConfigError, validateConfig, validateConfigDraft, type Config, type ConfigDraft } from '../core/config';
 import { GpuCapabilityError, type SheetOutput } from '../run';
 import { computeContext, isAbort, LatestRunner, onComputeSite, runInPage } from '../view/pageRunner';
 import { initialConfig, readLink, saveConfig, urlWithConfig } from './model/settings';
@@ -40,7 +40,7 @@ let stack: ViewStack | null = null;
  * The form's config of the result on screen (a default resolution left null), which the address
  * and the saved session hold: it reproduces the result and keeps following the form's defaults.
  */
-let shownDraft: Config | null = null;
+let shownDraft: ConfigDraft | null = null;
 /** The draft of the latest run asked for (JSON). */
 let lastDraft = '';
 /** Whether the latest run asked for was a slider's live run (its pictures are drafts). */
@@ -67,7 +67,7 @@ function setState(state: 'running' | 'done' | 'error' | 'cancelled' | 'no-webgl'
  * Shows an error: a refusal in a biologist's words (model/refusal.ts), the engine's own message
  * on a details line when the main line replaced it.
  */
-function showError(error: unknown, config: AnyConfig | null = null): void {
+function showError(error: unknown, config: Config | null = null): void {
   const { message, details } =
     error instanceof ConfigError || error instanceof GpuCapabilityError || error instanceof Error
       ? explainRefusal(error, config)
@@ -118,7 +118,7 @@ function isLinkConfig(config: unknown): boolean {
 }
 
 /** A configuration that cannot run: a link's refusal stays until dismissed, an edit's until the next run. */
-function refuse(error: unknown, fromLink: boolean, config: AnyConfig | null = null): void {
+function refuse(error: unknown, fromLink: boolean, config: Config | null = null): void {
   const message = error instanceof Error ? error.message : String(error);
   setState(fromLink ? 'refused' : 'error');
   if (fromLink) linkAlert.show(`This link's configuration was not run: ${message}`);
@@ -171,7 +171,7 @@ const sweep = new SweepPanel($('#sweep'), {
   config: () => validateConfigDraft(controls.config),
   onError: showError,
 });
-mountLloydMovie($('#cells-title').closest('section')!, { config: () => validateAnyConfig(controls.config), onError: showError });
+mountLloydMovie($('#cells-title').closest('section')!, { config: () => validateConfig(controls.config), onError: showError });
 const opener = bindExports($('.exports'), {
   stack: () => stack,
   sweepCsv: () => sweep.csv,
@@ -235,7 +235,7 @@ function showCharts(shown: ViewStack, live: boolean): void {
   charts.showStack(shown);
 }
 
-async function show(output: SheetOutput, draft: Config, live = false, opened = false): Promise<void> {
+async function show(output: SheetOutput, draft: ConfigDraft, live = false, opened = false): Promise<void> {
   let shown = viewStack(output);
   // A headline over realizations already computed for this configuration and n is shown at once.
   const prepared = realizations.prepare(shown, opened);
@@ -269,14 +269,14 @@ async function show(output: SheetOutput, draft: Config, live = false, opened = f
  * Validates and runs `draft`; on success the result replaces the one on screen. `live` (a slider
  * being dragged) waits for the run in flight instead of cancelling it, so pictures stream.
  */
-async function run(draft: Config, live = false): Promise<void> {
+async function run(draft: ConfigDraft, live = false): Promise<void> {
   lastDraft = JSON.stringify(draft);
   lastRunLive = live;
-  let config: AnyConfig;
-  let input: Config;
+  let config: Config;
+  let input: ConfigDraft;
   try {
     input = validateConfigDraft(draft);
-    config = validateAnyConfig(input);
+    config = validateConfig(input);
   } catch (error) {
     refuse(error, isLinkConfig(draft));
     return;
@@ -369,7 +369,7 @@ async function redrawInFull(): Promise<void> {
   }
 }
 
-function runWith(change: (config: Config) => Config): void {
+function runWith(change: (config: ConfigDraft) => ConfigDraft): void {
   const next = change(controls.config);
   controls.setConfig(next);
   void run(next);

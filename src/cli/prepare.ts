@@ -6,7 +6,7 @@
  */
 import { readFileSync, statSync } from 'node:fs';
 import { totalmem } from 'node:os';
-import type { AnyConfig } from '../core/config';
+import type { Config } from '../core/config';
 import { surfaceLayout } from '../core/config/surfaceLayout';
 import { checkLimits, DEFAULT_MAX_WORK, type ComputeBudget, type RunEstimate } from '../core/config/limits';
 import type { GrayImage } from '../core/density';
@@ -55,7 +55,7 @@ export function computeBudget(maxTextureSize: number, allowLarge: boolean): Comp
 export const RAISE_HINT = 'pass --allow-large to lift the work and memory limits';
 
 /** Feasibility, scale guards and budget of one validated config; throws ConfigError (exit 2). */
-export function checkRunnable(config: AnyConfig, budget: ComputeBudget): RunEstimate {
+export function checkRunnable(config: Config, budget: ComputeBudget): RunEstimate {
   surfaceLayout(config).checkFeasible();
   return checkLimits(config, budget, RAISE_HINT);
 }
@@ -66,7 +66,7 @@ export interface RunInputs {
 }
 
 /** Loads (once, through `sources`) the density image or mesh a config needs. */
-export async function loadInputs(config: AnyConfig, sources: Sources): Promise<RunInputs> {
+export async function loadInputs(config: Config, sources: Sources): Promise<RunInputs> {
   const inputs: RunInputs = {};
   if (config.density.kind === 'image') inputs.densityImage = await sources.densityImage(config.density.src);
   if (config.surface.kind === 'mesh') inputs.meshFile = await sources.mesh(config.surface.src);

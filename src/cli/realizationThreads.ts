@@ -21,7 +21,7 @@
 import { isMainThread, parentPort, type Worker, workerData } from 'node:worker_threads';
 import type { Headline } from '../core/analysis/headline';
 import { combineHeadlines } from '../core/analysis/realizations';
-import type { AnyConfig } from '../core/config';
+import type { Config } from '../core/config';
 import type { GpuCapabilities } from '../gpu/context';
 import { runSheet } from '../run/index';
 import { InterruptedError } from './errors';
@@ -31,7 +31,7 @@ import { capabilitiesOnly, deserializeError, newThread, serializeError, type Ser
 interface ThreadSetup {
   readonly tissueSheetRealizationThread: true;
   readonly capabilities: GpuCapabilities;
-  readonly config: AnyConfig;
+  readonly config: Config;
   readonly inputs: RunInputs;
   /** The seeds of realizations 1..n (index 0, the drawn one, is the main thread's). */
   readonly seeds: number[];
@@ -59,7 +59,7 @@ export class RealizationThreads {
    */
   constructor(
     count: number,
-    config: AnyConfig,
+    config: Config,
     private readonly seeds: readonly number[],
     capabilities: GpuCapabilities,
     inputs: RunInputs,

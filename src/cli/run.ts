@@ -9,7 +9,7 @@ import { dirname } from 'node:path';
 import { describeHeadline } from '../core/analysis/headline';
 import type { Headline } from '../core/analysis/headline';
 import { DEFAULT_REALIZATIONS, headlineOverRealizations, realizationSeeds } from '../core/analysis/realizations';
-import { ConfigError, validateAnyConfig } from '../core/config';
+import { ConfigError, validateConfig } from '../core/config';
 import { threadsWithinBudget } from '../core/config/limits';
 import { surfaceLayout } from '../core/config/surfaceLayout';
 import { createHeadlessContext } from '../node/headless';
@@ -29,7 +29,7 @@ export async function runCommand(options: CliOptions, signal: AbortSignal, log: 
   // JSON.parse keeps "__proto__" as an own key; refuse it before any code copies the object.
   const forbidden = findForbiddenKey(json, []);
   if (forbidden) throw new InputError(`${options.input}: ${forbidden}: not allowed as a key (it would reach an object prototype); remove it`);
-  const config = validateAnyConfig(json);
+  const config = validateConfig(json);
   checkOutFile(options.out, [options.input], options.force);
   // Schema-level scale checks first (no GPU needed), then the texture limit once a context exists.
   const estimate = checkRunnable(config, computeBudget(Number.MAX_SAFE_INTEGER, options.allowLarge));

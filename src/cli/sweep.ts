@@ -13,7 +13,7 @@
  */
 import { appendFileSync, closeSync, mkdirSync, openSync, writeSync } from 'node:fs';
 import { dirname, join } from 'node:path';
-import { ConfigError, engineNameFor, validateAnyConfig, type AnyConfig } from '../core/config';
+import { ConfigError, engineNameFor, validateConfig, type Config } from '../core/config';
 import { estimateRun, threadsWithinBudget, type RunEstimate } from '../core/config/limits';
 import { surfaceLayout } from '../core/config/surfaceLayout';
 import {
@@ -87,10 +87,10 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
   const runs = shard ? shardRuns(layout.runs, shard, layout.reuseGroup) : layout.ordered;
   // A grid point's config (the same for all its runs but for `seed`: for the engine, chain and
   // iterations; a run itself is computed from its own config).
-  const valid = new Map<string, AnyConfig>();
-  const configOf = (run: Run): AnyConfig => {
+  const valid = new Map<string, Config>();
+  const configOf = (run: Run): Config => {
     let config = valid.get(run.pointKey);
-    if (!config) valid.set(run.pointKey, (config = validateAnyConfig(run.config)));
+    if (!config) valid.set(run.pointKey, (config = validateConfig(run.config)));
     return config;
   };
   // The threads start now, before the inputs, the GL context and the checks below (about half a
@@ -112,14 +112,14 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
     const inputs = new Map<string, RunInputs>();
     for (const run of layout.runs) {
       if (inputs.has(run.pointKey)) continue;
-      inputs.set(run.pointKey, await atPoint(run, () => loadInputs(validateAnyConfig(run.config), sources)));
+      inputs.set(run.pointKey, await atPoint(run, () => loadInputs(validateConfig(run.config), sources)));
     }
     const context = createHeadlessContext();
     let release = () => {};
     try {
       const budget = computeBudget(context.capabilities.maxTextureSize, options.allowLarge);
       // The largest grid point's run (memory): what each thread may hold beside this thread's run.
-      let largest: { config: AnyConfig; estimate: RunEstimate } | undefined;
+      let largest: { config: Config; estimate: RunEstimate } | undefined;
       for (const run of layout.runs) {
         if (run.realization !== 0) continue;
         const config = pointConfig(run, (c) => checkRunnable(c, budget));
@@ -214,7 +214,7 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
         const next = mainThread.then(async () => {
           const order = [...task].sort((a, b) => iterationsOf(a) - iterationsOf(b));
           for (const run of order)
-            done(run, sweepSummary((await runner.run(validateAnyConfig(run.config), { ...inputs.get(run.pointKey), signal, views: false })).result));
+            done(run, sweepSummary((await runner.run(validateConfig(run.config), { ...inputs.get(run.pointKey), signal, views: false })).result));
         });
         mainThread = next.catch(() => {});
         return next;
@@ -224,7 +224,7 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
       let result;
       let fit: Promise<FlintstonesFitter> | undefined;
       try {
-        result = await runSweep<AnyConfig & Record<string, unknown>, unknown>({
+        result = await runSweep<Config & Record<string, unknown>, unknown>({
           runs,
           fields,
           summaryColumns: [...layout.geometry, ...summary],
@@ -232,8 +232,7 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
           append: (text) => rowsFile.append(text),
           // Each row carries its run's base geometry beside what the run measured.
           runValues: layout.geometryOf,
-          runner: async (config, run) =>
-            sweepSummary((await runner.run(validateAnyConfig(config), { ...inputs.get(run.pointKey), signal, views: false })).result),
+          runner: async (config, run) => sweepSummary((await runner.run(validateConfig(config), { ...inputs.get(run.pointKey), signal, views: false })).result),
           tasks: {
             key: layout.reuseGroup,
             before: (a, b) => firstOfChain.get(chainOf(a))! - firstOfChain.get(chainOf(b))! || iterationsOf(a) - iterationsOf(b),
@@ -304,9 +303,9 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
 }
 
 /** The validated config of a run's grid point, checked by `check`; errors name the point. */
-function pointConfig(run: Run, check: (config: AnyConfig) => void): AnyConfig {
+function pointConfig(run: Run, check: (config: Config) => void): Config {
   try {
-    const config = validateAnyConfig(run.config);
+    const config = validateConfig(run.config);
     check(config);
     return config;
   } catch (error) {

@@ -8,7 +8,7 @@ import { execFileSync } from 'node:child_process';
 import { lstatSync, readFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { validateAnyConfig, type AnyConfig } from '../core/config';
+import { validateConfig, type Config } from '../core/config';
 import {
   aggregateColumns,
   aggregateRows,
@@ -35,7 +35,7 @@ import { seededKey } from '../run/index';
 import { InputError } from './errors';
 import { writeFileAtomic } from './output';
 
-export type Run = SweepRun<AnyConfig & Record<string, unknown>>;
+export type Run = SweepRun<Config & Record<string, unknown>>;
 
 export interface SweepLayout {
   readonly fields: string[];
@@ -52,17 +52,17 @@ export interface SweepLayout {
   readonly header: string[];
   /** Runs with the same group share a relaxed seeded surface (SheetRunner reuses it). */
   readonly reuseGroup: (run: Run) => string;
-  readonly resume: ResumeSpec<AnyConfig & Record<string, unknown>>;
+  readonly resume: ResumeSpec<Config & Record<string, unknown>>;
 }
 
 /**
  * The layout of a spec's sweep. `pointConfig` validates (and may check) one grid point's config;
  * it is called once per grid point, in grid order.
  */
-export function sweepLayout(spec: ValidSweepSpec, pointConfig: (run: Run) => AnyConfig = (run) => validateAnyConfig(run.config)): SweepLayout {
+export function sweepLayout(spec: ValidSweepSpec, pointConfig: (run: Run) => Config = (run) => validateConfig(run.config)): SweepLayout {
   const fields = variedFields(spec);
   const runs = expandSweep(spec) as Run[];
-  const configs = new Map<string, AnyConfig>();
+  const configs = new Map<string, Config>();
   for (const run of runs) if (!configs.has(run.pointKey)) configs.set(run.pointKey, pointConfig(run));
   // Every column a point may fill (the engine, and so the methods, can depend on the renderer).
   const summary = sweepColumns(configs.values());

@@ -15,7 +15,7 @@
  * starts the thread's loop when it finds its workerData.
  */
 import { isMainThread, parentPort, type Worker, workerData } from 'node:worker_threads';
-import { validateAnyConfig } from '../core/config';
+import { validateConfig } from '../core/config';
 import { flatList, flattenSummary } from '../core/sweep';
 import { flatKeys, flatValues } from '../core/sweep/flatValues';
 import type { FlintstonesPoint } from '../core/analysis/flintstones';
@@ -311,7 +311,7 @@ function startWorker(): void {
         const sheets = runner;
         if (!sheets) throw new Error('a sweep worker thread got a task before its setup');
         // Fewer Lloyd iterations first: one Lloyd run then serves every Voronoi k of the task.
-        const order = runs.map((run, k) => ({ run, k, config: validateAnyConfig(run.config) }));
+        const order = runs.map((run, k) => ({ run, k, config: validateConfig(run.config) }));
         order.sort((a, b) => a.config.lloyd.maxIterations - b.config.lloyd.maxIterations || a.k - b.k);
         // A task's summaries go out together when it ends, or as they are when it fails.
         const batch: DoneMessage[] = [];

@@ -1,5 +1,5 @@
 import { layerStepOf, steppedOffsets } from './config/methods';
-import type { AnyConfig, Config } from './config/types';
+import type { Config, PlanarConfig } from './config/types';
 import type { Grid } from './grid';
 
 /** One surface of the sheet's stack: the seeded surface, a layer, or the other surface. */
@@ -21,7 +21,7 @@ export interface StackSurface {
  * cylinders: the same strip with the circumference scaled by R_k / R and square texels kept
  * (the width in texels scales too); a plane's are identical copies.
  */
-export function surfaceStack(config: Config, seededGrid: Grid): StackSurface[] {
+export function surfaceStack(config: PlanarConfig, seededGrid: Grid): StackSurface[] {
   const { sheet, surface } = config;
   const otherName = sheet.seeded === 'basal' ? 'apical' : 'basal';
   const stack: StackSurface[] = [];
@@ -50,7 +50,7 @@ export function surfaceStack(config: Config, seededGrid: Grid): StackSurface[] {
  * the sweep's columns name (sweep/columns.ts). The other surface lies at `thickness` along the
  * normal (outward or inward), or on a tube at radius R·s or R/s for a surface ratio s.
  */
-export function sheetOffsets(config: AnyConfig): number[] {
+export function sheetOffsets(config: Config): number[] {
   const { sheet, surface } = config;
   const sign = sheet.direction === 'outward' ? 1 : -1;
   let otherOffset = sign * sheet.thickness;
@@ -67,7 +67,7 @@ export function sheetOffsets(config: AnyConfig): number[] {
  * protocol's): in surface-ratio units on a tube (s = 1, 1 + step, ..., the other surface), in µm
  * of thickness elsewhere (planes and closed surfaces).
  */
-export function stackOffsets(config: AnyConfig, otherOffset: number): number[] {
+export function stackOffsets(config: Config, otherOffset: number): number[] {
   const { sheet, surface } = config;
   const step = layerStepOf(sheet);
   if (step === null) {

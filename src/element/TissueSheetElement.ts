@@ -9,9 +9,9 @@
  * Each feature beside the run has a file of its own here (listed in docs/architecture.md,
  * "Consumers").
  */
-import type { AnyConfig, ConfigInput } from '../core/config';
+import type { Config, ConfigInput } from '../core/config';
 import type { GrayImage } from '../core/density';
-import { ConfigError, validateAnyConfig } from '../core/config';
+import { ConfigError, validateConfig } from '../core/config';
 import type { IterationRecord, MeshFile, SheetOutput, SheetResult, ComputeSite } from '../run';
 import { isAbort, LatestRunner, computeSite as pipelineSite, computeContext } from '../view/pageRunner';
 import { sweepInPage } from '../view/pageSweep';
@@ -74,13 +74,13 @@ export class TissueSheetElement extends HTMLElement {
    * `config` property), and `configError` says what is wrong; `run()` and the `error` event
    * report it.
    */
-  get config(): AnyConfig {
+  get config(): Config {
     try {
       const config = this.readConfig();
       this.lastValid = config;
       return config;
     } catch {
-      return this.lastValid ?? this.last?.config ?? validateAnyConfig(this.base ?? {});
+      return this.lastValid ?? this.last?.config ?? validateConfig(this.base ?? {});
     }
   }
 
@@ -94,9 +94,9 @@ export class TissueSheetElement extends HTMLElement {
     }
   }
 
-  private lastValid: AnyConfig | null = null;
+  private lastValid: Config | null = null;
 
-  private readConfig(): AnyConfig {
+  private readConfig(): Config {
     return configFromAttributes(this, this.base, this.mesh?.name);
   }
 
@@ -187,7 +187,7 @@ export class TissueSheetElement extends HTMLElement {
 
   /** Runs the sheet now; resolves with the result (also sent as a `result` event). */
   async run(): Promise<SheetResult> {
-    let config: AnyConfig;
+    let config: Config;
     let n: number;
     try {
       config = this.readConfig();

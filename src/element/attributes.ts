@@ -8,7 +8,7 @@
  * Which config fields are attributes is listed here; how each one parses (number, nullable
  * number, string, boolean) and which surface kinds take it are read from the config schema.
  */
-import { ConfigError, configSchema, validateAnyConfig, type AnyConfig, type ConfigInput, type SurfaceConfig } from '../core/config';
+import { ConfigError, configSchema, validateConfig, type Config, type ConfigInput, type SurfaceConfig } from '../core/config';
 import { densityPreset, surfaceOfKind } from '../core/config/presets';
 import { layoutOfKind, surfaceLayout } from '../core/config/surfaceLayout';
 import { kindsWithField, schemaField } from '../core/config/schemaFields';
@@ -107,7 +107,7 @@ function number(text: string, attribute: string, path: string): number {
  * without a surface ratio uses the thickness. A mesh without `src` uses `meshName` (the
  * element's meshFile) or the organoid sample.
  */
-export function configFromAttributes(element: Element, base: ConfigInput | null, meshName?: string): AnyConfig {
+export function configFromAttributes(element: Element, base: ConfigInput | null, meshName?: string): Config {
   const input = structuredClone(base ?? {}) as Record<string, unknown>;
   // The schema's default surface, written out so that dimension attributes (radius, length) apply to it.
   input.surface ??= structuredClone(DEFAULT_SURFACE);
@@ -136,9 +136,9 @@ export function configFromAttributes(element: Element, base: ConfigInput | null,
   const kind = (input.surface as { kind: string }).kind;
   if (!element.hasAttribute('surface-ratio') && (kind !== 'tube' || element.hasAttribute('thickness'))) sheet.surfaceRatio = null;
   input.sheet = sheet;
-  let config = validateAnyConfig(input);
+  let config = validateConfig(input);
   const density = element.getAttribute('density');
-  if (density !== null && density !== config.density.kind) config = validateAnyConfig({ ...config, density: densityPreset(density, config) });
+  if (density !== null && density !== config.density.kind) config = validateConfig({ ...config, density: densityPreset(density, config) });
   if (surfaceLayout(config).uniformDensityOnly && density === null && config.density.kind !== 'uniform') config = { ...config, density: { kind: 'uniform' } };
   return config;
 }

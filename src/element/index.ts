@@ -17,7 +17,7 @@ export type {
   TissueSheetWaitingDetail,
   TissueSheetWarningDetail,
 } from './events';
-export type { AnyConfig as Config, Config as PlanarConfig, ClosedConfig, ConfigInput } from '../core/config';
+export type { Config, PlanarConfig, ClosedConfig, ConfigInput } from '../core/config';
 export type { MeshFile } from '../run/closedMesh';
 export type { GrayImage } from '../core/density';
 export type { SheetResult, AnalysisRecord, CellRecord, CellStatisticsRecord, ClosedSurfaceRecord, SurfaceRecord } from '../run/result';

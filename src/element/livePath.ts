@@ -6,14 +6,14 @@
  * again with its full pictures (the worker's cached seeded surface: the same numbers) and only
  * the 3D view is redrawn.
  */
-import type { AnyConfig } from '../core/config';
+import type { Config } from '../core/config';
 import type { GrayImage } from '../core/density';
 import type { MeshFile, SheetOutput } from '../run';
 import { FULL_PICTURES_DELAY_MS, runInPage, sheetOnlyChange, type LatestRunner } from '../view/pageRunner';
 
 /** The configuration and inputs of the result on screen. */
 interface Shown {
-  readonly config: AnyConfig;
+  readonly config: Config;
   readonly image: GrayImage | null;
   readonly mesh: MeshFile | null;
   readonly output: SheetOutput;
@@ -29,7 +29,7 @@ export class LivePath {
   ) {}
 
   /** Whether a run of `config` on these inputs changes only `sheet.*` of the result on screen. */
-  applies(config: AnyConfig, image: GrayImage | null, mesh: MeshFile | null): boolean {
+  applies(config: Config, image: GrayImage | null, mesh: MeshFile | null): boolean {
     return this.shown !== null && this.shown.image === image && this.shown.mesh === mesh && sheetOnlyChange(this.shown.config, config);
   }
 

@@ -5,7 +5,7 @@
  * compute together. The element keeps that worker while connected (with the seeded surfaces it
  * caches), and a newer run, or disconnecting, stops the realizations of the previous one.
  */
-import type { AnyConfig } from '../core/config';
+import type { Config } from '../core/config';
 import { checkRealizations, DEFAULT_REALIZATIONS, realizationSeed } from '../core/analysis/realizations';
 import type { WorkerSheetRunner } from '../run';
 import { acquirePipelineRunner, releasePipelineRunner, type RunRequest } from '../view/pageRunner';
@@ -17,7 +17,7 @@ export function realizationsOf(attribute: string | null): number {
 }
 
 /** The status line while realization `done + 1` of `total` runs (`done` of them finished). */
-export function realizationStatus(config: AnyConfig, done: number, total: number): string {
+export function realizationStatus(config: Config, done: number, total: number): string {
   return `Realization ${done + 1} of ${total} (seed ${realizationSeed(config.seed, done + 1)}) for the mean % scutoids…`;
 }
 
@@ -27,7 +27,7 @@ export class ElementRealizations {
   private controller: AbortController | null = null;
 
   /** Starts realizations 2..n of `config` (stopping the previous run's): combine them with realization 1's output. */
-  start(config: AnyConfig, n: number, inputs: Pick<RunRequest, 'densityImage' | 'meshFile'>): StartedRealizations {
+  start(config: Config, n: number, inputs: Pick<RunRequest, 'densityImage' | 'meshFile'>): StartedRealizations {
     this.controller?.abort();
     this.controller = new AbortController();
     // One worker kept: a run superseded while its realizations are still being cancelled would

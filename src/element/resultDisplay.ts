@@ -5,7 +5,7 @@
  * the realizations replaces its number once they are combined (the cells drawn stay
  * realization 1's).
  */
-import type { AnyConfig } from '../core/config';
+import type { Config } from '../core/config';
 import { byConstruction } from '../core/analysis/byConstruction';
 import { describeRealizations, type Headline } from '../core/analysis/headline';
 import type { AnalysisRecord, SheetResult } from '../run';
@@ -47,7 +47,7 @@ export function showHeadline(label: PercentLabel, analysis: AnalysisRecord | nul
  * The status line of a finished result: why it is 0 % by construction when the geometry fixes
  * it, else what ran (`over`: the realizations in words, from showHeadline).
  */
-export function resultStatus(config: AnyConfig, result: SheetResult, analysis: AnalysisRecord | null, over: string): string {
+export function resultStatus(config: Config, result: SheetResult, analysis: AnalysisRecord | null, over: string): string {
   const rule = byConstruction(config);
   if (rule) return rule.message;
   const iterations = result.lloyd.iterations.length;

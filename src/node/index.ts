@@ -3,7 +3,7 @@
  * dependency, loaded when a context is first asked for) and PNG density images read from disk.
  * Pair it with the pipeline from the main entry:
  *
- *   import { runSheet, validateAnyConfig } from 'tissue-sheet';
+ *   import { runSheet, validateConfig } from 'tissue-sheet';
  *   import { createHeadlessContext } from 'tissue-sheet/node';
  */
 export { createHeadlessContext, headlessRendererName } from './headless';

@@ -1,4 +1,4 @@
-import { engineNameFor, type AnyConfig } from '../core/config';
+import { engineNameFor, type Config } from '../core/config';
 import { LAYOUTS } from '../core/config/surfaceLayout';
 import { chooseCentroidPath, type CentroidPath, type SurfaceFamilyName } from '../gpu/centroidPolicy';
 import type { GpuCapabilities } from '../gpu/context';
@@ -32,7 +32,7 @@ export interface ExactEngineChoice {
  *   software renderer (there the "GPU" is the CPU, and the exact computation costs a fraction of
  *   a jump flood), unless the labels method is asked for, and the GPU engine otherwise.
  */
-export function chooseEngine(config: AnyConfig, family: SurfaceFamilyName, capabilities: GpuCapabilities): EngineChoice {
+export function chooseEngine(config: Config, family: SurfaceFamilyName, capabilities: GpuCapabilities): EngineChoice {
   if (engineNameFor(config, capabilities) === 'exact') {
     return exact(
       family,

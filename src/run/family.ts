@@ -1,5 +1,5 @@
 import type { SurfaceAdjacency } from '../core/analysis';
-import type { AnyConfig } from '../core/config';
+import type { Config } from '../core/config';
 import type { GrayImage } from '../core/density';
 import type { SurfaceFamilyName } from '../gpu/centroidPolicy';
 import type { GpuContext } from '../gpu/context';
@@ -72,7 +72,7 @@ export interface Labeller<Layer, Projected> {
  * C: the configs it runs; Geometry: the prepared seeded surface; Sites: the seeded sites as the family keeps them;
  * Layer: one surface of the stack; Projected: the sites moved onto a layer.
  */
-export interface SurfaceFamily<C extends AnyConfig, Geometry, Sites, Layer extends StackLayer, Projected> {
+export interface SurfaceFamily<C extends Config, Geometry, Sites, Layer extends StackLayer, Projected> {
   readonly name: SurfaceFamilyName;
   /** Checks what can be checked before any work, then builds the seeded surface. */
   prepare(config: C, inputs: RunInputs): Promise<Geometry>;

@@ -6,7 +6,7 @@ import {
   type LabProtocolSettings,
   type SurfaceAdjacency,
 } from '../core/analysis';
-import { checkFeasible, checkSheet, layerStepOf, makeGrid, minContactPixelsOf, type Config } from '../core/config';
+import { checkFeasible, checkSheet, layerStepOf, makeGrid, minContactPixelsOf, type PlanarConfig } from '../core/config';
 import { densityField, type GrayImage } from '../core/density';
 import { exactVoronoi } from '../core/exact';
 import { ExactLloydRun, exactDensity, exactSurface, PlanarVoronoi, rasterizeCells } from '../core/exactEngine';
@@ -39,7 +39,7 @@ type PlanarSites = Float32Array;
  * the same strip with the circumference scaled), square texels, periodic edges where the
  * surface wraps. Exact adjacency is the Delaunay of the unrolled sites (src/core/exact.ts).
  */
-export const planarFamily: SurfaceFamily<Config, PlanarGeometry, PlanarSites, StackSurface, PlanarSites> = {
+export const planarFamily: SurfaceFamily<PlanarConfig, PlanarGeometry, PlanarSites, StackSurface, PlanarSites> = {
   name: 'planar grid',
 
   async prepare(config, inputs: RunInputs) {
@@ -144,7 +144,7 @@ export function defaultMinContactLength(grid: Grid, cells: number): number {
  * Initial sites follow the point density a CVT converges to, rho^(d/(d+2)) = sqrt(rho) in 2D
  * (Gersho; Du et al.), not rho itself: Lloyd then has little mass to move across the sheet.
  */
-function placementDensity(config: Config, density: Float32Array): Float32Array | undefined {
+function placementDensity(config: PlanarConfig, density: Float32Array): Float32Array | undefined {
   if (config.density.kind === 'uniform') return undefined;
   return density.map(Math.sqrt);
 }
@@ -216,7 +216,7 @@ function sameValues(a: ArrayLike<number>, b: ArrayLike<number>): boolean {
 }
 
 /** The lab protocol's knobs as the config sets them. */
-function labSettings(sheet: Config['sheet']): LabProtocolSettings {
+function labSettings(sheet: PlanarConfig['sheet']): LabProtocolSettings {
   return {
     ...LAB_PROTOCOL,
     layerStep: layerStepOf(sheet) ?? LAB_PROTOCOL.layerStep,
@@ -226,7 +226,7 @@ function labSettings(sheet: Config['sheet']): LabProtocolSettings {
 }
 
 /** A tube's surfaces differ in width, so each gets an engine of its own grid. */
-function planarLabeller(context: GpuContext, config: Config, choice: EngineChoice): Labeller<StackSurface, PlanarSites> {
+function planarLabeller(context: GpuContext, config: PlanarConfig, choice: EngineChoice): Labeller<StackSurface, PlanarSites> {
   return {
     label(layer, sites) {
       // The exact engine makes no label textures: exactLabels draws its cells instead.

@@ -1,4 +1,4 @@
-import type { AnyConfig } from '../core/config';
+import type { Config } from '../core/config';
 import type { GpuContext } from '../gpu/context';
 import type { GpuEngine } from '../gpu/engine';
 import type { IterationRecord, LloydIterations } from '../core/iterationRecord';
@@ -26,7 +26,7 @@ export interface SeededSurface<Geometry, Sites> {
  * a time (a page yields between iterations; a signal cancels). Depends only on the config's
  * fields other than `sheet`, so runs that differ only in the sheet reuse it (SheetRunner).
  */
-export async function relaxSeededSurface<C extends AnyConfig, G, S, L extends StackLayer, P>(
+export async function relaxSeededSurface<C extends Config, G, S, L extends StackLayer, P>(
   family: SurfaceFamily<C, G, S, L, P>,
   config: C,
   context: GpuContext,

@@ -1,7 +1,7 @@
 import type { ByConstruction } from '../core/analysis/byConstruction';
 import type { Headline } from '../core/analysis/headline';
 import type { AnalysisRecord } from '../core/analysis/record';
-import type { AnyConfig } from '../core/config';
+import type { Config } from '../core/config';
 import type { Grid } from '../core/grid';
 import type { Vec3 } from '../core/surface';
 import type { IterationRecord } from '../gpu/lloyd';
@@ -51,7 +51,7 @@ export type { Headline } from '../core/analysis/headline';
 export interface SheetResult {
   readonly software: { readonly name: 'tissue-sheet'; readonly version: string };
   /** The configuration with every default filled in: rerunning it reproduces this result. */
-  readonly config: AnyConfig;
+  readonly config: Config;
   readonly seed: number;
   readonly grid: GridRecord;
   /** The GPU engine's context and passes; null when the exact engine ran (see `engine`). */

@@ -1,5 +1,5 @@
 import { byConstruction, runHeadline } from '../core/analysis';
-import type { AnyConfig, ClosedConfig, Config } from '../core/config';
+import type { Config, ClosedConfig, PlanarConfig } from '../core/config';
 import { surfaceLayout } from '../core/config/surfaceLayout';
 import type { GpuContext } from '../gpu/context';
 import { version } from '../version';
@@ -22,7 +22,7 @@ export type { RunInputs, RunOptions } from './family';
  * surface and Lloyd -> projection onto layers and the other surface -> labels -> adjacency ->
  * statistics -> the documented result. Same config, same result.
  */
-export function runSheet(config: AnyConfig, context: GpuContext, options: RunOptions = {}): Promise<SheetOutput> {
+export function runSheet(config: Config, context: GpuContext, options: RunOptions = {}): Promise<SheetOutput> {
   return new SheetRunner(context).run(config, options);
 }
 
@@ -51,13 +51,13 @@ export class SheetRunner {
   }
 
   /** The one place a run's surface family is chosen: the family of the config's layout (core/config/surfaceLayout.ts). */
-  run(config: AnyConfig, options: RunOptions = {}): Promise<SheetOutput> {
+  run(config: Config, options: RunOptions = {}): Promise<SheetOutput> {
     return surfaceLayout(config).name === 'cube map'
       ? this.runOn(cubeMapFamily, config as ClosedConfig, options)
-      : this.runOn(planarFamily, config as Config, options);
+      : this.runOn(planarFamily, config as PlanarConfig, options);
   }
 
-  private async runOn<C extends AnyConfig, G, S, L extends StackLayer, P>(
+  private async runOn<C extends Config, G, S, L extends StackLayer, P>(
     family: SurfaceFamily<C, G, S, L, P>,
     config: C,
     callbacks: RunOptions,
@@ -119,7 +119,7 @@ export class SheetRunner {
    * Lloyd run when it is the same run (same config but for `sheet` and `lloyd.maxIterations`) and
    * has not gone past that many iterations; else from a new one.
    */
-  private async fromChain<C extends AnyConfig, G, S, L extends StackLayer, P>(
+  private async fromChain<C extends Config, G, S, L extends StackLayer, P>(
     family: SurfaceFamily<C, G, S, L, P>,
     config: C,
     engine: EngineChoice,
@@ -171,7 +171,7 @@ class LloydChain<G, S> {
     return this.relaxation.iterations;
   }
 
-  static async start<C extends AnyConfig, G, S, L extends StackLayer, P>(
+  static async start<C extends Config, G, S, L extends StackLayer, P>(
     family: SurfaceFamily<C, G, S, L, P>,
     config: C,
     context: GpuContext,
@@ -227,14 +227,14 @@ class LloydChain<G, S> {
 }
 
 /** What a Lloyd run depends on: the config without its `sheet` section and `lloyd.maxIterations`. */
-export function chainKey(config: AnyConfig): string {
+export function chainKey(config: Config): string {
   const { sheet: _sheet, lloyd, ...rest } = config;
   const { maxIterations: _max, ...lloydRest } = lloyd;
   return JSON.stringify({ ...rest, lloyd: lloydRest });
 }
 
 /** Everything the seeded surface depends on: the config without its `sheet` section. */
-export function seededKey(config: AnyConfig): string {
+export function seededKey(config: Config): string {
   const { sheet: _sheet, ...rest } = config;
   return JSON.stringify(rest);
 }

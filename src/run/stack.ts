@@ -1,5 +1,5 @@
 import { analyzeSurfaces, withMinBoundaryLength, type SurfaceAdjacency } from '../core/analysis';
-import { analysisMethods, type AnyConfig } from '../core/config';
+import { analysisMethods, type Config } from '../core/config';
 import type { GpuContext } from '../gpu/context';
 import { analysisRecord } from '../core/analysis';
 import { analysisCellTable, cellRecordsOf, cellTable, type CellTable, type ResultCellTables } from './cellTables';
@@ -29,7 +29,7 @@ export interface SheetStack {
  * computes the scutoid statistics from the label adjacency and, where the surface has one, the
  * exact adjacency.
  */
-export async function analyzeStack<C extends AnyConfig, G, S, L extends StackLayer, P>(
+export async function analyzeStack<C extends Config, G, S, L extends StackLayer, P>(
   family: SurfaceFamily<C, G, S, L, P>,
   config: C,
   seeded: SeededSurface<G, S>,

@@ -4,7 +4,7 @@
  * memory here, under its name, and the config keeps only the name (`surface.src` without a
  * "/"); a link or a later visit with such a name asks for the file again.
  */
-import { ConfigError, type AnyConfig } from '../core/config';
+import { ConfigError, type Config } from '../core/config';
 import type { MeshFile } from '../run';
 import { fetchSourceBytes } from './sources';
 
@@ -31,7 +31,7 @@ const fetched = new Map<string, Promise<MeshFile>>();
  * The mesh file of a mesh config: `given` (the element's meshFile property), an uploaded file
  * of that name, or the URL fetched once and kept. Null for other surfaces.
  */
-export async function meshFileFor(config: AnyConfig, given?: MeshFile | null): Promise<MeshFile | null> {
+export async function meshFileFor(config: Config, given?: MeshFile | null): Promise<MeshFile | null> {
   if (config.surface.kind !== 'mesh') return null;
   if (given) return given;
   const { src } = config.surface;

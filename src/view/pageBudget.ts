@@ -4,7 +4,7 @@
  * configuration alone (core/config/limits.ts, shared with the CLI) and refused before anything
  * is allocated. A page cannot raise the budget: the CLI and the library can (`--allow-large`).
  */
-import type { AnyConfig } from '../core/config';
+import type { Config } from '../core/config';
 import { checkLimits, type ComputeBudget, type RunEstimate } from '../core/config/limits';
 
 /**
@@ -22,6 +22,6 @@ export function pageBudget(maxTextureSize: number): ComputeBudget {
 }
 
 /** Throws a ConfigError naming the field, the estimate and the limit when `config` is over budget. */
-export function checkPageBudget(config: AnyConfig, maxTextureSize: number): RunEstimate {
+export function checkPageBudget(config: Config, maxTextureSize: number): RunEstimate {
   return checkLimits(config, pageBudget(maxTextureSize), RAISE_HINT);
 }

@@ -17,7 +17,7 @@
  * file name only. When other bytes arrive under a name already run, the runner is replaced, so
  * a surface relaxed on the old file is never reused for the new one.
  */
-import type { AnyConfig } from '../core/config';
+import type { Config } from '../core/config';
 import type { GrayImage } from '../core/density';
 import {
   createCanvasContext,
@@ -90,7 +90,7 @@ export function onComputeSite(listener: (site: ComputeSite) => void): () => void
 }
 
 export interface RunRequest {
-  config: AnyConfig;
+  config: Config;
   signal?: AbortSignal;
   onIteration?: (record: IterationRecord, maxIterations: number) => void;
   /** A decoded density image; else an image density's `src` is fetched and decoded. */
@@ -114,13 +114,13 @@ export const FULL_PICTURES_DELAY_MS = 400;
  * True when `next` differs from `previous` in `sheet.*` only (and differs): the worker's
  * converged seeded surface serves it, the change the live path (LatestRunner.live) is for.
  */
-export function sheetOnlyChange(previous: AnyConfig, next: AnyConfig): boolean {
+export function sheetOnlyChange(previous: Config, next: Config): boolean {
   return seededKey(previous) === seededKey(next) && JSON.stringify(previous.sheet) !== JSON.stringify(next.sheet);
 }
 
 const decoded = new Map<string, Promise<GrayImage>>();
 
-async function densityImageFor(config: AnyConfig, given?: GrayImage): Promise<GrayImage | undefined> {
+async function densityImageFor(config: Config, given?: GrayImage): Promise<GrayImage | undefined> {
   if (config.density.kind !== 'image') return undefined;
   if (given) return given;
   const { src } = config.density;
@@ -135,7 +135,7 @@ async function densityImageFor(config: AnyConfig, given?: GrayImage): Promise<Gr
 
 /** The inputs a run needs besides its config: the decoded density image and the mesh file. */
 export async function runInputs(
-  config: AnyConfig,
+  config: Config,
   request: Pick<RunRequest, 'densityImage' | 'meshFile'> = {},
 ): Promise<{ densityImage?: GrayImage; meshFile?: MeshFile }> {
   const meshFile = await meshFileFor(config, request.meshFile);

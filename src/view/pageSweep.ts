@@ -15,7 +15,7 @@
  * The pipeline runs on a pool of workers of the sweep's own (acquirePipelineRunner, see
  * defaultPageWorkers), given back at the end; each takes one realization's Lloyd run (chainKey).
  */
-import { ConfigError, validateAnyConfig, type AnyConfig } from '../core/config';
+import { ConfigError, validateConfig, type Config } from '../core/config';
 import { surfaceLayout } from '../core/config/surfaceLayout';
 import {
   aggregateColumns,
@@ -48,7 +48,7 @@ import { chainKey } from '../run/runSheet';
 import { tQuantile975 } from '../core/analysis/realizations';
 import { acquirePipelineRunner, isAbort, releasePipelineRunner, runInputs } from './pageRunner';
 
-type Run = SweepRun<AnyConfig & Record<string, unknown>>;
+type Run = SweepRun<Config & Record<string, unknown>>;
 
 export interface PageSweepProgress {
   phase: 'done' | 'error';
@@ -125,7 +125,7 @@ export interface SweepPlan {
   text: Set<string>;
   /** Geometry and summary columns each grid point fills. */
   filled: Map<string, Set<string>>;
-  configs: Map<string, AnyConfig>;
+  configs: Map<string, Config>;
 }
 
 /** Plans already made, by spec object: a panel plans before it runs, and runs plan again. */
@@ -143,7 +143,7 @@ function makePlan(input: unknown, maxRuns?: number): SweepPlan {
   const spec = validateSweepSpec(input, maxRuns === undefined ? {} : { maxRuns });
   const fields = variedFields(spec);
   const runs = expandSweep(spec);
-  const configs = new Map<string, AnyConfig>();
+  const configs = new Map<string, Config>();
   for (const run of runs) if (!configs.has(run.pointKey)) configs.set(run.pointKey, pointConfig(run));
   const summary = sweepColumns(configs.values());
   const geometry = geometryColumns(configs.values(), fields);
@@ -168,16 +168,16 @@ function makePlan(input: unknown, maxRuns?: number): SweepPlan {
  * another, in order of first appearance, so each realization is relaxed once per sweep.
  */
 export function seededOrder(runs: readonly Run[]): Run[] {
-  const keyed = runs.map((run) => ({ run, key: seededKey(validateAnyConfig(run.config)) }));
+  const keyed = runs.map((run) => ({ run, key: seededKey(validateConfig(run.config)) }));
   const first = new Map<string, number>();
   keyed.forEach(({ key }, index) => first.has(key) || first.set(key, index));
   return keyed.sort((a, b) => first.get(a.key)! - first.get(b.key)! || a.run.index - b.run.index).map(({ run }) => run);
 }
 
 /** A grid point's validated, feasible config; errors name the point. */
-function pointConfig(run: Run): AnyConfig {
+function pointConfig(run: Run): Config {
   try {
-    const config = validateAnyConfig(run.config);
+    const config = validateConfig(run.config);
     surfaceLayout(config).checkFeasible();
     return config;
   } catch (error) {
@@ -220,7 +220,7 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
   let aborted = false;
   let result: Awaited<ReturnType<typeof runSweep>> | null = null;
   try {
-    result = await runSweep<AnyConfig & Record<string, unknown>, Record<string, unknown>>({
+    result = await runSweep<Config & Record<string, unknown>, Record<string, unknown>>({
       runs,
       fields,
       summaryColumns: [...plan.geometry, ...summary],
@@ -246,7 +246,7 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
           try {
             const order = [...task].sort((a, b) => iterationsOf(a) - iterationsOf(b));
             for (const run of order) {
-              const valid = validateAnyConfig(run.config);
+              const valid = validateConfig(run.config);
               const inputs = await runInputs(valid);
               // Only the summary is kept: no label images cross from the worker.
               const output = await runner.run(valid, { signal: options.signal, views: false, ...inputs });

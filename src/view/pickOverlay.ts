@@ -7,7 +7,7 @@
  * cell in the picture below it.
  */
 import * as THREE from 'three';
-import type { Config, SurfaceConfig } from '../core/config';
+import type { PlanarConfig, SurfaceConfig } from '../core/config';
 import type { Grid } from '../core/grid';
 import { embed } from '../core/surface';
 import { surfaceSegments } from './surfaceGeometry';
@@ -171,5 +171,5 @@ export function surfaceOutline(stack: ViewStack, surface: ViewSurface, id: numbe
   const { grid } = surface.image;
   const polygon = cellOutline(grid, outlineCells(surface.cells), id);
   if (polygon.length < 6) return null;
-  return outlineObject(outlinePositions((stack.result.config as Config).surface, grid, surface.offset, polygon), materials);
+  return outlineObject(outlinePositions((stack.result.config as PlanarConfig).surface, grid, surface.offset, polygon), materials);
 }

@@ -10,7 +10,7 @@
  * back (the element does, issue 27: its result event waits for the headline), so both workers
  * compute at once; `realizationsHeadline` starts them once a result is there (the app).
  */
-import type { AnyConfig } from '../core/config';
+import type { Config } from '../core/config';
 import type { Headline } from '../core/analysis/headline';
 import { headlineOverRealizations, realizationSeeds } from '../core/analysis/realizations';
 import type { SheetOutput, WorkerSheetRunner } from '../run';
@@ -40,7 +40,7 @@ export interface StartedRealizations {
 
 /** Sends realizations 2..n of `config` to their worker now (nothing when n is 1); `runner`: the caller's own. */
 export function startRealizations(
-  config: AnyConfig,
+  config: Config,
   n: number,
   options: { signal?: AbortSignal; inputs?: Pick<RunRequest, 'densityImage' | 'meshFile'>; runner?: WorkerSheetRunner } = {},
 ): StartedRealizations {

@@ -10,7 +10,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import type { ViewStack } from './stack';
-import type { Config } from '../core/config';
+import type { PlanarConfig } from '../core/config';
 import { closedCellAt, closedSurfaceGeometry } from './closedSurfaceObject';
 import { closedCellsMaterial, disposeClosedCells, setClosedPaint } from './closedMaterial';
 import { sheetBounds, sheetPose, solidPose, type CameraPose, type SheetBounds } from './cameraFit';
@@ -331,7 +331,7 @@ export class SheetView3D {
         const paint = { highlightScutoids: this.highlight, selected: -1 };
         const material = this.material('textured', surface.index);
         material.map = surfaceTexture(stack, surface, paint, this.renderer.capabilities.getMaxAnisotropy());
-        mesh = new THREE.Mesh(surfaceGeometry((config as Config).surface, surface.image.grid, surface.offset), material);
+        mesh = new THREE.Mesh(surfaceGeometry((config as PlanarConfig).surface, surface.image.grid, surface.offset), material);
       }
       mesh.name = surface.name;
       mesh.visible = visible[surface.index] ?? true;

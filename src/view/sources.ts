@@ -15,7 +15,7 @@
  * (SECURITY.md, "Foreign sources under the CSP"). Without that meta (the element in someone
  * else's page) an approved source is fetched directly, under the host page's own policy.
  */
-import { ConfigError, type AnyConfig } from '../core/config';
+import { ConfigError, type Config } from '../core/config';
 import { MAX_MESH_BYTES, MAX_PNG_BYTES } from '../core/inputLimits';
 
 export type SourceField = 'surface.src' | 'density.src';
@@ -58,7 +58,7 @@ export function foreignSource(field: SourceField, src: string, pageHref: string)
 }
 
 /** Every source of `config` that needs the user's approval (not yet approved). */
-export function pendingSources(config: AnyConfig, pageHref: string): ForeignSource[] {
+export function pendingSources(config: Config, pageHref: string): ForeignSource[] {
   const found: ForeignSource[] = [];
   if (config.surface.kind === 'mesh') {
     const s = foreignSource('surface.src', config.surface.src, pageHref);

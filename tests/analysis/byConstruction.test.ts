@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { byConstruction, noValidCells } from '../../src/core/analysis/byConstruction';
-import { makeGrid, validateAnyConfig, type AnyConfig, type Config } from '../../src/core/config';
+import { makeGrid, validateConfig, type Config, type PlanarConfig } from '../../src/core/config';
 import { exactVoronoi } from '../../src/core/exact';
 import { projectSites, surfaceStack } from '../../src/core/sheetGeometry';
 import { randomSites } from './helpers';
@@ -8,8 +8,8 @@ import { randomSites } from './helpers';
 const tube = { kind: 'tube', radius: 256 / (2 * Math.PI), length: 512 };
 const plane = { kind: 'plane', width: 512, height: 512 };
 
-function config(surface: object, sheet: object): AnyConfig {
-  return validateAnyConfig({ surface, resolution: 128, cells: 60, sheet });
+function config(surface: object, sheet: object): Config {
+  return validateConfig({ surface, resolution: 128, cells: 60, sheet });
 }
 
 /**
@@ -17,7 +17,7 @@ function config(surface: object, sheet: object): AnyConfig {
  * the stack and compare the exact Voronoi neighbour sets. Returns the number of cells whose
  * neighbours differ anywhere in the stack.
  */
-function changedCells(c: Config, seed: number): number {
+function changedCells(c: PlanarConfig, seed: number): number {
   const grid = makeGrid(c);
   const stack = surfaceStack(c, grid);
   const sites = randomSites(grid, c.cells, seed, 2);
@@ -70,7 +70,7 @@ describe('byConstruction', () => {
       [tube, { thickness: 40, direction: 'inward' }],
     ];
     for (const [surface, sheet] of cases) {
-      const c = config(surface, sheet) as Config;
+      const c = config(surface, sheet) as PlanarConfig;
       // Summed over a few realizations: a flagged case never changes a neighbour; an unflagged
       // one (a strongly curved tube) does for some sites.
       const changed = [1, 2, 3].reduce((sum, seed) => sum + changedCells(c, seed), 0);

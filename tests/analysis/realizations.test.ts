@@ -102,11 +102,11 @@ describe('headline over realizations', () => {
 describe('omitted methods', () => {
   it('"both" on the exact engine names the labels method left out and why', async () => {
     const { omittedMethods, describeOmitted } = await import('../../src/core/analysis/headline');
-    const { validateAnyConfig } = await import('../../src/core/config');
-    const auto = validateAnyConfig({ sheet: { surfaceRatio: 2 } });
+    const { validateConfig } = await import('../../src/core/config');
+    const auto = validateConfig({ sheet: { surfaceRatio: 2 } });
     expect(omittedMethods(auto, ['exact'])).toEqual([{ method: 'labels', reason: expect.stringContaining('engine "auto" took the exact engine') }]);
     expect(omittedMethods(auto, ['labels', 'exact'])).toEqual([]);
-    const exact = validateAnyConfig({ engine: 'exact', sheet: { surfaceRatio: 2, adjacency: 'labels' } });
+    const exact = validateConfig({ engine: 'exact', sheet: { surfaceRatio: 2, adjacency: 'labels' } });
     expect(describeOmitted({ omittedMethods: omittedMethods(exact, ['exact']) })).toMatch(/^labels method left out: engine "exact" ran Lloyd/);
   });
 });

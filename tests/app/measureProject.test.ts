@@ -5,7 +5,7 @@
  * again, give the saved numbers. Bad sections are refused naming the field.
  */
 import { beforeAll, describe, expect, it } from 'vitest';
-import { validateConfig } from '../planarConfig';
+import { validatePlanarConfig } from '../planarConfig';
 import { measureTissue, type MeasuredResult } from '../../src/core/measure';
 import { fromBase64, readMeasuredSection, sameMeasurement, toBase64, type MeasuredSection } from '../../src/app/model/measureProject';
 import { openParsed, parseFileJson, projectJson } from '../../src/app/model/project';
@@ -27,7 +27,7 @@ const measure = (list: { name: string; bytes: Uint8Array }[]) =>
   );
 
 beforeAll(async () => {
-  const config = validateConfig({ surface: { kind: 'plane', width: 100, height: 100 }, resolution: 64, cells: 12, seed: 1, lloyd: { maxIterations: 1 } });
+  const config = validatePlanarConfig({ surface: { kind: 'plane', width: 100, height: 100 }, resolution: 64, cells: 12, seed: 1, lloyd: { maxIterations: 1 } });
   output = await runSheet(config, context);
   const sites = randomSites(30, 128, 96, 4);
   const labels = sites.map((_, i) => 2 + 5 * i);

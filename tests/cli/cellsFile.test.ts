@@ -11,7 +11,7 @@ import { describe, expect, it } from 'vitest';
 import { errorLine, exitCodeFor } from '../../src/cli/errors';
 import { cellsFilePath, MAX_CELL_RECORDS_IN_JSON } from '../../src/cli/output';
 import { checkRunnable, computeBudget } from '../../src/cli/prepare';
-import { validateAnyConfig } from '../../src/core/config';
+import { validateConfig } from '../../src/core/config';
 import { readResultFile } from '../../src/node/resultFile';
 import { CELLS_FILE_FORMAT, decodeCellsFile, type CellsFileRecord } from '../../src/run/cellTables';
 
@@ -114,7 +114,7 @@ describe('tissue-sheet run --cells-file', () => {
 
 describe('a run whose cells do not fit is refused up front', () => {
   it('16 million cells: one line naming cells, exit 2, before anything is computed', () => {
-    const config = validateAnyConfig({
+    const config = validateConfig({
       surface: { kind: 'plane', width: 10000, height: 10000, periodicX: true, periodicY: true },
       resolution: 16384,
       cells: 16_000_000,
@@ -133,7 +133,7 @@ describe('a run whose cells do not fit is refused up front', () => {
     expect(line).toMatch(/^cells: this run needs about [\d.]+ GiB of memory \(16000000 cells on 2 surfaces/);
     expect(line).not.toMatch(/\n/);
     // A million cells fit a 4 GiB budget (measured: 1.5 GB peak with one thread, docs/benchmark.md).
-    const million = validateAnyConfig({ ...config, resolution: 4100, cells: 1_000_000 });
+    const million = validateConfig({ ...config, resolution: 4100, cells: 1_000_000 });
     expect(checkRunnable(million, { ...budget, maxBytes: 4 * 2 ** 30 }).bytes).toBeLessThan(2 * 2 ** 30);
   });
 });

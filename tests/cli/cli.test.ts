@@ -4,7 +4,7 @@ import { hostname, tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { encode } from 'fast-png';
 import { describe, expect, it } from 'vitest';
-import { validateAnyConfig } from '../../src/core/config';
+import { validateConfig } from '../../src/core/config';
 import { geometryValues, readCsvTable, readRunsCsv, summaryColumns } from '../../src/core/sweep';
 
 // The CLI from its sources (same main() as bin/tissue-sheet.mjs, which runs the compiled build).
@@ -245,7 +245,7 @@ describe('tissue-sheet sweep', () => {
     expect(table.header).toContain('exact.percentScutoids');
     expect(table.header).toContain('labels.layer1.meanSides');
     for (const row of table.rows) {
-      const config = validateAnyConfig({ ...small, sheet: { surfaceRatio: 1.5, adjacency: row['sheet.adjacency'], layers: Number(row['sheet.layers']) } });
+      const config = validateConfig({ ...small, sheet: { surfaceRatio: 1.5, adjacency: row['sheet.adjacency'], layers: Number(row['sheet.layers']) } });
       // the real summary fills only columns predicted for its config, each method all or none
       const possible = new Set(summaryColumns(config));
       const geometry = new Set(Object.keys(geometryValues(config, ['sheet.adjacency', 'sheet.layers'])));
@@ -384,7 +384,7 @@ describe('closed surfaces through the CLI (issue 24)', () => {
         }
       }
       // the header is exactly what the config's description predicts
-      const predicted = summaryColumns(validateAnyConfig(base));
+      const predicted = summaryColumns(validateConfig(base));
       for (const column of predicted) expect(table.header).toContain(column);
       const aggregate = readCsvTable(readFileSync(join(out, 'aggregate.csv'), 'utf8'));
       for (const row of aggregate.rows) expect(row['exact.percentScutoids.n']).toBe('1');

@@ -15,7 +15,7 @@ import { parseMergeArgs } from '../../src/cli/merge';
 import { checkRunnable, computeBudget, loadInputs, readJsonFile } from '../../src/cli/prepare';
 import { Sources } from '../../src/cli/sources';
 import { sweepLayout } from '../../src/cli/sweepFiles';
-import { validateAnyConfig } from '../../src/core/config';
+import { validateConfig } from '../../src/core/config';
 import { fileHeader, formatCsvRow, parseShard, planResume, ResumeError, validateSweepSpec, type ValidSweepSpec } from '../../src/core/sweep';
 
 const dir = mkdtempSync(join(tmpdir(), 'tissue-sheet-corpus-'));
@@ -46,7 +46,7 @@ async function expectRefused(action: () => unknown, names: RegExp) {
 
 const tube = { surface: { kind: 'tube', radius: 40, length: 300 }, resolution: 128, cells: 24 };
 const budget = computeBudget(8192, false);
-const config = (c: unknown) => () => checkRunnable(validateAnyConfig(c), budget);
+const config = (c: unknown) => () => checkRunnable(validateConfig(c), budget);
 
 describe('bad input corpus: configs', () => {
   const cases: [string, unknown, RegExp][] = [
@@ -167,8 +167,8 @@ describe('bad input corpus: runs.csv rows', () => {
 
 describe('bad input corpus: meshes and images', () => {
   const sources = new Sources({ baseDir: dir, allowNetwork: false });
-  const mesh = (name: string) => validateAnyConfig({ surface: { kind: 'mesh', src: join(dir, name) }, cells: 24 });
-  const image = (name: string) => validateAnyConfig({ ...tube, density: { kind: 'image', src: join(dir, name) } });
+  const mesh = (name: string) => validateConfig({ surface: { kind: 'mesh', src: join(dir, name) }, cells: 24 });
+  const image = (name: string) => validateConfig({ ...tube, density: { kind: 'image', src: join(dir, name) } });
   const png = (w: number, h: number) => Buffer.from(encode({ width: w, height: h, data: new Uint8Array(4 * w * h).fill(200), depth: 8, channels: 4 }));
   const meshCases: [string, string, string | Buffer, RegExp][] = [
     ['an empty OBJ', 'empty.obj', '', /empty\.obj/],
@@ -209,7 +209,7 @@ describe('bad input corpus: meshes and images', () => {
   }
   it('refuses an http(s) density image without --allow-network', async () => {
     await expectRefused(
-      () => loadInputs(validateAnyConfig({ ...tube, density: { kind: 'image', src: 'https://example.org/d.png' } }), sources),
+      () => loadInputs(validateConfig({ ...tube, density: { kind: 'image', src: 'https://example.org/d.png' } }), sources),
       /density\.src|--allow-network/,
     );
   });

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { ConfigError, validateAnyConfig } from '../../src/core/config';
+import { ConfigError, validateConfig } from '../../src/core/config';
 import { checkBudget, checkLimits, estimateRun, MAX_EXTENT_UM, MIN_EXTENT_UM, threadsWithinBudget } from '../../src/core/config/limits';
 import { surfaceLayout } from '../../src/core/config/surfaceLayout';
 
@@ -8,7 +8,7 @@ const tube = { surface: { kind: 'tube', radius: 16, length: 200 }, resolution: 6
 
 function refusal(input: unknown, limits = budget): ConfigError {
   try {
-    checkLimits(validateAnyConfig(input), limits, 'pass --allow-large');
+    checkLimits(validateConfig(input), limits, 'pass --allow-large');
   } catch (error) {
     expect(error).toBeInstanceOf(ConfigError);
     return error as ConfigError;
@@ -22,7 +22,7 @@ describe('scale guards', () => {
     expect(refusal({ ...tube, surface: { kind: 'plane', width: 100, height: 1e-20 } }).message).toMatch(/^surface\.height: 1e-20 µm is outside/);
     expect(refusal({ ...tube, surface: { kind: 'sphere', radius: 1e9 } }).field).toBe('surface.radius');
     for (const side of [MIN_EXTENT_UM, MAX_EXTENT_UM]) {
-      expect(() => checkLimits(validateAnyConfig({ ...tube, surface: { kind: 'plane', width: side, height: side } }), budget, '')).not.toThrow();
+      expect(() => checkLimits(validateConfig({ ...tube, surface: { kind: 'plane', width: side, height: side } }), budget, '')).not.toThrow();
     }
   });
 
@@ -33,7 +33,7 @@ describe('scale guards', () => {
     const fixable = refusal({ ...tube, surface: { kind: 'tube', radius: 3, length: 4000 }, resolution: 1024 });
     // 2π·3 µm around, 4000 µm long: 8 texels around need resolution 8 x 4000 / 18.85 = 1698
     expect(fixable.message).toMatch(/5 x 1024 texels.*raise resolution to at least 1698/);
-    const fixed = validateAnyConfig({ ...tube, surface: { kind: 'tube', radius: 3, length: 4000 }, resolution: 1698 });
+    const fixed = validateConfig({ ...tube, surface: { kind: 'tube', radius: 3, length: 4000 }, resolution: 1698 });
     expect(surfaceLayout(fixed).grids()[0].width).toBeGreaterThanOrEqual(8);
     expect(() => checkLimits(fixed, budget, '')).not.toThrow();
   });
@@ -51,7 +51,7 @@ describe('scale guards', () => {
   });
 
   it('estimates work as seeded texels x iterations + every surface once, and refuses beyond the budget', () => {
-    const config = validateAnyConfig({ ...tube, sheet: { surfaceRatio: 2, layers: 1 } });
+    const config = validateConfig({ ...tube, sheet: { surfaceRatio: 2, layers: 1 } });
     const grids = surfaceLayout(config).grids();
     expect(grids.map((g) => g.width)).toEqual([32, 48, 64]); // circumference scales 1, 1.5, 2
     const e = estimateRun(config);
@@ -62,7 +62,7 @@ describe('scale guards', () => {
   });
 
   it('starts no more realization threads than the memory budget holds beside the run (each holds a whole run)', () => {
-    const million = validateAnyConfig({
+    const million = validateConfig({
       surface: { kind: 'plane', width: 10000, height: 10000, periodicX: true, periodicY: true },
       resolution: 4100,
       cells: 1_000_000,

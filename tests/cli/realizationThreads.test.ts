@@ -8,7 +8,7 @@
 import { describe, expect, it } from 'vitest';
 import type { Headline } from '../../src/core/analysis/headline';
 import { combineHeadlines } from '../../src/core/analysis/realizations';
-import { ConfigError, type AnyConfig } from '../../src/core/config';
+import { ConfigError, type Config } from '../../src/core/config';
 import type { GpuCapabilities } from '../../src/gpu/context';
 import { RealizationThreads } from '../../src/cli/realizationThreads';
 
@@ -31,7 +31,7 @@ const sleep = (ms: number) => new Promise((resolve) => setTimeout(resolve, ms));
 
 async function headlineWith(fixture: string, threads: number, runHere: (seed: number, index: number) => Promise<Headline | null>, taken?: Int32Array) {
   const fromThreads: number[] = [];
-  const config = { fixture, taken } as unknown as AnyConfig;
+  const config = { fixture, taken } as unknown as Config;
   const pool = new RealizationThreads(threads, config, SEEDS, CAPABILITIES, {}, (index) => fromThreads.push(index), ENTRY);
   try {
     const headline = await pool.headline(fake(SEEDS[0]), runHere, new AbortController().signal);

@@ -9,7 +9,7 @@ import { mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
-import { validateAnyConfig } from '../../src/core/config';
+import { validateConfig } from '../../src/core/config';
 import { schemaField } from '../../src/core/config/schemaFields';
 import { fileColumn, plainColumn, readCsvTable, readRunsCsv } from '../../src/core/sweep';
 
@@ -60,7 +60,7 @@ describe('runs.csv for pandas', () => {
   });
 
   it('carries the base geometry of each run: the validated config, not the varied field twice', () => {
-    const config = validateAnyConfig(base) as unknown as Record<string, Record<string, unknown>>;
+    const config = validateConfig(base) as unknown as Record<string, Record<string, unknown>>;
     for (const row of rows) {
       expect(row['surface.kind']).toBe('tube');
       expect(Number(row['surface.radius'])).toBe(40);

@@ -1,5 +1,5 @@
 import { afterAll, describe, expect, it } from 'vitest';
-import { validateAnyConfig, type AnyConfig } from '../../src/core/config';
+import { validateConfig, type Config } from '../../src/core/config';
 import { createHeadlessContext } from '../../src/node/headless';
 import { adjacencyFromLists, analyzeLabStack, invalidOnAnySurface, type SurfaceAdjacency } from '../../src/core/analysis';
 import { exactSurface } from '../../src/core/exactEngine';
@@ -24,8 +24,8 @@ const base = {
   lloyd: { tolerance: 0 },
   sheet: { protocol: 'lab', validityMaxRatio: 4, adjacency: 'exact' },
 };
-const config = (maxIterations: number, surfaceRatio: number, extra: Record<string, unknown> = {}): AnyConfig =>
-  validateAnyConfig({ ...base, ...extra, lloyd: { ...base.lloyd, ...(extra.lloyd as object), maxIterations }, sheet: { ...base.sheet, surfaceRatio } });
+const config = (maxIterations: number, surfaceRatio: number, extra: Record<string, unknown> = {}): Config =>
+  validateConfig({ ...base, ...extra, lloyd: { ...base.lloyd, ...(extra.lloyd as object), maxIterations }, sheet: { ...base.sheet, surfaceRatio } });
 
 /** The result without wall-clock timings (the only fields that may differ between two computations). */
 function comparable(result: SheetResult): unknown {
@@ -35,7 +35,7 @@ function comparable(result: SheetResult): unknown {
   );
 }
 
-async function alone(c: AnyConfig): Promise<SheetResult> {
+async function alone(c: Config): Promise<SheetResult> {
   return (await new SheetRunner(context).run(c, { views: false })).result;
 }
 

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { analysisMethods, validateAnyConfig } from '../../src/core/config';
+import { analysisMethods, validateConfig } from '../../src/core/config';
 import { expandSweep, runMethods, setPath, summaryColumns, sweepColumns, SweepSpecError, validateSweepSpec } from '../../src/core/sweep';
 
 const base = { surface: { kind: 'tube', radius: 16, length: 200 }, resolution: 64, cells: 20, lloyd: { maxIterations: 1 } };
@@ -106,7 +106,7 @@ describe('runs.csv columns', () => {
       base: { ...base, sheet: { surfaceRatio: 1.5 } },
       vary: { 'sheet.adjacency': ['labels', 'exact', 'both'], 'sheet.layers': [0, 2] },
     });
-    const configs = expandSweep(spec).map((r) => validateAnyConfig(r.config));
+    const configs = expandSweep(spec).map((r) => validateConfig(r.config));
     const columns = sweepColumns(configs);
     const first = summaryColumns(configs[0]); // labels only, no layers
     expect(first.some((c) => c.startsWith('exact.'))).toBe(false);
@@ -126,7 +126,7 @@ describe('runs.csv columns', () => {
     ];
     for (const surface of surfaces) {
       for (const adjacency of ['labels', 'exact', 'both'] as const) {
-        const config = validateAnyConfig({ ...base, surface, sheet: { adjacency, thickness: 2 } });
+        const config = validateConfig({ ...base, surface, sheet: { adjacency, thickness: 2 } });
         const columns = summaryColumns(config);
         expect(
           columns.some((c) => c.startsWith('exact.')),

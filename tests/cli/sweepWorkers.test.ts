@@ -3,7 +3,7 @@ import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
-import { validateAnyConfig } from '../../src/core/config';
+import { validateConfig } from '../../src/core/config';
 import { expandSweep, geometryValues, readCsvTable, readRunsCsv, runRow, runSweep, validateSweepSpec, variedFields, type SweepRun } from '../../src/core/sweep';
 import { createHeadlessContext } from '../../src/node/headless';
 import { SheetRunner, sweepSummary } from '../../src/run/index';
@@ -74,10 +74,10 @@ describe('sweep --workers N', () => {
     try {
       const engines = new Set<string>();
       for (const run of runs) {
-        const { result } = await new SheetRunner(context).run(validateAnyConfig(run.config), { views: false });
+        const { result } = await new SheetRunner(context).run(validateConfig(run.config), { views: false });
         engines.add(result.engine.name);
         // The row: the run's base geometry (units.ts) and its summary, computed alone.
-        const summary = { ...geometryValues(validateAnyConfig(run.config), fields), ...sweepSummary(result) };
+        const summary = { ...geometryValues(validateConfig(run.config), fields), ...sweepSummary(result) };
         expect(byKey.get(run.key), run.key).toEqual(runRow(run, fields, summary, table.header));
       }
       expect([...engines].sort()).toEqual(['exact', 'gpu']);

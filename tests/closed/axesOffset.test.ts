@@ -1,10 +1,10 @@
 import { describe, expect, it } from 'vitest';
-import { validateAnyConfig, type ConfigInput } from '../../src/core/config';
+import { validateConfig, type ConfigInput } from '../../src/core/config';
 import { SheetRunner } from '../../src/run/runSheet';
 import { useHeadlessContext } from '../gpu/context';
 
 const context = useHeadlessContext();
-const run = (input: ConfigInput) => new SheetRunner(context).run(validateAnyConfig({ resolution: 64, cells: 120, seed: 4, ...input }));
+const run = (input: ConfigInput) => new SheetRunner(context).run(validateConfig({ resolution: 64, cells: 120, seed: 4, ...input }));
 
 describe('sheet.offset "axes": the lab\'s spheroid model', () => {
   it('the apical sites lie on the ellipsoid (a + t, b + t, c + t) and are the closest points to the basal sites', async () => {

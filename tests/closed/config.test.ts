@@ -5,12 +5,12 @@ import {
   ConfigError,
   ellipsoidArea,
   minCurvatureRadius,
-  validateAnyConfig,
+  validateConfig,
   type ClosedConfig,
   type ConfigInput,
 } from '../../src/core/config';
 
-const closed = (input: ConfigInput) => validateAnyConfig(input) as ClosedConfig;
+const closed = (input: ConfigInput) => validateConfig(input) as ClosedConfig;
 const feasibility = (input: ConfigInput) => {
   try {
     checkClosedFeasible(closed(input));
@@ -24,8 +24,8 @@ describe('closed surface config', () => {
   it('fills defaults and validates the new kinds', () => {
     const mesh = closed({ surface: { kind: 'mesh', src: 'organoid.ply' } });
     expect(mesh.surface).toEqual({ kind: 'mesh', src: 'organoid.ply', scale: 1, geodesic: false });
-    expect(() => validateAnyConfig({ surface: { kind: 'ellipsoid', a: 1, b: 1 } })).toThrow('surface.c: required for kind "ellipsoid"; add a number > 0 µm');
-    expect(() => validateAnyConfig({ surface: { kind: 'sphere', radius: -1 } })).toThrow('surface.radius: must be > 0 µm (got -1)');
+    expect(() => validateConfig({ surface: { kind: 'ellipsoid', a: 1, b: 1 } })).toThrow('surface.c: required for kind "ellipsoid"; add a number > 0 µm');
+    expect(() => validateConfig({ surface: { kind: 'sphere', radius: -1 } })).toThrow('surface.radius: must be > 0 µm (got -1)');
   });
   it('cells <= 6 n² / 16, uniform density, exact on every closed surface, no surface ratio, no exact engine', () => {
     expect(feasibility({ surface: { kind: 'sphere', radius: 50 }, resolution: 32, cells: 384 })).toBeNull();
@@ -83,7 +83,7 @@ describe('one default resolution for closed surfaces', () => {
         { kind: 'sphere', radius: 60 },
         { kind: 'ellipsoid', a: 90, b: 45, c: 45 },
       ] as const) {
-        const config = validateAnyConfig({ surface, cells });
+        const config = validateConfig({ surface, cells });
         const area = surface.kind === 'sphere' ? 4 * Math.PI * surface.radius ** 2 : ellipsoidArea(surface.a, surface.b, surface.c);
         const contact = (6 / 102.4) * Math.sqrt(area / cells);
         const texel = Math.sqrt(area / (6 * config.resolution ** 2));
@@ -94,10 +94,10 @@ describe('one default resolution for closed surfaces', () => {
       }
     }
     // A given contact length is honoured where the area is known.
-    const fine = validateAnyConfig({ surface: { kind: 'sphere', radius: 60 }, cells: 200, sheet: { minContactLength: 0.5 } });
+    const fine = validateConfig({ surface: { kind: 'sphere', radius: 60 }, cells: 200, sheet: { minContactLength: 0.5 } });
     expect(Math.sqrt((4 * Math.PI * 3600) / (6 * fine.resolution ** 2))).toBeLessThanOrEqual(0.25);
     // Planes and tubes keep 512; an explicit resolution is kept.
-    expect(validateAnyConfig({}).resolution).toBe(512);
-    expect(validateAnyConfig({ surface: { kind: 'sphere', radius: 60 }, resolution: 48 }).resolution).toBe(48);
+    expect(validateConfig({}).resolution).toBe(512);
+    expect(validateConfig({ surface: { kind: 'sphere', radius: 60 }, resolution: 48 }).resolution).toBe(48);
   });
 });

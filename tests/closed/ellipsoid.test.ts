@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { ConfigError, validateAnyConfig, type ClosedConfig, type ConfigInput } from '../../src/core/config';
+import { ConfigError, validateConfig, type ClosedConfig, type ConfigInput } from '../../src/core/config';
 import { placeClosedSites } from '../../src/core/closed/geometry';
 import { ellipsoidProjector } from '../../src/core/closed/projector';
 import { sampleSurface } from '../../src/core/cubemap/sample';
@@ -10,7 +10,7 @@ import { cubeLayout } from '../../src/gpu/layout';
 import { closedSites, GpuLloydRun } from '../../src/gpu/lloyd';
 
 const context = useHeadlessContext();
-const closed = (input: ConfigInput) => validateAnyConfig(input) as ClosedConfig;
+const closed = (input: ConfigInput) => validateConfig(input) as ClosedConfig;
 
 describe('plain constrained Lloyd on an ellipsoid', () => {
   it('never increases the CVT energy (omega = 1)', () => {

@@ -1,6 +1,6 @@
 import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
-import { validateAnyConfig, type ClosedConfig } from '../../src/core/config';
+import { validateConfig, type ClosedConfig } from '../../src/core/config';
 import { runSheet } from '../../src/run/runSheet';
 import { useHeadlessContext } from '../gpu/context';
 import { MESH_DIR, meshInputs } from '../mesh/helpers';
@@ -9,7 +9,7 @@ const context = useHeadlessContext();
 
 describe('geodesic option: heat method vs the GPU geometry-image Voronoi', () => {
   it('14 sites on level-set-blob.ply (9002 vertices): timed, agreement reported', async () => {
-    const config = validateAnyConfig({
+    const config = validateConfig({
       surface: { kind: 'mesh', src: join(MESH_DIR, 'level-set-blob.ply'), scale: 50, geodesic: true },
       resolution: 64,
       cells: 14,

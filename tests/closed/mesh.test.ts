@@ -1,6 +1,6 @@
 import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
-import { ConfigError, validateAnyConfig, type ClosedConfig, type ConfigInput } from '../../src/core/config';
+import { ConfigError, validateConfig, type ClosedConfig, type ConfigInput } from '../../src/core/config';
 import { icosphere, mapVertices } from '../../src/core/mesh/generate';
 import { surfaceArea } from '../../src/core/mesh/types';
 import { writePlyAscii } from '../../src/core/mesh/write';
@@ -11,7 +11,7 @@ import { loadMeshFile } from '../../src/node/meshFile';
 import { MESH_DIR, meshInputs } from '../mesh/helpers';
 
 const context = useHeadlessContext();
-const closed = (input: ConfigInput) => validateAnyConfig(input) as ClosedConfig;
+const closed = (input: ConfigInput) => validateConfig(input) as ClosedConfig;
 
 describe('a mesh of a sphere vs the analytic sphere', () => {
   it('gives the same statistics within sampling error', async () => {

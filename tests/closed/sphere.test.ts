@@ -1,12 +1,12 @@
 import { beforeAll, describe, expect, it } from 'vitest';
-import { validateAnyConfig, type ClosedConfig, type ConfigInput } from '../../src/core/config';
+import { validateConfig, type ClosedConfig, type ConfigInput } from '../../src/core/config';
 import { sphericalVoronoi } from '../oracles/sphericalDelaunay';
 import { runSheet } from '../../src/run/runSheet';
 import type { SheetResult } from '../../src/run/result';
 import { useHeadlessContext } from '../gpu/context';
 
 const context = useHeadlessContext();
-const closed = (input: ConfigInput) => validateAnyConfig(input) as ClosedConfig;
+const closed = (input: ConfigInput) => validateConfig(input) as ClosedConfig;
 
 /** Unordered neighbour pairs "a-b" (a < b) of a result's seeded cells. */
 function pairs(result: SheetResult): Set<string> {

@@ -1,13 +1,13 @@
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
-import { ConfigError, DEFAULT_TUBE_RADIUS, checkFeasible, configSchema, makeGrid, unrolledDomain, type Config } from '../../src/core/config';
-import { validateConfig } from '../planarConfig';
+import { ConfigError, DEFAULT_TUBE_RADIUS, checkFeasible, configSchema, makeGrid, unrolledDomain, type PlanarConfig } from '../../src/core/config';
+import { validatePlanarConfig } from '../planarConfig';
 
-/** Runs validateConfig and returns the ConfigError it throws (fails the test if none). */
+/** Runs validatePlanarConfig and returns the ConfigError it throws (fails the test if none). */
 function errorOf(input: unknown): ConfigError {
   try {
-    validateConfig(input);
+    validatePlanarConfig(input);
   } catch (error) {
     expect(error).toBeInstanceOf(ConfigError);
     const e = error as ConfigError;
@@ -20,7 +20,7 @@ function errorOf(input: unknown): ConfigError {
 }
 
 function feasibilityError(input: unknown): ConfigError | null {
-  const config = validateConfig(input);
+  const config = validatePlanarConfig(input);
   try {
     checkFeasible(config, makeGrid(config));
     return null;
@@ -30,9 +30,9 @@ function feasibilityError(input: unknown): ConfigError | null {
   }
 }
 
-describe('validateConfig: defaults', () => {
+describe('validatePlanarConfig: defaults', () => {
   it('fills every default from an empty object', () => {
-    const config = validateConfig({});
+    const config = validatePlanarConfig({});
     expect(config.surface).toEqual({ kind: 'tube', radius: DEFAULT_TUBE_RADIUS, length: 4096 });
     expect(2 * Math.PI * (config.surface as { radius: number }).radius).toBeCloseTo(512, 9);
     expect(config.resolution).toBe(512);
@@ -46,7 +46,7 @@ describe('validateConfig: defaults', () => {
   });
 
   it('fills defaults inside the chosen union branch and partial objects', () => {
-    const config = validateConfig({
+    const config = validatePlanarConfig({
       surface: { kind: 'plane', width: 100, height: 50 },
       density: { kind: 'image', src: 'a.png' },
       lloyd: { maxIterations: 3 },
@@ -59,17 +59,17 @@ describe('validateConfig: defaults', () => {
   it('does not modify its input and returns a fresh object each time', () => {
     const input = { lloyd: { maxIterations: 3 } };
     const frozen = JSON.stringify(input);
-    const a = validateConfig(input);
+    const a = validatePlanarConfig(input);
     expect(JSON.stringify(input)).toBe(frozen);
-    const b = validateConfig(input);
+    const b = validatePlanarConfig(input);
     a.lloyd.tolerance = 5;
     (a.surface as { length: number }).length = 1;
     expect(b.lloyd.tolerance).toBe(0);
-    expect(validateConfig({}).surface).toEqual({ kind: 'tube', radius: DEFAULT_TUBE_RADIUS, length: 4096 });
+    expect(validatePlanarConfig({}).surface).toEqual({ kind: 'tube', radius: DEFAULT_TUBE_RADIUS, length: 4096 });
   });
 
   it('keeps a valid complete config unchanged', () => {
-    const full: Config = {
+    const full: PlanarConfig = {
       surface: { kind: 'plane', width: 300, height: 200, periodicX: true, periodicY: true },
       resolution: 256,
       cells: 100,
@@ -95,11 +95,11 @@ describe('validateConfig: defaults', () => {
         minContactLength: 1.5,
       },
     };
-    expect(validateConfig(full)).toEqual(full);
+    expect(validatePlanarConfig(full)).toEqual(full);
   });
 });
 
-describe('validateConfig: errors name the exact field', () => {
+describe('validatePlanarConfig: errors name the exact field', () => {
   it('bounds, with unit and value', () => {
     const e = errorOf({ surface: { kind: 'tube', radius: -3, length: 10 } });
     expect(e.field).toBe('surface.radius');
@@ -174,7 +174,7 @@ describe('validateConfig: errors name the exact field', () => {
   });
 
   it('treats an undefined field as absent', () => {
-    expect(validateConfig({ cells: undefined }).cells).toBe(200);
+    expect(validatePlanarConfig({ cells: undefined }).cells).toBe(200);
   });
 });
 
@@ -196,9 +196,9 @@ describe('configSchema', () => {
 
 describe('makeGrid', () => {
   it('gives the default tube 64 x 512 square texels of 8 µm, periodic around', () => {
-    const grid = makeGrid(validateConfig({}));
+    const grid = makeGrid(validatePlanarConfig({}));
     expect(grid).toEqual({ width: 64, height: 512, texelX: 8, texelY: 8, periodicX: true, periodicY: false });
-    const fine = makeGrid(validateConfig({ resolution: 4096 }));
+    const fine = makeGrid(validatePlanarConfig({ resolution: 4096 }));
     expect([fine.width, fine.height]).toEqual([512, 4096]);
     expect(fine.texelX).toBeCloseTo(1, 12);
   });
@@ -209,7 +209,7 @@ describe('makeGrid', () => {
       [123.4, 987.6, 100],
       [1000, 1, 64],
     ] as const) {
-      const config = validateConfig({ surface: { kind: 'plane', width: w, height: h }, resolution: res });
+      const config = validatePlanarConfig({ surface: { kind: 'plane', width: w, height: h }, resolution: res });
       const grid = makeGrid(config);
       expect(Math.max(grid.width, grid.height)).toBe(res);
       expect(grid.width * grid.texelX).toBeCloseTo(w, 9);
@@ -263,7 +263,7 @@ describe('docs/config.md', () => {
     const blocks = [...text.matchAll(/```json\n([\s\S]*?)```/g)].map((m) => JSON.parse(m[1]) as unknown);
     expect(blocks.length).toBeGreaterThanOrEqual(2);
     for (const block of blocks) {
-      const config = validateConfig(block);
+      const config = validatePlanarConfig(block);
       expect(() => checkFeasible(config, makeGrid(config))).not.toThrow();
     }
     // The first example spells out every top-level field.

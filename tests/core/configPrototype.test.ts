@@ -4,7 +4,7 @@
  * JSON.parse, which keeps "__proto__" as an own key (as a link or a file does).
  */
 import { afterEach, describe, expect, it } from 'vitest';
-import { ConfigError, validateAnyConfig } from '../../src/core/config';
+import { ConfigError, validateConfig } from '../../src/core/config';
 
 const POLLUTED = ['polluted', 'cells', 'layers', 'radius'];
 
@@ -14,7 +14,7 @@ afterEach(() => {
 
 function refusal(json: string): ConfigError {
   try {
-    validateAnyConfig(JSON.parse(json));
+    validateConfig(JSON.parse(json));
   } catch (error) {
     expect(error).toBeInstanceOf(ConfigError);
     return error as ConfigError;
@@ -44,7 +44,7 @@ describe('prototype keys in a config', () => {
   });
 
   it('a valid config is returned with plain objects whose keys are own properties', () => {
-    const config = validateAnyConfig(JSON.parse('{"cells": 30, "sheet": {"layers": 2}}')) as unknown as Record<string, Record<string, unknown>>;
+    const config = validateConfig(JSON.parse('{"cells": 30, "sheet": {"layers": 2}}')) as unknown as Record<string, Record<string, unknown>>;
     expect(Object.getPrototypeOf(config.sheet)).toBe(Object.prototype);
     expect(Object.keys(config.sheet)).toContain('layers');
     expect(config.sheet.layers).toBe(2);

@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { FIELDS } from '../../src/app/panels/fields';
-import { configSchema, validateAnyConfig, type AnyConfig } from '../../src/core/config';
+import { configSchema, validateConfig, type Config } from '../../src/core/config';
 import { APP_START, densityPreset, surfaceOfKind } from '../../src/core/config/presets';
 import { schemaField } from '../../src/core/config/schemaFields';
 import { ATTRIBUTES } from '../../src/element/attributes';
@@ -52,12 +52,12 @@ describe('the app panel and the element follow the schema', () => {
   const nodesAt = (path: string) => raw.filter(([p]) => p === path);
 
   /** One validated config per surface kind and per density kind. */
-  const base = validateAnyConfig(APP_START);
-  const configs: AnyConfig[] = [
+  const base = validateConfig(APP_START);
+  const configs: Config[] = [
     ...['plane', 'tube', 'sphere', 'ellipsoid', 'mesh'].map((kind) =>
-      validateAnyConfig({ ...base, surface: surfaceOfKind(base.surface, kind), sheet: { ...base.sheet, surfaceRatio: null } }),
+      validateConfig({ ...base, surface: surfaceOfKind(base.surface, kind), sheet: { ...base.sheet, surfaceRatio: null } }),
     ),
-    ...['uniform', 'linear', 'gaussian', 'stripes', 'image'].map((kind) => ({ ...base, density: densityPreset(kind, base) }) as AnyConfig),
+    ...['uniform', 'linear', 'gaussian', 'stripes', 'image'].map((kind) => ({ ...base, density: densityPreset(kind, base) }) as Config),
   ];
 
   it('takes units, lower and upper bounds and choices of every schema field it shows from the schema', () => {

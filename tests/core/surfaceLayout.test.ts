@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { ConfigError, validateAnyConfig } from '../../src/core/config';
+import { ConfigError, validateConfig } from '../../src/core/config';
 import { checkLimits, estimateRun } from '../../src/core/config/limits';
 import { layoutOfKind, maxResolution, surfaceLayout } from '../../src/core/config/surfaceLayout';
 
@@ -14,7 +14,7 @@ const surfaces = {
 } as const;
 
 function layoutOf(surface: object, resolution: number) {
-  return surfaceLayout(validateAnyConfig({ ...base, surface, resolution }));
+  return surfaceLayout(validateConfig({ ...base, surface, resolution }));
 }
 
 describe('surfaceLayout: the one place a surface kind becomes a layout', () => {
@@ -53,8 +53,8 @@ describe('surfaceLayout: the one place a surface kind becomes a layout', () => {
   });
 
   it('gives the budget its numbers: bytes per texel and the largest resolution a texture limit allows', () => {
-    const plane = validateAnyConfig({ ...base, surface: surfaces.plane, resolution: 512, engine: 'gpu' });
-    const sphere = validateAnyConfig({ ...base, surface: surfaces.sphere, resolution: 64 });
+    const plane = validateConfig({ ...base, surface: surfaces.plane, resolution: 512, engine: 'gpu' });
+    const sphere = validateConfig({ ...base, surface: surfaces.sphere, resolution: 64 });
     // Active texels: 76 bytes on a grid, 76 + 60 on a cube map; kept: 8 per texel of every surface.
     expect(estimateRun(plane).bytes - estimateRun(plane).cellBytes).toBe(76 * 512 * 256 + 8 * 2 * 512 * 256);
     expect(estimateRun(sphere).bytes - estimateRun(sphere).cellBytes).toBe((76 + 60) * 6 * 64 * 64 + 8 * 2 * 6 * 64 * 64);
@@ -64,7 +64,7 @@ describe('surfaceLayout: the one place a surface kind becomes a layout', () => {
     // The refusal names the same largest resolution.
     const tooLarge = (surface: object, resolution: number, maxTextureSize: number) => {
       try {
-        checkLimits(validateAnyConfig({ ...base, cells: 2, surface, resolution }), { ...budget, maxTextureSize }, '');
+        checkLimits(validateConfig({ ...base, cells: 2, surface, resolution }), { ...budget, maxTextureSize }, '');
       } catch (error) {
         expect(error).toBeInstanceOf(ConfigError);
         return (error as ConfigError).message;
@@ -79,7 +79,7 @@ describe('surfaceLayout: the one place a surface kind becomes a layout', () => {
   it('runs the feasibility check of its layout', () => {
     expect(() => layoutOf({ ...surfaces.plane }, 16).checkFeasible()).toThrow(/^cells: 20 cells need at least 320 texels .* the grid has 128/);
     expect(() => layoutOf(surfaces.sphere, 16).checkFeasible()).not.toThrow();
-    expect(() => surfaceLayout(validateAnyConfig({ ...base, cells: 200, surface: surfaces.sphere, resolution: 16 })).checkFeasible()).toThrow(
+    expect(() => surfaceLayout(validateConfig({ ...base, cells: 200, surface: surfaces.sphere, resolution: 16 })).checkFeasible()).toThrow(
       /^cells: 200 cells need at least 3200 texels .* the cube map has 1536 \(6 x 16²\)/,
     );
   });

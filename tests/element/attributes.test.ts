@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { configFromAttributes } from '../../src/element/attributes';
-import { validateAnyConfig, type ConfigInput } from '../../src/core/config';
+import { validateConfig, type ConfigInput } from '../../src/core/config';
 import { surfaceOfKind } from '../../src/core/config/presets';
 
 /**
@@ -17,7 +17,7 @@ const element = (attributes: Record<string, string>) =>
 
 describe('configFromAttributes', () => {
   it('gives the schema defaults without attributes', () => {
-    expect(configFromAttributes(element({}), null)).toEqual(validateAnyConfig({}));
+    expect(configFromAttributes(element({}), null)).toEqual(validateConfig({}));
   });
 
   it('starts a new kind from its defaults, whatever the kind before', () => {
@@ -27,14 +27,14 @@ describe('configFromAttributes', () => {
       expect(fromTube.surface.kind).toBe(kind);
       if (kind !== 'sphere') expect(fromSphere.surface).toEqual(fromTube.surface);
       // A closed kind's surface is its preset's; a planar kind keeps the default tube's unrolled size.
-      expect(fromTube.surface).toEqual(validateAnyConfig({ surface: surfaceOfKind(validateAnyConfig({}).surface, kind) }).surface);
+      expect(fromTube.surface).toEqual(validateConfig({ surface: surfaceOfKind(validateConfig({}).surface, kind) }).surface);
     }
   });
 
   it('drops the resolution across layouts, keeps it within one, and an attribute overrides both', () => {
     const base: ConfigInput = { surface: { kind: 'sphere', radius: 70 }, resolution: 64 };
     expect(configFromAttributes(element({ surface: 'ellipsoid' }), base).resolution).toBe(64);
-    expect(configFromAttributes(element({ surface: 'tube' }), base).resolution).toBe(validateAnyConfig({}).resolution);
+    expect(configFromAttributes(element({ surface: 'tube' }), base).resolution).toBe(validateConfig({}).resolution);
     expect(configFromAttributes(element({ surface: 'tube', resolution: '256' }), base).resolution).toBe(256);
   });
 });

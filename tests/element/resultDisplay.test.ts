@@ -2,7 +2,7 @@ import { describe, expect, it } from 'vitest';
 import { resultStatus, showDrawn, showHeadline, type PercentLabel } from '../../src/element/resultDisplay';
 import { StatusLine } from '../../src/element/statusLine';
 import { realizationsOf, realizationStatus } from '../../src/element/realizations';
-import { validateAnyConfig } from '../../src/core/config';
+import { validateConfig } from '../../src/core/config';
 import type { Headline } from '../../src/core/analysis/headline';
 import type { AnalysisRecord, SheetResult } from '../../src/run';
 
@@ -56,11 +56,11 @@ describe('the percent label', () => {
 describe('the status line', () => {
   it('says what ran, or why the geometry fixes 0 %', () => {
     const result = { lloyd: { iterations: [{}, {}, {}] } } as unknown as SheetResult;
-    const tube = validateAnyConfig({ cells: 40, sheet: { surfaceRatio: 2 } });
+    const tube = validateConfig({ cells: 40, sheet: { surfaceRatio: 2 } });
     expect(resultStatus(tube, result, analysis(10), 'one realization')).toBe(
       `40 cells, Voronoi 4 (3 Lloyd iterations), ${tube.surface.kind}, exact adjacency; one realization`,
     );
-    const flat = validateAnyConfig({ cells: 40, surface: { kind: 'plane', width: 100, height: 100 }, sheet: { thickness: 5 } });
+    const flat = validateConfig({ cells: 40, surface: { kind: 'plane', width: 100, height: 100 }, sheet: { thickness: 5 } });
     expect(resultStatus(flat, result, analysis(0), 'one realization')).not.toContain('Lloyd');
   });
 
@@ -95,6 +95,6 @@ describe('the realizations attribute', () => {
     expect(realizationsOf('3')).toBe(3);
     expect(realizationsOf(null)).toBeGreaterThanOrEqual(1);
     for (const bad of ['0', '1.5', '101', 'many']) expect(() => realizationsOf(bad)).toThrow(/^realizations: /);
-    expect(realizationStatus(validateAnyConfig({ seed: 4294967295 }), 1, 5)).toBe('Realization 2 of 5 (seed 0) for the mean % scutoids…');
+    expect(realizationStatus(validateConfig({ seed: 4294967295 }), 1, 5)).toBe('Realization 2 of 5 (seed 0) for the mean % scutoids…');
   });
 });

@@ -1,6 +1,6 @@
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import type { AnyConfig } from '../../src/core/config';
+import type { Config } from '../../src/core/config';
 import { parseMesh } from '../../src/core/mesh/parse';
 import { loadMeshFile } from '../../src/node/meshFile';
 import type { RunInputs } from '../../src/run';
@@ -18,6 +18,6 @@ export function loadShipped(file: string): TriangleMesh {
 export const GENUS_ZERO_SHIPPED = ['organoid.ply', 'egg-chamber.ply', 'level-set-blob.ply'];
 
 /** What a host hands runSheet for a mesh config: the file, loaded by the Node host's loader (the pipeline reads none). */
-export function meshInputs(config: AnyConfig): RunInputs {
+export function meshInputs(config: Config): RunInputs {
   return config.surface.kind === 'mesh' ? { meshFile: loadMeshFile(config.surface.src) } : {};
 }

@@ -9,7 +9,7 @@ import { describe, expect, it } from 'vitest';
 import shipped from '../../src/core/reference/tissueSheetVoronoiTube.json';
 import { analyzeTubeLab } from '../../src/core/analysis';
 import { makeGrid, type ConfigInput } from '../../src/core/config';
-import { validateConfig } from '../planarConfig';
+import { validatePlanarConfig } from '../planarConfig';
 import { ExactLloydRun } from '../../src/core/exactEngine/exactLloyd';
 import { validateReferenceDocument, type ReferenceDocument } from '../../src/core/reference';
 import { placeSites } from '../../src/core/sites';
@@ -65,7 +65,7 @@ describe('the shipped reference set', () => {
     const runner = new SheetRunner(context);
     const values: number[] = [];
     for (const run of runs) {
-      const { result } = await runner.run(validateConfig(run.config as ConfigInput));
+      const { result } = await runner.run(validatePlanarConfig(run.config as ConfigInput));
       expect(result.engine.name).toBe('exact');
       values.push(result.analyses.find((a) => a.method === 'exact')!.summary.percentScutoids);
     }
@@ -76,7 +76,7 @@ describe('the shipped reference set', () => {
   }, 120_000);
 
   it("Voronoi 1 at s = 1.5 and Voronoi 10 at s = 1.25: the reference per-ratio analysis gives the file's means", () => {
-    const config = validateConfig({ ...(spec.base as ConfigInput), seed: seeds[0] });
+    const config = validatePlanarConfig({ ...(spec.base as ConfigInput), seed: seeds[0] });
     const grid = makeGrid(config);
     for (const [k, s] of [
       [1, 1.5],

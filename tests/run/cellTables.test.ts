@@ -4,7 +4,7 @@
  * surface kind that has cell lists, and what the exact pipeline reuses between surfaces.
  */
 import { describe, expect, it } from 'vitest';
-import { validateAnyConfig } from '../../src/core/config';
+import { validateConfig } from '../../src/core/config';
 import { analysisCellRecordsOf, cellRecordsOf } from '../../src/run/cellTables';
 import { SheetRunner } from '../../src/run/runSheet';
 import { useHeadlessContext } from '../gpu/context';
@@ -50,7 +50,7 @@ const configs = {
 describe('runSheet(..., {cellTables: true})', () => {
   for (const [name, input] of Object.entries(configs)) {
     it(`${name}: empty lists, and columns that give the records of a run without them`, async () => {
-      const config = validateAnyConfig(input);
+      const config = validateConfig(input);
       const plain = (await new SheetRunner(context).run(config)).result;
       const output = await new SheetRunner(context).run(config, { cellTables: true });
       const tables = output.tables!;
@@ -65,7 +65,7 @@ describe('runSheet(..., {cellTables: true})', () => {
   }
 
   it("a plane's other surface shares the seeded surface's exact adjacency (computed once)", async () => {
-    const config = validateAnyConfig(configs['exact torus']);
+    const config = validateConfig(configs['exact torus']);
     const { tables } = await new SheetRunner(context).run(config, { cellTables: true });
     const [seeded, other] = [tables!.cells, tables!.surfaces[0]];
     expect(other.neighbourIds).toBe(seeded.neighbourIds);

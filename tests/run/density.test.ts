@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { validateConfig } from '../planarConfig';
+import { validatePlanarConfig } from '../planarConfig';
 import { runSheet } from '../../src/run/runSheet';
 import { useHeadlessContext } from '../gpu/context';
 
@@ -8,7 +8,7 @@ const context = useHeadlessContext();
 describe('CVT density law (Du et al.): in 2D cell diameter ~ density^(-1/4)', () => {
   it('a density ratio of 16 between two halves gives a mean cell diameter ratio of 2 within 10 %', async () => {
     const width = 400;
-    const config = validateConfig({
+    const config = validatePlanarConfig({
       // A flat torus, so no open edge disturbs the cells; stripes with period = width give two
       // halves: density 1 on x in [0, 200), 16 on [200, 400).
       surface: { kind: 'plane', width, height: 200, periodicX: true, periodicY: true },

@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { analyzeTubeLab, LAB_PROTOCOL } from '../../src/core/analysis';
-import { validateAnyConfig, type ConfigInput } from '../../src/core/config';
-import { validateConfig } from '../planarConfig';
+import { validateConfig, type ConfigInput } from '../../src/core/config';
+import { validatePlanarConfig } from '../planarConfig';
 import { exactVoronoi } from '../../src/core/exact';
 import { chooseEngine } from '../../src/run/enginePolicy';
 import { SheetRunner } from '../../src/run/runSheet';
@@ -13,7 +13,7 @@ const hardware = { renderer: 'NVIDIA H100', maxTextureSize: 16384, floatBlend: t
 
 /** A small published-like tube: 200 cells on a 512 x 1024 µm strip. */
 const tube = (extra: ConfigInput = {}) =>
-  validateConfig({
+  validatePlanarConfig({
     surface: { kind: 'tube', radius: 512 / (2 * Math.PI), length: 1024 },
     resolution: 256,
     cells: 120,
@@ -30,7 +30,7 @@ describe('the engine policy', () => {
     expect(chooseEngine(tube({ sheet: { adjacency: 'labels' } }), 'planar grid', software)).toMatchObject({ name: 'gpu', centroidPath: 'readback' });
     expect(chooseEngine(tube({ engine: 'gpu' }), 'planar grid', software).name).toBe('gpu');
     expect(chooseEngine(tube({ engine: 'exact' }), 'planar grid', hardware).name).toBe('exact');
-    const sphere = validateAnyConfig({ surface: { kind: 'sphere', radius: 40 }, engine: 'auto' });
+    const sphere = validateConfig({ surface: { kind: 'sphere', radius: 40 }, engine: 'auto' });
     expect(chooseEngine(sphere, 'cube map', software)).toMatchObject({ name: 'gpu', family: 'cube map' });
     for (const choice of [chooseEngine(tube(), 'planar grid', software), chooseEngine(tube(), 'planar grid', hardware)]) {
       expect(choice.reason.length).toBeGreaterThan(10);
@@ -49,7 +49,7 @@ describe('the engine policy', () => {
       [{ sheet: { surfaceRatio: 2, layerStep: 1e-5 } }, 'sheet.layerStep'],
     ];
     for (const [input, field] of refusals) {
-      const error = await runner.run(validateAnyConfig({ cells: 20, resolution: 64, ...input })).then(
+      const error = await runner.run(validateConfig({ cells: 20, resolution: 64, ...input })).then(
         () => null,
         (e: Error & { field?: string }) => e,
       );

@@ -5,7 +5,7 @@ import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
 import { FIELDS } from '../../src/app/panels/fields';
 import { configFromUrl, startConfig, urlWithConfig } from '../../src/app/model/settings';
-import { defaultResolution, validateAnyConfig, validateConfigDraft, type ConfigDraft, type ConfigInput } from '../../src/core/config';
+import { defaultResolution, validateConfig, validateConfigDraft, type ConfigDraft, type ConfigInput } from '../../src/core/config';
 import { configSchema } from '../../src/core/config/schema';
 import { setPath } from '../../src/core/sweep';
 import { configFromAttributes } from '../../src/element/attributes';
@@ -43,10 +43,10 @@ function cliRun(config: ConfigInput, name: string): { config: unknown; headline:
 
 describe('one set of defaults, whatever the entry point', () => {
   it("the schema is the only place Lloyd iterations and resolution default: 50 and the surface's default", () => {
-    const library = validateAnyConfig(ELLIPSOID);
+    const library = validateConfig(ELLIPSOID);
     expect(library.lloyd.maxIterations).toBe(configSchema.properties.lloyd.properties.maxIterations.default);
     expect(library.resolution).toBe(defaultResolution(library));
-    expect(validateAnyConfig(TUBE).resolution).toBe(512);
+    expect(validateConfig(TUBE).resolution).toBe(512);
   });
 
   for (const [name, input, attributes] of [
@@ -54,13 +54,13 @@ describe('one set of defaults, whatever the entry point', () => {
     ['a tube', TUBE, { surface: 'tube', radius: '20', length: '200', cells: '50', seed: '2', 'surface-ratio': '2' }],
   ] as const) {
     it(`${name}: the CLI, the library, the element and a link run the same config and give the same headline`, async () => {
-      const library = validateAnyConfig(input);
+      const library = validateConfig(input);
       // The element: attributes over the schema's defaults; the config property likewise.
       expect(configFromAttributes(elementWith(attributes), null)).toEqual(library);
       expect(configFromAttributes(elementWith({}), input)).toEqual(library);
       // The app: a link that leaves the fields out, as it is read and run.
       const fromLink = configFromUrl(`http://localhost/?config=${encodeURIComponent(JSON.stringify(input))}`)!;
-      expect(validateAnyConfig(fromLink)).toEqual(library);
+      expect(validateConfig(fromLink)).toEqual(library);
       // The CLI and the library give the same result (timings aside).
       const { result } = await runSheet(library, context);
       const cli = cliRun(input, name.replace(/\W/g, ''));
@@ -71,7 +71,7 @@ describe('one set of defaults, whatever the entry point', () => {
   }
 
   it("an element with no attributes runs the schema's default sheet, as an empty config file does", () => {
-    expect(configFromAttributes(elementWith({}), null)).toEqual(validateAnyConfig({}));
+    expect(configFromAttributes(elementWith({}), null)).toEqual(validateConfig({}));
   });
 
   it('the app form: a default resolution follows cells and the surface until the user sets one', () => {
@@ -84,32 +84,32 @@ describe('one set of defaults, whatever the entry point', () => {
     };
     let draft = startConfig();
     expect(draft.resolution).toBeNull();
-    expect(validateAnyConfig(draft).lloyd.maxIterations).toBe(50);
+    expect(validateConfig(draft).lloyd.maxIterations).toBe(50);
     draft = set(draft, 'surface.kind', 'ellipsoid');
-    const before = validateAnyConfig(draft).resolution;
-    expect(before).toBe(defaultResolution(validateAnyConfig(draft)));
+    const before = validateConfig(draft).resolution;
+    expect(before).toBe(defaultResolution(validateConfig(draft)));
     // the order the form is filled in does not matter: more cells, a finer default cube map
     draft = set(draft, 'cells', 800);
-    expect(validateAnyConfig(draft).resolution).toBe(defaultResolution({ ...draft, cells: 800 }));
-    expect(validateAnyConfig(draft).resolution).toBeGreaterThan(before);
-    const typed = validateAnyConfig(validateConfigDraft({ ...draft, cells: 800 }));
-    expect(typed).toEqual(validateAnyConfig({ surface: draft.surface, cells: 800, sheet: draft.sheet }));
+    expect(validateConfig(draft).resolution).toBe(defaultResolution({ ...draft, cells: 800 }));
+    expect(validateConfig(draft).resolution).toBeGreaterThan(before);
+    const typed = validateConfig(validateConfigDraft({ ...draft, cells: 800 }));
+    expect(typed).toEqual(validateConfig({ surface: draft.surface, cells: 800, sheet: draft.sheet }));
     // a resolution the user typed stays, whatever the cells
     draft = set(draft, 'resolution', 96);
     draft = set(draft, 'cells', 300);
-    expect(validateAnyConfig(draft).resolution).toBe(96);
+    expect(validateConfig(draft).resolution).toBe(96);
     // ... but not across planar and closed kinds (texels along a side vs per cube-face edge)
     draft = set(draft, 'surface.kind', 'sphere');
     expect(draft.resolution).toBe(96);
     draft = set(draft, 'surface.kind', 'tube');
     expect(draft.resolution).toBeNull();
-    expect(validateAnyConfig(draft).resolution).toBe(512);
+    expect(validateConfig(draft).resolution).toBe(512);
   });
 
   it('a link keeps a default resolution as the default (null), so it reproduces the run', () => {
     const draft = validateConfigDraft(ELLIPSOID);
     const url = urlWithConfig('http://localhost/', draft);
     expect(JSON.parse(new URL(url).searchParams.get('config')!).resolution).toBeNull();
-    expect(validateAnyConfig(configFromUrl(url))).toEqual(validateAnyConfig(ELLIPSOID));
+    expect(validateConfig(configFromUrl(url))).toEqual(validateConfig(ELLIPSOID));
   });
 });

@@ -3,12 +3,12 @@
  * the app's exports): 50 cells, exact engine, one layer between the surfaces, run with its
  * per-cell columns (`cellTables: true`).
  */
-import { validateAnyConfig } from '../../src/core/config';
+import { validateConfig } from '../../src/core/config';
 import { SheetRunner } from '../../src/run/runSheet';
 import type { GpuContext } from '../../src/gpu/context';
 
 export function runLayeredTube(context: GpuContext) {
-  const config = validateAnyConfig({
+  const config = validateConfig({
     surface: { kind: 'tube', radius: 40, length: 300 },
     resolution: 128,
     cells: 50,

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { ConfigError, validateAnyConfig, type MeshSurface } from '../../src/core/config';
+import { ConfigError, validateConfig, type MeshSurface } from '../../src/core/config';
 import { checkMeshExtent, MESH_EXTENT_UM, prepareMesh } from '../../src/run/closedMesh';
 
 /** An icosahedron of circumradius `r` as OBJ text; `flipped`: every face wound the other way (normals inward). */
@@ -67,7 +67,7 @@ function reversed(indices: Uint32Array): Uint32Array {
 }
 
 function surface(scale = 1): MeshSurface {
-  const config = validateAnyConfig({ surface: { kind: 'mesh', src: 'ico.obj', scale }, cells: 20 });
+  const config = validateConfig({ surface: { kind: 'mesh', src: 'ico.obj', scale }, cells: 20 });
   return config.surface as MeshSurface;
 }
 

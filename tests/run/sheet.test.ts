@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { type ConfigInput } from '../../src/core/config';
-import { validateConfig } from '../planarConfig';
+import { validatePlanarConfig } from '../planarConfig';
 import { exactVoronoi } from '../../src/core/exact';
 import { withMinBoundaryLength } from '../../src/core/analysis';
 import { labelAdjacency } from '../../src/core/labels';
@@ -16,7 +16,7 @@ import { gridLayout } from '../../src/gpu/layout';
 const context = useHeadlessContext();
 
 /** The published tube (512 x 4096 µm strip, 200 cells, spacing 5) at the default resolution. */
-const tube = (extra: ConfigInput = {}) => validateConfig({ cells: 200, minSpacing: 5, ...extra, sheet: { seeded: 'apical', ...extra.sheet } });
+const tube = (extra: ConfigInput = {}) => validatePlanarConfig({ cells: 200, minSpacing: 5, ...extra, sheet: { seeded: 'apical', ...extra.sheet } });
 
 function pairSet(offsets: Int32Array, neighbours: Int32Array): Set<number> {
   const pairs = new Set<number>();
@@ -28,7 +28,7 @@ function pairSet(offsets: Int32Array, neighbours: Int32Array): Set<number> {
 
 describe('sheet geometry invariants', () => {
   it('a plane and its offset never exchange neighbours (labels and exact)', async () => {
-    const config = validateConfig({
+    const config = validatePlanarConfig({
       surface: { kind: 'plane', width: 300, height: 200 },
       resolution: 300,
       cells: 120,
@@ -74,7 +74,7 @@ describe('a hand-built exchange: rhombi of four sites whose shared edge flips wh
   const height = h * rows;
 
   async function stackAt(method: 'labels' | 'exact', s: number) {
-    const config = validateConfig({
+    const config = validatePlanarConfig({
       surface: { kind: 'tube', radius: width / (2 * Math.PI), length: height },
       resolution: height,
       cells: columns * rows,
@@ -163,7 +163,7 @@ describe('pixel adjacency against exact adjacency at the default resolution', ()
     it(`${name}: >= 98 % of neighbour pairs agree`, async () => {
       // The GPU engine's label adjacency is what is compared: ask for it (auto takes the exact
       // engine on this software renderer).
-      const config = validateConfig({ ...input, engine: 'gpu' });
+      const config = validatePlanarConfig({ ...input, engine: 'gpu' });
       const seeded = await relaxSeededSurface(planarFamily, config, context, chooseEngine(config, 'planar grid', context.capabilities));
       const { grid } = seeded.geometry;
       const labels = labelAdjacency(grid, seeded.labels!, config.cells);

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { validateAnyConfig, type ConfigInput } from '../../src/core/config';
+import { validateConfig, type ConfigInput } from '../../src/core/config';
 import { estimateRun } from '../../src/core/config/limits';
 import { surfaceColumnNames } from '../../src/core/sweep';
 import { runSheet } from '../../src/run';
@@ -60,7 +60,7 @@ const cases: [string, ConfigInput, number][] = [
 describe('the budget counts the surfaces the pipeline builds', () => {
   for (const [name, input, surfaces] of cases) {
     it(name, async () => {
-      const config = validateAnyConfig(input);
+      const config = validateConfig(input);
       const estimate = estimateRun(config);
       expect(estimate.surfaces).toBe(surfaces);
       expect(surfaceColumnNames(config)).toHaveLength(surfaces);

@@ -4,7 +4,7 @@
  * with different corner counts per surface, and the traced restricted Voronoi cells of a sphere.
  */
 import { describe, expect, it } from 'vitest';
-import { validateAnyConfig, type ConfigInput } from '../../src/core/config';
+import { validateConfig, type ConfigInput } from '../../src/core/config';
 import { runSheet } from '../../src/run/runSheet';
 import { cellSolid, signedVolume, type CellSolid } from '../../src/view/cellSolid';
 import { surfacePolygons } from '../../src/view/cellPolygons';
@@ -25,7 +25,7 @@ function polygonArea(polygon: ArrayLike<number>): number {
 const context = useHeadlessContext();
 
 async function stackOf(input: ConfigInput): Promise<ViewStack> {
-  return viewStack(await runSheet(validateAnyConfig(input), context));
+  return viewStack(await runSheet(validateConfig(input), context));
 }
 
 /** Every undirected edge used exactly twice, once in each direction. */

@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { texelDirection, texelFromIndex } from '../../src/core/cubemap/cubemap';
-import { validateAnyConfig } from '../../src/core/config';
+import { validateConfig } from '../../src/core/config';
 import type { LabelImage } from '../../src/run';
 import { runSheet } from '../../src/run/runSheet';
 import { atlasTopology, closedSurfaceMesh } from '../../src/view/cubeAtlasMesh';
@@ -120,7 +120,7 @@ describe('per-fragment cells on closed surfaces', () => {
   });
 
   it('every surface of a real ellipsoid stack (GPU labels, projected sites) draws its exact cells', async () => {
-    const config = validateAnyConfig({
+    const config = validateConfig({
       surface: { kind: 'ellipsoid', a: 60, b: 45, c: 40 },
       cells: 150,
       lloyd: { maxIterations: 5 },

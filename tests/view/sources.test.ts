@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { validateAnyConfig, ConfigError } from '../../src/core/config';
+import { validateConfig, ConfigError } from '../../src/core/config';
 import { checkPageBudget, PAGE_MAX_WORK } from '../../src/view/pageBudget';
 import { approveSource, foreignSource, pendingSources, sourceQuestion } from '../../src/view/sources';
 
@@ -31,7 +31,7 @@ describe('foreignSource', () => {
   });
 
   it('a source is pending until approved', () => {
-    const config = validateAnyConfig({ surface: { kind: 'mesh', src: 'http://10.0.0.2/m.ply' }, resolution: 32, cells: 20 });
+    const config = validateConfig({ surface: { kind: 'mesh', src: 'http://10.0.0.2/m.ply' }, resolution: 32, cells: 20 });
     const [pending] = pendingSources(config, page);
     expect(pending.href).toBe('http://10.0.0.2/m.ply');
     approveSource(pending);
@@ -41,7 +41,7 @@ describe('foreignSource', () => {
 
 describe('checkPageBudget', () => {
   it('refuses before running, naming the estimate and the limit', () => {
-    const big = validateAnyConfig({ surface: { kind: 'plane', width: 1000, height: 1000 }, resolution: 8192, cells: 200, lloyd: { maxIterations: 1000 } });
+    const big = validateConfig({ surface: { kind: 'plane', width: 1000, height: 1000 }, resolution: 8192, cells: 200, lloyd: { maxIterations: 1000 } });
     let error: unknown;
     try {
       checkPageBudget(big, 16384);
@@ -51,7 +51,7 @@ describe('checkPageBudget', () => {
     expect(error).toBeInstanceOf(ConfigError);
     expect((error as Error).message).toMatch(/^resolution: this run is .* texel-floods/);
     expect((error as Error).message).toContain('above the limit');
-    const small = validateAnyConfig({ surface: { kind: 'plane', width: 100, height: 100 }, resolution: 128, cells: 20 });
+    const small = validateConfig({ surface: { kind: 'plane', width: 100, height: 100 }, resolution: 128, cells: 20 });
     expect(checkPageBudget(small, 8192).work).toBeLessThan(PAGE_MAX_WORK);
   });
 });

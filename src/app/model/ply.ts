@@ -11,7 +11,7 @@
  */
 import { surfacePolygons } from '../../view/cellPolygons';
 import { embed } from '../../core/surface';
-import type { Config } from '../../core/config';
+import type { PlanarConfig } from '../../core/config';
 import { closedSurfaceMesh } from '../../view/cubeAtlasMesh';
 import { provenanceLines } from './cellRows';
 import type { ViewStack } from '../../view/stack';
@@ -20,7 +20,7 @@ import type { CellSolid } from '../../view/cellSolid';
 export function cellsPly(stack: ViewStack): string {
   if (stack.closed) return closedCellsPly(stack);
   // A stack that is not closed is unrolled: a plane's or a tube's config.
-  const config = stack.result.config as Config;
+  const config = stack.result.config as PlanarConfig;
   const vertices: string[] = [];
   const faces: string[] = [];
   for (const surface of stack.surfaces) {

@@ -16,7 +16,7 @@
  * Files are untrusted input: sizes are checked before allocating, label ids against the cells,
  * and the configuration through the schema; every refusal is one line naming the field.
  */
-import { validateAnyConfig } from '../../core/config';
+import { validateConfig } from '../../core/config';
 import { exactLabelImage } from '../../view/exactLabels';
 import type { Grid } from '../../core/grid';
 import type { LabelImage, SheetOutput, SheetResult } from '../../run';
@@ -144,7 +144,7 @@ function checkResult(value: unknown, where: string): SheetResult {
     throw new Error(`${where}: software.name is not "tissue-sheet": not a result written by tissue-sheet.`);
   }
   try {
-    validateAnyConfig(value.config);
+    validateConfig(value.config);
   } catch (error) {
     throw new Error(`${where}: config: ${(error as Error).message}`);
   }

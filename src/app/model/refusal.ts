@@ -4,7 +4,7 @@
  * (the CLI and the element print them; tests match them); the page explains the ones that speak
  * of the engine.
  */
-import { ConfigError, unrolledDomain, validateAnyConfig, type AnyConfig, type SurfaceConfig } from '../../core/config';
+import { ConfigError, unrolledDomain, validateConfig, type Config, type SurfaceConfig } from '../../core/config';
 import { layoutOfKind } from '../../core/config/surfaceLayout';
 import { checkTexelsPerSide } from '../../core/config/limits';
 
@@ -32,9 +32,9 @@ const FIELD_WORDS: Record<string, string> = {
 };
 
 /** Whether `config` with `sheet` in place of its own passes the other surface's size check. */
-function fits(config: AnyConfig, sheet: Record<string, unknown>): boolean {
+function fits(config: Config, sheet: Record<string, unknown>): boolean {
   try {
-    checkTexelsPerSide(validateAnyConfig({ ...config, sheet: { ...config.sheet, ...sheet } }));
+    checkTexelsPerSide(validateConfig({ ...config, sheet: { ...config.sheet, ...sheet } }));
     return true;
   } catch {
     return false;
@@ -58,7 +58,7 @@ function largest(hi: number, ok: (v: number) => boolean, lo = 0): number | null 
  * `error` (from validation, feasibility or the page's budget) for `config` (null when the
  * configuration itself could not be read), in words.
  */
-export function explainRefusal(error: unknown, config: AnyConfig | null): Refusal {
+export function explainRefusal(error: unknown, config: Config | null): Refusal {
   const text = error instanceof Error ? error.message : String(error);
   if (!ENGINE_WORDS.test(text)) return { message: text, details: null };
   const field = error instanceof ConfigError ? error.field : '';
@@ -116,7 +116,7 @@ export function explainRefusal(error: unknown, config: AnyConfig | null): Refusa
 }
 
 /** The seeded surface's area in µm² where the configuration alone gives it (null for meshes). */
-export function surfaceArea(config: AnyConfig): number | null {
+export function surfaceArea(config: Config): number | null {
   const s = config.surface;
   switch (s.kind) {
     case 'tube':
@@ -140,7 +140,7 @@ export function surfaceArea(config: AnyConfig): number | null {
  * cells on a 25 µm sphere are 0.28 µm across. `area` is the surface's (µm²) when known from a
  * result (meshes); null when the size is plausible.
  */
-export function cellSizeNote(config: AnyConfig, area: number | null = surfaceArea(config)): string | null {
+export function cellSizeNote(config: Config, area: number | null = surfaceArea(config)): string | null {
   if (area === null || !(area > 0)) return null;
   const diameter = Math.sqrt(area / config.cells);
   if (diameter >= 1) return null;

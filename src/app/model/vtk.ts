@@ -10,7 +10,7 @@
  * the full configuration is in the result JSON, the CSV and the project file.
  */
 import { embed } from '../../core/surface';
-import type { Config } from '../../core/config';
+import type { PlanarConfig } from '../../core/config';
 import { closedSurfaceMesh } from '../../view/cubeAtlasMesh';
 import type { ViewStack } from '../../view/stack';
 import { surfacePolygons } from '../../view/cellPolygons';
@@ -60,7 +60,7 @@ export function sheetPolygons(stack: ViewStack): SheetPolygons {
       if (count < 3) continue;
       const first = out.points.length / 3;
       for (let k = 0; k < count; k++) {
-        const { position } = embed((stack.result.config as Config).surface, grid, polygon[2 * k], polygon[2 * k + 1], surface.offset);
+        const { position } = embed((stack.result.config as PlanarConfig).surface, grid, polygon[2 * k], polygon[2 * k + 1], surface.offset);
         out.points.push(...position);
       }
       push(

@@ -3,7 +3,7 @@
  * fieldsets. It holds a draft config (plain data) and reports every edit; the page validates
  * the draft and decides whether to run. `live` edits come from sliders being dragged.
  */
-import type { ConfigDraft as Config } from '../../core/config';
+import type { ConfigDraft } from '../../core/config';
 import { getPath, setPath } from '../../core/sweep';
 import { imageFileToDataUrl } from '../../view/densityImage';
 import { isUploadName, rememberUpload } from '../../view/meshFiles';
@@ -14,7 +14,7 @@ import { FIELDS, type FieldSpec } from './fields';
 
 export interface ControlsEvents {
   /** `forced`: run even when the draft did not change (a file uploaded under the name already asked for). */
-  onEdit(draft: Config, live: boolean, forced?: boolean): void;
+  onEdit(draft: ConfigDraft, live: boolean, forced?: boolean): void;
   onError(message: string): void;
 }
 
@@ -44,7 +44,7 @@ const GROUP_ORDER: [FieldSpec['group'], string][] = [
   ['Density', 'Cell density'],
 ];
 /** Text beside a field that follows the configuration. */
-const LIVE_NOTES: Record<string, (c: Config) => string> = {
+const LIVE_NOTES: Record<string, (c: ConfigDraft) => string> = {
   'lloyd.maxIterations': (c) => `Voronoi ${c.lloyd.maxIterations + 1}: k = Lloyd iterations + 1 (Voronoi 1 = random sites).`,
   // The tube's radius and length set how many cells go around it (issue 26).
   'surface.length': (c) => {
@@ -86,12 +86,12 @@ function numberBox(spec: FieldSpec): HTMLInputElement {
 }
 
 export class ConfigControls {
-  private draft: Config;
+  private draft: ConfigDraft;
   private readonly bound: Bound[] = [];
 
   constructor(
     root: HTMLElement,
-    initial: Config,
+    initial: ConfigDraft,
     private readonly events: ControlsEvents,
   ) {
     this.draft = structuredClone(initial);
@@ -121,7 +121,7 @@ export class ConfigControls {
     this.refresh();
   }
 
-  get config(): Config {
+  get config(): ConfigDraft {
     return structuredClone(this.draft);
   }
 
@@ -131,7 +131,7 @@ export class ConfigControls {
   }
 
   /** Replaces the draft (e.g. from a URL) and updates every control. */
-  setConfig(config: Config): void {
+  setConfig(config: ConfigDraft): void {
     this.draft = structuredClone(config);
     this.refresh();
   }
@@ -317,7 +317,7 @@ export class ConfigControls {
 }
 
 /** A union's kind selector: the description of the kind chosen (schema), not of the first one. */
-function kindDescription(path: string, c: Config): string | null {
+function kindDescription(path: string, c: ConfigDraft): string | null {
   if (path !== 'surface.kind' && path !== 'density.kind') return null;
   const kind = path === 'surface.kind' ? c.surface.kind : c.density.kind;
   try {

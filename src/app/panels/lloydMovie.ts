@@ -6,7 +6,7 @@
  * the run on screen. Frames appear as they are computed, then loop; "WebM" records the loop from
  * the canvas with MediaRecorder. Planes and tubes only (closed surfaces have no flat picture).
  */
-import type { AnyConfig as Config } from '../../core/config';
+import type { Config } from '../../core/config';
 import { surfaceLayout } from '../../core/config/surfaceLayout';
 import type { SheetOutput } from '../../run';
 import { acquirePipelineRunner, isAbort, releasePipelineRunner, runInputs } from '../../view/pageRunner';

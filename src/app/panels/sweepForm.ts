@@ -3,7 +3,7 @@
  * configuration shows, or Voronoi k), from, to, points and realizations, made into the CLI's sweep
  * spec (docs/sweep.md); and a loaded spec shown back in it.
  */
-import { validateConfigDraft, type ConfigDraft as Config } from '../../core/config';
+import { validateConfigDraft, type ConfigDraft } from '../../core/config';
 import { FIELDS } from './fields';
 
 /** The "Voronoi k" choice: sweeps lloyd.maxIterations = k - 1 with tolerance 0. */
@@ -22,7 +22,7 @@ export class SweepForm {
 
   constructor(
     private readonly root: HTMLElement,
-    private readonly config: () => Config,
+    private readonly config: () => ConfigDraft,
     private readonly status: (text: string) => void,
   ) {
     this.field = document.createElement('select');
@@ -32,7 +32,7 @@ export class SweepForm {
 
   /** The numeric fields shown for the current configuration, and Voronoi k. */
   refresh(): void {
-    let config: Config;
+    let config: ConfigDraft;
     try {
       config = this.config();
     } catch {

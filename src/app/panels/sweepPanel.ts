@@ -12,7 +12,7 @@
  * Reference curves (the shipped set, or the user's file) can be laid over the chart
  * (referenceOverlay.ts); they are never part of the downloads.
  */
-import type { ConfigDraft as Config } from '../../core/config';
+import type { ConfigDraft } from '../../core/config';
 import { readRunsCsv, FLINTSTONES_RATIO, sweepFlintstones } from '../../core/sweep';
 import { computeContext, isAbort } from '../../view/pageRunner';
 import { methodsOnRenderer } from '../../core/config/analysisMethods';
@@ -27,7 +27,7 @@ import { SweepChart } from './sweepChart';
 import { ReferenceOverlay } from './referenceOverlay';
 
 export interface SweepPanelEvents {
-  config(): Config;
+  config(): ConfigDraft;
   onError(message: string): void;
 }
 
@@ -54,7 +54,11 @@ export class SweepPanel {
     (root.querySelector<HTMLElement>('#chart-sweep') ?? root).after(fits);
     this.flintstones = new FlintstonesChart(fits);
     this.reference = new ReferenceOverlay(root.querySelector<HTMLElement>('#chart-sweep') ?? root, this.chart);
-    this.form = new SweepForm(root, () => events.config(), (text) => this.status(text));
+    this.form = new SweepForm(
+      root,
+      () => events.config(),
+      (text) => this.status(text),
+    );
     this.buildControls();
     this.button('run').addEventListener('click', () => void this.runNew());
     this.button('cancel').addEventListener('click', () => this.controller?.abort());

@@ -14,7 +14,7 @@
  * A result with no valid cell (every cell touches an open end of a tube or plane) has no
  * percentage at all; `noValidCells` says so.
  */
-import type { AnyConfig } from '../config/types';
+import type { Config } from '../config/types';
 
 export interface ByConstruction {
   /** The value fixed by the geometry (0: no neighbour can change). */
@@ -29,7 +29,7 @@ export interface ByConstruction {
 const SAME_AXIS = 1e-9;
 
 /** Why % scutoids of `config` is 0 whatever the sites, or null when it depends on them. */
-export function byConstruction(config: AnyConfig): ByConstruction | null {
+export function byConstruction(config: Config): ByConstruction | null {
   const surface = config.surface;
   const sheet = config.sheet as { thickness: number; surfaceRatio?: number | null };
   const ratio = surface.kind === 'tube' ? (sheet.surfaceRatio ?? null) : null;

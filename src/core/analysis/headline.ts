@@ -10,7 +10,7 @@
  * seed, the first being the realization drawn (the configuration's own seed).
  */
 import { headlineMethod, type AdjacencyMethod } from '../config/analysisMethods';
-import type { AnyConfig } from '../config/types';
+import type { Config } from '../config/types';
 import { byConstruction, noValidCells, type ByConstruction } from './byConstruction';
 import type { AnalysisRecord } from './record';
 
@@ -56,7 +56,7 @@ export interface OmittedMethod {
 }
 
 /** The methods `config` asked for that `reported` lacks, and why (see Headline.omittedMethods). */
-export function omittedMethods(config: AnyConfig, reported: readonly AdjacencyMethod[]): OmittedMethod[] {
+export function omittedMethods(config: Config, reported: readonly AdjacencyMethod[]): OmittedMethod[] {
   const adjacency = config.sheet.adjacency;
   const asked: AdjacencyMethod[] = adjacency === 'both' ? ['labels', 'exact'] : [adjacency];
   const why =
@@ -83,7 +83,7 @@ const finiteOrNull = (value: number): number | null => (Number.isFinite(value) ?
  * The headline of one run: its headline method's summary (see headlineMethod), or null when the
  * run reports no analysis.
  */
-export function runHeadline(config: AnyConfig, analyses: readonly AnalysisRecord[], lloydIterations: number): Headline | null {
+export function runHeadline(config: Config, analyses: readonly AnalysisRecord[], lloydIterations: number): Headline | null {
   const method = headlineMethod(analyses.map((a) => a.method));
   const analysis = analyses.find((a) => a.method === method);
   if (!method || !analysis) return null;

@@ -9,7 +9,7 @@
  * restricted Voronoi diagram on spheres, ellipsoids and meshes.
  */
 import { surfaceLayout } from './surfaceLayout';
-import type { AnyConfig } from './types';
+import type { Config } from './types';
 
 export const ADJACENCY_METHODS = ['labels', 'exact'] as const;
 /** `labels`: adjacent texels of the label images; `exact`: the exact Voronoi diagram. */
@@ -29,7 +29,7 @@ export interface RendererTraits {
  * computation costs a fraction of a jump flood); the GPU otherwise. Closed surfaces always run
  * on the GPU (their exact method is an analysis, not a Lloyd engine).
  */
-export function engineNameFor(config: AnyConfig, renderer: RendererTraits): EngineName {
+export function engineNameFor(config: Config, renderer: RendererTraits): EngineName {
   if (!surfaceLayout(config).exactEngine) return 'gpu';
   if (config.engine === 'exact') return 'exact';
   if (config.engine === 'auto' && renderer.softwareRenderer && config.sheet.adjacency !== 'labels') return 'exact';
@@ -41,14 +41,14 @@ export function engineNameFor(config: AnyConfig, renderer: RendererTraits): Engi
  * `analyses`: the exact engine makes no label images, so it reports "exact" only; the GPU
  * engine reports what sheet.adjacency asks for ("both": labels, then exact).
  */
-export function analysisMethods(config: AnyConfig, engine: EngineName): AdjacencyMethod[] {
+export function analysisMethods(config: Config, engine: EngineName): AdjacencyMethod[] {
   if (engine === 'exact') return ['exact'];
   const { adjacency } = config.sheet;
   return ADJACENCY_METHODS.filter((method) => adjacency === 'both' || adjacency === method);
 }
 
 /** The methods a run of `config` reports on a renderer with these traits. */
-export function methodsOnRenderer(config: AnyConfig, renderer: RendererTraits): AdjacencyMethod[] {
+export function methodsOnRenderer(config: Config, renderer: RendererTraits): AdjacencyMethod[] {
   return analysisMethods(config, engineNameFor(config, renderer));
 }
 

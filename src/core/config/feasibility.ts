@@ -3,7 +3,7 @@ import { LAB_MEAN_CELL_DIAMETER_PIXELS, LAB_MIN_BOUNDARY_PIXELS } from '../analy
 import type { Grid } from '../grid';
 import { checkMethods } from './methods';
 import { ConfigError } from './configError';
-import type { ClosedConfig, ClosedSurfaceConfig, Config, SurfaceConfig } from './types';
+import type { ClosedConfig, ClosedSurfaceConfig, PlanarConfig, SurfaceConfig } from './types';
 
 // ---------------------------------------------------------------------------------------------
 // Grid and feasibility
@@ -29,7 +29,7 @@ export function unrolledDomain(surface: SurfaceConfig): UnrolledDomain {
  * same size as fit (rounded, at least 1). Texel sizes are then recomputed from the texel counts
  * so both lengths are exact; texels are square up to that rounding.
  */
-export function makeGrid(config: Pick<Config, 'surface' | 'resolution'>): Grid {
+export function makeGrid(config: Pick<PlanarConfig, 'surface' | 'resolution'>): Grid {
   const domain = unrolledDomain(config.surface);
   const texel = Math.max(domain.lengthX, domain.lengthY) / config.resolution;
   const width = domain.lengthX >= domain.lengthY ? config.resolution : Math.max(1, Math.round(domain.lengthX / texel));
@@ -56,7 +56,7 @@ function hexagonalAreaPerPoint(spacing: number): number {
  * Rejects configurations that validate but cannot run sensibly on this grid. These checks need
  * the grid (or several fields at once), which is why they are not in the schema.
  */
-export function checkFeasible(config: Config, grid: Grid): void {
+export function checkFeasible(config: PlanarConfig, grid: Grid): void {
   const texels = grid.width * grid.height;
   if (config.cells * MIN_TEXELS_PER_CELL > texels) {
     const need = config.cells * MIN_TEXELS_PER_CELL;
@@ -100,7 +100,7 @@ export function checkFeasible(config: Config, grid: Grid): void {
 }
 
 /** The other surface must exist: a ratio only on a tube, an inward offset short of the axis. */
-export function checkSheet(config: Config): void {
+export function checkSheet(config: PlanarConfig): void {
   checkMethods(config);
   const { sheet, surface } = config;
   if (sheet.surfaceRatio !== null) {

@@ -17,7 +17,7 @@
  */
 import { unrolledDomain } from './feasibility';
 import { maxResolution, surfaceLayout } from './surfaceLayout';
-import type { AnyConfig, Config } from './types';
+import type { Config, PlanarConfig } from './types';
 import { ConfigError } from './validate';
 
 export const MIN_EXTENT_UM = 1e-3;
@@ -78,7 +78,7 @@ export interface RunEstimate {
   cellBytes: number;
 }
 
-export function estimateRun(config: AnyConfig): RunEstimate {
+export function estimateRun(config: Config): RunEstimate {
   const layout = surfaceLayout(config);
   const grids = layout.grids();
   const sizes = grids.map((g) => g.width * g.height);
@@ -107,7 +107,7 @@ export function estimateRun(config: AnyConfig): RunEstimate {
  * holds a whole run at a time): threads are for speed, so fewer are started where the memory
  * would not hold them, rather than the run refused.
  */
-export function threadsWithinBudget(config: AnyConfig, estimate: RunEstimate, budget: ComputeBudget, wanted: number): number {
+export function threadsWithinBudget(config: Config, estimate: RunEstimate, budget: ComputeBudget, wanted: number): number {
   const texelBytes = estimate.bytes - estimate.cellBytes;
   const perThread = THREAD_BYTES + texelBytes + config.cells * (THREAD_BYTES_PER_CELL + THREAD_BYTES_PER_CELL_PER_SURFACE * estimate.surfaces);
   const room = Math.floor((budget.maxBytes - estimate.bytes) / perThread);
@@ -115,7 +115,7 @@ export function threadsWithinBudget(config: AnyConfig, estimate: RunEstimate, bu
 }
 
 /** Refuses lengths outside [MIN_EXTENT_UM, MAX_EXTENT_UM] (see the module comment). */
-export function checkExtents(config: AnyConfig): void {
+export function checkExtents(config: Config): void {
   const lengths: [string, number][] = [];
   const s = config.surface;
   if (s.kind === 'plane') lengths.push(['surface.width', s.width], ['surface.height', s.height]);
@@ -136,7 +136,7 @@ export function checkExtents(config: AnyConfig): void {
 }
 
 /** Refuses grids with fewer than MIN_TEXELS_PER_SIDE texels along a side, naming the cause. */
-export function checkTexelsPerSide(config: AnyConfig): void {
+export function checkTexelsPerSide(config: Config): void {
   const layout = surfaceLayout(config);
   if (!layout.aspectSetsShortSide) return; // a cube map is resolution² per face, and resolution >= 16
   const grids = layout.grids();
@@ -144,7 +144,7 @@ export function checkTexelsPerSide(config: AnyConfig): void {
   const short = Math.min(seeded.width, seeded.height);
   if (short < MIN_TEXELS_PER_SIDE) {
     // The long side gets `resolution` texels, the short one resolution x short/long (rounded).
-    const d = unrolledDomain((config as Config).surface);
+    const d = unrolledDomain((config as PlanarConfig).surface);
     const need = Math.ceil((MIN_TEXELS_PER_SIDE * Math.max(d.lengthX, d.lengthY)) / Math.min(d.lengthX, d.lengthY));
     throw new ConfigError(
       'resolution',
@@ -167,7 +167,7 @@ export function checkTexelsPerSide(config: AnyConfig): void {
 }
 
 /** Refuses a grid wider than the GPU's texture limit, naming the field that made it so. */
-export function checkTextureSize(config: AnyConfig, maxTextureSize: number): void {
+export function checkTextureSize(config: Config, maxTextureSize: number): void {
   const layout = surfaceLayout(config);
   const grids = layout.grids();
   grids.forEach((g, k) => {
@@ -190,7 +190,7 @@ export function checkTextureSize(config: AnyConfig, maxTextureSize: number): voi
 }
 
 /** Refuses a run whose estimated work or memory exceeds the budget (before allocating anything). */
-export function checkBudget(config: AnyConfig, budget: ComputeBudget, raiseHint: string): RunEstimate {
+export function checkBudget(config: Config, budget: ComputeBudget, raiseHint: string): RunEstimate {
   const e = estimateRun(config);
   // Name what made the run large: the seeded grid (resolution) or a wider other surface (only a
   // tube's grids differ in size; a cube map's surfaces are all n x 6n, so largest stays 0).
@@ -218,15 +218,15 @@ export function checkBudget(config: AnyConfig, budget: ComputeBudget, raiseHint:
 }
 
 /** Every check of this module, in the order a user would fix them. */
-export function checkLimits(config: AnyConfig, budget: ComputeBudget, raiseHint: string): RunEstimate {
+export function checkLimits(config: Config, budget: ComputeBudget, raiseHint: string): RunEstimate {
   checkExtents(config);
   checkTexelsPerSide(config);
   checkTextureSize(config, budget.maxTextureSize);
   return checkBudget(config, budget, raiseHint);
 }
 
-function sheetField(config: AnyConfig): string {
-  return (config as Config).sheet.surfaceRatio !== null ? 'sheet.surfaceRatio' : 'sheet.thickness';
+function sheetField(config: Config): string {
+  return (config as PlanarConfig).sheet.surfaceRatio !== null ? 'sheet.surfaceRatio' : 'sheet.thickness';
 }
 
 function fmt(value: number): string {

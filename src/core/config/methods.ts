@@ -3,10 +3,10 @@
  * contact rules. Each refusal is one line naming the field and what to change.
  */
 import { LAB_PROTOCOL, MAX_PROTOCOL_LAYERS, protocolProblem } from '../analysis/protocol';
-import type { AnyConfig } from './types';
+import type { Config } from './types';
 import { ConfigError } from './configError';
 
-type Sheet = AnyConfig['sheet'];
+type Sheet = Config['sheet'];
 
 /** The layer step in force: sheet.layerStep, else the lab protocol's, else none (sheet.layers). */
 export function layerStepOf(sheet: Sheet): number | null {
@@ -31,7 +31,7 @@ export function steppedOffsets(total: number, step: number): number[] {
   return offsets;
 }
 
-export function checkMethods(config: AnyConfig): void {
+export function checkMethods(config: Config): void {
   const { sheet, surface } = config;
   if (config.engine === 'exact' && sheet.adjacency === 'labels') {
     throw new ConfigError(

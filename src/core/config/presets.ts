@@ -10,7 +10,7 @@
 import { DEFAULT_TUBE_RADIUS } from './schema';
 import { unrolledDomain } from './feasibility';
 import { layoutOfKind } from './surfaceLayout';
-import type { AnyConfig, AnySurfaceConfig, ConfigInput, DensitySpec, SurfaceConfig } from './types';
+import type { Config, AnySurfaceConfig, ConfigInput, DensitySpec, SurfaceConfig } from './types';
 
 /**
  * The example the app opens with when neither a link nor a previous session gives a config: a
@@ -69,7 +69,7 @@ export function planarOfKind(current: SurfaceConfig, kind: string): SurfaceConfi
 }
 
 /** Density presets: parameters that suit the current domain. */
-export function densityPreset(kind: string, c: Pick<AnyConfig, 'surface' | 'density'>): DensitySpec {
+export function densityPreset(kind: string, c: Pick<Config, 'surface' | 'density'>): DensitySpec {
   // A cube map takes uniform density only: validation says so for any other preset.
   const d = layoutOfKind(c.surface.kind).uniformDensityOnly ? { lengthX: 1, lengthY: 1 } : unrolledDomain(c.surface as SurfaceConfig);
   switch (kind) {

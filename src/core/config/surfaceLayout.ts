@@ -8,7 +8,7 @@
  */
 import { sheetOffsets, surfaceStack } from '../sheetGeometry';
 import { checkClosedFeasible, checkFeasible, closedDefaultResolution, makeCubeGrid, makeGrid, PLANAR_DEFAULT_RESOLUTION } from './feasibility';
-import { isClosedKind, type AnyConfig, type ClosedConfig, type Config } from './types';
+import { isClosedKind, type Config, type ClosedConfig, type PlanarConfig } from './types';
 
 /** The two layouts (also the GPU's surface family names). */
 export type SurfaceLayoutName = 'planar grid' | 'cube map';
@@ -43,7 +43,7 @@ export interface SurfaceLayoutKind {
    */
   readonly offsetChoice: boolean;
   /** The resolution a config of this layout gets when it leaves `resolution` null. */
-  defaultResolution(config: Pick<AnyConfig, 'surface' | 'cells' | 'sheet'>): number;
+  defaultResolution(config: Pick<Config, 'surface' | 'cells' | 'sheet'>): number;
 }
 
 /** A config's layout: its kind's fields and what follows from the config's dimensions. */
@@ -92,7 +92,7 @@ export function layoutOfKind(kind: string): SurfaceLayoutKind {
  * The resolution a config gets when it leaves `resolution` null: 512 on a planar grid; on a cube
  * map the smallest that resolves the counted contacts (feasibility.ts, closedDefaultResolution).
  */
-export function defaultResolution(config: Pick<AnyConfig, 'surface' | 'cells' | 'sheet'>): number {
+export function defaultResolution(config: Pick<Config, 'surface' | 'cells' | 'sheet'>): number {
   return layoutOfKind(config.surface.kind).defaultResolution(config);
 }
 
@@ -102,7 +102,7 @@ export function maxResolution(layout: SurfaceLayoutKind, maxTextureSize: number)
 }
 
 /** A validated config's layout: where its surface kind is decided, once. */
-export function surfaceLayout(config: AnyConfig): SurfaceLayout {
+export function surfaceLayout(config: Config): SurfaceLayout {
   const kind = layoutOfKind(config.surface.kind);
   if (kind === CUBE_MAP) {
     const closed = config as ClosedConfig;
@@ -116,7 +116,7 @@ export function surfaceLayout(config: AnyConfig): SurfaceLayout {
       checkFeasible: () => checkClosedFeasible(closed),
     };
   }
-  const planar = config as Config;
+  const planar = config as PlanarConfig;
   return {
     ...kind,
     grids: () => surfaceStack(planar, makeGrid(planar)).map((s) => ({ width: s.grid.width, height: s.grid.height })),

@@ -1,8 +1,8 @@
 /**
  * The run configuration's TypeScript types, computed from configSchema (schema.ts): a field
- * added, removed or retyped there changes these types with no second edit. `Config` and its
- * parts are what `validateAnyConfig` returns, every default filled in; `ConfigInput` is what a
- * user may write.
+ * added, removed or retyped there changes these types with no second edit. `Config` (a
+ * `PlanarConfig` or a `ClosedConfig`) and its parts are what `validateConfig` returns, every
+ * default filled in; `ConfigInput` is what a user may write.
  */
 import type { FromSchema } from './fromSchema';
 import type { configSchema } from './schema';
@@ -42,7 +42,7 @@ export type CentroidPathName = SchemaConfig['centroidPath'];
 export type SheetConfig = SchemaConfig['sheet'];
 
 /** A validated configuration on a plane or a tube: every field present, every default filled in. */
-export interface Config extends Omit<SchemaConfig, 'surface' | 'resolution'> {
+export interface PlanarConfig extends Omit<SchemaConfig, 'surface' | 'resolution'> {
   surface: SurfaceConfig;
   /** Always a number once validated: validation resolves null (see defaultResolution). */
   resolution: number;
@@ -53,8 +53,8 @@ export interface ClosedConfig extends Omit<SchemaConfig, 'surface' | 'resolution
   /** Always a number once validated: validation resolves null (see defaultResolution). */
   resolution: number;
 }
-/** Any validated configuration: planar (Config) or closed (ClosedConfig). */
-export type AnyConfig = Config | ClosedConfig;
+/** Any validated configuration: planar (PlanarConfig) or closed (ClosedConfig). */
+export type Config = PlanarConfig | ClosedConfig;
 
 /** The closed kinds as a value (for runtime checks); the compiler keeps it equal to ClosedSurfaceConfig's kinds. */
 export const CLOSED_SURFACE_KINDS = ['sphere', 'ellipsoid', 'mesh'] as const satisfies readonly ClosedSurfaceConfig['kind'][];
@@ -62,7 +62,7 @@ export const CLOSED_SURFACE_KINDS = ['sphere', 'ellipsoid', 'mesh'] as const sat
 const closedKindsListed: Exclude<ClosedSurfaceConfig['kind'], (typeof CLOSED_SURFACE_KINDS)[number]> extends never ? true : never = true;
 void closedKindsListed;
 
-export function isClosedConfig(config: AnyConfig): config is ClosedConfig {
+export function isClosedConfig(config: Config): config is ClosedConfig {
   return isClosedKind(config.surface.kind);
 }
 

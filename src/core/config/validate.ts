@@ -3,7 +3,7 @@ import type { ErrorObject } from 'ajv';
 import { validate as generatedValidate } from './configValidator.generated';
 import { ConfigError } from './configError';
 import { defaultResolution } from './surfaceLayout';
-import type { AnyConfig } from './types';
+import type { Config } from './types';
 
 // ---------------------------------------------------------------------------------------------
 // Validation
@@ -13,15 +13,15 @@ export { ConfigError } from './configError';
 
 type SchemaNode = Record<string, unknown>;
 
-/** What the schema validates: an AnyConfig whose resolution may still be null. */
+/** What the schema validates: an Config whose resolution may still be null. */
 type Unresolved<T> = T extends unknown ? Omit<T, 'resolution'> & { resolution: number | null } : never;
 /**
  * A valid configuration with every default filled in except a resolution left null ("the
  * default": defaultResolution of the surface, the cells and the contact rule). Forms and links
  * keep this form, so the default follows later changes of the fields it depends on until the
- * user sets a resolution; validateAnyConfig gives the number a run records.
+ * user sets a resolution; validateConfig gives the number a run records.
  */
-export type ConfigDraft = Unresolved<AnyConfig>;
+export type ConfigDraft = Unresolved<Config>;
 /**
  * The schema's validator, compiled ahead of time from configSchema by scripts/validators.ts
  * (npm run validators:write; `npm test` checks it is current): the page's Content-Security-Policy
@@ -29,21 +29,21 @@ export type ConfigDraft = Unresolved<AnyConfig>;
  * the first error and gives verbose errors (their schema node is where messages find ranges and
  * units).
  */
-const validate = generatedValidate as ((data: unknown) => data is Unresolved<AnyConfig>) & { errors?: ErrorObject[] | null };
+const validate = generatedValidate as ((data: unknown) => data is Unresolved<Config>) & { errors?: ErrorObject[] | null };
 
 /**
  * Checks `input`, fills every default and returns a fresh object (the input is never modified).
  * Throws ConfigError with a one-line message naming the field, the problem, the value given
  * and what to change.
  */
-export function validateAnyConfig(input: unknown): AnyConfig {
+export function validateConfig(input: unknown): Config {
   const data = validateConfigDraft(input);
   // The resolution a null asks for depends on the surface and the cells: fill it in, so the
   // returned config (and every result) records the number that ran.
   return { ...data, resolution: data.resolution ?? defaultResolution(data) };
 }
 
-/** validateAnyConfig, keeping a null (or missing) resolution null: see ConfigDraft. */
+/** validateConfig, keeping a null (or missing) resolution null: see ConfigDraft. */
 export function validateConfigDraft(input: unknown): ConfigDraft {
   // Clone first: ajv writes defaults into the object it validates, and NaN/Infinity (which
   // JSON cannot carry but JS objects can) must be caught with their path before ajv sees them.

@@ -15,7 +15,7 @@
  * `<method>.<surface>.polygons.<3..10+>`. A CLI test checks a real run's summary against this.
  */
 import { SIDE_CLASSES } from '../analysis';
-import { ADJACENCY_METHODS, methodsOnRenderer, type AdjacencyMethod, type AnyConfig, type RendererTraits } from '../config';
+import { ADJACENCY_METHODS, methodsOnRenderer, type AdjacencyMethod, type Config, type RendererTraits } from '../config';
 import { sheetOffsets } from '../sheetGeometry';
 
 export const TOP_COLUMNS = ['iterations', 'finalEnergy', 'centroidPath'] as const;
@@ -37,17 +37,17 @@ export const METHODS = ADJACENCY_METHODS;
  * Adjacency methods whose statistics a run of `config` reports on a renderer (the GPU engine
  * unless told otherwise): the same description the pipeline computes its analyses from.
  */
-export function runMethods(config: AnyConfig, renderer: RendererTraits = { softwareRenderer: false }): AdjacencyMethod[] {
+export function runMethods(config: Config, renderer: RendererTraits = { softwareRenderer: false }): AdjacencyMethod[] {
   return methodsOnRenderer(config, renderer);
 }
 
 /** Layers between the seeded and the other surface: as many as the stack has (sheetOffsets). */
-export function stackLayerCount(config: AnyConfig): number {
+export function stackLayerCount(config: Config): number {
   return sheetOffsets(config).length - 2;
 }
 
 /** Surface names of the stack as they appear in column names (no spaces). */
-export function surfaceColumnNames(config: AnyConfig): string[] {
+export function surfaceColumnNames(config: Config): string[] {
   const { seeded } = config.sheet;
   const layers = stackLayerCount(config);
   const other = seeded === 'basal' ? 'apical' : 'basal';
@@ -64,13 +64,13 @@ function surfaceColumns(method: string, surface: string): string[] {
  * the engine of the first run sharing it, so a sweep allows both outcomes; resume checks that
  * each method's columns are filled all or none (see resume.ts).
  */
-export function possibleMethods(config: AnyConfig): AdjacencyMethod[] {
+export function possibleMethods(config: Config): AdjacencyMethod[] {
   const both = new Set([...runMethods(config, { softwareRenderer: false }), ...runMethods(config, { softwareRenderer: true })]);
   return METHODS.filter((m) => both.has(m));
 }
 
 /** The summary columns one run of `config` may fill (given a renderer: does fill), in order. */
-export function summaryColumns(config: AnyConfig, renderer?: RendererTraits): string[] {
+export function summaryColumns(config: Config, renderer?: RendererTraits): string[] {
   const columns: string[] = [...TOP_COLUMNS];
   for (const method of renderer ? runMethods(config, renderer) : possibleMethods(config)) {
     columns.push(...METHOD_METRICS.map((m) => `${method}.${m}`));
@@ -84,7 +84,7 @@ export function summaryColumns(config: AnyConfig, renderer?: RendererTraits): st
  * order of the configs' methods: top columns, then per method (labels, exact) its metrics and
  * its surfaces in order of first appearance.
  */
-export function sweepColumns(configs: Iterable<AnyConfig>, renderer?: RendererTraits): string[] {
+export function sweepColumns(configs: Iterable<Config>, renderer?: RendererTraits): string[] {
   const surfaces = new Map<string, string[]>(METHODS.map((m) => [m, []]));
   const used = new Set<string>();
   for (const config of configs) {

@@ -18,14 +18,14 @@
  *   evaluates the same realizations at every surface ratio); seeds are distinct across
  *   realizations. The base seed is `spec.seed`, else a number at `seedPath` in the base config,
  *   else 0. The run's seed is written into the config at `seedPath` (default "seed").
- * - Config: a deep copy (structuredClone) of the base with each varied value set at its path
+ * - ConfigObject: a deep copy (structuredClone) of the base with each varied value set at its path
  *   (intermediate objects are created when missing; see setPath: no path reaches a prototype).
  * - Size: `countRuns` gives the number of runs without expanding; callers cap it first.
  */
 
-export type Config = Record<string, unknown>;
+export type ConfigObject = Record<string, unknown>;
 
-export interface SweepSpec<C extends Config = Config> {
+export interface SweepSpec<C extends ConfigObject = ConfigObject> {
   base: C;
   vary?: Record<string, readonly unknown[]>;
   realizations?: number;
@@ -34,7 +34,7 @@ export interface SweepSpec<C extends Config = Config> {
   seedMode?: 'per-run' | 'per-realization';
 }
 
-export interface SweepRun<C extends Config = Config> {
+export interface SweepRun<C extends ConfigObject = ConfigObject> {
   /** Position in the expanded list. */
   index: number;
   /** Stable run key: `<pointKey>#r<realization>`. */
@@ -129,7 +129,7 @@ export function variedFields(spec: SweepSpec): string[] {
 }
 
 /** All runs of a sweep (see the module comment). */
-export function expandSweep<C extends Config>(spec: SweepSpec<C>): SweepRun<C>[] {
+export function expandSweep<C extends ConfigObject>(spec: SweepSpec<C>): SweepRun<C>[] {
   const fields = variedFields(spec);
   const seedPath = spec.seedPath ?? 'seed';
   const realizations = spec.realizations ?? 1;

@@ -14,9 +14,9 @@
  *   before the curve bends); the parameters are still written, flagged, with the reason.
  */
 import { fitFlintstones, type FlintstonesFit, type FlintstonesParameters, type FlintstonesPoint } from '../analysis/flintstones';
-import { validateAnyConfig } from '../config';
+import { validateConfig } from '../config';
 import { formatCsv } from './csv';
-import type { Config, SweepRun } from './expand';
+import type { ConfigObject, SweepRun } from './expand';
 import { getPath, valueText } from './expand';
 
 export const FLINTSTONES_RATIO = 'sheet.surfaceRatio';
@@ -62,7 +62,7 @@ export const sweepFitter: FlintstonesFitter = (points) => fitFlintstones(points,
  * points (sweepFitter; the CLI passes one that takes fits computed on its threads from the same
  * points, see flintstonesProblems).
  */
-export function sweepFlintstones<C extends Config>(
+export function sweepFlintstones<C extends ConfigObject>(
   rows: readonly Record<string, string>[],
   runs: readonly SweepRun<C>[],
   fields: readonly string[],
@@ -75,7 +75,7 @@ export function sweepFlintstones<C extends Config>(
  * The points each fit of sweepFlintstones(rows, runs, fields) is given, in its order, for the
  * groups that are fitted: so they can be fitted elsewhere (the CLI's threads) beforehand.
  */
-export function flintstonesProblems<C extends Config>(
+export function flintstonesProblems<C extends ConfigObject>(
   rows: readonly Record<string, string>[],
   runs: readonly SweepRun<C>[],
   fields: readonly string[],
@@ -88,12 +88,16 @@ export function flintstonesProblems<C extends Config>(
 
 type GroupRows = { group: Record<string, string>; voronoi: number; rows: { s: number; row: Record<string, string> }[] };
 
-function flintstonesGroups<C extends Config>(rows: readonly Record<string, string>[], runs: readonly SweepRun<C>[], fields: readonly string[]): GroupRows[] {
+function flintstonesGroups<C extends ConfigObject>(
+  rows: readonly Record<string, string>[],
+  runs: readonly SweepRun<C>[],
+  fields: readonly string[],
+): GroupRows[] {
   const byKey = new Map(runs.map((r) => [r.key, r]));
   // Validated (defaults filled in: lloyd.maxIterations need not be in the spec), once per grid point.
   const configs = new Map<string, unknown>();
   const configOf = (run: SweepRun<C>) => {
-    if (!configs.has(run.pointKey)) configs.set(run.pointKey, validateAnyConfig(run.config));
+    if (!configs.has(run.pointKey)) configs.set(run.pointKey, validateConfig(run.config));
     return configs.get(run.pointKey);
   };
   const groupFields = fields.filter((f) => f !== FLINTSTONES_RATIO && f !== 'lloyd.maxIterations');

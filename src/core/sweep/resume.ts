@@ -14,7 +14,7 @@
  * accepted rows only (`cleanText`), so that it never holds two rows for a key.
  */
 import { formatCsvRow, parseCsv } from './csv';
-import type { Config, SweepRun } from './expand';
+import type { ConfigObject, SweepRun } from './expand';
 import { valueText } from './expand';
 import { fileHeader } from './units';
 
@@ -40,7 +40,7 @@ export interface ResumePlan {
   cleanText: string;
 }
 
-export interface ResumeSpec<C extends Config> {
+export interface ResumeSpec<C extends ConfigObject> {
   header: readonly string[];
   fields: readonly string[];
   runs: readonly SweepRun<C>[];
@@ -51,7 +51,7 @@ export interface ResumeSpec<C extends Config> {
 
 const isNumberText = (cell: string): boolean => cell === 'NaN' || (cell.trim() === cell && cell !== '' && !Number.isNaN(Number(cell)));
 
-export function planResume<C extends Config>(text: string, spec: ResumeSpec<C>, fileName = 'runs.csv'): ResumePlan {
+export function planResume<C extends ConfigObject>(text: string, spec: ResumeSpec<C>, fileName = 'runs.csv'): ResumePlan {
   // The file's header carries units (units.ts); rows keep the plain names of spec.header.
   const written = fileHeader(spec.header);
   const headerText = formatCsvRow(written);
@@ -107,7 +107,7 @@ function countLines(text: string): number {
   return n;
 }
 
-function checkRecord<C extends Config>(
+function checkRecord<C extends ConfigObject>(
   record: string[],
   spec: ResumeSpec<C>,
   byKey: Map<string, SweepRun<C>>,

@@ -30,19 +30,19 @@
  */
 import { csvField, flattenSummary, formatCsvRow, readCsvTable } from './csv';
 import { fileHeader, plainColumn } from './units';
-import type { Config, SweepRun } from './expand';
+import type { ConfigObject, SweepRun } from './expand';
 import { valueText } from './expand';
 import { keepTypedCells } from './typedCells';
 
-export type SweepRunner<C extends Config, S> = (config: C, run: SweepRun<C>) => Promise<S>;
+export type SweepRunner<C extends ConfigObject, S> = (config: C, run: SweepRun<C>) => Promise<S>;
 
 /**
  * Computes a task's runs (given in `runs` order) and calls `done` once per run as it finishes,
  * in any order; rejects on the first failure (runs already reported stay done).
  */
-export type SweepTaskRunner<C extends Config, S> = (runs: SweepRun<C>[], done: (run: SweepRun<C>, summary: S) => void) => Promise<void>;
+export type SweepTaskRunner<C extends ConfigObject, S> = (runs: SweepRun<C>[], done: (run: SweepRun<C>, summary: S) => void) => Promise<void>;
 
-export interface SweepProgress<C extends Config = Config> {
+export interface SweepProgress<C extends ConfigObject = ConfigObject> {
   phase: 'start' | 'done' | 'error';
   run: SweepRun<C>;
   /** Runs finished in this invocation (done or failed). */
@@ -55,7 +55,7 @@ export interface SweepProgress<C extends Config = Config> {
   error?: unknown;
 }
 
-export interface RunSweepOptions<C extends Config, S> {
+export interface RunSweepOptions<C extends ConfigObject, S> {
   runs: SweepRun<C>[];
   fields: string[];
   runner: SweepRunner<C, S>;
@@ -81,7 +81,7 @@ export interface RunSweepOptions<C extends Config, S> {
   signal?: AbortSignal;
 }
 
-export interface RunSweepResult<C extends Config> {
+export interface RunSweepResult<C extends ConfigObject> {
   header: string[];
   /** Rows already present plus rows appended now, as objects. */
   rows: Record<string, string>[];
@@ -95,7 +95,7 @@ export function baseColumns(fields: readonly string[]): string[] {
   return ['key', ...fields, 'realization', 'seed'];
 }
 
-export interface ResumeState<C extends Config> {
+export interface ResumeState<C extends ConfigObject> {
   remaining: SweepRun<C>[];
   done: SweepRun<C>[];
   /** Done rows whose seed differs from the run's seed. */
@@ -103,7 +103,7 @@ export interface ResumeState<C extends Config> {
 }
 
 /** Which runs remain given the rows already written (matched by `key`). */
-export function remainingRuns<C extends Config>(runs: readonly SweepRun<C>[], rows: readonly Record<string, string>[]): ResumeState<C> {
+export function remainingRuns<C extends ConfigObject>(runs: readonly SweepRun<C>[], rows: readonly Record<string, string>[]): ResumeState<C> {
   const byKey = new Map<string, Record<string, string>>();
   for (const r of rows) if (r.key !== undefined) byKey.set(r.key, r);
   const remaining: SweepRun<C>[] = [];
@@ -126,7 +126,7 @@ export function remainingRuns<C extends Config>(runs: readonly SweepRun<C>[], ro
  * column missing from the header is an error: the header is fixed before the first run and
  * must cover every column (see columns.ts), and a dropped column would be a silent lie.
  */
-export function runCells<C extends Config>(
+export function runCells<C extends ConfigObject>(
   run: SweepRun<C>,
   fields: readonly string[],
   summary: unknown,
@@ -235,7 +235,12 @@ function isFlatSummary(summary: unknown): summary is Record<string, unknown> {
 }
 
 /** The text cells of one run's row (see runCells). */
-export function runRow<C extends Config>(run: SweepRun<C>, fields: readonly string[], summary: unknown, header: readonly string[]): Record<string, string> {
+export function runRow<C extends ConfigObject>(
+  run: SweepRun<C>,
+  fields: readonly string[],
+  summary: unknown,
+  header: readonly string[],
+): Record<string, string> {
   return runCells(run, fields, summary, header).row;
 }
 
@@ -252,11 +257,11 @@ export function readRunsCsv(text: string): ReturnType<typeof readCsvTable> {
 }
 
 /** A finished run waiting for its turn in the file, with its row when it could be formatted already. */
-type Finished<C extends Config, S> =
+type Finished<C extends ConfigObject, S> =
   | { readonly run: SweepRun<C>; readonly summary: S; readonly cells?: undefined }
   | { readonly run: SweepRun<C>; readonly summary?: undefined; readonly cells: { row: Record<string, string>; line: string } };
 
-export async function runSweep<C extends Config, S>(options: RunSweepOptions<C, S>): Promise<RunSweepResult<C>> {
+export async function runSweep<C extends ConfigObject, S>(options: RunSweepOptions<C, S>): Promise<RunSweepResult<C>> {
   const { runs, fields, runner } = options;
   const existing = readRunsCsv(options.existingCsv ?? '');
   let header: string[] | null = existing.header.length > 0 ? existing.header : null;

@@ -16,7 +16,7 @@
  * - `parseShard`: "I/N" (1 <= I <= N, the I-th of N shards) or "slurm" (from the array job's
  *   SLURM_ARRAY_TASK_ID, SLURM_ARRAY_TASK_MIN and SLURM_ARRAY_TASK_COUNT: task MIN is shard 1).
  */
-import type { Config, SweepRun } from './expand';
+import type { ConfigObject, SweepRun } from './expand';
 import { SweepSpecError } from './spec';
 
 export interface Shard {
@@ -65,7 +65,7 @@ function slurmShard(env: Record<string, string | undefined>): Shard {
 }
 
 /** Runs grouped by `groupKey` (groups in order of first appearance, grid order inside). */
-export function orderForReuse<C extends Config>(runs: readonly SweepRun<C>[], groupKey: (run: SweepRun<C>) => string): SweepRun<C>[] {
+export function orderForReuse<C extends ConfigObject>(runs: readonly SweepRun<C>[], groupKey: (run: SweepRun<C>) => string): SweepRun<C>[] {
   const groups = new Map<string, SweepRun<C>[]>();
   for (const run of runs) {
     const key = groupKey(run);
@@ -77,7 +77,7 @@ export function orderForReuse<C extends Config>(runs: readonly SweepRun<C>[], gr
 }
 
 /** The runs of one shard, in reuse order (see the module comment). */
-export function shardRuns<C extends Config>(runs: readonly SweepRun<C>[], shard: Shard, groupKey: (run: SweepRun<C>) => string): SweepRun<C>[] {
+export function shardRuns<C extends ConfigObject>(runs: readonly SweepRun<C>[], shard: Shard, groupKey: (run: SweepRun<C>) => string): SweepRun<C>[] {
   const groupIndex = new Map<string, number>();
   const mine: SweepRun<C>[] = [];
   for (const run of orderForReuse(runs, groupKey)) {
@@ -90,7 +90,7 @@ export function shardRuns<C extends Config>(runs: readonly SweepRun<C>[], shard:
 }
 
 /** Rows sorted by their run's position in `order` (rows of unknown keys last, in input order). */
-export function sortRowsByRuns<C extends Config>(rows: readonly Record<string, string>[], order: readonly SweepRun<C>[]): Record<string, string>[] {
+export function sortRowsByRuns<C extends ConfigObject>(rows: readonly Record<string, string>[], order: readonly SweepRun<C>[]): Record<string, string>[] {
   const position = new Map(order.map((run, k) => [run.key, k]));
   return rows
     .map((row, k) => ({ row, at: position.get(row.key) ?? order.length + k }))

@@ -6,7 +6,7 @@
  *
  * - The shape (types, ranges, enums, no unknown field) is checked by ajv against sweepSpecSchema.
  * - No key anywhere may be `__proto__`, `constructor` or `prototype` (they reach prototypes).
- * - `base` is validated against the config schema (validateAnyConfig).
+ * - `base` is validated against the config schema (validateConfig).
  * - Every varied path must name a field of the config schema (through either branch of a union:
  *   `surface.radius` exists for tubes and spheres), and every value is validated at its path
  *   by validating the base with that value set.
@@ -16,7 +16,7 @@
  * (`realizations`, `vary["sheet.layers"][1]`, `base.cells`).
  */
 import type { ErrorObject } from 'ajv';
-import { configSchema, ConfigError, validateAnyConfig, type AnyConfig } from '../config';
+import { configSchema, ConfigError, validateConfig, type Config } from '../config';
 import { countRuns, FORBIDDEN_KEYS, setPath, type SweepSpec } from './expand';
 import { DEFAULT_MAX_RUNS, MAX_REALIZATIONS, MAX_VALUES_PER_FIELD, SEED_MODES, sweepSpecSchema } from './specSchema';
 import { validate as validateSweepSpecShape } from './specValidator.generated';
@@ -46,7 +46,7 @@ export { DEFAULT_MAX_RUNS, MAX_REALIZATIONS, MAX_VALUES_PER_FIELD, SEED_MODES, s
 // page's Content-Security-Policy has no 'unsafe-eval', so ajv cannot compile it at run time.
 const validateShape = validateSweepSpecShape as GeneratedValidator;
 
-export type ValidSweepSpec = SweepSpec<AnyConfig & Record<string, unknown>> & { realizations: number; seedMode: 'per-run' | 'per-realization' };
+export type ValidSweepSpec = SweepSpec<Config & Record<string, unknown>> & { realizations: number; seedMode: 'per-run' | 'per-realization' };
 
 export interface SweepSpecOptions {
   /** Largest number of runs accepted (default DEFAULT_MAX_RUNS). */
@@ -68,9 +68,9 @@ export function validateSweepSpec(input: unknown, options: SweepSpecOptions = {}
   if (!validateShape(spec)) throw shapeError(validateShape.errors?.[0]);
   const vary = (spec.vary ?? {}) as Record<string, unknown[]>;
 
-  let base: AnyConfig;
+  let base: Config;
   try {
-    base = validateAnyConfig(spec.base);
+    base = validateConfig(spec.base);
   } catch (error) {
     if (error instanceof ConfigError) throw new SweepSpecError(`base.${error.field}`, `base.${error.message}`);
     throw error;
@@ -93,7 +93,7 @@ export function validateSweepSpec(input: unknown, options: SweepSpecOptions = {}
       const config = structuredClone(spec.base) as Record<string, unknown>;
       setPath(config, path, structuredClone(value));
       try {
-        validateAnyConfig(config);
+        validateConfig(config);
       } catch (error) {
         if (!(error instanceof ConfigError)) throw error;
         const field = `vary["${path}"][${index}]`;

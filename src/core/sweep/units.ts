@@ -13,7 +13,7 @@
  * where a header is written (`fileColumn`) and removed where one is read (`plainColumn`), so
  * resume, merge and the page read the files they write.
  */
-import type { AnyConfig } from '../config';
+import type { Config } from '../config';
 import { schemaField } from '../config/schemaFields';
 
 const SCHEMA_UNITS: Record<string, string> = { µm: 'um', 'µm per mesh unit': 'um_per_unit' };
@@ -86,7 +86,7 @@ function at(config: unknown, path: string): unknown {
  * covers (the field itself, a field under it, or a section holding it): those have their own
  * column. Null fields (a ratio not given) and arrays are left out.
  */
-export function geometryValues(config: AnyConfig, varied: readonly string[]): Record<string, string | number | boolean> {
+export function geometryValues(config: Config, varied: readonly string[]): Record<string, string | number | boolean> {
   const out: Record<string, string | number | boolean> = {};
   const covered = (path: string) => varied.some((f) => f === path || path.startsWith(`${f}.`) || f.startsWith(`${path}.`));
   const surface = (config as { surface: Record<string, unknown> }).surface;
@@ -103,7 +103,7 @@ export function geometryValues(config: AnyConfig, varied: readonly string[]): Re
  * The geometry columns over `configs` (in order of first appearance), which of them hold text,
  * and each config's values.
  */
-export function geometryColumns(configs: Iterable<AnyConfig>, varied: readonly string[]): { columns: string[]; text: Set<string> } {
+export function geometryColumns(configs: Iterable<Config>, varied: readonly string[]): { columns: string[]; text: Set<string> } {
   const columns: string[] = [];
   const text = new Set<string>();
   for (const config of configs) {

@@ -1,4 +1,4 @@
-import type { AnyConfig } from '../../core/config';
+import type { Config } from '../../core/config';
 import type { GrayImage } from '../../core/density';
 import type { IterationRecord } from '../../gpu/lloyd';
 import type { MeshFile } from '../closedMesh';
@@ -13,7 +13,7 @@ export type ToWorker =
   | {
       readonly type: 'run';
       readonly id: number;
-      readonly config: AnyConfig;
+      readonly config: Config;
       readonly densityImage?: GrayImage;
       readonly meshFile?: MeshFile;
       /** false: send the result without label images (see RunOptions.views). */

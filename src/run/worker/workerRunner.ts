@@ -1,4 +1,4 @@
-import { ConfigError, type AnyConfig } from '../../core/config';
+import { ConfigError, type Config } from '../../core/config';
 import { GpuCapabilityError, type GpuContext } from '../../gpu/context';
 import type { RunOptions } from '../family';
 import type { SheetOutput } from '../result';
@@ -55,7 +55,7 @@ export class WorkerSheetRunner {
     }
   }
 
-  run(config: AnyConfig, callbacks: WorkerRunOptions = {}): Promise<SheetOutput> {
+  run(config: Config, callbacks: WorkerRunOptions = {}): Promise<SheetOutput> {
     if (!this.worker) return this.onPage().run(config, pageCallbacks(callbacks));
     const { signal } = callbacks;
     if (signal?.aborted) return Promise.reject(abortError());
