@@ -6,7 +6,7 @@ import type { SheetResult } from '../src/run';
 import { openParsed } from '../src/app/model/project';
 import { exportText, type ExportRequest } from '../src/app/model/exportFiles';
 import { viewStack } from '../src/view/stack';
-import { downloadExport, unrolledWhitePixels, waitForRun } from './appHelpers';
+import { downloadExport, linkTo, unrolledWhitePixels, waitForRun } from './appHelpers';
 import { runCli, tempDir } from './cli';
 import { installLongTaskObserver, takeLongTasks } from './pages/longTasks';
 
@@ -221,4 +221,33 @@ test("a 25,000-cell result opens, picks, toggles its scutoid stripes and exports
       await expect(page.locator('body')).toHaveAttribute('data-selected-cell', picked!);
     }
   }
+});
+
+test('a 25,000-cell result made in the page: its scutoid stripes and exports are made in the worker it is handed to, without long main-thread tasks', async ({
+  page,
+}) => {
+  test.setTimeout(300_000);
+  await installLongTaskObserver(page);
+  await page.goto(linkTo(CONFIG));
+  await waitForRun(page);
+  await frames(page, 30);
+  await longTasks(page);
+  for (const on of [false, true]) {
+    await page.locator('#highlight').setChecked(on);
+    await expect(page.locator('body')).toHaveAttribute('data-stripes', on ? 'on' : 'off', { timeout: 60_000 });
+  }
+  const files = new Map<string, string>();
+  for (const kind of ['ply', 'svg', 'json'] as const) files.set(kind, (await downloadExport(page, kind)).text);
+  await frames(page, 3);
+  const tasks = await longTasks(page);
+  expect(Math.max(0, ...tasks), `tasks while toggling and exporting: ${tasks.join(', ')} ms`).toBeLessThan(LONGEST_MS);
+  expect(tasks.filter((d) => d > 50).length, `tasks while toggling and exporting: ${tasks.join(', ')} ms`).toBeLessThanOrEqual(OVER_50_MS_AT_MOST);
+  // The files are of this result: its 25,000 cells, its configuration and seed.
+  const json = JSON.parse(files.get('json')!) as SheetResult;
+  expect(json.cells.length).toBe(CONFIG.cells);
+  expect(json.config.seed).toBe(CONFIG.seed);
+  expect(json.cells[12_345].id).toBe(12_345);
+  expect(files.get('ply')).toMatch(/^ply\n/);
+  expect(files.get('ply')).toContain(`"seed":${CONFIG.seed}`);
+  expect(files.get('svg')).toContain('<svg');
 });

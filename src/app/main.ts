@@ -185,8 +185,8 @@ const opener = bindExports($('.exports'), {
     progress.max = 1;
     progress.value = fraction;
   },
-}); // A large opened result's pictures with the stripes toggled: drawn in the worker holding it.
-viewPanel.picturesElsewhere = (shown, on) => (opener?.holds(shown) ? opener.pictures(shown, on) : Promise.resolve(false));
+}); // A large result's pictures with the stripes toggled: drawn in the worker holding it.
+viewPanel.picturesElsewhere = (shown, on) => (opener?.holdShown(shown) ? opener.pictures(shown, on) : Promise.resolve(false));
 
 /** Shows an opened project (exactly as saved) or result JSON (drawn from its cells, or re-run). */
 async function openInPage(file: OpenedFile, name: string): Promise<void> {

@@ -38,6 +38,13 @@ export function lazyRecords<T>(count: number, make: (i: number) => T): T[] {
 }
 
 const analysisTables = new WeakMap<object, AnalysisCellTable>();
+// Keyed by the result's lazy cell list, which a copy of the result (a new headline) keeps.
+const resultTables = new WeakMap<object, ResultCellTables>();
+
+/** The columns behind a result whose cell lists are lazy (withLazyCellRecords), or null. */
+export function resultColumns(result: SheetResult): ResultCellTables | null {
+  return (result.cells && resultTables.get(result.cells)) ?? null;
+}
 
 /** The columns behind an analysis's lazy cell records (withLazyCellRecords), or null. */
 export function analysisColumns(cells: object | null | undefined): AnalysisCellTable | null {
@@ -47,7 +54,7 @@ export function analysisColumns(cells: object | null | undefined): AnalysisCellT
 /** withCellRecords (cellTables.ts) of `result` (its cell lists null or absent) with lazy lists. */
 export function withLazyCellRecords(result: SheetResult, tables: ResultCellTables): SheetResult {
   const cells = (table: ResultCellTables['cells']) => lazyRecords(table.count, (i) => cellRecordsRange(table, i, i + 1)[0]);
-  return {
+  const lazy: SheetResult = {
     ...result,
     cells: cells(tables.cells),
     surfaces: result.surfaces.map((s, k) => ({ ...s, cells: cells(tables.surfaces[k]) })),
@@ -58,4 +65,6 @@ export function withLazyCellRecords(result: SheetResult, tables: ResultCellTable
       return { ...a, cells: list };
     }),
   };
+  resultTables.set(lazy.cells, tables);
+  return lazy;
 }

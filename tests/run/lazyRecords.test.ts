@@ -4,7 +4,7 @@
  */
 import { describe, expect, it } from 'vitest';
 import { withCellRecords } from '../../src/run/cellTables';
-import { analysisColumns, lazyRecords, withLazyCellRecords } from '../../src/run/lazyRecords';
+import { analysisColumns, lazyRecords, resultColumns, withLazyCellRecords } from '../../src/run/lazyRecords';
 import { runLayeredTube } from './layeredTube';
 import { viewStack } from '../../src/view/stack';
 import { useHeadlessContext } from '../gpu/context';
@@ -44,6 +44,16 @@ describe('lazyRecords', () => {
     expect(lazy.surfaces[1].cells[7]).toEqual(eager.surfaces[1].cells[7]);
     expect(analysisColumns(lazy.analyses[0].cells)).toBe(output.tables!.analyses[0]);
     expect(analysisColumns(eager.analyses[0].cells)).toBeNull();
+    // The columns behind the result, also for a copy of it with another headline (the page's
+    // mean over realizations), so the page can hand them to the worker that holds large results.
+    expect(resultColumns(lazy)).toBe(output.tables);
+    expect(resultColumns({ ...lazy, headline: null })).toBe(output.tables);
+    expect(resultColumns(eager)).toBeNull();
+    const rebuilt = withLazyCellRecords(
+      { ...lazy, cells: [], surfaces: lazy.surfaces.map((s) => ({ ...s, cells: [] })), analyses: lazy.analyses.map((a) => ({ ...a, cells: [] })) },
+      resultColumns(lazy)!,
+    );
+    expect(JSON.stringify(rebuilt)).toBe(JSON.stringify(eager));
     // The views read the analysis's columns (no records made): the same sides and flags.
     const images = [0, 1, 2].map((k) => ({ name: `s${k}`, grid: output.result.grid, labels: new Int32Array(1) }));
     const fromColumns = viewStack({ result: lazy, labelImages: images });

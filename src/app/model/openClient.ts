@@ -12,7 +12,7 @@
  */
 import { decodeCellsFile, type CellsFileRecord } from '../../run/cellTables';
 import type { LabelImage, SheetOutput, SheetResult } from '../../run';
-import { withLazyCellRecords } from '../../run/lazyRecords';
+import { resultColumns, withLazyCellRecords } from '../../run/lazyRecords';
 import { rememberPictures } from '../../view/workerPictures';
 import type { ViewStack } from '../../view/stack';
 import type { OpenedFile } from './project';
@@ -90,6 +90,23 @@ export class ResultOpener {
     await new Promise((resolve) => setTimeout(resolve, 0));
     if (opened.kind === 'project') return { kind: 'project', output, view: opened.view!, sections: opened.sections };
     return { kind: 'result', output, drawnFrom: 'cells' };
+  }
+
+  /**
+   * Whether the worker holds the result `stack` shows, handing it over first where the page made
+   * it (a run of over 20,000 cells, its records lazy over columns: cloning the columns and label
+   * images is one short task, where its pictures and exports would hold the page for seconds).
+   */
+  holdShown(stack: ViewStack): boolean {
+    if (this.holds(stack)) return true;
+    const tables = resultColumns(stack.result);
+    if (!tables) return false;
+    const id = ++this.lastId;
+    const labelImages = stack.surfaces.map((surface) => surface.image);
+    const message: ToOpenWorker = { type: 'hold', id, result: withoutCells(stack.result), tables, labelImages };
+    (this.worker ??= this.createWorker()).postMessage(message);
+    this.held = { opened: id, images: labelImages };
+    return true;
   }
 
   /** Whether the worker holds the result `stack` shows (the one opened last, still on screen). */

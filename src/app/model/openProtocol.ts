@@ -8,7 +8,20 @@ import type { ViewState } from './project';
 import type { LabelImage, SheetResult } from '../../run';
 import type { ExportRequest } from './exportFiles';
 
-export type ToOpenWorker = OpenMessage | OpenJsonMessage | PicturesMessage | ExportMessage;
+export type ToOpenWorker = OpenMessage | OpenJsonMessage | HoldMessage | PicturesMessage | ExportMessage;
+
+/**
+ * A large result the page made itself (a run of over 20,000 cells, its records lazy over
+ * columns): held from now on as if opened by this message's id, for its pictures and exports.
+ */
+export interface HoldMessage {
+  readonly type: 'hold';
+  readonly id: number;
+  /** The result without its cell lists, and its columns. */
+  readonly result: SheetResult;
+  readonly tables: ResultCellTables;
+  readonly labelImages: LabelImage[];
+}
 
 /** A large project or result JSON with its cells inline, read and parsed in the worker. */
 export interface OpenJsonMessage {

@@ -7,7 +7,8 @@
  * transferred: the result without its cell lists, the side file's bytes, the label images and
  * the pictures; the page reads the cell records from the bytes (run/lazyRecords.ts).
  *
- * It then holds the opened result (its records and a copy of its label images) for what would
+ * It then holds the opened result (its records and a copy of its label images), or a large result
+ * the page made itself and handed over (`hold`), for what would
  * block the page's thread again: the pictures with the scutoid highlight toggled, and the
  * exports built from the cells (exportFiles.ts: a PLY, SVG or project of 25,000 cells took the
  * page's thread 1-2.5 s), sent back as Blobs.
@@ -16,6 +17,7 @@ import { decodeCellsFile, withCellRecords, type CellsFileRecord } from '../../ru
 import type { SheetOutput, SheetResult } from '../../run';
 import { openParsed, parseFileJson, type OpenedFile } from './project';
 import { resultCellTables, tableBuffers } from '../../run/recordTables';
+import { withLazyCellRecords } from '../../run/lazyRecords';
 import type { ExportMessage, FromOpenWorker, OpenJsonMessage, OpenMessage, PicturesMessage, ToOpenWorker } from './openProtocol';
 import { drawPictures } from '../../view/workerPictures';
 import { EXPORT_FILES, exportText, heldStack, withoutCells } from './exportFiles';
@@ -34,6 +36,8 @@ self.onmessage = async (event: MessageEvent<ToOpenWorker>) => {
   try {
     if (message.type === 'open') await open(message);
     else if (message.type === 'open-json') await openJson(message);
+    else if (message.type === 'hold')
+      held = { opened: message.id, output: { result: withLazyCellRecords(message.result, message.tables), labelImages: message.labelImages } };
     else if (message.type === 'pictures') pictures(message);
     else exported(message);
   } catch (error) {

@@ -172,11 +172,11 @@ export function bindExports(root: HTMLElement, sources: ExportSources): ResultOp
     if (!stack) throw new Error('Nothing to export yet: run a sheet first.');
     return action(stack);
   };
-  // A file built from the cells: in the worker holding a large opened result, else here.
+  // A file built from the cells: in the worker holding a large result (opened, or made here), else here.
   const built = (request: ExportRequest) =>
     withStack(async (s) => {
       const { type, suffix } = EXPORT_FILES[request.kind];
-      const file = (opener?.holds(s) ? await opener.exportFile(s, request) : null) ?? exportText(s, request);
+      const file = (opener?.holdShown(s) ? await opener.exportFile(s, request) : null) ?? exportText(s, request);
       download(`${baseName(s)}${suffix}`, file, type);
     });
   for (const button of root.querySelectorAll<HTMLButtonElement>('[data-export]')) {
