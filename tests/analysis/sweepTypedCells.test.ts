@@ -48,7 +48,7 @@ describe('sweep rows keep their typed cells for the aggregate', () => {
     }
     // The same rows as a reader of runs.csv gets them: text only, no typed cells.
     const parsed = rows.map((row) => ({ ...row }));
-    for (const columns of [['a', 'b', 'c', 'd'], ['a', 'b', 'c', 'd', 'text'], undefined]) {
+    for (const columns of [['a', 'b', 'c', 'd'], ['a', 'b', 'c', 'd', 'text', 'absent'], undefined]) {
       const typed = aggregateRows(rows, ['k'], columns);
       const text = aggregateRows(parsed, ['k'], columns);
       expect(bits(typed)).toBe(bits(text));

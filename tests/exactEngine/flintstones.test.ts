@@ -61,4 +61,28 @@ describe('Flintstones law fit', () => {
     ).toThrow(/points/);
     expect(() => fitFlintstones([...synthetic(truth, 0, 1, 1), { s: Number.NaN, n: 6 }])).toThrow(/finite/);
   });
+
+  it('chi² is the sum over every point, weighted by 1/sigma², though the fit iterates per ratio', () => {
+    const random = new Random(7);
+    const points = synthetic(truth, 0.3, 3, 5).map((q) => ({ ...q, sigma: 0.2 + random.next() }));
+    for (const data of [points, points.map(({ s, n }) => ({ s, n }))]) {
+      const fit = fitFlintstones(data);
+      let direct = 0;
+      for (const q of data) direct += ((q.n - flintstonesLaw(q.s, fit.parameters)) / (q.sigma ?? 1)) ** 2;
+      expect(fit.chiSquared).toBeCloseTo(direct, 9);
+      expect(fit.degreesOfFreedom).toBe(data.length - 3);
+    }
+  });
+
+  it('each point given twice: the same fit, twice the chi², standard errors of twice the points', () => {
+    const points = synthetic(truth, 0.05, 11, 4);
+    const once = fitFlintstones(points);
+    const twice = fitFlintstones([...points, ...points]);
+    for (const key of ['nMax', 'c', 'd'] as const) expect(twice.parameters[key]).toBeCloseTo(once.parameters[key], 4);
+    expect(twice.chiSquared).toBeCloseTo(2 * once.chiSquared, 6);
+    // s² = chi²/(m - p) doubles its chi² over 2m - p, JᵀJ doubles: SE ratio sqrt((m - p) / (2m - p)).
+    const m = points.length;
+    const scale = Math.sqrt((m - 3) / (2 * m - 3));
+    expect(twice.standardErrors.nMax).toBeCloseTo(once.standardErrors.nMax * scale, 4);
+  });
 });

@@ -80,60 +80,70 @@ function admissible(theta: number[], anchor: number | null, sMin: number): boole
 }
 
 /**
- * The points as the fit reads them: each distinct ratio once (a sweep gives one point per run, so
- * each ratio as many times as there are realizations), the law evaluated there once per call.
+ * The points as the fit reads them: one row per distinct ratio. A sweep gives one point per run,
+ * so each ratio as many times as there are realizations, and the law takes one value per ratio:
+ * with weights w = 1/sigma (else 1), the points at ratio r add up to
+ *
+ *   sum_k w_k^2 (n_k - f_r)^2 = W_r (m_r - f_r)^2 + within_r,
+ *
+ * W_r = sum w_k^2, m_r = their weighted mean, within_r = sum w_k^2 (n_k - m_r)^2 (which no
+ * parameter changes). So the fit iterates on residuals sqrt(W_r) (m_r - f_r), one per ratio
+ * (JᵀWJ and JᵀWr are those of the points), and chi² adds the constant `within`: the same
+ * problem as one residual per point, a realization count times cheaper per iteration.
  */
 interface FitData {
-  readonly ratios: number[];
-  /** Per point: index into `ratios`, n3D and weight (1 / sigma, else 1). */
-  readonly at: Int32Array;
-  readonly n: Float64Array;
-  readonly w: Float64Array;
-  /** Scratch: the law at each ratio, and the residuals either side of a parameter. */
-  readonly law: Float64Array;
+  readonly ratios: Float64Array;
+  /** Per ratio: sqrt(W_r) and the weighted mean m_r. */
+  readonly root: Float64Array;
+  readonly mean: Float64Array;
+  /** chi² of the points about their ratios' means. */
+  readonly within: number;
+  /** Scratch: the residuals either side of a parameter. */
   readonly plus: Float64Array;
   readonly minus: Float64Array;
 }
 
 function fitData(points: readonly FlintstonesPoint[]): FitData {
-  const ratios: number[] = [];
   const index = new Map<number, number>();
-  const at = new Int32Array(points.length);
-  points.forEach((q, k) => {
+  const at = points.map((q) => {
     let i = index.get(q.s);
-    if (i === undefined) index.set(q.s, (i = ratios.push(q.s) - 1));
-    at[k] = i;
+    if (i === undefined) index.set(q.s, (i = index.size));
+    return i;
   });
-  return {
-    ratios,
-    at,
-    n: Float64Array.from(points, (q) => q.n),
-    w: Float64Array.from(points, (q) => (q.sigma ? 1 / q.sigma : 1)),
-    law: new Float64Array(ratios.length),
-    plus: new Float64Array(points.length),
-    minus: new Float64Array(points.length),
-  };
+  const count = index.size;
+  const ratios = Float64Array.from(index.keys());
+  const weights = new Float64Array(count);
+  const sums = new Float64Array(count);
+  const w2 = (q: FlintstonesPoint) => (q.sigma ? 1 / (q.sigma * q.sigma) : 1);
+  points.forEach((q, k) => {
+    weights[at[k]] += w2(q);
+    sums[at[k]] += w2(q) * q.n;
+  });
+  const mean = sums.map((sum, i) => sum / weights[i]);
+  let within = 0;
+  points.forEach((q, k) => (within += w2(q) * (q.n - mean[at[k]]) ** 2));
+  return { ratios, root: weights.map(Math.sqrt), mean, within, plus: new Float64Array(count), minus: new Float64Array(count) };
 }
 
+/** chi² of the points at theta, with the per-ratio residuals into `out`. */
 function residuals(theta: number[], data: FitData, anchor: number | null, out: Float64Array): number {
   const p = parametersOf(theta, anchor);
-  const { law, at, n, w } = data;
-  for (let i = 0; i < law.length; i++) law[i] = flintstonesLaw(data.ratios[i], p);
-  let chi = 0;
-  for (let k = 0; k < at.length; k++) {
-    const r = (n[k] - law[at[k]]) * w[k];
-    out[k] = r;
+  const { ratios, root, mean } = data;
+  let chi = data.within;
+  for (let i = 0; i < ratios.length; i++) {
+    const r = (mean[i] - flintstonesLaw(ratios[i], p)) * root[i];
+    out[i] = r;
     chi += r * r;
   }
   return chi;
 }
 
 /**
- * Central differences of the residuals, into `J` (m rows of theta.length, row-major; reused
- * across iterations: flat typed rows made the sweep's fits several times faster, same numbers).
+ * Central differences of the per-ratio residuals, into `J` (one row of theta.length per ratio,
+ * row-major; reused across iterations).
  */
-function jacobian(theta: number[], data: FitData, anchor: number | null, J = new Float64Array(data.at.length * theta.length)): Float64Array {
-  const m = data.at.length;
+function jacobian(theta: number[], data: FitData, anchor: number | null, J = new Float64Array(data.ratios.length * theta.length)): Float64Array {
+  const m = data.ratios.length;
   const p = theta.length;
   const plus = data.plus;
   const minus = data.minus;
@@ -206,10 +216,10 @@ function normalEquations(J: Float64Array, p: number, r: ArrayLike<number>): { A:
 
 function levenbergMarquardt(start: number[], data: FitData, anchor: number | null, sMin: number, maxIterations: number) {
   let theta = start.slice();
-  const r = new Float64Array(data.at.length);
-  const trial = new Float64Array(data.at.length);
+  const r = new Float64Array(data.ratios.length);
+  const trial = new Float64Array(data.ratios.length);
   let chi = residuals(theta, data, anchor, r);
-  const J = new Float64Array(data.at.length * theta.length);
+  const J = new Float64Array(data.ratios.length * theta.length);
   const damped = zeroMatrix(theta.length);
   let lambda = 1e-3;
   let iterations = 0;
@@ -280,7 +290,7 @@ export function fitFlintstones(points: readonly FlintstonesPoint[], options: Fli
   if (!best) throw new Error('fitFlintstones: no admissible starting point; check that n3D grows with s');
 
   const J = jacobian(best.theta, data, anchor);
-  const { A } = normalEquations(J, p, new Float64Array(points.length));
+  const { A } = normalEquations(J, p, new Float64Array(data.ratios.length));
   const dof = points.length - p;
   const scale = best.chi / dof;
   const covariance: number[] = [];

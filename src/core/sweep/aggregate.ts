@@ -50,22 +50,56 @@ export interface Aggregate {
 const isNumeric = (cell: string): boolean => cell === 'NaN' || (cell.trim() !== '' && !Number.isNaN(Number(cell)));
 
 /** Mean, sample SD, SE and count of the finite values; `missing` counts the others. */
-export function meanSd(values: readonly number[]): ColumnStats {
+export function meanSd(values: ArrayLike<number>, length = values.length): ColumnStats {
   // Sums from 0 in the values' order (as a reduce over the finite values), without their copy.
   let n = 0;
   let sum = 0;
-  for (const v of values) {
+  for (let k = 0; k < length; k++) {
+    const v = values[k];
     if (!Number.isFinite(v)) continue;
     sum += v;
     n++;
   }
-  const missing = values.length - n;
+  const missing = length - n;
   if (n === 0) return { mean: NaN, sd: NaN, se: NaN, n, missing };
   const mean = sum / n;
   let squares = 0;
-  if (n >= 2) for (const v of values) if (Number.isFinite(v)) squares += (v - mean) ** 2;
+  if (n >= 2) {
+    for (let k = 0; k < length; k++) {
+      const v = values[k];
+      if (Number.isFinite(v)) squares += (v - mean) ** 2;
+    }
+  }
   const sd = n < 2 ? NaN : Math.sqrt(squares / (n - 1));
   return { mean, sd, se: sd / Math.sqrt(n), n, missing };
+}
+
+/**
+ * A cell's text as a number: Number() of text that is not a number (text, "NaN") is NaN, left
+ * out as missing; a blank cell would read as 0, so it is NaN too.
+ */
+function cellNumber(cell: string | undefined): number {
+  return cell === undefined || cell.trim() === '' ? NaN : Number(cell);
+}
+
+/**
+ * A typed cell's number: the value of a number; NaN for an empty cell (null or undefined, whose
+ * text is ''); text read as its row's text is; anything else from the row's text.
+ */
+function typedNumber(value: unknown, row: Record<string, string>, column: string): number {
+  if (typeof value === 'number') return value;
+  if (value === undefined || value === null) return NaN;
+  return cellNumber(typeof value === 'string' ? value : row[column]);
+}
+
+/** Each column's position in `header` (-1 when absent), once per header and column list. */
+const positionsByHeader = new WeakMap<readonly string[], { columns: readonly string[]; at: Int32Array }>();
+function columnPositions(header: readonly string[], columns: readonly string[]): Int32Array {
+  const kept = positionsByHeader.get(header);
+  if (kept?.columns === columns) return kept.at;
+  const at = Int32Array.from(columns, (column) => columnPosition(header, column));
+  positionsByHeader.set(header, { columns, at });
+  return at;
 }
 
 export function aggregateRows(rows: readonly Record<string, string>[], fields: readonly string[], columns?: readonly string[]): Aggregate {
@@ -93,29 +127,22 @@ export function aggregateRows(rows: readonly Record<string, string>[], fields: r
     g.push(r);
   }
   const points: AggregatePoint[] = [];
+  // One group's values of one column at a time, in row order (the statistics' sums follow it).
+  const values = new Float64Array(Math.max(0, ...[...groups.values()].map((g) => g.length)));
   for (const g of groups.values()) {
     const point: Record<string, string> = {};
     for (const f of fields) point[f] = g[0][f] ?? '';
     const stats: Record<string, ColumnStats> = {};
     // A row the sweep made keeps its numbers (typedCells.ts): the same values as its text parsed.
     const typed = g.map(typedCellsOf);
-    for (const c of numeric) {
-      let header: readonly string[] | null = null;
-      let at = -1;
-      stats[c] = meanSd(
-        g.map((r, i) => {
-          const cells = typed[i];
-          if (cells) {
-            if (cells.header !== header) at = columnPosition((header = cells.header), c);
-            const value = at < 0 ? undefined : cells.cells[at];
-            if (typeof value === 'number') return value;
-          }
-          // Number() of a cell that is not a number (text, "NaN") is NaN, left out as missing; a
-          // blank cell would read as 0, so it is NaN too.
-          const cell = r[c];
-          return cell === undefined || cell.trim() === '' ? NaN : Number(cell);
-        }),
-      );
+    const positions = typed.map((cells) => (cells ? columnPositions(cells.header, numeric) : null));
+    for (let c = 0; c < numeric.length; c++) {
+      const column = numeric[c];
+      for (let i = 0; i < g.length; i++) {
+        const at = positions[i];
+        values[i] = at ? typedNumber(at[c] < 0 ? undefined : typed[i]!.cells[at[c]], g[i], column) : cellNumber(g[i][column]);
+      }
+      stats[column] = meanSd(values, g.length);
     }
     points.push({ point, runs: g.length, stats });
   }
