@@ -13,10 +13,11 @@
  */
 import { appendFileSync, closeSync, mkdirSync, openSync, writeSync } from 'node:fs';
 import { dirname, join } from 'node:path';
-import { ConfigError, engineNameFor, validateConfig, type Config } from '../core/config';
+import { ConfigError, validateConfig, type Config } from '../core/config';
 import { estimateRun, threadsWithinBudget, type RunEstimate } from '../core/config/limits';
 import { surfaceLayout } from '../core/config/surfaceLayout';
 import {
+  countRuns,
   flintstonesProblems,
   parseShard,
   planResume,
@@ -79,28 +80,13 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
   const shard: Shard | null = options.shard === undefined ? null : parseShard(options.shard, process.env);
   const spec = validateSweepSpec(readJsonFile(options.input, 'sweep spec'), { maxRuns: options.maxRuns, raiseHint: 'pass --max-runs N to raise the limit' });
   checkOutDir(options.out, [options.input], options.force);
-
-  // Every grid point is checked, also in a shard: the header is the whole grid's, so shards
-  // merge, and a bad point is found by every shard before any run.
-  const layout = sweepLayout(spec, (run) => pointConfig(run, (c) => checkRunnable(c, computeBudget(Number.MAX_SAFE_INTEGER, options.allowLarge))));
-  const { fields, summary } = layout;
-  const runs = shard ? shardRuns(layout.runs, shard, layout.reuseGroup) : layout.ordered;
-  // A grid point's config (the same for all its runs but for `seed`: for the engine, chain and
-  // iterations; a run itself is computed from its own config).
-  const valid = new Map<string, Config>();
-  const configOf = (run: Run): Config => {
-    let config = valid.get(run.pointKey);
-    if (!config) valid.set(run.pointKey, (config = validateConfig(run.config)));
-    return config;
-  };
-  // The threads start now, before the inputs, the GL context and the checks below (about half a
-  // second on this thread), and load their modules meanwhile; they get the context's
-  // capabilities once it exists (setUp), and those the sweep turns out not to need (runs resumed,
-  // runs on the GPU engine) are ended then. At most one per task that the exact engine could
-  // compute on some renderer (engine "exact", or "auto" on a software one).
+  // The threads start now, before the grid is laid out and checked, the inputs, the GL context
+  // and the checks below (about half a second on this thread), and load their modules meanwhile;
+  // they get the context's capabilities once it exists (setUp). As many as the runs could use:
+  // those the sweep turns out not to need (runs resumed or on the GPU engine, tasks fewer than
+  // threads) are ended once that is known.
   const workers = options.workers ?? defaultWorkers();
-  const exactGroups = new Set(runs.filter((run) => engineNameFor(configOf(run), { softwareRenderer: true }) === 'exact').map(layout.reuseGroup));
-  let early: SweepWorkers | null = Math.min(workers, exactGroups.size) > 0 ? new SweepWorkers(Math.min(workers, exactGroups.size)) : null;
+  let early: SweepWorkers | null = Math.min(workers, countRuns(spec)) > 0 ? new SweepWorkers(Math.min(workers, countRuns(spec))) : null;
   try {
     await sweepWith(early);
   } finally {
@@ -108,6 +94,19 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
   }
 
   async function sweepWith(prestarted: SweepWorkers | null): Promise<void> {
+    // Every grid point is checked, also in a shard: the header is the whole grid's, so shards
+    // merge, and a bad point is found by every shard before any run.
+    const layout = sweepLayout(spec, (run) => pointConfig(run, (c) => checkRunnable(c, computeBudget(Number.MAX_SAFE_INTEGER, options.allowLarge))));
+    const { fields, summary } = layout;
+    const runs = shard ? shardRuns(layout.runs, shard, layout.reuseGroup) : layout.ordered;
+    // A grid point's config (the same for all its runs but for `seed`: for the engine, chain and
+    // iterations; a run itself is computed from its own config).
+    const valid = new Map<string, Config>();
+    const configOf = (run: Run): Config => {
+      let config = valid.get(run.pointKey);
+      if (!config) valid.set(run.pointKey, (config = validateConfig(run.config)));
+      return config;
+    };
     const sources = new Sources({ baseDir: dirname(options.input), allowNetwork: options.allowNetwork });
     const inputs = new Map<string, RunInputs>();
     for (const run of layout.runs) {

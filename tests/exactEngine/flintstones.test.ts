@@ -65,7 +65,7 @@ describe('Flintstones law fit', () => {
   it('chi² is the sum over every point, weighted by 1/sigma², though the fit iterates per ratio', () => {
     const random = new Random(7);
     const points = synthetic(truth, 0.3, 3, 5).map((q) => ({ ...q, sigma: 0.2 + random.next() }));
-    for (const data of [points, points.map(({ s, n }) => ({ s, n }))]) {
+    for (const data of [points, points.map(({ s, n }): FlintstonesPoint => ({ s, n }))]) {
       const fit = fitFlintstones(data);
       let direct = 0;
       for (const q of data) direct += ((q.n - flintstonesLaw(q.s, fit.parameters)) / (q.sigma ?? 1)) ** 2;

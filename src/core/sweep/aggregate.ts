@@ -22,7 +22,7 @@
  */
 import { tQuantile975 } from '../analysis/realizations';
 import { formatCsv } from './csv';
-import { columnPosition, typedCellsOf } from './typedCells';
+import { cellNumber, columnPosition, typedCellsOf } from './typedCells';
 import { columnUnit, fileColumn } from './units';
 
 export const RESERVED_COLUMNS = ['key', 'realization', 'seed'] as const;
@@ -74,24 +74,6 @@ export function meanSd(values: ArrayLike<number>, length = values.length): Colum
   return { mean, sd, se: sd / Math.sqrt(n), n, missing };
 }
 
-/**
- * A cell's text as a number: Number() of text that is not a number (text, "NaN") is NaN, left
- * out as missing; a blank cell would read as 0, so it is NaN too.
- */
-function cellNumber(cell: string | undefined): number {
-  return cell === undefined || cell.trim() === '' ? NaN : Number(cell);
-}
-
-/**
- * A typed cell's number: the value of a number; NaN for an empty cell (null or undefined, whose
- * text is ''); text read as its row's text is; anything else from the row's text.
- */
-function typedNumber(value: unknown, row: Record<string, string>, column: string): number {
-  if (typeof value === 'number') return value;
-  if (value === undefined || value === null) return NaN;
-  return cellNumber(typeof value === 'string' ? value : row[column]);
-}
-
 /** Each column's position in `header` (-1 when absent), once per header and column list. */
 const positionsByHeader = new WeakMap<readonly string[], { columns: readonly string[]; at: Int32Array }>();
 function columnPositions(header: readonly string[], columns: readonly string[]): Int32Array {
@@ -140,7 +122,7 @@ export function aggregateRows(rows: readonly Record<string, string>[], fields: r
       const column = numeric[c];
       for (let i = 0; i < g.length; i++) {
         const at = positions[i];
-        values[i] = at ? typedNumber(at[c] < 0 ? undefined : typed[i]!.cells[at[c]], g[i], column) : cellNumber(g[i][column]);
+        values[i] = at ? (at[c] < 0 ? NaN : typed[i]!.numbers[at[c]]) : cellNumber(g[i][column]);
       }
       stats[column] = meanSd(values, g.length);
     }
