@@ -34,14 +34,16 @@ export function checkRealizations(n: unknown, name = 'realizations'): number {
   return value;
 }
 
+/** t(0.975, df) for df = 1 .. 30 (the aggregate asks for it per column and grid point). */
+const T975 = [
+  12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.16, 2.145, 2.131, 2.12, 2.11, 2.101, 2.093, 2.086, 2.08, 2.074, 2.069,
+  2.064, 2.06, 2.056, 2.052, 2.048, 2.045, 2.042,
+];
+
 /** Two-sided 97.5 % quantile of Student's t with `df` degrees of freedom (for 95 % intervals). */
 export function tQuantile975(df: number): number {
-  const table = [
-    12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.16, 2.145, 2.131, 2.12, 2.11, 2.101, 2.093, 2.086, 2.08, 2.074,
-    2.069, 2.064, 2.06, 2.056, 2.052, 2.048, 2.045, 2.042,
-  ];
   if (!(df >= 1)) return Number.NaN;
-  if (df <= table.length) return table[Math.floor(df) - 1];
+  if (df <= T975.length) return T975[Math.floor(df) - 1];
   // Cornish-Fisher expansion around the normal quantile: within 1e-3 for df > 30.
   const z = 1.959964;
   return z + (z ** 3 + z) / (4 * df) + (5 * z ** 5 + 16 * z ** 3 + 3 * z) / (96 * df ** 2);

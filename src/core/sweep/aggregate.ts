@@ -177,25 +177,26 @@ function statisticValue(stats: ColumnStats, statistic: CsvStatistic): number | s
 export function aggregateToCsv(agg: Aggregate): string {
   const written = agg.columns.map((c) => ({ column: c, statistics: csvStatistics(c) })).filter((w) => w.statistics.length > 0);
   const header = [...agg.fields.map(fileColumn), 'runs', ...written.flatMap(({ column, statistics }) => statistics.map((s) => statisticColumn(column, s)))];
-  const rows = agg.points.map((p) => [
-    ...agg.fields.map((f) => p.point[f]),
-    p.runs,
-    ...written.flatMap(({ column, statistics }) => statistics.map((s) => statisticValue(p.stats[column], s))),
-  ]);
+  const rows = agg.points.map((p) => {
+    const row: unknown[] = agg.fields.map((f) => p.point[f]);
+    row.push(p.runs);
+    for (const { column, statistics } of written) for (const s of statistics) row.push(statisticValue(p.stats[column], s));
+    return row;
+  });
   return formatCsv(header, rows);
 }
 
+const clean = (x: number): number | null => (Number.isFinite(x) ? x : null);
+
 /** JSON-ready form (NaN -> null). */
 export function aggregateToJson(agg: Aggregate): unknown {
-  const clean = (x: number): number | null => (Number.isFinite(x) ? x : null);
-  return agg.points.map((p) => ({
-    point: p.point,
-    runs: p.runs,
-    stats: Object.fromEntries(
-      Object.entries(p.stats).map(([c, s]) => [
-        c,
-        { mean: clean(s.mean), sd: clean(s.sd), se: clean(s.se), n: s.n, missing: s.missing, ci95: ci95(s).map(clean) },
-      ]),
-    ),
-  }));
+  return agg.points.map((p) => {
+    const stats: Record<string, unknown> = {};
+    for (const c in p.stats) {
+      const s = p.stats[c];
+      const [low, high] = ci95(s);
+      stats[c] = { mean: clean(s.mean), sd: clean(s.sd), se: clean(s.se), n: s.n, missing: s.missing, ci95: [clean(low), clean(high)] };
+    }
+    return { point: p.point, runs: p.runs, stats };
+  });
 }

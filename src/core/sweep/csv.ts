@@ -36,10 +36,9 @@ export function restoreFormula(text: string): string {
 
 export function csvField(value: unknown): string {
   if (value === null || value === undefined) return '';
-  let text: string;
-  if (typeof value === 'string') text = neutralizeFormula(value);
-  else if (typeof value === 'number' || typeof value === 'boolean' || typeof value === 'bigint') text = String(value);
-  else text = JSON.stringify(value);
+  // The text of a number or boolean has no quote, comma, line break or edge space: as it is.
+  if (typeof value === 'number' || typeof value === 'boolean' || typeof value === 'bigint') return String(value);
+  const text = typeof value === 'string' ? neutralizeFormula(value) : JSON.stringify(value);
   if (/[",\r\n]/.test(text) || /^\s|\s$/.test(text)) return `"${text.replace(/"/g, '""')}"`;
   return text;
 }
