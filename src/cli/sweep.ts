@@ -270,10 +270,11 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
           },
         });
         // The Flintstones fits on the threads, idle now (the files are the same: sweepFits.ts),
-        // while this thread computes the aggregate (writeAggregates awaits them for the fits).
+        // while this thread computes the aggregate (writeAggregates awaits them for the fits):
+        // on one core fewer than the machine has, so the aggregate keeps one.
         if (pool?.usable && !result.aborted && !signal.aborted) {
           const problems = flintstonesProblems(sortRowsByRuns(result.rows, layout.ordered), layout.runs, layout.fields);
-          fit = pool.fitMany(problems).then((outcomes) => cachedFitter(fitOutcomes(problems, outcomes)));
+          fit = pool.fitMany(problems, defaultWorkers() - 1).then((outcomes) => cachedFitter(fitOutcomes(problems, outcomes)));
         }
       } catch (error) {
         rowsFile.close();

@@ -166,10 +166,11 @@ export class SweepWorkers {
    * of the time, so fits dealt out in turn left one thread with the slow ones). Every request
    * goes out at once, queued behind what a thread is doing: the main thread computes the
    * aggregate meanwhile. Null for a problem no thread fitted (a thread lost: the caller fits it).
+   * At most `threads` threads take part (the main thread's aggregate needs a core too).
    */
-  fitMany(problems: readonly (readonly FlintstonesPoint[])[]): Promise<(FitOutcome | null)[]> {
+  fitMany(problems: readonly (readonly FlintstonesPoint[])[], threads = this.slots.length): Promise<(FitOutcome | null)[]> {
     const outcomes: (FitOutcome | null)[] = problems.map(() => null);
-    const live = this.slots.filter((s) => !s.reserved);
+    const live = this.slots.filter((s) => !s.reserved).slice(0, Math.max(1, threads));
     if (live.length === 0 || problems.length === 0) return Promise.resolve(outcomes);
     const id = this.nextId++;
     const counter = new SharedArrayBuffer(4);
