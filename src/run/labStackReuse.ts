@@ -13,14 +13,16 @@
  * carried prefix plus more layers starts it again from its first surface. The state is kept per
  * first surface in a WeakMap, so it lives as long as the seeded surface's layers do.
  */
-import { addDifference, differenceSize, isCanonical, newDifference } from '../core/analysis/sortedSets';
-import { analyzeLabStack, invalidOnAnySurface, neighbourSet, type ScutoidAnalysis, type SurfaceAdjacency, type SurfaceSummary } from '../core/analysis';
-import { cellArrays, countWonLost, summarizeCells, summarizeSurface } from '../core/analysis/scutoids';
+import { addDifference, intersectionSize, isCanonical, newDifference } from '../core/analysis/sortedSets';
+import { analyzeLabStack, neighbourSet, type ScutoidAnalysis, type SurfaceAdjacency, type SurfaceSummary } from '../core/analysis';
+import { cellArrays, summarizeCells, summarizeSurface } from '../core/analysis/scutoids';
 
 /** Neighbour sets of one surface as CSR: each cell's ids ascending, once, without the cell. */
 interface Sets {
   readonly offsets: Int32Array;
   readonly ids: Int32Array;
+  /** The side counts these sets give (their sizes), made on first use: for surfaces without their own `sides`. */
+  sizes?: Int32Array;
 }
 
 interface Carried {
@@ -32,13 +34,21 @@ interface Carried {
   last: Sets;
   /** Per cell: sum over consecutive folded layers of |N_k Δ N_k+1|. */
   readonly transitions: Int32Array;
-  /** Per cell: the union of the folded layers' neighbour sets (ids, no repeats). */
-  readonly union: number[][];
+  /**
+   * Per cell: how many of its won neighbours (`won`) are not in its first set. The union of the
+   * folded layers' sets is the first set plus the won neighbours (a neighbour of some layer and
+   * not of the first entered at some step, between a layer without it and one with it), so its
+   * size is |N_first| + this.
+   */
+  readonly beyondFirst: Int32Array;
   /** Per cell: the lab's accumulated lost and won neighbours (ids, no repeats). */
   readonly lost: number[][];
   readonly won: number[][];
-  /** Side counts per folded layer. */
+  /** Side counts per folded layer, and the `sides` array of the surface they were read from (undefined: the set sizes). */
   readonly sides: Int32Array[];
+  readonly sideSources: (Int32Array | undefined)[];
+  /** Per cell: 1 where a folded layer has a border bit (invalidOnAnySurface over the folded layers). */
+  readonly border: Uint8Array;
   /** Per-surface summaries by adjacency object, for one valid set. */
   readonly summaries: Map<Int32Array, { areas: unknown; sides: unknown; excluded: Uint8Array; summary: SurfaceSummary }>;
 }
@@ -48,7 +58,9 @@ const canonical = new WeakMap<Int32Array, Sets>();
 
 /** analyzeLabStack(stack, invalid), carrying the shared layers' sums between calls. */
 export function analyzeLabStackReusing(stack: SurfaceAdjacency[], invalid: Uint8Array): ScutoidAnalysis {
-  if (stack.length < 2 || stack.some((s) => s.count !== stack[0].count || s.offsets.length !== s.count + 1)) return analyzeLabStack(stack, invalid);
+  if (stack.length < 2 || invalid.length !== stack[0].count || stack.some((s) => s.count !== stack[0].count || s.offsets.length !== s.count + 1)) {
+    return analyzeLabStack(stack, invalid);
+  }
   const count = stack[0].count;
   // The prefix every stack of the sweep shares: all surfaces but the last (its outer surface).
   const prefix = stack.length - 1;
@@ -82,49 +94,83 @@ function setsOf(surface: SurfaceAdjacency): Sets {
   return sets;
 }
 
+/**
+ * The surface's side counts: its own `sides` (copied), else its set sizes (made once per record
+ * and shared: no caller writes into the analysis's arrays).
+ */
 function sidesOf(surface: SurfaceAdjacency, sets: Sets, count: number): Int32Array {
+  const own = surface.sides;
+  if (own) return Int32Array.from({ length: count }, (_, i) => own[i]);
+  if (sets.sizes) return sets.sizes;
   const out = new Int32Array(count);
-  for (let i = 0; i < count; i++) out[i] = surface.sides ? surface.sides[i] : sets.offsets[i + 1] - sets.offsets[i];
+  const offsets = sets.offsets;
+  for (let i = 0; i < count; i++) out[i] = offsets[i + 1] - offsets[i];
+  sets.sizes = out;
   return out;
 }
 
 function start(surface: SurfaceAdjacency, count: number): Carried {
   const first = setsOf(surface);
+  const border = new Uint8Array(count);
+  orBorder(border, surface, count);
   return {
     count,
     layers: [surface.neighbours],
     first,
     last: first,
     transitions: new Int32Array(count),
-    union: Array.from({ length: count }, (_, i) => Array.from(first.ids.subarray(first.offsets[i], first.offsets[i + 1]))),
+    beyondFirst: new Int32Array(count),
     lost: Array.from({ length: count }, () => []),
     won: Array.from({ length: count }, () => []),
     sides: [sidesOf(surface, first, count)],
+    sideSources: [surface.sides],
+    border,
     summaries: new Map(),
   };
 }
 
+/** Marks in `into` the cells with a border bit on `surface` (invalidOnAnySurface's test). */
+function orBorder(into: Uint8Array, surface: SurfaceAdjacency, count: number): void {
+  const border = surface.border;
+  for (let i = 0; i < count; i++) if (border[i] !== 0) into[i] = 1;
+}
+
 /** Folds one more layer into the carried sums. */
 function fold(state: Carried, surface: SurfaceAdjacency): void {
+  const { count, first, transitions, beyondFirst } = state;
   const a = state.last;
   const b = setsOf(surface);
-  for (let i = 0; i < state.count; i++) {
+  const aIds = a.ids;
+  const bIds = b.ids;
+  for (let i = 0; i < count; i++) {
     const a0 = a.offsets[i];
     const a1 = a.offsets[i + 1];
     const b0 = b.offsets[i];
     const b1 = b.offsets[i + 1];
-    // Most cells keep their neighbours from one layer to the next: nothing to add (the last
-    // layer's set is already in the union, the differences are empty).
-    if (sameRange(a.ids, a0, a1, b.ids, b0, b1)) continue;
-    state.transitions[i] += differenceSize(a.ids, a0, a1, b.ids, b0, b1) + differenceSize(b.ids, b0, b1, a.ids, a0, a1);
-    const u = state.union[i];
-    for (let k = b0; k < b1; k++) if (!u.includes(b.ids[k])) u.push(b.ids[k]);
-    addDifference(a.ids, a0, a1, b.ids, b0, b1, state.lost[i]);
-    addDifference(b.ids, b0, b1, a.ids, a0, a1, state.won[i]);
+    // Most cells keep their neighbours from one layer to the next: nothing to add (the
+    // differences are empty).
+    if (sameRange(aIds, a0, a1, bIds, b0, b1)) continue;
+    // |a Δ b| = |a| + |b| - 2 |a ∩ b| (sets without repeats).
+    transitions[i] += a1 - a0 + (b1 - b0) - 2 * intersectionSize(aIds, a0, a1, bIds, b0, b1);
+    addDifference(aIds, a0, a1, bIds, b0, b1, state.lost[i]);
+    // addDifference(b, a, won[i]), counting the new ones that are not in the first set.
+    const won = state.won[i];
+    const f0 = first.offsets[i];
+    const f1 = first.offsets[i + 1];
+    let j = a0;
+    for (let k = b0; k < b1; k++) {
+      const v = bIds[k];
+      while (j < a1 && aIds[j] < v) j++;
+      if ((j < a1 && aIds[j] === v) || won.includes(v)) continue;
+      won.push(v);
+      if (!inRange(first.ids, f0, f1, v)) beyondFirst[i]++;
+    }
   }
   state.last = b;
   state.layers.push(surface.neighbours);
-  state.sides.push(sidesOf(surface, b, state.count));
+  state.sides.push(sidesOf(surface, b, count));
+  state.sideSources.push(surface.sides);
+  orBorder(state.border, surface, count);
 }
 
 /** The analysis of the carried prefix plus the stack's last surface (the state is not changed). */
@@ -132,48 +178,79 @@ function finish(state: Carried, stack: SurfaceAdjacency[], invalid: Uint8Array):
   const { count, first, last: previous } = state;
   const outer = stack[stack.length - 1];
   const last = setsOf(outer);
-  const excluded = invalidOnAnySurface(stack, invalid.length, invalid.slice());
+  // invalidOnAnySurface(stack, count, invalid.slice()): the folded layers' borders are carried.
+  const excluded = invalid.slice();
+  for (let i = 0; i < count; i++) if (state.border[i] !== 0) excluded[i] = 1;
+  orBorder(excluded, outer, count);
 
   const valid = new Uint8Array(count);
   for (let i = 0; i < count; i++) valid[i] = excluded[i] ? 0 : 1;
   const { won, lost, transitions, neighbours3D, changed, scutoid } = cellArrays(count);
   const labWon = new Int32Array(count);
   const labLost = new Int32Array(count);
+  const fIds = first.ids;
+  const pIds = previous.ids;
+  const lIds = last.ids;
   for (let i = 0; i < count; i++) {
-    countWonLost(first, last, i, won, lost);
+    const f0 = first.offsets[i];
+    const f1 = first.offsets[i + 1];
     const p0 = previous.offsets[i];
     const p1 = previous.offsets[i + 1];
     const l0 = last.offsets[i];
     const l1 = last.offsets[i + 1];
+    // Won and lost from the first to the last surface (countWonLost): |l \ f| and |f \ l|.
+    const kept = intersectionSize(fIds, f0, f1, lIds, l0, l1);
+    won[i] = l1 - l0 - kept;
+    lost[i] = f1 - f0 - kept;
+    const carriedLost = state.lost[i];
+    const carriedWon = state.won[i];
+    let t = state.transitions[i];
+    let all = f1 - f0 + state.beyondFirst[i];
+    let newLost = 0;
+    let newWon = 0;
     // The last step changes nothing where the outer surface keeps the previous layer's set.
-    const same = sameRange(previous.ids, p0, p1, last.ids, l0, l1);
-    const t = same
-      ? state.transitions[i]
-      : state.transitions[i] + differenceSize(previous.ids, p0, p1, last.ids, l0, l1) + differenceSize(last.ids, l0, l1, previous.ids, p0, p1);
-    const u = state.union[i];
-    let all = u.length;
-    if (!same) for (let k = l0; k < l1; k++) if (!u.includes(last.ids[k])) all++;
+    if (!sameRange(pIds, p0, p1, lIds, l0, l1)) {
+      t += p1 - p0 + (l1 - l0) - 2 * intersectionSize(pIds, p0, p1, lIds, l0, l1);
+      newLost = newDifference(pIds, p0, p1, lIds, l0, l1, carriedLost);
+      // The last step's won neighbours not won before; those not in the first set are new to the union.
+      let j = p0;
+      for (let k = l0; k < l1; k++) {
+        const v = lIds[k];
+        while (j < p1 && pIds[j] < v) j++;
+        if ((j < p1 && pIds[j] === v) || carriedWon.includes(v)) continue;
+        newWon++;
+        if (!inRange(fIds, f0, f1, v)) all++;
+      }
+    }
     neighbours3D[i] = all;
     changed[i] = t > 0 ? 1 : 0;
     scutoid[i] = valid[i] && changed[i] ? 1 : 0;
     // The lab's counts: the carried sets plus what the last step adds.
-    labLost[i] = state.lost[i].length + (same ? 0 : newDifference(previous.ids, p0, p1, last.ids, l0, l1, state.lost[i]));
-    labWon[i] = state.won[i].length + (same ? 0 : newDifference(last.ids, l0, l1, previous.ids, p0, p1, state.won[i]));
+    labLost[i] = carriedLost.length + newLost;
+    labWon[i] = carriedWon.length + newWon;
     transitions[i] = labWon[i] + labLost[i];
   }
 
   let validCells = 0;
   for (let i = 0; i < count; i++) validCells += valid[i];
 
-  // Carried side counts, except where a surface brings its own (`sides`).
+  // Carried side counts, except where a surface brings other `sides` than the folded layer's.
   const sides = stack.map((surface, k) =>
-    k === stack.length - 1 ? sidesOf(outer, last, count) : surface.sides ? sidesOf(surface, setsOf(surface), count) : state.sides[k],
+    k === stack.length - 1 ? sidesOf(outer, last, count) : surface.sides === state.sideSources[k] ? state.sides[k] : sidesOf(surface, setsOf(surface), count),
   );
   const perSurface = stack.map((surface, k) =>
     surfaceSummary(state, surface, k === stack.length - 1 ? last : k === 0 ? first : setsOf(surface), sides[k], excluded, valid, validCells),
   );
   // Means of won and lost the lab's way (accumulated over the layers), as analyzeLabStack gives.
   return summarizeCells({ valid, sides, won, lost, transitions, neighbours3D, changed, scutoid }, perSurface, { won: labWon, lost: labLost });
+}
+
+/** Whether the ascending range ids[from, to) holds v. */
+function inRange(ids: Int32Array, from: number, to: number, v: number): boolean {
+  for (let k = from; k < to; k++) {
+    if (ids[k] >= v) return ids[k] === v;
+  }
+  return false;
 }
 
 /**

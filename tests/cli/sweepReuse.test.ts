@@ -130,9 +130,50 @@ describe('analyzeLabStackReusing', () => {
       const stack = [...messyLayers.slice(0, k), messy(layerAt(ratios[k], 'basal'))];
       expect(analyzeLabStackReusing(stack, invalid), `lists, s = ${ratios[k]}`).toEqual(analyzeLabStack(stack, invalid));
     }
+    // No validity of its own (every cell valid but those on a border of the stack's surfaces):
+    // the borders of the carried layers, and of each outer surface, decide which cells count.
+    const none = new Uint8Array(40);
+    for (const k of [2, 5, 12, 1, 9, 12, 4]) {
+      const stack = stackTo(k, k % 2 === 0);
+      expect(analyzeLabStackReusing(stack, none), `no validity, s = ${ratios[k]}`).toEqual(analyzeLabStack(stack, none));
+    }
     // A valid set that differs (a cell excluded beyond the validity layers) is not a stale summary.
     const more = invalid.slice();
     more[more.indexOf(0)] = 1;
     expect(analyzeLabStackReusing(stackTo(6, false), more)).toEqual(analyzeLabStack(stackTo(6, false), more));
+  });
+  it('equals analyzeLabStack on random stacks: neighbours lost and won back, borders on middle layers only', () => {
+    // A small generator (no library state): neighbour sets that change a lot between layers, so
+    // cells lose neighbours and win them back, win ones of the first set again, and have a
+    // border on one layer only; ascending lists (the exact records' form) and messy ones.
+    let state = 12345;
+    const random = () => (state = (state * 1103515245 + 12345) % 2147483648) / 2147483648;
+    const count = 14;
+    const surface = (label: string, messy: boolean): SurfaceAdjacency => {
+      const lists = Array.from({ length: count }, (_, i) => {
+        const list: number[] = [];
+        for (let j = 0; j < count; j++) if (j !== i && random() < 0.3) list.push(j);
+        if (messy && list.length > 1) list.reverse().push(list[0], i);
+        return list;
+      });
+      const border = Uint8Array.from({ length: count }, () => (random() < 0.08 ? 1 : 0));
+      const areas = Float64Array.from({ length: count }, () => 1 + random());
+      return adjacencyFromLists(
+        lists,
+        lists.map((list) => list.map(() => 1)),
+        areas,
+        border,
+        label,
+      );
+    };
+    for (const messy of [false, true]) {
+      const layers = Array.from({ length: 9 }, (_, k) => surface(k === 0 ? 'apical' : `layer ${k}`, messy));
+      const invalid = Uint8Array.from({ length: count }, () => (random() < 0.1 ? 1 : 0));
+      for (const k of [1, 2, 3, 5, 8, 8, 4, 6, 7, 1, 8, 2, 3]) {
+        const outer = random() < 0.5 ? surface('basal', messy) : { ...layers[k], label: 'basal' };
+        const stack = [...layers.slice(0, k), outer];
+        expect(analyzeLabStackReusing(stack, invalid), `${messy ? 'messy ' : ''}stack of ${k + 1}`).toEqual(analyzeLabStack(stack, invalid));
+      }
+    }
   });
 });
