@@ -140,13 +140,14 @@ function fold(state: Carried, surface: SurfaceAdjacency): void {
   const { count, first, transitions, beyondFirst } = state;
   const a = state.last;
   const b = setsOf(surface);
-  const aIds = a.ids;
-  const bIds = b.ids;
+  const { ids: aIds, offsets: aOffsets } = a;
+  const { ids: bIds, offsets: bOffsets } = b;
+  const firstOffsets = first.offsets;
   for (let i = 0; i < count; i++) {
-    const a0 = a.offsets[i];
-    const a1 = a.offsets[i + 1];
-    const b0 = b.offsets[i];
-    const b1 = b.offsets[i + 1];
+    const a0 = aOffsets[i];
+    const a1 = aOffsets[i + 1];
+    const b0 = bOffsets[i];
+    const b1 = bOffsets[i + 1];
     // Most cells keep their neighbours from one layer to the next: nothing to add (the
     // differences are empty).
     if (sameRange(aIds, a0, a1, bIds, b0, b1)) continue;
@@ -155,8 +156,8 @@ function fold(state: Carried, surface: SurfaceAdjacency): void {
     addDifference(aIds, a0, a1, bIds, b0, b1, state.lost[i]);
     // addDifference(b, a, won[i]), counting the new ones that are not in the first set.
     const won = state.won[i];
-    const f0 = first.offsets[i];
-    const f1 = first.offsets[i + 1];
+    const f0 = firstOffsets[i];
+    const f1 = firstOffsets[i + 1];
     let j = a0;
     for (let k = b0; k < b1; k++) {
       const v = bIds[k];

@@ -1,0 +1,53 @@
+import { describe, expect, it } from 'vitest';
+import { csvField, flatList, flatSummary, runCells, type SweepRun } from '../../src/core/sweep';
+import { Random } from '../../src/core/random';
+
+/**
+ * runCells' row from a thread's flat key list, from a flat record, and the text an independent
+ * formatting of the same cells gives (String of a number, csvField of the rest), whatever the
+ * values repeat (its number texts are kept) or which columns a run's base fills.
+ */
+describe('runCells', () => {
+  it('the same cells, row and line from a key list and from a record, numbers as String(n)', () => {
+    const random = new Random(11);
+    const specials = [NaN, -0, 0, Infinity, -Infinity, 1 / 3, 0.1 + 0.2, 1e21, -1e-7];
+    const keys = Array.from({ length: 40 }, (_, k) => `exact.layer${k}.meanSides`);
+    // A header with a column of no value, a summary key that is also a base column (the base's
+    // value wins), and a repeated column name.
+    const header = ['key', 'k', 'realization', 'seed', 'tube', ...keys, 'missing', 'seed'];
+    const summaryKeys = [...keys, 'seed'];
+    for (let trial = 0; trial < 200; trial++) {
+      const values: unknown[] = summaryKeys.map(() => {
+        const u = random.next();
+        if (u < 0.2) return specials[Math.floor(random.next() * specials.length)];
+        if (u < 0.3) return random.next() < 0.5 ? 'text, "quoted"' : null;
+        // Repeated values (fractions of a few counts) and fresh ones.
+        return u < 0.7 ? Math.floor(random.next() * 7) / 6 : (random.next() - 0.5) * 10 ** Math.floor(random.next() * 10 - 4);
+      });
+      const run: SweepRun<{ seed: number }> = {
+        key: `k=${trial}#r0`,
+        point: { k: trial },
+        realization: trial % 3,
+        seed: 1000 + trial,
+        config: { seed: 1000 + trial },
+      };
+      const geometry = { tube: trial % 2 === 0 ? 'tube' : 'plane' };
+      const fromList = runCells(run, ['k'], flatList(summaryKeys, values), header, geometry);
+      const record = flatSummary(Object.fromEntries(summaryKeys.map((key, n) => [key, values[n]])));
+      const fromRecord = runCells(run, ['k'], record, header, geometry);
+      expect(fromList.cells).toEqual(fromRecord.cells);
+      expect(fromList.row).toEqual(fromRecord.row);
+      expect(fromList.line).toBe(fromRecord.line);
+      const base: Record<string, unknown> = { key: run.key, k: String(trial), realization: run.realization, seed: run.seed, ...geometry };
+      const expected = header.map((h) => (h in base ? base[h] : h === 'missing' ? undefined : values[summaryKeys.indexOf(h)]));
+      expect(fromList.cells.length).toBe(header.length);
+      fromList.cells.forEach((cell, k) => expect(Object.is(cell, expected[k]), header[k]).toBe(true));
+      const text = (v: unknown) => (typeof v === 'number' ? String(v) : csvField(v));
+      expect(fromList.line).toBe(`${expected.map(text).join(',')}\r\n`);
+      header.forEach((h) => {
+        const last = expected[header.lastIndexOf(h)];
+        expect(fromList.row[h]).toBe(typeof last === 'number' ? String(last) : last === null || last === undefined ? '' : String(last));
+      });
+    }
+  });
+});
