@@ -24,13 +24,15 @@ describe('runCells', () => {
         // Repeated values (fractions of a few counts) and fresh ones.
         return u < 0.7 ? Math.floor(random.next() * 7) / 6 : (random.next() - 0.5) * 10 ** Math.floor(random.next() * 10 - 4);
       });
-      const run: SweepRun<{ seed: number }> = {
+      const run = {
         key: `k=${trial}#r0`,
         point: { k: trial },
         realization: trial % 3,
         seed: 1000 + trial,
         config: { seed: 1000 + trial },
-      };
+        index: trial,
+        pointKey: `k=${trial}`,
+      } as unknown as SweepRun;
       const geometry = { tube: trial % 2 === 0 ? 'tube' : 'plane' };
       const fromList = runCells(run, ['k'], flatList(summaryKeys, values), header, geometry);
       const record = flatSummary(Object.fromEntries(summaryKeys.map((key, n) => [key, values[n]])));

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { aggregateRows, aggregateToCsv, aggregateToJson, meanSd, runCells, runSweep, type SweepRun } from '../../src/core/sweep';
+import { aggregateRows, aggregateToCsv, aggregateToJson, flatList, flatSummary, meanSd, runCells, runSweep, type SweepRun } from '../../src/core/sweep';
 import { Random } from '../../src/core/random';
 
 /** The statistics as the reduce-based meanSd computed them before (the oracle for the loops). */
@@ -34,8 +34,9 @@ describe('sweep rows keep their typed cells for the aggregate', () => {
 
   it('aggregates rows made by runCells exactly as the same rows read back as text', () => {
     const random = new Random(11);
-    const header = ['key', 'k', 'realization', 'seed', 'a', 'b', 'c', 'd', 'text'];
-    const odd = [NaN, Infinity, -0, null, undefined, '', '12', 'x', true, 1e21, 5e-324];
+    // A repeated column (a row's text is its last cell's) and values of every kind.
+    const header = ['key', 'k', 'realization', 'seed', 'a', 'b', 'c', 'd', 'text', 'b'];
+    const odd = [NaN, Infinity, -0, null, undefined, '', '12', ' 7 ', 'x', true, 1e21, 5e-324, 12n, [3], { x: 1 }];
     const rows: Record<string, string>[] = [];
     for (let p = 0; p < 4; p++) {
       for (let r = 0; r < 6; r++) {
@@ -43,7 +44,8 @@ describe('sweep rows keep their typed cells for the aggregate', () => {
         for (const c of ['a', 'b', 'c', 'd']) summary[c] = random.next() < 0.2 ? odd[Math.floor(random.next() * odd.length)] : random.next() * 100 - 50;
         summary.text = 'label';
         const run = { key: `p${p}#r${r}`, point: { k: p }, realization: r, seed: r, config: {}, pointKey: `k=${p}` } as unknown as SweepRun;
-        rows.push(runCells(run, ['k'], summary, header).row);
+        // Flat as it is (flatSummary): array and object values are cells, not flattened.
+        rows.push(runCells(run, ['k'], r % 2 === 0 ? flatSummary(summary) : flatList(Object.keys(summary), Object.values(summary)), header).row);
       }
     }
     // The same rows as a reader of runs.csv gets them: text only, no typed cells.

@@ -358,7 +358,9 @@ export async function runSweep<C extends ConfigObject, S>(options: RunSweepOptio
     if (!fixedHeader) return { run, summary };
     try {
       // The summary is not kept once its row is made (it would live on until the row's turn).
-      return { run, cells: runCells(run, fields, summary, fixedHeader, options.runValues?.(run)) };
+      // Its row and line only: the typed cells are not kept (the row keeps its numbers).
+      const { row, line } = runCells(run, fields, summary, fixedHeader, options.runValues?.(run));
+      return { run, cells: { row, line } };
     } catch {
       // A row that cannot be made fails when its turn comes to be written, as it always did.
       return { run, summary };

@@ -8,19 +8,20 @@
  */
 export interface Typed {
   readonly header: readonly string[];
-  readonly cells: readonly unknown[];
   /**
    * Each cell as the aggregate reads it (cellNumber of its text): a number's value, NaN for an
    * empty cell, text parsed as the row's text is. Made as the row is (its cells are in cache
    * then): read after the last run from boxed cells scattered over the heap, the aggregate of
-   * 2,400 rows x 340 columns took about 0.2 s, in one contiguous array per row a fraction.
+   * 2,400 rows x 340 columns took about 0.2 s, in one contiguous array per row a fraction. The
+   * cells themselves are not kept: 2,400 rows of 360 boxed values held to the end of a sweep
+   * were a good part of what the main thread's garbage collector traced again and again.
    */
   readonly numbers: Float64Array;
 }
 
 const typed = new WeakMap<object, Typed>();
 
-/** Records `cells`, in `header` order, as the typed cells of `row` (whose text `row` already holds). */
+/** Records the numbers of `cells` (in `header` order) as the typed cells of `row` (whose text `row` already holds). */
 export function keepTypedCells(row: Readonly<Record<string, string>>, header: readonly string[], cells: readonly unknown[]): void {
   const numbers = new Float64Array(header.length);
   for (let k = 0; k < header.length; k++) {
@@ -28,7 +29,7 @@ export function keepTypedCells(row: Readonly<Record<string, string>>, header: re
     numbers[k] =
       typeof value === 'number' ? value : value === undefined || value === null ? NaN : cellNumber(typeof value === 'string' ? value : row[header[k]]);
   }
-  typed.set(row, { header, cells, numbers });
+  typed.set(row, { header, numbers });
 }
 
 /** The typed cells of `row` (runCells' rows), with the header they follow; undefined for other rows. */
