@@ -54,4 +54,23 @@ describe('prototype keys in a config', () => {
     const error = refusal('{"cells": 20, "sheet": {"my__proto__": 1}}');
     expect(error.message).toMatch(/^sheet\.my__proto__: unknown field/);
   });
+  it('a value JSON cannot carry is refused naming its path, wherever it is (the walk restores the path it extends)', () => {
+    const cases: [unknown, string][] = [
+      [{ cells: NaN }, 'cells'],
+      [{ density: { kind: 'gaussian', center: [1, Infinity] } }, 'density.center[1]'],
+      [{ cells: 20, density: { kind: 'gaussian', center: [1, 2], sigma: -Infinity } }, 'density.sigma'],
+      [{ sheet: { layers: 2 }, surface: { kind: 'tube', radius: 10, length: () => 1 } }, 'surface.length'],
+    ];
+    for (const [input, field] of cases) {
+      let error: unknown;
+      try {
+        validateConfig(input);
+      } catch (e) {
+        error = e;
+      }
+      expect(error, field).toBeInstanceOf(ConfigError);
+      expect((error as ConfigError).field).toBe(field);
+      expect((error as ConfigError).message.startsWith(`${field}: must be `)).toBe(true);
+    }
+  });
 });

@@ -59,6 +59,11 @@ export function validateConfigDraft(input: unknown): ConfigDraft {
 /** Keys that reach an object's prototype when assigned or walked: refused anywhere in a config. */
 export const PROTOTYPE_KEYS: ReadonlySet<string> = new Set(['__proto__', 'constructor', 'prototype']);
 
+/**
+ * `value` as plain JSON data (a copy), or a ConfigError naming the first bad value's path.
+ * `path` is the value's path, extended and restored in place as the walk goes down and up (no
+ * path array per value: a sweep's threads validate every run's config).
+ */
 function cloneJson(value: unknown, path: (string | number)[]): unknown {
   if (value === null || typeof value === 'string' || typeof value === 'boolean') return value;
   if (typeof value === 'number') {
@@ -68,18 +73,32 @@ function cloneJson(value: unknown, path: (string | number)[]): unknown {
     }
     return value;
   }
-  if (Array.isArray(value)) return value.map((item, index) => cloneJson(item, [...path, index]));
+  if (Array.isArray(value)) {
+    const out = new Array<unknown>(value.length);
+    for (let index = 0; index < value.length; index++) {
+      path.push(index);
+      out[index] = cloneJson(value[index], path);
+      path.pop();
+    }
+    return out;
+  }
   if (typeof value === 'object' && (Object.getPrototypeOf(value) === Object.prototype || Object.getPrototypeOf(value) === null)) {
     const out: Record<string, unknown> = {};
-    for (const [key, item] of Object.entries(value as Record<string, unknown>)) {
+    for (const key of Object.keys(value)) {
+      const item = (value as Record<string, unknown>)[key];
       // JSON.parse keeps "__proto__" as an own key; `out[key] = ...` would then set the
-      // prototype. Refuse these keys, and define properties rather than assign them.
+      // prototype. Refuse these keys: any other key assigned below is an own data property
+      // (Object.prototype's one accessor is __proto__), as defineProperty made it, at a fraction
+      // of its cost.
       if (PROTOTYPE_KEYS.has(key)) {
         const field = formatPath([...path, key]);
         throw new ConfigError(field, `${field}: "${key}" is not allowed as a key (it would reach an object prototype); remove it`);
       }
       if (item === undefined) continue; // `{radius: undefined}` means "not given", as in JSON.
-      Object.defineProperty(out, key, { value: cloneJson(item, [...path, key]), enumerable: true, writable: true, configurable: true });
+      path.push(key);
+      const copy = cloneJson(item, path);
+      path.pop();
+      out[key] = copy;
     }
     return out;
   }
