@@ -20,7 +20,7 @@ import { flatList, flattenSummary } from '../core/sweep';
 import { flatKeys, flatValues } from '../core/sweep/flatValues';
 import type { FlintstonesPoint } from '../core/analysis/flintstones';
 import type { GpuCapabilities } from '../gpu/context';
-import { SheetRunner, sweepSummary } from '../run/index';
+import { SheetRunner, sweepSummary, sweepSummaryValues, type SheetResult } from '../run/index';
 import type { RunInputs } from './prepare';
 import { fitOutcome, type FitOutcome } from './sweepFits';
 import { capabilitiesOnly, deserializeError, newThread, serializeError, type SerializedError } from './threads';
@@ -281,6 +281,44 @@ function startWorker(): void {
   let controller = new AbortController();
   /** Per summary shape (flatValues): its layout number, keys, and whether its values line up with the keys. */
   const layouts = new Map<string, { layout: number; keys: string[]; aligned: boolean }>();
+  /**
+   * Per shape of sweepSummaryValues: the layout of the summaries of that shape, once their values
+   * were found to be flatValues' (on the shape's first run); null where they were not (the
+   * summary is then flattened as it is, every run).
+   */
+  const directShapes = new Map<string, { layout: number; keys: string[] } | null>();
+  /**
+   * A run's summary flattened: its layout, its keys, whether they were sent already, and its
+   * values. Flat values cross faster than the nested summary (a structured clone per key); the
+   * keys are made once per shape of summary (flatValues).
+   */
+  const flattened = (result: SheetResult): { layout: number; keys: string[]; known: boolean; values: unknown[] } => {
+    const summary = sweepSummary(result);
+    const flat = flatValues(summary);
+    let shape = layouts.get(flat.shape);
+    const known = shape !== undefined;
+    if (shape === undefined) {
+      const keys = Object.keys(flattenSummary(summary));
+      const own = flatKeys(summary);
+      const aligned = own.length === keys.length && own.every((k, n) => k === keys[n]);
+      layouts.set(flat.shape, (shape = { layout: layouts.size, keys, aligned }));
+    }
+    const { layout, keys } = shape;
+    return { layout, keys, known, values: shape.aligned ? flat.values : Object.values(flattenSummary(summary)) };
+  };
+  /** flattened(result), from sweepSummaryValues where its shape was checked (no nested summary per run). */
+  const flatRun = (result: SheetResult): ReturnType<typeof flattened> => {
+    const direct = sweepSummaryValues(result);
+    if (!direct) return flattened(result);
+    const kept = directShapes.get(direct.shape);
+    if (kept) return { ...kept, known: true, values: direct.values };
+    const generic = flattened(result);
+    if (kept === undefined) {
+      const same = generic.values.length === direct.values.length && generic.values.every((value, n) => Object.is(value, direct.values[n]));
+      directShapes.set(direct.shape, same ? { layout: generic.layout, keys: generic.keys } : null);
+    }
+    return generic;
+  };
   let queue: Promise<void> = Promise.resolve();
   const send = (message: FromWorker) => port.postMessage(message);
   port.on('message', (message: ToWorker) => {
@@ -333,20 +371,7 @@ function startWorker(): void {
         try {
           for (const { run, config } of order) {
             const output = await sheets.run(config, { ...inputs.get(run.pointKey), signal, views: false });
-            // Flat values cross faster than the nested summary (a structured clone per key); the
-            // keys are made once per shape of summary (flatValues).
-            const summary = sweepSummary(output.result);
-            const flat = flatValues(summary);
-            let shape = layouts.get(flat.shape);
-            const known = shape !== undefined;
-            if (shape === undefined) {
-              const keys = Object.keys(flattenSummary(summary));
-              const own = flatKeys(summary);
-              const aligned = own.length === keys.length && own.every((k, n) => k === keys[n]);
-              layouts.set(flat.shape, (shape = { layout: layouts.size, keys, aligned }));
-            }
-            const { layout, keys } = shape;
-            const values = shape.aligned ? flat.values : Object.values(flattenSummary(summary));
+            const { layout, keys, known, values } = flatRun(output.result);
             // Numbers in a transferred Float64Array (cloning a list of values costs per value), the rest apart.
             const numbers = new Float64Array(keys.length);
             const others: [number, unknown][] = [];

@@ -4,7 +4,7 @@
  * factories and its result types from here.
  */
 export { runSheet, SheetRunner, seededKey, type RunInputs, type RunOptions } from './runSheet';
-export { sweepSummary } from './sweepSummary';
+export { sweepSummary, sweepSummaryValues } from './sweepSummary';
 export {
   analysisCellRecordsOf,
   cellRecordsOf,
