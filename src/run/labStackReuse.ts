@@ -49,6 +49,8 @@ interface Carried {
   readonly sideSources: (Int32Array | undefined)[];
   /** Per cell: 1 where a folded layer has a border bit (invalidOnAnySurface over the folded layers). */
   readonly border: Uint8Array;
+  /** The last call's excluded cells (never written after: a summary keeps it as its valid set's mark). */
+  excluded: Uint8Array | null;
   /** Per-surface summaries by adjacency object, for one valid set. */
   readonly summaries: Map<Int32Array, { areas: unknown; sides: unknown; excluded: Uint8Array; summary: SurfaceSummary }>;
 }
@@ -125,6 +127,7 @@ function start(surface: SurfaceAdjacency, count: number): Carried {
     sides: [sidesOf(surface, first, count)],
     sideSources: [surface.sides],
     border,
+    excluded: null,
     summaries: new Map(),
   };
 }
@@ -180,9 +183,13 @@ function finish(state: Carried, stack: SurfaceAdjacency[], invalid: Uint8Array):
   const outer = stack[stack.length - 1];
   const last = setsOf(outer);
   // invalidOnAnySurface(stack, count, invalid.slice()): the folded layers' borders are carried.
-  const excluded = invalid.slice();
+  let excluded: Uint8Array = invalid.slice();
   for (let i = 0; i < count; i++) if (state.border[i] !== 0) excluded[i] = 1;
   orBorder(excluded, outer, count);
+  // The previous call's array where the bytes are the same (the usual case): the kept summaries
+  // then match it by identity, not byte by byte per surface.
+  if (state.excluded && sameBytes(state.excluded, excluded)) excluded = state.excluded;
+  else state.excluded = excluded;
 
   const valid = new Uint8Array(count);
   for (let i = 0; i < count; i++) valid[i] = excluded[i] ? 0 : 1;
@@ -270,7 +277,7 @@ function surfaceSummary(
   validCells: number,
 ): SurfaceSummary {
   const kept = state.summaries.get(surface.neighbours);
-  if (kept && kept.areas === surface.areas && kept.sides === surface.sides && sameBytes(kept.excluded, excluded)) {
+  if (kept && kept.areas === surface.areas && kept.sides === surface.sides && (kept.excluded === excluded || sameBytes(kept.excluded, excluded))) {
     return kept.summary.label === surface.label ? kept.summary : { ...kept.summary, label: surface.label };
   }
   const summary = summarizeSurface(surface, sets, sides, valid, validCells, {});
