@@ -50,10 +50,13 @@ describe('sweep rows keep their typed cells for the aggregate', () => {
     }
     // The same rows as a reader of runs.csv gets them: text only, no typed cells.
     const parsed = rows.map((row) => ({ ...row }));
+    // A resumed sweep's groups: rows read from the file beside rows made now.
+    const mixed = rows.map((row, k) => (k % 3 === 1 ? { ...row } : row));
     for (const columns of [['a', 'b', 'c', 'd'], ['a', 'b', 'c', 'd', 'text', 'absent'], undefined]) {
       const typed = aggregateRows(rows, ['k'], columns);
       const text = aggregateRows(parsed, ['k'], columns);
       expect(bits(typed)).toBe(bits(text));
+      expect(bits(aggregateRows(mixed, ['k'], columns))).toBe(bits(text));
       expect(aggregateToCsv(typed)).toBe(aggregateToCsv(text));
       expect(JSON.stringify(aggregateToJson(typed))).toBe(JSON.stringify(aggregateToJson(text)));
     }

@@ -118,11 +118,19 @@ export function aggregateRows(rows: readonly Record<string, string>[], fields: r
     // A row the sweep made keeps its numbers (typedCells.ts): the same values as its text parsed.
     const typed = g.map(typedCellsOf);
     const positions = typed.map((cells) => (cells ? columnPositions(cells.header, numeric) : null));
+    // The usual group: every row typed, under one header (the loop below without its tests).
+    const shared = positions[0] !== null && positions.every((at) => at === positions[0]) ? positions[0] : null;
+    const numbers = shared ? typed.map((cells) => cells!.numbers) : [];
     for (let c = 0; c < numeric.length; c++) {
       const column = numeric[c];
-      for (let i = 0; i < g.length; i++) {
-        const at = positions[i];
-        values[i] = at ? (at[c] < 0 ? NaN : typed[i]!.numbers[at[c]]) : cellNumber(g[i][column]);
+      if (shared) {
+        const at = shared[c];
+        for (let i = 0; i < g.length; i++) values[i] = at < 0 ? NaN : numbers[i][at];
+      } else {
+        for (let i = 0; i < g.length; i++) {
+          const at = positions[i];
+          values[i] = at ? (at[c] < 0 ? NaN : typed[i]!.numbers[at[c]]) : cellNumber(g[i][column]);
+        }
       }
       stats[column] = meanSd(values, g.length);
     }
