@@ -5,6 +5,7 @@ export * from './columns';
 export * from './csv';
 export * from './resume';
 export * from './aggregate';
+export * from './rows';
 export * from './runner';
 export * from './shard';
 export * from './flintstones';
