@@ -55,8 +55,12 @@ export function sheetOffsets(config: Config): number[] {
   const sign = sheet.direction === 'outward' ? 1 : -1;
   let otherOffset = sign * sheet.thickness;
   if (surface.kind === 'tube' && sheet.surfaceRatio !== null) {
-    const otherRadius = sign > 0 ? surface.radius * sheet.surfaceRatio : surface.radius / sheet.surfaceRatio;
-    otherOffset = otherRadius - surface.radius;
+    // As stackOffsets places a layer at ratio 1 + d (R·d outward, R / (1 + d) − R inward), so the
+    // other surface at ratio s is the very surface a stack to a larger ratio has as its layer at
+    // s (the lab's validity layers: one exact diagram serves both): R·(s − 1), not R·s − R, which
+    // can differ from it in the last bit.
+    const R = surface.radius;
+    otherOffset = sign > 0 ? R * (sheet.surfaceRatio - 1) : R / sheet.surfaceRatio - R;
   }
   return stackOffsets(config, otherOffset);
 }
