@@ -177,7 +177,16 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
       // still holds that Lloyd run continues it to the next Voronoi k. Exact-engine tasks go to
       // worker threads, GPU tasks run here on the one GL context; rows are written in the sweep's
       // order (runSweep), so the files are the same whatever the number of threads.
-      const onThreads = (run: Run) => chooseEngine(configOf(run), surfaceLayout(configOf(run)).name, context.capabilities).name === 'exact';
+      // The engine is the grid point's (its runs differ in the seed only): chosen once per point.
+      const exactPoints = new Map<string, boolean>();
+      const onThreads = (run: Run): boolean => {
+        let exact = exactPoints.get(run.pointKey);
+        if (exact === undefined) {
+          const config = configOf(run);
+          exactPoints.set(run.pointKey, (exact = chooseEngine(config, surfaceLayout(config).name, context.capabilities).name === 'exact'));
+        }
+        return exact;
+      };
       const chains = new Map<string, string>();
       const chainOf = (run: Run): string => {
         const id = `${run.pointKey}#${run.seed}`;
