@@ -1,6 +1,9 @@
 import { SIDE_CLASSES } from '../core/analysis';
 import type { SheetResult } from './result';
 
+/** The method metrics a sweep writes per run, in column order (both functions below read this list). */
+const METRICS = ['percentScutoids', 'scutoids', 'validCells', 'excludedCells', 'meanTransitions', 'meanWon', 'meanLost', 'meanNeighbours3D'] as const;
+
 /** The numbers a sweep writes per run (flattened into CSV columns). */
 export function sweepSummary(result: SheetResult): Record<string, unknown> {
   const summary: Record<string, unknown> = {
@@ -17,17 +20,9 @@ export function sweepSummary(result: SheetResult): Record<string, unknown> {
       SIDE_CLASSES.forEach((sides, c) => (polygons[sides] = surface.polygonDistribution[c]));
       perSurface[name] = { meanSides: surface.meanSides, polygons };
     });
-    summary[analysis.method] = {
-      percentScutoids: s.percentScutoids,
-      scutoids: s.scutoids,
-      validCells: s.validCells,
-      excludedCells: s.excludedCells,
-      meanTransitions: s.meanTransitions,
-      meanWon: s.meanWon,
-      meanLost: s.meanLost,
-      meanNeighbours3D: s.meanNeighbours3D,
-      ...perSurface,
-    };
+    const metrics: Record<string, unknown> = {};
+    for (const metric of METRICS) metrics[metric] = s[metric];
+    summary[analysis.method] = { ...metrics, ...perSurface };
   }
   return summary;
 }
@@ -44,8 +39,6 @@ function columnName(label: string): string {
   return name;
 }
 
-/** The method metrics of sweepSummary, in its order. */
-const METRICS = ['percentScutoids', 'scutoids', 'validCells', 'excludedCells', 'meanTransitions', 'meanWon', 'meanLost', 'meanNeighbours3D'] as const;
 const TOP = new Set(['iterations', 'finalEnergy', 'centroidPath']);
 const FIXED = new Set<string>(METRICS);
 
@@ -68,7 +61,7 @@ export function sweepSummaryValues(result: SheetResult): { shape: string; values
     if (methods.has(method) || TOP.has(method) || isIndexLike(method)) return null;
     methods.add(method);
     const s = analysis.summary;
-    values.push(s.percentScutoids, s.scutoids, s.validCells, s.excludedCells, s.meanTransitions, s.meanWon, s.meanLost, s.meanNeighbours3D);
+    for (const metric of METRICS) values.push(s[metric]);
     shape += `${method.length}:${method}{`;
     const names = new Set<string>();
     const perSurface = s.perSurface;

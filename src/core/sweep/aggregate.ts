@@ -110,7 +110,9 @@ export function aggregateRows(rows: readonly Record<string, string>[], fields: r
   }
   const points: AggregatePoint[] = [];
   // One group's values of one column at a time, in row order (the statistics' sums follow it).
-  const values = new Float64Array(Math.max(0, ...[...groups.values()].map((g) => g.length)));
+  let largest = 0;
+  for (const g of groups.values()) largest = Math.max(largest, g.length);
+  const values = new Float64Array(largest);
   for (const g of groups.values()) {
     const point: Record<string, string> = {};
     for (const f of fields) point[f] = g[0][f] ?? '';

@@ -1,6 +1,6 @@
 /**
- * The typed cells of the rows runCells makes (numbers still numbers), kept beside each row
- * object, so the aggregate of a sweep's rows reads its numbers without parsing them back from
+ * The numbers of the rows runCells makes (each cell as the aggregate reads it), kept beside each
+ * row object, so the aggregate of a sweep's rows reads its numbers without parsing them back from
  * their text (a sweep of 2,400 runs x 400 columns spent a good part of its last half second
  * there, after every run). A row's text of a number is String(number), whose Number() is that
  * number again (-0 reads back as 0, which no mean, SD or count tells apart), so the aggregate is
