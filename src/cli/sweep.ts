@@ -269,8 +269,8 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
               }
             },
           },
-          // One lane per thread, and one for the main thread's GPU runs.
-          concurrency: threads + 1,
+          // As many tasks as the threads hold (two each: SweepWorkers), and one for the main thread's GPU runs.
+          concurrency: (pool?.capacity ?? 0) + 1,
           signal,
           onProgress: (p) => {
             if (p.phase === 'start') return;

@@ -4,7 +4,19 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
 import { validateConfig } from '../../src/core/config';
-import { expandSweep, geometryValues, readCsvTable, readRunsCsv, runRow, runSweep, validateSweepSpec, variedFields, type SweepRun } from '../../src/core/sweep';
+import {
+  expandSweep,
+  flattenSummary,
+  geometryValues,
+  readCsvTable,
+  readRunsCsv,
+  runRow,
+  runSweep,
+  validateSweepSpec,
+  variedFields,
+  type SweepRun,
+} from '../../src/core/sweep';
+import { SweepThreadLost, SweepWorkers } from '../../src/cli/sweepWorkers';
 import { createHeadlessContext } from '../../src/node/headless';
 import { SheetRunner, sweepSummary } from '../../src/run/index';
 
@@ -179,4 +191,69 @@ describe('runSweep with tasks finishing in any order', () => {
     expect(keys.filter((k) => k.endsWith('#r0'))).toHaveLength(8);
     expect(new Set(keys).size).toBe(keys.length);
   });
+});
+
+describe('SweepWorkers holding two tasks per thread', () => {
+  // One thread, tasks sent faster than it computes them: the second waits in the thread's queue.
+  const base = { surface: { kind: 'tube', radius: 30, length: 200 }, resolution: 64, cells: 20, engine: 'exact', sheet: { surfaceRatio: 2 } };
+  const task = (seed: number) => [{ key: `r${seed}`, pointKey: 'p', config: { ...base, seed, lloyd: { maxIterations: 2 } } }];
+  const capabilities = () => {
+    const context = createHeadlessContext();
+    const { capabilities } = context;
+    context.dispose();
+    return capabilities;
+  };
+
+  it('computes queued tasks as each alone, and takes a third once one ends', async () => {
+    const pool = new SweepWorkers(1, capabilities());
+    try {
+      expect(pool.capacity).toBe(2);
+      const got = new Map<string, unknown>();
+      const done = (key: string, summary: unknown) => got.set(key, summary);
+      await Promise.all([1, 2, 3].map((seed) => pool.run(task(seed), `chain${seed}`, done)));
+      const context = createHeadlessContext();
+      try {
+        for (const seed of [1, 2, 3]) {
+          const { result } = await new SheetRunner(context).run(validateConfig(task(seed)[0].config), { views: false });
+          const alone = sweepSummary(result);
+          const values = got.get(`r${seed}`) as { keys: string[]; values: unknown[] };
+          expect(Object.fromEntries(values.keys.map((k, n) => [k, values.values[n]]))).toEqual(flattenSummary(alone));
+        }
+      } finally {
+        context.dispose();
+      }
+    } finally {
+      await pool.close();
+    }
+  }, 120_000);
+
+  it('fails the task it computes and the one queued behind it on an abort', async () => {
+    const pool = new SweepWorkers(1, capabilities());
+    try {
+      const long = (seed: number) => [
+        { key: `r${seed}`, pointKey: 'p', config: { ...base, seed, cells: 200, resolution: 256, lloyd: { maxIterations: 200, tolerance: 0 } } },
+      ];
+      const first = pool.run(long(1), 'a', () => {});
+      const second = pool.run(long(2), 'b', () => {});
+      // Both sent (run() claims a thread first, a microtask), then the abort.
+      await new Promise((resolve) => setImmediate(resolve));
+      pool.abort();
+      await expect(first).rejects.toMatchObject({ name: 'AbortError' });
+      await expect(second).rejects.toMatchObject({ name: 'AbortError' });
+    } finally {
+      await pool.close();
+    }
+  }, 120_000);
+
+  it('hands both tasks of a thread that exits back as SweepThreadLost, and refuses more', async () => {
+    const pool = new SweepWorkers(1, capabilities());
+    const first = pool.run(task(1), 'a', () => {});
+    const second = pool.run(task(2), 'b', () => {});
+    // The thread goes away under its tasks (as a crash would).
+    await (pool as unknown as { slots: { worker: { terminate(): Promise<number> } }[] }).slots[0].worker.terminate();
+    await expect(first).rejects.toBeInstanceOf(SweepThreadLost);
+    await expect(second).rejects.toBeInstanceOf(SweepThreadLost);
+    await expect(pool.run(task(3), 'c', () => {})).rejects.toThrow(/no sweep worker thread is left/);
+    await pool.close();
+  }, 60_000);
 });
