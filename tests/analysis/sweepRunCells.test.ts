@@ -52,4 +52,38 @@ describe('runCells', () => {
       });
     }
   });
+
+  it('rows are plain records of every column, whatever the names, with or without generated code', () => {
+    // Names that could break generated code if they were not literals, and a repeated one.
+    const odd = ['a"b', 'c\\d', "e'f", 'g\nh', 'line\u2028sep', '`${x}`', '}); throw 1; ({', 'constructor', 'toString', '0', '12', 'x.y.z'];
+    const run = { key: 'p#r0', point: {}, realization: 0, seed: 7, config: {}, index: 0, pointKey: 'p' } as unknown as SweepRun;
+    const make = () => {
+      const header = ['key', 'realization', 'seed', ...odd, 'x.y.z'];
+      const values = odd.map((_, n) => (n % 3 === 0 ? n / 7 : n % 3 === 1 ? `t${n}` : null));
+      return { header, ...runCells(run, [], flatList(odd, values), header) };
+    };
+    const check = ({ header, row, cells }: ReturnType<typeof make>) => {
+      // Built key by key, as the reference: same keys in the same order, same texts.
+      const reference: Record<string, string> = {};
+      header.forEach((h, k) => {
+        const v = cells[k];
+        reference[h] = typeof v === 'number' ? String(v) : v === null || v === undefined ? '' : String(v);
+      });
+      expect(Object.getPrototypeOf(row)).toBe(Object.prototype);
+      expect(Object.keys(row)).toEqual(Object.keys(reference));
+      expect(JSON.stringify(row)).toBe(JSON.stringify(reference));
+      expect(Object.prototype.hasOwnProperty.call(row, 'constructor')).toBe(true);
+    };
+    check(make());
+    // A page whose Content-Security-Policy forbids generated code: the rows are the same.
+    const original = globalThis.Function;
+    globalThis.Function = function refused() {
+      throw new EvalError('Refused to evaluate a string as JavaScript (CSP)');
+    } as unknown as FunctionConstructor;
+    try {
+      check(make());
+    } finally {
+      globalThis.Function = original;
+    }
+  });
 });

@@ -47,9 +47,9 @@ export function runCells<C extends ConfigObject>(
     }
     cells = header.map((h) => (base.has(h) ? base.get(h) : Object.prototype.hasOwnProperty.call(flat, h) ? flat[h] : undefined));
   }
-  const row: Record<string, string> = {};
   // The record's text from the same conversions (a number's text is its CSV field as it is:
   // String(n) never needs quotes), so each number is turned into text once.
+  const texts: string[] = new Array<string>(header.length);
   const parts: string[] = new Array<string>(header.length);
   for (let k = 0; k < header.length; k++) {
     const v = cells[k];
@@ -63,9 +63,10 @@ export function runCells<C extends ConfigObject>(
             : typeof v === 'object'
               ? JSON.stringify(v)
               : String(v);
-    row[header[k]] = text;
+    texts[k] = text;
     parts[k] = typeof v === 'number' || typeof v === 'bigint' || typeof v === 'boolean' || text === '' ? text : csvField(v);
   }
+  const row = rowOf(header, texts);
   keepTypedCells(row, header, cells);
   // One flat string now (a join), not a chain of hundreds of concatenations flattened when the
   // row is written: rows are made as runs finish, written in a burst after the last one.
@@ -87,6 +88,48 @@ function numberText(n: number): string {
     numberTexts.set(n, text);
   }
   return text;
+}
+
+/**
+ * The record of one row: `header[k]` -> `texts[k]` (a repeated name keeps its last text, as
+ * assignments in order do). A sweep keeps every row to its end (the aggregate reads them), so
+ * rows of one header are made by one constructor that assigns every column by name, generated
+ * once per header: they share one hidden class with fast properties, where records of ~360 keys
+ * added one by one were hash tables, each several times larger, that the main thread's garbage
+ * collector copied and traced all sweep long (a tenth of the published grid's time). Column
+ * names enter the generated code only as JSON string literals, which no name can leave. Where
+ * code cannot be generated (a page whose Content-Security-Policy forbids it), or for a header
+ * of many thousand columns, the record is built key by key.
+ */
+function rowOf(header: readonly string[], texts: readonly string[]): Record<string, string> {
+  const make = rowMaker(header);
+  if (make) return make(texts);
+  const row: Record<string, string> = {};
+  for (let k = 0; k < header.length; k++) row[header[k]] = texts[k];
+  return row;
+}
+
+/** Largest header given a generated constructor (its code grows with the header). */
+const GENERATED_ROW_COLUMNS = 4096;
+const rowMakers = new WeakMap<readonly string[], ((texts: readonly string[]) => Record<string, string>) | null>();
+function rowMaker(header: readonly string[]): ((texts: readonly string[]) => Record<string, string>) | null {
+  let make = rowMakers.get(header);
+  if (make === undefined) {
+    make = null;
+    if (header.length <= GENERATED_ROW_COLUMNS) {
+      try {
+        const body = header.map((column, k) => `this[${JSON.stringify(column)}] = t[${k}];`).join('\n');
+        const Row = new Function('t', body) as unknown as new (texts: readonly string[]) => Record<string, string>;
+        // Plain records (Object.prototype), like those built key by key.
+        Row.prototype = Object.prototype;
+        make = (texts) => new Row(texts);
+      } catch {
+        make = null;
+      }
+    }
+    rowMakers.set(header, make);
+  }
+  return make;
 }
 
 /** Each header's positions of every column name (all of them, should a name repeat), once per header. */
