@@ -57,8 +57,11 @@ type FromWorker =
    * (each distinct list is sent once per thread, with the first run that has it).
    */
   | DoneMessage
-  /** The summaries of a task's runs, in the order they finished, in one message (fewer messages cost less than many). */
-  | { type: 'dones'; id: number; items: PackedDone[]; numbers: Float64Array }
+  /**
+   * The summaries of a task's runs, in the order they finished, in one message (fewer messages
+   * cost less than many); `finished`: the task ended with them (no 'finished' message follows).
+   */
+  | { type: 'dones'; id: number; items: PackedDone[]; numbers: Float64Array; finished: boolean }
   | { type: 'failed'; id: number; error: SerializedError }
   /** A Flintstones fit (sweepFits.ts). */
   | { type: 'fitted'; id: number; outcome: FitOutcome; index: number }
@@ -241,6 +244,7 @@ export class SweepWorkers {
   private receive(slot: Slot, message: FromWorker): void {
     if (message.type === 'dones') {
       for (const { at, length, ...item } of message.items) this.receive(slot, { ...item, numbers: message.numbers.subarray(at, at + length) });
+      if (message.finished) this.receive(slot, { type: 'finished', id: message.id });
       return;
     }
     if (message.type === 'done' && message.keys) slot.layouts.set(message.layout, message.keys);
@@ -379,8 +383,10 @@ function startWorker(): void {
         order.sort((a, b) => a.config.lloyd.maxIterations - b.config.lloyd.maxIterations || a.k - b.k);
         // A task's summaries go out together when it ends, or as they are when it fails.
         const batch: DoneMessage[] = [];
-        const flush = () => {
-          if (batch.length > 0) {
+        const flush = (finished: boolean) => {
+          if (batch.length === 0) {
+            if (finished) send({ type: 'finished', id });
+          } else {
             // All the numbers in one transferred array (one per run cost more to send).
             const numbers = new Float64Array(batch.reduce((n, item) => n + item.numbers.length, 0));
             let at = 0;
@@ -389,7 +395,7 @@ function startWorker(): void {
               at += own.length;
               return { ...item, at: at - own.length, length: own.length };
             });
-            port.postMessage({ type: 'dones', id, items, numbers } satisfies FromWorker, [numbers.buffer]);
+            port.postMessage({ type: 'dones', id, items, numbers, finished } satisfies FromWorker, [numbers.buffer]);
           }
           batch.length = 0;
         };
@@ -406,10 +412,11 @@ function startWorker(): void {
             });
             batch.push({ type: 'done', id, key: run.key, layout, ...(known ? {} : { keys }), numbers, others });
           }
-        } finally {
-          flush();
+        } catch (error) {
+          flush(false);
+          throw error;
         }
-        send({ type: 'finished', id });
+        flush(true);
       } catch (error) {
         send({ type: 'failed', id, error: serializeError(error) });
       }
