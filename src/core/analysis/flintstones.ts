@@ -101,6 +101,17 @@ interface FitData {
   /** Scratch: the residuals either side of a parameter. */
   readonly plus: Float64Array;
   readonly minus: Float64Array;
+  /**
+   * e^{s_r/c} per ratio and e^{1/c}, for the c they were computed at: most residual evaluations
+   * (the Jacobian's steps in nMax and d, tries that change only them) keep c, and the
+   * exponentials were most of a fit's time. The same calls on the same c: the same bits.
+   */
+  readonly exps: Float64Array;
+  expOne: number;
+  expC: number;
+  /** Scratch: theta stepped either side of a parameter (the Jacobian). */
+  readonly thetaPlus: number[];
+  readonly thetaMinus: number[];
 }
 
 function fitData(points: readonly FlintstonesPoint[]): FitData {
@@ -122,16 +133,36 @@ function fitData(points: readonly FlintstonesPoint[]): FitData {
   const mean = sums.map((sum, i) => sum / weights[i]);
   let within = 0;
   points.forEach((q, k) => (within += w2(q) * (q.n - mean[at[k]]) ** 2));
-  return { ratios, root: weights.map(Math.sqrt), mean, within, plus: new Float64Array(count), minus: new Float64Array(count) };
+  return {
+    ratios,
+    root: weights.map(Math.sqrt),
+    mean,
+    within,
+    plus: new Float64Array(count),
+    minus: new Float64Array(count),
+    exps: new Float64Array(count),
+    expOne: NaN,
+    expC: NaN,
+    thetaPlus: [],
+    thetaMinus: [],
+  };
 }
 
 /** chi² of the points at theta, with the per-ratio residuals into `out`. */
 function residuals(theta: number[], data: FitData, anchor: number | null, out: Float64Array): number {
-  const p = parametersOf(theta, anchor);
-  const { ratios, root, mean } = data;
+  const { ratios, root, mean, exps } = data;
+  const [nMax, c, d] = theta;
+  if (!Object.is(c, data.expC)) {
+    for (let i = 0; i < ratios.length; i++) exps[i] = Math.exp(ratios[i] / c);
+    data.expOne = Math.exp(1 / c);
+    data.expC = c;
+  }
+  // parametersOf and flintstonesLaw, term for term, with the kept exponentials.
+  const b = anchor === null ? theta[3] : (anchor * d - data.expOne * (nMax - anchor)) / nMax;
   let chi = data.within;
   for (let i = 0; i < ratios.length; i++) {
-    const r = (mean[i] - flintstonesLaw(ratios[i], p)) * root[i];
+    const e = exps[i];
+    const r = (mean[i] - (nMax * (b + e)) / (d + e)) * root[i];
     out[i] = r;
     chi += r * r;
   }
@@ -147,10 +178,12 @@ function jacobian(theta: number[], data: FitData, anchor: number | null, J = new
   const p = theta.length;
   const plus = data.plus;
   const minus = data.minus;
+  const tp = data.thetaPlus;
+  const tm = data.thetaMinus;
   for (let j = 0; j < p; j++) {
     const h = 1e-6 * Math.max(1, Math.abs(theta[j]));
-    const tp = theta.slice();
-    const tm = theta.slice();
+    for (let i = 0; i < p; i++) tp[i] = tm[i] = theta[i];
+    tp.length = tm.length = p;
     tp[j] += h;
     tm[j] -= h;
     residuals(tp, data, anchor, plus);
@@ -161,10 +194,24 @@ function jacobian(theta: number[], data: FitData, anchor: number | null, J = new
   return J;
 }
 
-/** Solves A x = y for a small symmetric positive definite A (Cholesky); null when singular. */
-function solveSpd(A: number[][], y: number[]): number[] | null {
+/** Buffers of one size of solveSpd (its result is `x`, overwritten by the next solve). */
+interface SpdScratch {
+  readonly L: number[][];
+  readonly z: number[];
+  readonly x: number[];
+}
+
+function spdScratch(n: number): SpdScratch {
+  return { L: zeroMatrix(n), z: new Array<number>(n).fill(0), x: new Array<number>(n).fill(0) };
+}
+
+/**
+ * Solves A x = y for a small symmetric positive definite A (Cholesky); null when singular. The
+ * result is `scratch.x` (a fresh scratch by default).
+ */
+function solveSpd(A: number[][], y: number[], scratch: SpdScratch = spdScratch(y.length)): number[] | null {
   const n = y.length;
-  const L = zeroMatrix(n);
+  const { L, z, x } = scratch;
   for (let i = 0; i < n; i++) {
     for (let j = 0; j <= i; j++) {
       let sum = A[i][j];
@@ -175,13 +222,11 @@ function solveSpd(A: number[][], y: number[]): number[] | null {
       } else L[i][j] = sum / L[j][j];
     }
   }
-  const z = new Array(n).fill(0);
   for (let i = 0; i < n; i++) {
     let sum = y[i];
     for (let k = 0; k < i; k++) sum -= L[i][k] * z[k];
     z[i] = sum / L[i][i];
   }
-  const x = new Array(n).fill(0);
   for (let i = n - 1; i >= 0; i--) {
     let sum = z[i];
     for (let k = i + 1; k < n; k++) sum -= L[k][i] * x[k];
@@ -197,11 +242,13 @@ function zeroMatrix(n: number): number[][] {
   return rows;
 }
 
-/** JᵀJ and Jᵀr of the row-major m x p Jacobian (summed over the rows in order). */
-function normalEquations(J: Float64Array, p: number, r: ArrayLike<number>): { A: number[][]; g: number[] } {
+/** JᵀJ and Jᵀr of the row-major m x p Jacobian (summed over the rows in order), into A and g (fresh by default). */
+function normalEquations(J: Float64Array, p: number, r: ArrayLike<number>, A = zeroMatrix(p), g = new Array<number>(p)): { A: number[][]; g: number[] } {
   const m = J.length / p;
-  const A = zeroMatrix(p);
-  const g = new Array<number>(p).fill(0);
+  for (let i = 0; i < p; i++) {
+    g[i] = 0;
+    A[i].fill(0);
+  }
   for (let k = 0; k < m; k++) {
     const row = k * p;
     for (let i = 0; i < p; i++) {
@@ -221,24 +268,28 @@ function levenbergMarquardt(start: number[], data: FitData, anchor: number | nul
   let chi = residuals(theta, data, anchor, r);
   const J = new Float64Array(data.ratios.length * theta.length);
   const damped = zeroMatrix(theta.length);
+  const normal = { A: zeroMatrix(theta.length), g: new Array<number>(theta.length) };
+  const scratch = spdScratch(theta.length);
+  // The trial point, swapped with theta when it is taken.
+  let next = theta.slice();
   let lambda = 1e-3;
   let iterations = 0;
   let converged = false;
   for (; iterations < maxIterations; iterations++) {
     jacobian(theta, data, anchor, J);
-    const { A, g } = normalEquations(J, theta.length, r);
+    const { A, g } = normalEquations(J, theta.length, r, normal.A, normal.g);
     let improved = false;
     while (lambda < 1e12) {
       // A with its diagonal damped, into one matrix reused across tries.
       for (let i = 0; i < A.length; i++) for (let j = 0; j < A.length; j++) damped[i][j] = i === j ? A[i][j] * (1 + lambda) + 1e-15 : A[i][j];
-      const step = solveSpd(damped, g);
+      const step = solveSpd(damped, g, scratch);
       if (step) {
-        const next = theta.map((t, i) => t + step[i]);
+        for (let i = 0; i < theta.length; i++) next[i] = theta[i] + step[i];
         if (admissible(next, anchor, sMin)) {
           const chiNext = residuals(next, data, anchor, trial);
           if (chiNext < chi) {
             const relative = (chi - chiNext) / Math.max(chi, 1e-300);
-            theta = next;
+            [theta, next] = [next, theta];
             chi = chiNext;
             r.set(trial);
             lambda = Math.max(lambda / 10, 1e-12);
