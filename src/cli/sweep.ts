@@ -41,7 +41,7 @@ import { lockDirectory } from './lock';
 import { checkOutDir, writeFileAtomic } from './output';
 import { checkRunnable, computeBudget, loadInputs, readJsonFile, type RunInputs } from './prepare';
 import { Sources } from './sources';
-import { cachedFitter, fitOutcomes } from './sweepFits';
+import { cachedFitter, fitOutcomes } from '../core/sweep/fitOutcomes';
 import { defaultWorkers, SweepThreadLost, SweepWorkers } from './sweepWorkers';
 import { gitCommit, readRunsFile, sweepLayout, writeAggregates, type Run } from './sweepFiles';
 
@@ -278,7 +278,7 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
             log(`${p.phase === 'done' ? 'done' : 'FAILED'} ${p.finished}/${p.total} ${p.run.key}  (${p.skipped} resumed, ~${eta.toFixed(0)} s left)`);
           },
         });
-        // The Flintstones fits on the threads, idle now (the files are the same: sweepFits.ts),
+        // The Flintstones fits on the threads, idle now (the files are the same: core/sweep/fitOutcomes.ts),
         // while this thread computes the aggregate (writeAggregates awaits them for the fits):
         // on one core fewer than the machine has, so the aggregate keeps one.
         if (pool?.usable && !result.aborted && !signal.aborted) {

@@ -96,7 +96,7 @@ export function sweepLayout(spec: ValidSweepSpec, pointConfig: (run: Run) => Con
  * Writes aggregate.csv, aggregate.json ({ points, flintstones }) and, when some group can be
  * fitted, flintstones.csv. Rows are taken in write order first, so the aggregate does not depend
  * on the order runs finished or shards were merged in. `fit`: how a group's points are fitted
- * (default sweepFitter; the sweep passes fits its threads made, sweepFits.ts).
+ * (default sweepFitter; the sweep passes fits its threads made, core/sweep/fitOutcomes.ts).
  */
 export async function writeAggregates(
   out: string,

@@ -22,7 +22,7 @@ import type { FlintstonesPoint } from '../core/analysis/flintstones';
 import type { GpuCapabilities } from '../gpu/context';
 import { SheetRunner, sweepSummary, sweepSummaryValues, type SheetResult } from '../run/index';
 import type { RunInputs } from './prepare';
-import { fitOutcome, type FitOutcome } from './sweepFits';
+import { fitOutcome, type FitOutcome } from '../core/sweep/fitOutcomes';
 import { capabilitiesOnly, deserializeError, newThread, serializeError, type SerializedError } from './threads';
 
 export { defaultWorkers } from './threads';
@@ -63,7 +63,7 @@ type FromWorker =
    */
   | { type: 'dones'; id: number; items: PackedDone[]; numbers: Float64Array; finished: boolean }
   | { type: 'failed'; id: number; error: SerializedError }
-  /** A Flintstones fit (sweepFits.ts). */
+  /** A Flintstones fit (core/sweep/fitOutcomes.ts). */
   | { type: 'fitted'; id: number; outcome: FitOutcome; index: number }
   /** A thread found no fit of a `fits` message left to take. */
   | { type: 'fitsDone'; id: number }

@@ -13,10 +13,10 @@
  * (referenceOverlay.ts); they are never part of the downloads.
  */
 import type { ConfigDraft } from '../../core/config';
-import { readRunsCsv, FLINTSTONES_RATIO, sweepFlintstones } from '../../core/sweep';
+import { readRunsCsv, FLINTSTONES_RATIO } from '../../core/sweep';
 import { computeContext, isAbort } from '../../view/pageRunner';
 import { methodsOnRenderer } from '../../core/config/analysisMethods';
-import { planSweep, sweepInPage, type SweepPlan } from '../../view/pageSweep';
+import { flintstonesInTurns, planSweep, sweepInPage, type SweepPlan } from '../../view/pageSweep';
 import { FlintstonesChart } from './flintstonesChart';
 import { version } from '../../version';
 import { download } from './exports';
@@ -190,8 +190,11 @@ export class SweepPanel {
       // The chart and its figure hold exactly the sweep's runs (a progress event without its row
       // would otherwise leave a point short of a realization).
       this.chart.setRows(result.runs);
-      // Over the surface ratio: the aggregate's Flintstones fits (one per Voronoi k), drawn.
-      this.flintstones.show(plan.fields.includes(FLINTSTONES_RATIO) ? sweepFlintstones(result.runs, plan.runs, plan.fields) : [], result.runs);
+      // Over the surface ratio: the aggregate's Flintstones fits (one per Voronoi k), drawn. They
+      // are made one per turn (no long task); a sweep started meanwhile owns the panel.
+      const fits = plan.fields.includes(FLINTSTONES_RATIO) ? await flintstonesInTurns(result.runs, plan.runs, plan.fields) : [];
+      if (this.controller !== controller) return;
+      this.flintstones.show(fits, result.runs);
       const done = result.runs.length;
       this.root.dataset.finished = String(done);
       this.root.dataset.done = String(done);

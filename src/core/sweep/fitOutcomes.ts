@@ -1,13 +1,14 @@
 /**
- * The Flintstones fits of a sweep's aggregate computed on the sweep's threads: the fits are
- * independent (one per Voronoi k and group) and take the main thread about half a second or
- * more after the last run, while the threads sit idle. A thread fits a group's points with the
- * same code (sweepFitter) and sends the fit back by structured clone, which keeps every double;
- * writeAggregates then takes a fit from here only for exactly the same points (compared by
- * value, in order) and fits anything else itself, so the files cannot depend on where a fit ran.
+ * The Flintstones fits of a sweep's aggregate computed apart from it: on the CLI's threads (the
+ * fits are independent, one per Voronoi k and group, and took the main thread about half a
+ * second after the last run while the threads sat idle), or one per turn of a page's event loop
+ * (no long task). A fit is made with the same code (sweepFitter), crosses threads by structured
+ * clone, which keeps every double, and the aggregate takes it only for exactly the same points
+ * (compared by value, in order), fitting anything else itself: the files cannot depend on where
+ * or when a fit ran.
  */
-import type { FlintstonesFit, FlintstonesPoint } from '../core/analysis/flintstones';
-import { sweepFitter, type FlintstonesFitter } from '../core/sweep';
+import type { FlintstonesFit, FlintstonesPoint } from '../analysis/flintstones';
+import { sweepFitter, type FlintstonesFitter } from './flintstones';
 
 /** A fit, or the message of the error fitting threw (a group the law cannot be fitted to). */
 export type FitOutcome = { readonly fit: FlintstonesFit } | { readonly error: string };

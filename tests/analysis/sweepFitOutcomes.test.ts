@@ -1,5 +1,5 @@
 /**
- * The sweep's Flintstones fits made on its threads (src/cli/sweepFits.ts): a fit is taken from
+ * The sweep's Flintstones fits made on its threads (src/core/sweep/fitOutcomes.ts): a fit is taken from
  * there only for exactly the points the aggregate fits, the fits a thread makes are those the
  * main thread makes (bit for bit), and the aggregate is the same whichever made them.
  */
@@ -7,7 +7,7 @@ import { afterAll, describe, expect, it } from 'vitest';
 import { anchoredB, flintstonesLaw, type FlintstonesFit, type FlintstonesPoint } from '../../src/core/analysis/flintstones';
 import { Random } from '../../src/core/random';
 import { expandSweep, flintstonesProblems, sweepFitter, sweepFlintstones } from '../../src/core/sweep';
-import { cachedFitter, fitOutcome, fitOutcomes, pointsKey, type FitOutcome } from '../../src/cli/sweepFits';
+import { cachedFitter, fitOutcome, fitOutcomes, pointsKey, type FitOutcome } from '../../src/core/sweep/fitOutcomes';
 import { SweepWorkers } from '../../src/cli/sweepWorkers';
 
 const RATIOS = [1, 1.25, 1.5, 1.75, 2, 2.5, 3, 4, 5, 6, 8, 10];
