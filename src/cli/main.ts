@@ -28,9 +28,9 @@ Options:
   --max-runs N      sweep: accept up to N runs (default 100000)
   --shard I/N       sweep: compute only shard I of N (1 <= I <= N); every run is in exactly
                     one shard; "slurm" takes I and N from SLURM_ARRAY_TASK_ID/_MIN/_COUNT
-  --workers N       threads for the exact-engine work (default: the machine's cores): sweep's
-                    runs; run's realizations (the main thread one of the N; 1: none); the
-                    files are the same whatever N
+  --workers N       how many threads compute the exact-engine work (default: the machine's
+                    cores): sweep's runs, run's realizations; the main thread is one of the
+                    N (1: no worker thread); the files are the same whatever N
 
 Progress goes to stderr. Exit codes:
   0    done

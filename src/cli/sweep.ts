@@ -84,9 +84,11 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
   // and the checks below (about half a second on this thread), and load their modules meanwhile;
   // they get the context's capabilities once it exists (setUp). As many as the runs could use:
   // those the sweep turns out not to need (runs resumed or on the GPU engine, tasks fewer than
-  // threads) are ended once that is known.
+  // threads) are ended once that is known. N workers are this thread and N - 1 threads: this
+  // thread computes runs too (below), and one thread more than the cores would only contend.
   const workers = options.workers ?? defaultWorkers();
-  let early: SweepWorkers | null = Math.min(workers, countRuns(spec)) > 0 ? new SweepWorkers(Math.min(workers, countRuns(spec))) : null;
+  const earlyThreads = Math.min(workers - 1, countRuns(spec));
+  let early: SweepWorkers | null = earlyThreads > 0 ? new SweepWorkers(earlyThreads) : null;
   try {
     await sweepWith(early);
   } finally {
@@ -175,8 +177,9 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
       // the layers and validity its runs share. Tasks of one Lloyd run (same config but for `sheet`
       // and `lloyd.maxIterations`) start next to each other, fewer iterations first: a thread that
       // still holds that Lloyd run continues it to the next Voronoi k. Exact-engine tasks go to
-      // worker threads, GPU tasks run here on the one GL context; rows are written in the sweep's
-      // order (runSweep), so the files are the same whatever the number of threads.
+      // worker threads, and to this thread whenever it is free and every thread is busy; GPU
+      // tasks run here on the one GL context. Rows are written in the sweep's order (runSweep),
+      // so the files are the same whatever the number of threads and whoever computed a run.
       // The engine is the grid point's (its runs differ in the seed only): chosen once per point.
       const exactPoints = new Map<string, boolean>();
       const onThreads = (run: Run): boolean => {
@@ -204,7 +207,7 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
       const groups = new Set(runs.filter((run) => !doneKeys.has(run.key) && onThreads(run)).map((run) => layout.reuseGroup(run)));
       // Each thread holds a run at a time beside this thread's: no more than the memory budget
       // holds beside the largest grid point's run.
-      const wanted = Math.min(workers, groups.size);
+      const wanted = Math.min(workers - 1, groups.size);
       const threads = wanted > 0 ? threadsForLargestPoint(wanted) : 0;
       if (threads < wanted)
         log(`memory: ${threads} of ${wanted} worker thread${wanted > 1 ? 's' : ''} fit the memory limit beside a run of the largest grid point`);
@@ -218,14 +221,17 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
       signal.addEventListener('abort', stopThreads);
       const runner = new SheetRunner(context);
       let mainThread: Promise<void> = Promise.resolve();
+      /** Tasks given to this thread and not finished (GPU tasks, and exact ones while every thread is busy). */
+      let mainTasks = 0;
       const runHere = (task: Run[], done: (run: Run, summary: Record<string, unknown>) => void): Promise<void> => {
+        mainTasks++;
         const next = mainThread.then(async () => {
           const order = [...task].sort((a, b) => iterationsOf(a) - iterationsOf(b));
           for (const run of order)
             done(run, sweepSummary((await runner.run(validateConfig(run.config), { ...inputs.get(run.pointKey), signal, views: false })).result));
         });
         mainThread = next.catch(() => {});
-        return next;
+        return next.finally(() => mainTasks--);
       };
       // One descriptor for the rows (appendFileSync opened and closed the file for each of them).
       const rowsFile = appender(csvPath);
@@ -246,6 +252,8 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
             before: (a, b) => firstOfChain.get(chainOf(a))! - firstOfChain.get(chainOf(b))! || iterationsOf(a) - iterationsOf(b),
             run: async (task, done) => {
               if (!pool?.usable || !onThreads(task[0])) return runHere(task, done);
+              // This thread computes too, when it has nothing to do and every thread is busy.
+              if (mainTasks === 0 && !pool.hasIdleThread) return runHere(task, done);
               const byKey = new Map(task.map((run) => [run.key, run]));
               const reported = new Set<string>();
               try {
@@ -269,7 +277,7 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
               }
             },
           },
-          // As many tasks as the threads hold (two each: SweepWorkers), and one for the main thread's GPU runs.
+          // As many tasks as the threads hold (two each: SweepWorkers), and one for this thread.
           concurrency: (pool?.capacity ?? 0) + 1,
           signal,
           onProgress: (p) => {

@@ -1,5 +1,6 @@
 /**
- * Worker threads for `tissue-sheet sweep --workers N`: each thread keeps its own SheetRunner
+ * Worker threads for `tissue-sheet sweep --workers N` (N - 1 of them: the main thread computes
+ * runs too, whenever it is free and every thread is busy): each thread keeps its own SheetRunner
  * (so it reuses a seeded surface for every `sheet.*` value and one Lloyd run for every Voronoi k
  * it is given) and computes whole tasks (a task: the runs sharing a seeded surface), sending each
  * run's summary back as it finishes. The main thread writes the rows in the sweep's order (see
@@ -156,6 +157,11 @@ export class SweepWorkers {
   /** False once every thread failed or exited (the caller then computes on its own thread). */
   get usable(): boolean {
     return this.slots.some((s) => !s.reserved);
+  }
+
+  /** Whether some thread has no task (one that fails or exited does not count). */
+  get hasIdleThread(): boolean {
+    return this.slots.some((s) => s.tasks.size === 0 && !s.reserved);
   }
 
   /** Tasks the pool takes at once (callers may keep this many running). */

@@ -39,15 +39,18 @@ const FILES = ['runs.csv', 'aggregate.csv', 'aggregate.json', 'flintstones.csv']
 const read = (d: string, f: string) => readFileSync(join(d, f), 'utf8');
 
 describe('sweep --workers N', () => {
-  it('writes the same files byte for byte with 1 and 2 worker threads, and resumes with another N', () => {
+  it('writes the same files byte for byte with the main thread alone, beside 1 and beside 2 threads, and resumes with another N', () => {
+    // --workers N: the main thread and N - 1 worker threads, all computing runs.
     const one = join(dir, 'one');
-    const two = join(dir, 'two');
     const a = cli(['sweep', specPath, '--out', one, '--workers', '1']);
     expect(a.status, a.stderr).toBe(0);
-    const b = cli(['sweep', specPath, '--out', two, '--workers=2']);
-    expect(b.status, b.stderr).toBe(0);
-    expect(b.stderr).toMatch(/sweep: 36 runs computed, 0 resumed/);
-    for (const f of FILES) expect(read(two, f), f).toBe(read(one, f));
+    for (const n of [2, 3]) {
+      const other = join(dir, `n${n}`);
+      const b = cli(['sweep', specPath, '--out', other, `--workers=${n}`]);
+      expect(b.status, b.stderr).toBe(0);
+      expect(b.stderr).toMatch(/sweep: 36 runs computed, 0 resumed/);
+      for (const f of FILES) expect(read(other, f), `${f}, --workers ${n}`).toBe(read(one, f));
+    }
     expect(readCsvTable(read(one, 'runs.csv')).rows).toHaveLength(36);
 
     // Cut runs.csv after 10 rows (and mid-row): resuming with 2 threads computes the rest, and the
