@@ -18,6 +18,7 @@ import { estimateRun, threadsWithinBudget, type RunEstimate } from '../core/conf
 import { surfaceLayout } from '../core/config/surfaceLayout';
 import {
   countRuns,
+  flatList,
   flintstonesProblems,
   parseShard,
   planResume,
@@ -39,6 +40,7 @@ import type { CliOptions } from './args';
 import { InputError, InterruptedError } from './errors';
 import { lockDirectory } from './lock';
 import { checkOutDir, writeFileAtomic } from './output';
+import { FlatSummaries } from './flatSummaries';
 import { checkRunnable, computeBudget, loadInputs, readJsonFile, type RunInputs } from './prepare';
 import { Sources } from './sources';
 import { cachedFitter, fitOutcomes } from '../core/sweep/fitOutcomes';
@@ -223,12 +225,16 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
       let mainThread: Promise<void> = Promise.resolve();
       /** Tasks given to this thread and not finished (GPU tasks, and exact ones while every thread is busy). */
       let mainTasks = 0;
-      const runHere = (task: Run[], done: (run: Run, summary: Record<string, unknown>) => void): Promise<void> => {
+      // This thread's summaries take the threads' flat path (no nested summary flattened per run).
+      const summaries = new FlatSummaries();
+      const runHere = (task: Run[], done: (run: Run, summary: unknown) => void): Promise<void> => {
         mainTasks++;
         const next = mainThread.then(async () => {
           const order = [...task].sort((a, b) => iterationsOf(a) - iterationsOf(b));
-          for (const run of order)
-            done(run, sweepSummary((await runner.run(validateConfig(run.config), { ...inputs.get(run.pointKey), signal, views: false })).result));
+          for (const run of order) {
+            const { keys, values } = summaries.of((await runner.run(validateConfig(run.config), { ...inputs.get(run.pointKey), signal, views: false })).result);
+            done(run, flatList(keys, values));
+          }
         });
         mainThread = next.catch(() => {});
         return next.finally(() => mainTasks--);

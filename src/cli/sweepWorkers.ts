@@ -17,11 +17,11 @@
  */
 import { isMainThread, parentPort, type Worker, workerData } from 'node:worker_threads';
 import { validateConfig } from '../core/config';
-import { flatList, flattenSummary } from '../core/sweep';
-import { flatKeys, flatValues } from '../core/sweep/flatValues';
+import { flatList } from '../core/sweep';
 import type { FlintstonesPoint } from '../core/analysis/flintstones';
 import type { GpuCapabilities } from '../gpu/context';
-import { SheetRunner, sweepSummary, sweepSummaryValues, type SheetResult } from '../run/index';
+import { SheetRunner } from '../run/index';
+import { FlatSummaries } from './flatSummaries';
 import type { RunInputs } from './prepare';
 import { fitOutcome, type FitOutcome } from '../core/sweep/fitOutcomes';
 import { capabilitiesOnly, deserializeError, newThread, serializeError, type SerializedError } from './threads';
@@ -175,11 +175,14 @@ export class SweepWorkers {
    * one. `done` gets each run's summary as it finishes.
    */
   async run(runs: WorkerRun[], affinity: string, done: (key: string, summary: unknown) => void): Promise<void> {
-    const slot = await this.claim((free) => {
+    const pick = (free: Slot[]) => {
       const idle = free.filter((s) => s.tasks.size === 0);
       const among = idle.length > 0 ? idle : free;
       return among.find((s) => s.affinity === affinity) ?? among.find((s) => s.affinity === null) ?? among[0];
-    });
+    };
+    // Taken at once where a thread has room (no await before the task is added: a caller asking
+    // right after sees the thread busy), else once one has.
+    const slot = this.withRoom(pick) ?? (await this.claim(pick));
     slot.affinity = affinity;
     const id = this.nextId++;
     return new Promise<void>((resolve, reject) => {
@@ -213,12 +216,18 @@ export class SweepWorkers {
    * at once than the threads hold). The caller adds its task before it awaits anything.
    */
   private async claim(pick: (free: Slot[]) => Slot): Promise<Slot> {
-    const hasRoom = (s: Slot) => s.tasks.size < TASKS_PER_THREAD && !s.reserved;
-    while (!this.slots.some(hasRoom)) {
+    for (;;) {
+      const slot = this.withRoom(pick);
+      if (slot) return slot;
       if (this.slots.every((s) => s.reserved)) throw new SweepThreadLost('no sweep worker thread is left (they failed or exited)');
       await new Promise<void>((wake) => this.waiting.push(wake));
     }
-    return pick(this.slots.filter(hasRoom));
+  }
+
+  /** A thread with room for a task, chosen by `pick`; null when none has. */
+  private withRoom(pick: (free: Slot[]) => Slot): Slot | null {
+    const free = this.slots.filter((s) => s.tasks.size < TASKS_PER_THREAD && !s.reserved);
+    return free.length > 0 ? pick(free) : null;
   }
 
   /** Asks every thread to stop its task at the next iteration (the task then fails with an AbortError). */
@@ -311,46 +320,8 @@ function startWorker(): void {
   /** Tasks with an id up to this one were sent before an abort: they fail, queued ones too. */
   let abortedThrough = 0;
   let lastTask = 0;
-  /** Per summary shape (flatValues): its layout number, keys, and whether its values line up with the keys. */
-  const layouts = new Map<string, { layout: number; keys: string[]; aligned: boolean }>();
-  /**
-   * Per shape of sweepSummaryValues: the layout of the summaries of that shape, once their values
-   * were found to be flatValues' (on the shape's first run); null where they were not (the
-   * summary is then flattened as it is, every run).
-   */
-  const directShapes = new Map<string, { layout: number; keys: string[] } | null>();
-  /**
-   * A run's summary flattened: its layout, its keys, whether they were sent already, and its
-   * values. Flat values cross faster than the nested summary (a structured clone per key); the
-   * keys are made once per shape of summary (flatValues).
-   */
-  const flattened = (result: SheetResult): { layout: number; keys: string[]; known: boolean; values: unknown[] } => {
-    const summary = sweepSummary(result);
-    const flat = flatValues(summary);
-    let shape = layouts.get(flat.shape);
-    const known = shape !== undefined;
-    if (shape === undefined) {
-      const keys = Object.keys(flattenSummary(summary));
-      const own = flatKeys(summary);
-      const aligned = own.length === keys.length && own.every((k, n) => k === keys[n]);
-      layouts.set(flat.shape, (shape = { layout: layouts.size, keys, aligned }));
-    }
-    const { layout, keys } = shape;
-    return { layout, keys, known, values: shape.aligned ? flat.values : Object.values(flattenSummary(summary)) };
-  };
-  /** flattened(result), from sweepSummaryValues where its shape was checked (no nested summary per run). */
-  const flatRun = (result: SheetResult): ReturnType<typeof flattened> => {
-    const direct = sweepSummaryValues(result);
-    if (!direct) return flattened(result);
-    const kept = directShapes.get(direct.shape);
-    if (kept) return { ...kept, known: true, values: direct.values };
-    const generic = flattened(result);
-    if (kept === undefined) {
-      const same = generic.values.length === direct.values.length && generic.values.every((value, n) => Object.is(value, direct.values[n]));
-      directShapes.set(direct.shape, same ? { layout: generic.layout, keys: generic.keys } : null);
-    }
-    return generic;
-  };
+  /** Run summaries flattened (the keys of each shape sent once: `layout`). */
+  const summaries = new FlatSummaries();
   let queue: Promise<void> = Promise.resolve();
   const send = (message: FromWorker) => port.postMessage(message);
   port.on('message', (message: ToWorker) => {
@@ -408,7 +379,7 @@ function startWorker(): void {
         try {
           for (const { run, config } of order) {
             const output = await sheets.run(config, { ...inputs.get(run.pointKey), signal, views: false });
-            const { layout, keys, known, values } = flatRun(output.result);
+            const { layout, keys, known, values } = summaries.of(output.result);
             // Numbers in a transferred Float64Array (cloning a list of values costs per value), the rest apart.
             const numbers = new Float64Array(keys.length);
             const others: [number, unknown][] = [];
