@@ -22,6 +22,7 @@
  */
 import { tQuantile975 } from '../analysis/realizations';
 import { formatCsv } from './csv';
+import { internKeys, recordOf } from './records';
 import { cellNumber, columnPosition, typedCellsOf } from './typedCells';
 import { columnUnit, fileColumn } from './units';
 
@@ -112,33 +113,77 @@ export function aggregateRows(rows: readonly Record<string, string>[], fields: r
   // One group's values of one column at a time, in row order (the statistics' sums follow it).
   let largest = 0;
   for (const g of groups.values()) largest = Math.max(largest, g.length);
+  const statsKeys = internKeys(numeric);
   const values = new Float64Array(largest);
   for (const g of groups.values()) {
     const point: Record<string, string> = {};
     for (const f of fields) point[f] = g[0][f] ?? '';
-    const stats: Record<string, ColumnStats> = {};
+    const columnStats: ColumnStats[] = new Array<ColumnStats>(numeric.length);
     // A row the sweep made keeps its numbers (typedCells.ts): the same values as its text parsed.
     const typed = g.map(typedCellsOf);
     const positions = typed.map((cells) => (cells ? columnPositions(cells.header, numeric) : null));
     // The usual group: every row typed, under one header (the loop below without its tests).
     const shared = positions[0] !== null && positions.every((at) => at === positions[0]) ? positions[0] : null;
-    const numbers = shared ? typed.map((cells) => cells!.numbers) : [];
-    for (let c = 0; c < numeric.length; c++) {
-      const column = numeric[c];
-      if (shared) {
-        const at = shared[c];
-        for (let i = 0; i < g.length; i++) values[i] = at < 0 ? NaN : numbers[i][at];
-      } else {
+    if (shared) {
+      statsByRows(
+        typed.map((cells) => cells!.numbers),
+        shared,
+        columnStats,
+      );
+    } else {
+      for (let c = 0; c < numeric.length; c++) {
+        const column = numeric[c];
         for (let i = 0; i < g.length; i++) {
           const at = positions[i];
           values[i] = at ? (at[c] < 0 ? NaN : typed[i]!.numbers[at[c]]) : cellNumber(g[i][column]);
         }
+        columnStats[c] = meanSd(values, g.length);
       }
-      stats[column] = meanSd(values, g.length);
     }
-    points.push({ point, runs: g.length, stats });
+    // One record per point of a few hundred columns (records.ts: one hidden class for them all).
+    points.push({ point, runs: g.length, stats: recordOf(statsKeys, columnStats) });
   }
   return { fields: [...fields], columns: numeric, points };
+}
+
+/**
+ * meanSd of every column at once, the rows read one after another (each row's numbers in one
+ * array, read in order: a column at a time jumped between the rows' arrays). Per column the same
+ * sums in the same order as meanSd's, so the same bits: the finite values from 0 in row order,
+ * then the squares about their mean in row order. `at[c]` is column c's position in a row (-1:
+ * absent, a NaN).
+ */
+function statsByRows(rows: readonly Float64Array[], at: Int32Array, out: ColumnStats[]): void {
+  const m = at.length;
+  const sums = new Float64Array(m);
+  const counts = new Int32Array(m);
+  for (const row of rows) {
+    for (let c = 0; c < m; c++) {
+      const v = at[c] < 0 ? NaN : row[at[c]];
+      if (!Number.isFinite(v)) continue;
+      sums[c] += v;
+      counts[c]++;
+    }
+  }
+  const means = new Float64Array(m);
+  for (let c = 0; c < m; c++) means[c] = sums[c] / counts[c];
+  const squares = new Float64Array(m);
+  for (const row of rows) {
+    for (let c = 0; c < m; c++) {
+      const v = at[c] < 0 ? NaN : row[at[c]];
+      if (Number.isFinite(v)) squares[c] += (v - means[c]) ** 2;
+    }
+  }
+  for (let c = 0; c < m; c++) {
+    const n = counts[c];
+    const missing = rows.length - n;
+    if (n === 0) {
+      out[c] = { mean: NaN, sd: NaN, se: NaN, n, missing };
+      continue;
+    }
+    const sd = n < 2 ? NaN : Math.sqrt(squares[c] / (n - 1));
+    out[c] = { mean: means[c], sd, se: sd / Math.sqrt(n), n, missing };
+  }
 }
 
 const orEmpty = (x: number): number | string => (Number.isFinite(x) ? x : '');
@@ -201,12 +246,15 @@ const clean = (x: number): number | null => (Number.isFinite(x) ? x : null);
 /** JSON-ready form (NaN -> null). */
 export function aggregateToJson(agg: Aggregate): unknown {
   return agg.points.map((p) => {
-    const stats: Record<string, unknown> = {};
-    for (const c in p.stats) {
+    // The point's own keys (for...in order), in records of one hidden class per key list.
+    const keys: string[] = [];
+    for (const c in p.stats) keys.push(c);
+    const columns = internKeys(keys);
+    const stats = columns.map((c) => {
       const s = p.stats[c];
       const [low, high] = ci95(s);
-      stats[c] = { mean: clean(s.mean), sd: clean(s.sd), se: clean(s.se), n: s.n, missing: s.missing, ci95: [clean(low), clean(high)] };
-    }
-    return { point: p.point, runs: p.runs, stats };
+      return { mean: clean(s.mean), sd: clean(s.sd), se: clean(s.se), n: s.n, missing: s.missing, ci95: [clean(low), clean(high)] };
+    });
+    return { point: p.point, runs: p.runs, stats: recordOf(columns, stats) };
   });
 }

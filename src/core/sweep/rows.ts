@@ -7,6 +7,7 @@
 import { csvField, flattenSummary } from './csv';
 import type { ConfigObject, SweepRun } from './expand';
 import { valueText } from './expand';
+import { recordOf } from './records';
 import { keepTypedCells } from './typedCells';
 
 /**
@@ -66,7 +67,8 @@ export function runCells<C extends ConfigObject>(
     texts[k] = text;
     parts[k] = typeof v === 'number' || typeof v === 'bigint' || typeof v === 'boolean' || text === '' ? text : csvField(v);
   }
-  const row = rowOf(header, texts);
+  // A record of one hidden class per header (records.ts): the sweep keeps every row to its end.
+  const row = recordOf(header, texts);
   keepTypedCells(row, header, cells);
   // One flat string now (a join), not a chain of hundreds of concatenations flattened when the
   // row is written: rows are made as runs finish, written in a burst after the last one.
@@ -88,48 +90,6 @@ function numberText(n: number): string {
     numberTexts.set(n, text);
   }
   return text;
-}
-
-/**
- * The record of one row: `header[k]` -> `texts[k]` (a repeated name keeps its last text, as
- * assignments in order do). A sweep keeps every row to its end (the aggregate reads them), so
- * rows of one header are made by one constructor that assigns every column by name, generated
- * once per header: they share one hidden class with fast properties, where records of ~360 keys
- * added one by one were hash tables, each several times larger, that the main thread's garbage
- * collector copied and traced all sweep long (a tenth of the published grid's time). Column
- * names enter the generated code only as JSON string literals, which no name can leave. Where
- * code cannot be generated (a page whose Content-Security-Policy forbids it), or for a header
- * of many thousand columns, the record is built key by key.
- */
-function rowOf(header: readonly string[], texts: readonly string[]): Record<string, string> {
-  const make = rowMaker(header);
-  if (make) return make(texts);
-  const row: Record<string, string> = {};
-  for (let k = 0; k < header.length; k++) row[header[k]] = texts[k];
-  return row;
-}
-
-/** Largest header given a generated constructor (its code grows with the header). */
-const GENERATED_ROW_COLUMNS = 4096;
-const rowMakers = new WeakMap<readonly string[], ((texts: readonly string[]) => Record<string, string>) | null>();
-function rowMaker(header: readonly string[]): ((texts: readonly string[]) => Record<string, string>) | null {
-  let make = rowMakers.get(header);
-  if (make === undefined) {
-    make = null;
-    if (header.length <= GENERATED_ROW_COLUMNS) {
-      try {
-        const body = header.map((column, k) => `this[${JSON.stringify(column)}] = t[${k}];`).join('\n');
-        const Row = new Function('t', body) as unknown as new (texts: readonly string[]) => Record<string, string>;
-        // Plain records (Object.prototype), like those built key by key.
-        Row.prototype = Object.prototype;
-        make = (texts) => new Row(texts);
-      } catch {
-        make = null;
-      }
-    }
-    rowMakers.set(header, make);
-  }
-  return make;
 }
 
 /** Each header's positions of every column name (all of them, should a name repeat), once per header. */

@@ -1,0 +1,61 @@
+/**
+ * Records of many keys that live long (a sweep's rows, its aggregate's statistics): `recordOf(keys,
+ * values)` is `{ [keys[k]]: values[k] }`, a repeated key keeping its last value, as assignments in
+ * order do. Built key by key, a record of some 360 keys is a hash table several times the size of
+ * one made by a constructor that assigns every key by name, which V8 gives one hidden class with
+ * fast properties; the published grid's rows, kept to the end of the sweep, were a good part of
+ * what the main thread's garbage collector copied and traced. So the constructor is generated,
+ * once per key list (the same array: callers reuse theirs), the keys entering its code only as
+ * JSON string literals, which no key can leave. Where code cannot be generated (a page whose
+ * Content-Security-Policy forbids it), or for a list of many thousand keys, the record is built
+ * key by key: the same record either way (own enumerable keys in the same order, plain prototype).
+ */
+
+/** Largest key list given a generated constructor (its code grows with the list). */
+const GENERATED_KEYS = 4096;
+
+type Maker = (values: readonly unknown[]) => Record<string, unknown>;
+const makers = new WeakMap<readonly string[], Maker | null>();
+
+export function recordOf<T>(keys: readonly string[], values: readonly T[]): Record<string, T> {
+  const make = makerFor(keys);
+  if (make) return make(values) as Record<string, T>;
+  const record: Record<string, T> = {};
+  for (let k = 0; k < keys.length; k++) record[keys[k]] = values[k];
+  return record;
+}
+
+function makerFor(keys: readonly string[]): Maker | null {
+  let make = makers.get(keys);
+  if (make === undefined) {
+    make = null;
+    if (keys.length <= GENERATED_KEYS) {
+      try {
+        const body = keys.map((key, k) => `this[${JSON.stringify(key)}] = v[${k}];`).join('\n');
+        const Record = new Function('v', body) as unknown as new (values: readonly unknown[]) => Record<string, unknown>;
+        // Plain records (Object.prototype), like those built key by key.
+        Record.prototype = Object.prototype;
+        make = (values) => new Record(values);
+      } catch {
+        make = null;
+      }
+    }
+    makers.set(keys, make);
+  }
+  return make;
+}
+
+/**
+ * One array per distinct key list (by content; the last 64 lists kept), so that records made
+ * from lists built anew each time (an aggregate's columns, a point's keys) share a constructor.
+ */
+const interned = new Map<string, readonly string[]>();
+export function internKeys(keys: readonly string[]): readonly string[] {
+  const id = JSON.stringify(keys);
+  let kept = interned.get(id);
+  if (!kept) {
+    if (interned.size >= 64) interned.clear();
+    interned.set(id, (kept = [...keys]));
+  }
+  return kept;
+}
