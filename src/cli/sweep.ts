@@ -34,6 +34,7 @@ import {
 import { createHeadlessContext } from '../node/headless';
 import { chooseEngine } from '../run/enginePolicy';
 import { SheetRunner, sweepSummary } from '../run/index';
+import { yieldToEventLoop } from '../run/relax';
 import { chainKey } from '../run/runSheet';
 import { version } from '../version';
 import type { CliOptions } from './args';
@@ -234,6 +235,9 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
           for (const run of order) {
             const { keys, values } = summaries.of((await runner.run(validateConfig(run.config), { ...inputs.get(run.pointKey), signal, views: false })).result);
             done(run, flatList(keys, values));
+            // A turn of the event loop between runs: the threads' messages (their results, and
+            // with them their next tasks) would otherwise wait for this whole task.
+            await yieldToEventLoop();
           }
         });
         mainThread = next.catch(() => {});
