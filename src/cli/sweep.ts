@@ -106,17 +106,12 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
     const runs = shard ? shardRuns(layout.runs, shard, layout.reuseGroup) : layout.ordered;
     // A grid point's config (the same for all its runs but for `seed`: for the engine, chain and
     // iterations; a run itself is computed from its own config).
-    const valid = new Map<string, Config>();
-    const configOf = (run: Run): Config => {
-      let config = valid.get(run.pointKey);
-      if (!config) valid.set(run.pointKey, (config = validateConfig(run.config)));
-      return config;
-    };
+    const configOf = layout.pointConfigOf;
     const sources = new Sources({ baseDir: dirname(options.input), allowNetwork: options.allowNetwork });
     const inputs = new Map<string, RunInputs>();
     for (const run of layout.runs) {
       if (inputs.has(run.pointKey)) continue;
-      inputs.set(run.pointKey, await atPoint(run, () => loadInputs(validateConfig(run.config), sources)));
+      inputs.set(run.pointKey, await atPoint(run, () => loadInputs(configOf(run), sources)));
     }
     const context = createHeadlessContext();
     let release = () => {};
@@ -126,7 +121,8 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
       let largest: { config: Config; estimate: RunEstimate } | undefined;
       for (const run of layout.runs) {
         if (run.realization !== 0) continue;
-        const config = pointConfig(run, (c) => checkRunnable(c, budget));
+        const config = configOf(run);
+        atPointSync(run, () => checkRunnable(config, budget));
         const estimate = estimateRun(config);
         if (!largest || estimate.bytes > largest.estimate.bytes) largest = { config, estimate };
       }
@@ -331,10 +327,17 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
 
 /** The validated config of a run's grid point, checked by `check`; errors name the point. */
 function pointConfig(run: Run, check: (config: Config) => void): Config {
-  try {
+  return atPointSync(run, () => {
     const config = validateConfig(run.config);
     check(config);
     return config;
+  });
+}
+
+/** `check()`, its config errors naming the run's grid point. */
+function atPointSync<T>(run: Run, check: () => T): T {
+  try {
+    return check();
   } catch (error) {
     if (error instanceof ConfigError) throw new SweepSpecError(error.field, `grid point ${run.pointKey || '(base)'}: ${error.message}`);
     throw error;

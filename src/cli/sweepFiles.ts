@@ -52,6 +52,8 @@ export interface SweepLayout {
   readonly header: string[];
   /** Runs with the same group share a relaxed seeded surface (SheetRunner reuses it). */
   readonly reuseGroup: (run: Run) => string;
+  /** A run's grid point's config as `pointConfig` validated it (the same for all its runs but for `seed`). */
+  readonly pointConfigOf: (run: Run) => Config;
   readonly resume: ResumeSpec<Config & Record<string, unknown>>;
 }
 
@@ -88,6 +90,7 @@ export function sweepLayout(spec: ValidSweepSpec, pointConfig: (run: Run) => Con
     geometryOf: (run) => values.get(run.pointKey)!,
     header,
     reuseGroup,
+    pointConfigOf: (run) => configs.get(run.pointKey)!,
     resume: { header, fields, runs, filledColumns: (run) => filled.get(run.pointKey)!, textColumns: new Set([...TEXT_COLUMNS, ...geometry.text]) },
   };
 }
