@@ -46,7 +46,7 @@ import { checkRunnable, computeBudget, loadInputs, readJsonFile, type RunInputs 
 import { Sources } from './sources';
 import { cachedFitter, fitOutcomes } from '../core/sweep/fitOutcomes';
 import { defaultWorkers, SweepThreadLost, SweepWorkers } from './sweepWorkers';
-import { gitCommit, readRunsFile, sweepLayout, writeAggregates, type Run } from './sweepFiles';
+import { gitCommit, readRunsFile, seedGroups, sweepLayout, writeAggregates, type Run } from './sweepFiles';
 
 export async function sweepCommand(options: CliOptions, signal: AbortSignal, writeLine: (line: string) => void): Promise<void> {
   const lines = batchedLines(writeLine);
@@ -189,13 +189,7 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
         }
         return exact;
       };
-      const chains = new Map<string, string>();
-      const chainOf = (run: Run): string => {
-        const id = `${run.pointKey}#${run.seed}`;
-        let key = chains.get(id);
-        if (key === undefined) chains.set(id, (key = chainKey({ ...configOf(run), seed: run.seed })));
-        return key;
-      };
+      const chainOf = seedGroups(configOf, chainKey);
       const firstOfChain = new Map<string, number>();
       runs.forEach((run, k) => {
         const chain = chainOf(run);

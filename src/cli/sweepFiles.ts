@@ -72,14 +72,7 @@ export function sweepLayout(spec: ValidSweepSpec, pointConfig: (run: Run) => Con
   const header = [...baseColumns(fields), ...geometry.columns, ...summary];
   const values = new Map([...configs].map(([key, config]) => [key, geometryValues(config, fields)]));
   const filled = new Map([...configs].map(([key, config]) => [key, new Set([...Object.keys(values.get(key)!), ...summaryColumns(config)])]));
-  // Seeded keys once per grid point and realization seed, not once per run.
-  const keys = new Map<string, string>();
-  const reuseGroup = (run: Run): string => {
-    const id = `${run.pointKey}#${run.seed}`;
-    let key = keys.get(id);
-    if (key === undefined) keys.set(id, (key = seededKey({ ...configs.get(run.pointKey)!, seed: run.seed })));
-    return key;
-  };
+  const reuseGroup = seedGroups((run) => configs.get(run.pointKey)!, seededKey);
   const ordered = orderForReuse(runs, reuseGroup);
   return {
     fields,
@@ -92,6 +85,28 @@ export function sweepLayout(spec: ValidSweepSpec, pointConfig: (run: Run) => Con
     reuseGroup,
     pointConfigOf: (run) => configs.get(run.pointKey)!,
     resume: { header, fields, runs, filledColumns: (run) => filled.get(run.pointKey)!, textColumns: new Set([...TEXT_COLUMNS, ...geometry.text]) },
+  };
+}
+
+/**
+ * A grouping of runs by `keyOf` of their configs (seededKey, chainKey: JSON texts of most of a
+ * config): two runs get the same key exactly when `keyOf` gives the same text for them. A grid
+ * point's runs differ in their seed only, so `keyOf` is computed once per grid point, with seed
+ * 0, and a run's key is that text's number and the run's seed (a text of a kilobyte per run was
+ * made and hashed 2,400 times per key at the published grid's start).
+ */
+export function seedGroups(pointConfigOf: (run: Run) => Config, keyOf: (config: Config) => string): (run: Run) => string {
+  const byPoint = new Map<string, number>();
+  const byText = new Map<string, number>();
+  return (run) => {
+    let id = byPoint.get(run.pointKey);
+    if (id === undefined) {
+      const text = keyOf({ ...pointConfigOf(run), seed: 0 });
+      id = byText.get(text);
+      if (id === undefined) byText.set(text, (id = byText.size));
+      byPoint.set(run.pointKey, id);
+    }
+    return `${id}#${run.seed}`;
   };
 }
 
