@@ -46,7 +46,7 @@ import { checkRunnable, computeBudget, loadInputs, readJsonFile, type RunInputs 
 import { Sources } from './sources';
 import { cachedFitter, fitOutcomes } from '../core/sweep/fitOutcomes';
 import { defaultWorkers, SweepThreadLost, SweepWorkers } from './sweepWorkers';
-import { gitCommit, readRunsFile, seedGroups, sweepLayout, writeAggregates, type Run } from './sweepFiles';
+import { gitCommitSoon, readRunsFile, seedGroups, sweepLayout, writeAggregates, type Run } from './sweepFiles';
 
 export async function sweepCommand(options: CliOptions, signal: AbortSignal, writeLine: (line: string) => void): Promise<void> {
   const lines = batchedLines(writeLine);
@@ -90,6 +90,7 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
   // threads) are ended once that is known. N workers are this thread and N - 1 threads: this
   // thread computes runs too (below), and one thread more than the cores would only contend.
   const workers = options.workers ?? defaultWorkers();
+  const commitSoon = gitCommitSoon();
   const earlyThreads = Math.min(workers - 1, countRuns(spec));
   let early: SweepWorkers | null = earlyThreads > 0 ? new SweepWorkers(earlyThreads) : null;
   try {
@@ -130,14 +131,14 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
 
       mkdirSync(options.out, { recursive: true });
       release = lockDirectory(options.out, log);
-      // One `git` call for both records (a process start each).
-      let commit: string | null | undefined;
+      // One `git` call for both records, started with the sweep.
+      const commit = await commitSoon;
       const record = (extra: Record<string, unknown>) =>
         writeFileAtomic(
           join(options.out, 'sweep.json'),
           JSON.stringify(
             {
-              software: { name: 'tissue-sheet', version, commit: commit === undefined ? (commit = gitCommit()) : commit },
+              software: { name: 'tissue-sheet', version, commit },
               renderer: context.capabilities.renderer,
               started,
               ...(shard ? { shard: { index: shard.index, count: shard.count, of: layout.runs.length } } : {}),

@@ -4,7 +4,7 @@
  * aggregate.json with the Flintstones fits, flintstones.csv), so a merged directory is written
  * exactly as the unsharded sweep's.
  */
-import { execFileSync } from 'node:child_process';
+import { execFile, execFileSync } from 'node:child_process';
 import { lstatSync, readFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -171,6 +171,22 @@ export function readRunsFile(path: string): string | null {
   if (stat.isDirectory()) throw new InputError(`${path}: is a directory, not a runs file; move it away (a sweep writes its rows to this path)`);
   if (!stat.isFile()) throw new InputError(`${path}: is not a regular file; move it away (a sweep writes its rows to this path)`);
   return readFileSync(path, 'utf8');
+}
+
+/**
+ * gitCommit(), from a `git` process the caller need not wait for (a sweep starts it first and
+ * reads it when it writes sweep.json: the process runs beside the sweep's start).
+ */
+export function gitCommitSoon(): Promise<string | null> {
+  return new Promise((resolve) => {
+    try {
+      execFile('git', ['rev-parse', 'HEAD'], { cwd: dirname(fileURLToPath(import.meta.url)), encoding: 'utf8', timeout: 2000 }, (error, stdout) =>
+        resolve(error ? null : stdout.trim() || null),
+      );
+    } catch {
+      resolve(null);
+    }
+  });
 }
 
 /** The git commit of the checkout the CLI runs from, when it is one. */
