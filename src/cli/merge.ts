@@ -21,7 +21,7 @@ import { InputError } from './errors';
 import { lockDirectory } from './lock';
 import { checkOutDir, writeFileAtomic } from './output';
 import { readJsonFile } from './prepare';
-import { gitCommit, readRunsFile, sweepLayout, writeAggregates } from './sweepFiles';
+import { gitCommitSoon, readRunsFile, sweepLayout, writeAggregates } from './sweepFiles';
 
 const USAGE = 'usage: tissue-sheet merge DIR... --out DIR [--force]';
 
@@ -173,7 +173,7 @@ export async function mergeCommand(args: string[], log: (line: string) => void):
       join(options.out, 'sweep.json'),
       JSON.stringify(
         {
-          software: { name: 'tissue-sheet', version: first.record.software!.version, commit: gitCommit() },
+          software: { name: 'tissue-sheet', version: first.record.software!.version, commit: await gitCommitSoon() },
           renderer: renderers.length === 1 ? renderers[0] : renderers,
           started,
           runs: layout.runs.length,

@@ -4,7 +4,7 @@
  * aggregate.json with the Flintstones fits, flintstones.csv), so a merged directory is written
  * exactly as the unsharded sweep's.
  */
-import { execFile, execFileSync } from 'node:child_process';
+import { execFile } from 'node:child_process';
 import { lstatSync, readFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -174,8 +174,9 @@ export function readRunsFile(path: string): string | null {
 }
 
 /**
- * gitCommit(), from a `git` process the caller need not wait for (a sweep starts it first and
- * reads it when it writes sweep.json: the process runs beside the sweep's start).
+ * The git commit of the checkout the CLI runs from, when it is one (null otherwise), from a `git`
+ * process the caller need not wait for: a sweep starts it first and reads it when it writes
+ * sweep.json, so the process runs beside the sweep's start.
  */
 export function gitCommitSoon(): Promise<string | null> {
   return new Promise((resolve) => {
@@ -187,20 +188,4 @@ export function gitCommitSoon(): Promise<string | null> {
       resolve(null);
     }
   });
-}
-
-/** The git commit of the checkout the CLI runs from, when it is one. */
-export function gitCommit(): string | null {
-  try {
-    return (
-      execFileSync('git', ['rev-parse', 'HEAD'], {
-        cwd: dirname(fileURLToPath(import.meta.url)),
-        encoding: 'utf8',
-        timeout: 2000,
-        stdio: ['ignore', 'pipe', 'ignore'],
-      }).trim() || null
-    );
-  } catch {
-    return null;
-  }
 }
