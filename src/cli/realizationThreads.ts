@@ -26,7 +26,7 @@ import type { GpuCapabilities } from '../gpu/context';
 import { runSheet } from '../run/index';
 import { InterruptedError } from './errors';
 import type { RunInputs } from './prepare';
-import { capabilitiesOnly, deserializeError, newThread, serializeError, type SerializedError } from './threads';
+import { capabilitiesOnly, deserializeError, newThread, serializeError, tuneJitForThreads, type SerializedError } from './threads';
 
 interface ThreadSetup {
   readonly tissueSheetRealizationThread: true;
@@ -80,6 +80,7 @@ export class RealizationThreads {
       next: this.next,
     };
     this.running = count;
+    tuneJitForThreads(count, false);
     for (let k = 0; k < count; k++) {
       const thread = newThread(entry, setup);
       let over = false;

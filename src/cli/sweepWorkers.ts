@@ -24,7 +24,7 @@ import { SheetRunner } from '../run/index';
 import { FlatSummaries } from './flatSummaries';
 import type { RunInputs } from './prepare';
 import { fitOutcome, type FitOutcome } from '../core/sweep/fitOutcomes';
-import { capabilitiesOnly, deserializeError, newThread, serializeError, type SerializedError } from './threads';
+import { capabilitiesOnly, deserializeError, newThread, serializeError, tuneJitForThreads, type SerializedError } from './threads';
 
 export { defaultWorkers } from './threads';
 
@@ -119,6 +119,7 @@ export class SweepWorkers {
    */
   constructor(size: number, capabilities?: GpuCapabilities, inputs: Map<string, RunInputs> = new Map()) {
     const mark: WorkerMark = { tissueSheetSweepWorker: true };
+    tuneJitForThreads(size, true);
     for (let k = 0; k < size; k++) {
       const worker = newThread(import.meta.url, mark);
       const slot: Slot = { worker, affinity: null, reserved: false, layouts: new Map(), tasks: new Map() };

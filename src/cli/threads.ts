@@ -11,6 +11,7 @@
 import { createRequire } from 'node:module';
 import { availableParallelism } from 'node:os';
 import { pathToFileURL } from 'node:url';
+import { setFlagsFromString } from 'node:v8';
 import { Worker } from 'node:worker_threads';
 import { ConfigError } from '../core/config';
 import type { GpuCapabilities, GpuContext } from '../gpu/context';
@@ -19,6 +20,27 @@ import { InputError } from './errors';
 /** The default number of threads: the machine's cores. */
 export function defaultWorkers(): number {
   return Math.max(1, availableParallelism());
+}
+
+/**
+ * V8's settings for `threads` compute threads about to start beside this one, where together
+ * they fill every core (measured in docs/sweep.md, "Speed", "The JIT on full cores"):
+ * - Optimized code is compiled in the thread that runs it, not on V8's background threads: with
+ *   every core computing, a background compile waits for a core while the function it would
+ *   speed up runs unoptimized. The published grid's sweep on 2 cores spent a third of its CPU
+ *   time on those threads.
+ * - For many short runs (a sweep), a smaller inlining budget: every thread's isolate compiles
+ *   the same few hundred functions for a job of seconds, and V8's default budget made TurboFan
+ *   take about 1.1 s of CPU per isolate there. Steady-state speed is the same (bench/
+ *   exactSweep.ts and a Lloyd iteration at 100,000 sites within their noise either way).
+ * Process-wide (v8.setFlagsFromString): the first applies to isolates started after the call (this
+ * thread keeps its background compiler), the second to every compile after it. Results are the
+ * same bits: V8's tiers compute the same floating-point operations.
+ */
+export function tuneJitForThreads(threads: number, manyShortRuns: boolean): void {
+  if (threads <= 0 || threads + 1 < availableParallelism()) return;
+  setFlagsFromString('--no-concurrent-recompilation');
+  if (manyShortRuns) setFlagsFromString('--max-inlined-bytecode-size-cumulative=460 --max-inlined-bytecode-size=230');
 }
 
 /**

@@ -368,9 +368,9 @@ export class PlanarVoronoi {
    */
   cellAt(k: number, out: PolygonBuffer): PolygonBuffer {
     out.clear();
-    const sx = this.points[2 * k];
-    const sy = this.points[2 * k + 1];
     if (this.fallback) {
+      const sx = this.points[2 * k];
+      const sy = this.points[2 * k + 1];
       const poly = this.fallback[this.order[k]];
       for (let v = 0; v < poly.length / 2; v++) out.push(poly[2 * v] * this.grid.texelX - sx, poly[2 * v + 1] * this.grid.texelY - sy, EDGE_FAR);
       return out;
@@ -378,8 +378,10 @@ export class PlanarVoronoi {
     if (this.count === 0) return out;
     const raw = this.ping;
     if (!this.walk(k, raw)) return out;
-    this.clipToDomain(raw, out, sx, sy);
-    this.certify(out, sx, sy);
+    // The site's index, not its coordinates, is passed on: doubles passed to a call that is not
+    // inlined are boxed, a heap allocation per cell of every layer of a sweep.
+    this.clipToDomain(raw, out, k);
+    this.certify(out, k);
     return out;
   }
 
@@ -393,11 +395,11 @@ export class PlanarVoronoi {
   }
 
   /**
-   * Marks the pass uncertified unless, for every vertex v of the cell (relative to its site at
-   * (sx, sy)), the disk around v through the site lies inside the band's box along each periodic
+   * Marks the pass uncertified unless, for every vertex v of the cell (relative to the k-th site
+   * in the spatial order), the disk around v through the site lies inside the band's box along each periodic
    * axis whose margin is below L (see the module comment).
    */
-  private certify(cell: PolygonBuffer, sx: number, sy: number): void {
+  private certify(cell: PolygonBuffer, site: number): void {
     const checkX = this.grid.periodicX && this.marginX < this.widthUm;
     const checkY = this.grid.periodicY && this.marginY < this.heightUm;
     if (!(checkX || checkY) || this.uncertified) return;
@@ -408,6 +410,8 @@ export class PlanarVoronoi {
     const hiX = this.widthUm + this.marginX - slack;
     const loY = -this.marginY + slack;
     const hiY = this.heightUm + this.marginY - slack;
+    const sx = this.points[2 * site];
+    const sy = this.points[2 * site + 1];
     for (let k = 0; k < cell.count; k++) {
       const dx = xy[2 * k];
       const dy = xy[2 * k + 1];
@@ -487,9 +491,11 @@ export class PlanarVoronoi {
     raw.push(cx + (nx / len) * this.far, cy + (ny / len) * this.far, label);
   }
 
-  /** Clips a raw cell to the open axes and writes it relative to the site. */
-  private clipToDomain(raw: PolygonBuffer, out: PolygonBuffer, sx: number, sy: number): void {
+  /** Clips a raw cell to the open axes and writes it relative to its site (the k-th in the spatial order). */
+  private clipToDomain(raw: PolygonBuffer, out: PolygonBuffer, site: number): void {
     const { grid } = this;
+    const sx = this.points[2 * site];
+    const sy = this.points[2 * site + 1];
     let a = raw;
     let b = this.pong;
     // Most cells lie inside the open axes' range: clipping would keep every vertex as it is.
