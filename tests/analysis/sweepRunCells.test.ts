@@ -1,6 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { csvField, flatList, flatSummary, runCells, type SweepRun } from '../../src/core/sweep';
 import { Random } from '../../src/core/random';
+import { recordOf } from '../../src/core/sweep/records';
 
 /**
  * runCells' row from a thread's flat key list, from a flat record, and the text an independent
@@ -85,5 +86,32 @@ describe('runCells', () => {
     } finally {
       globalThis.Function = original;
     }
+  });
+
+  it('records of hundreds of keys (past what an object holds in itself) equal records built key by key, each its own', () => {
+    const keys = Array.from({ length: 400 }, (_, k) => (k % 97 === 5 ? 'repeated' : `column.${k}`));
+    const reference = (values: readonly unknown[]) => {
+      const record: Record<string, unknown> = {};
+      keys.forEach((key, k) => (record[key] = values[k]));
+      return record;
+    };
+    const first = keys.map((_, k) => k * 0.5);
+    const second = keys.map((_, k) => `v${k}`);
+    const a = recordOf(keys, first);
+    const b = recordOf(keys, second);
+    for (const [record, values] of [
+      [a, first],
+      [b, second],
+    ] as const) {
+      expect(Object.getPrototypeOf(record)).toBe(Object.prototype);
+      expect(Object.keys(record)).toEqual(Object.keys(reference(values)));
+      expect(JSON.stringify(record)).toBe(JSON.stringify(reference(values)));
+    }
+    // The last of a repeated key's values, as assignments in order keep.
+    expect(a.repeated).toBe(first[keys.lastIndexOf('repeated')]);
+    // Records do not share their values (each is a copy of the template, not the template).
+    a['column.1'] = -1;
+    expect(b['column.1']).toBe('v1');
+    expect(recordOf(keys, first)['column.1']).toBe(0.5);
   });
 });

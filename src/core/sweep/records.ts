@@ -4,14 +4,15 @@
  * order do. Built key by key, a record of some 360 keys is a hash table several times the size of
  * one made by a constructor that assigns every key by name, which V8 gives one hidden class with
  * fast properties; the published grid's rows, kept to the end of the sweep, were a good part of
- * what the main thread's garbage collector copied and traced. So the constructor is generated,
- * once per key list (the same array: callers reuse theirs), the keys entering its code only as
- * JSON string literals, which no key can leave. Where code cannot be generated (a page whose
+ * what the main thread's garbage collector copied and traced. So the code is generated, once per
+ * key list (the same array: callers reuse theirs): a constructor for a template record, and a
+ * function that copies the template and stores the values by name (makerFor), the keys entering
+ * that code only as JSON string literals, which no key can leave. Where code cannot be generated (a page whose
  * Content-Security-Policy forbids it), or for a list of many thousand keys, the record is built
  * key by key: the same record either way (own enumerable keys in the same order, plain prototype).
  */
 
-/** Largest key list given a generated constructor (its code grows with the list). */
+/** Largest key list given generated code (its code grows with the list). */
 const GENERATED_KEYS = 4096;
 
 type Maker = (values: readonly unknown[]) => Record<string, unknown>;
@@ -31,11 +32,22 @@ function makerFor(keys: readonly string[]): Maker | null {
     make = null;
     if (keys.length <= GENERATED_KEYS) {
       try {
-        const body = keys.map((key, k) => `this[${JSON.stringify(key)}] = v[${k}];`).join('\n');
-        const Record = new Function('v', body) as unknown as new (values: readonly unknown[]) => Record<string, unknown>;
+        // A template record from a constructor that assigns every key (one hidden class, fast
+        // properties), then each record a copy of it with its values stored by name: copying
+        // the template allocates the record at its full size at once, where the constructor
+        // grew the properties past the in-object ones a few at a time (twice the garbage and
+        // several times the time for the published grid's rows of some 360 keys).
+        const assign = keys.map((key, k) => `this[${JSON.stringify(key)}] = v[${k}];`).join('\n');
+        const Record = new Function('v', assign) as unknown as new (values: readonly unknown[]) => Record<string, unknown>;
         // Plain records (Object.prototype), like those built key by key.
         Record.prototype = Object.prototype;
-        make = (values) => new Record(values);
+        const template = new Record([]);
+        const store = keys.map((key, k) => `r[${JSON.stringify(key)}] = v[${k}];`).join('\n');
+        const fill = new Function('t', 'v', `const r = { ...t };\n${store}\nreturn r;`) as (
+          template: object,
+          values: readonly unknown[],
+        ) => Record<string, unknown>;
+        make = (values) => fill(template, values);
       } catch {
         make = null;
       }
