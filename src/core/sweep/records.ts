@@ -7,9 +7,10 @@
  * what the main thread's garbage collector copied and traced. So the code is generated, once per
  * key list (the same array: callers reuse theirs): a constructor for a template record, and a
  * function that copies the template and stores the values by name (makerFor), the keys entering
- * that code only as JSON string literals, which no key can leave. Where code cannot be generated (a page whose
- * Content-Security-Policy forbids it), or for a list of many thousand keys, the record is built
- * key by key: the same record either way (own enumerable keys in the same order, plain prototype).
+ * that code only as JSON string literals, which no key can leave. Where code cannot be generated
+ * (a page whose Content-Security-Policy forbids it), or for a list of many thousand keys, the
+ * record is built key by key: the same record either way (own enumerable keys in the same order,
+ * plain prototype).
  */
 
 /** Largest key list given generated code (its code grows with the list). */
