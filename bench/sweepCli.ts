@@ -11,10 +11,15 @@
  *   3. `--workers 1` once, and whether its files equal the N-thread sweep's byte for byte;
  *   4. optionally (`--shards S`, S > 0) S shards side by side and `merge`, compared with the
  *      whole sweep's files;
- *   5. for reference, bench/exactSweep.ts (the same grid in process, one thread, no files).
+ *   5. for reference, bench/exactSweep.ts (the same grid in process, one thread, no files);
+ *   6. optionally (`--against "node OTHER/bin/tissue-sheet.mjs"`: another build, e.g. a copy of
+ *      another commit's bin/, dist/ and package.json beside a node_modules) that CLI right after
+ *      this one in every pair, the ratio this / that of each pair and their median, and whether
+ *      their files are the same: a change of a few per cent is seen only this way on a machine
+ *      whose speed drifts from one minute to the next.
  *
  *   xvfb-run -a npx tsx bench/sweepCli.ts [--realizations 20] [--workers N] [--repeats 3]
- *       [--shards 0] [--python python3] [--cli "node bin/tissue-sheet.mjs"]
+ *       [--shards 0] [--python python3] [--cli "node bin/tissue-sheet.mjs"] [--against "..."]
  *
  * The CLI defaults to the compiled one (bin/tissue-sheet.mjs, `npm run build:lib` first) when
  * dist/esm/cli.js exists, else the sources through tsx (slower to start). Peak memory of the
@@ -40,6 +45,7 @@ const shards = Number(option('shards', '0'));
 const python = option('python', 'python3');
 const compiled = existsSync(join(root, 'dist/esm/cli.js'));
 const cliCommand = option('cli', compiled ? `${process.execPath} bin/tissue-sheet.mjs` : `${process.execPath} tests/cli/fromSource.mjs`).split(' ');
+const against = args.includes('--against') ? option('against', '').split(' ') : null;
 const work = mkdtempSync(join(tmpdir(), 'tissue-sheet-bench-sweep-'));
 const hasTime = existsSync('/usr/bin/time');
 
@@ -94,8 +100,8 @@ async function numpy(): Promise<Timed> {
   return r;
 }
 
-async function sweep(out: string, n: number, extra: string[] = []): Promise<Timed> {
-  const r = await timed([...cliCommand, 'sweep', specPath, '--out', out, '--workers', String(n), ...extra]);
+async function sweep(out: string, n: number, extra: string[] = [], cli = cliCommand): Promise<Timed> {
+  const r = await timed([...cli, 'sweep', specPath, '--out', out, '--workers', String(n), ...extra]);
   if (r.status !== 0) throw new Error(`CLI sweep failed: ${r.stderr.slice(-500)}`);
   return r;
 }
@@ -107,6 +113,7 @@ async function main() {
   console.log(`CLI: ${cliCommand.join(' ')}; ${availableParallelism()} cores; load ${load()} at start`);
   const ratios: number[] = [];
   const cpuRatios: number[] = [];
+  const versus: number[] = [];
   let last = '';
   for (let k = 0; k < repeats; k++) {
     const base = await numpy();
@@ -117,11 +124,20 @@ async function main() {
     if (cli.cpuS !== null && base.cpuS !== null) cpuRatios.push(cli.cpuS / base.cpuS);
     const inner = /in ([\d.]+) s/.exec(base.stdout)?.[1];
     console.log(
-      `  pair ${k + 1}: NumPy/SciPy ${s(base.ms)} (computing ${inner} s${cpu(base)}${mib(base.peakMiB)}); tissue-sheet sweep --workers ${workers} ${s(cli.ms)}${cpu(cli)}${mib(cli.peakMiB)}; wall ratio ${(cli.ms / base.ms).toFixed(2)}x (load ${load()})`,
+      `  pair ${k + 1}: NumPy/SciPy ${s(base.ms)} (computing ${inner} s${cpu(base)}${mib(base.peakMiB)}); tissue-sheet sweep --workers ${workers} ${s(cli.ms)}${cpu(cli)}${mib(cli.peakMiB)}; wall ratio ${(cli.ms / base.ms).toFixed(3)}x (load ${load()})`,
     );
+    if (against) {
+      const otherOut = join(work, `against-${k}`);
+      const other = await sweep(otherOut, workers, [], against);
+      versus.push(cli.ms / other.ms);
+      console.log(
+        `          --against: ${s(other.ms)}${cpu(other)}; this / that ${(cli.ms / other.ms).toFixed(3)}x; files ${same(out, otherOut) ? 'identical' : 'DIFFER'}`,
+      );
+    }
   }
+  if (against) console.log(`this CLI / --against (${against.join(' ')}), wall: median ${median(versus).toFixed(3)}x over ${repeats} pairs`);
   console.log(
-    `CLI / NumPy, wall: median ${median(ratios).toFixed(2)}x over ${repeats} pairs (target <= 0.2x)${cpuRatios.length ? `; CPU time: median ${median(cpuRatios).toFixed(2)}x` : ''}`,
+    `CLI / NumPy, wall: median ${median(ratios).toFixed(3)}x over ${repeats} pairs (target <= 0.2x)${cpuRatios.length ? `; CPU time: median ${median(cpuRatios).toFixed(2)}x` : ''}`,
   );
 
   const one = join(work, 'workers1');
