@@ -395,9 +395,9 @@ export class PlanarVoronoi {
   }
 
   /**
-   * Marks the pass uncertified unless, for every vertex v of the cell (relative to the k-th site
-   * in the spatial order), the disk around v through the site lies inside the band's box along each periodic
-   * axis whose margin is below L (see the module comment).
+   * Marks the pass uncertified unless, for every vertex v of the cell (relative to the `site`-th
+   * site in the spatial order), the disk around v through the site lies inside the band's box
+   * along each periodic axis whose margin is below L (see the module comment).
    */
   private certify(cell: PolygonBuffer, site: number): void {
     const checkX = this.grid.periodicX && this.marginX < this.widthUm;

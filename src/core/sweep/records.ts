@@ -38,11 +38,11 @@ function makerFor(keys: readonly string[]): Maker | null {
         // the template allocates the record at its full size at once, where the constructor
         // grew the properties past the in-object ones a few at a time (twice the garbage and
         // several times the time for the published grid's rows of some 360 keys).
-        const assign = keys.map((key, k) => `this[${JSON.stringify(key)}] = v[${k}];`).join('\n');
-        const Record = new Function('v', assign) as unknown as new (values: readonly unknown[]) => Record<string, unknown>;
+        const assign = keys.map((key) => `this[${JSON.stringify(key)}] = undefined;`).join('\n');
+        const Template = new Function(assign) as unknown as new () => Record<string, unknown>;
         // Plain records (Object.prototype), like those built key by key.
-        Record.prototype = Object.prototype;
-        const template = new Record([]);
+        Template.prototype = Object.prototype;
+        const template = new Template();
         const store = keys.map((key, k) => `r[${JSON.stringify(key)}] = v[${k}];`).join('\n');
         const fill = new Function('t', 'v', `const r = { ...t };\n${store}\nreturn r;`) as (
           template: object,
