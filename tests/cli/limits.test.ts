@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { ConfigError, validateConfig } from '../../src/core/config';
-import { checkBudget, checkLimits, estimateRun, MAX_EXTENT_UM, MIN_EXTENT_UM, threadsWithinBudget } from '../../src/core/config/limits';
+import { checkBudget, checkExtents, checkLimits, estimateRun, MAX_EXTENT_UM, MIN_EXTENT_UM, threadsWithinBudget } from '../../src/core/config/limits';
 import { surfaceLayout } from '../../src/core/config/surfaceLayout';
 
 const budget = { maxTextureSize: 16384, maxWork: 2 ** 34, maxBytes: 8 * 2 ** 30 };
@@ -24,6 +24,22 @@ describe('scale guards', () => {
     for (const side of [MIN_EXTENT_UM, MAX_EXTENT_UM]) {
       expect(() => checkLimits(validateConfig({ ...tube, surface: { kind: 'plane', width: side, height: side } }), budget, '')).not.toThrow();
     }
+  });
+
+  it('refuses a surface ratio that puts the other surface beyond the extent range, naming it (no NaN, no Infinity)', () => {
+    for (const surfaceRatio of [1e308, 1e300, 1e15]) {
+      const e = refusal({ ...tube, sheet: { surfaceRatio } });
+      expect(e.field).toBe('sheet.surfaceRatio');
+      expect(e.message).toMatch(
+        /^sheet\.surfaceRatio: .* x the radius \(16 µm\) puts the other surface more than 10000000 µm outside the tube; lower sheet\.surfaceRatio to at most 625000$/,
+      );
+      expect(e.message).not.toMatch(/NaN|Infinity/);
+    }
+    // At the bound the extent check passes (the texture and budget checks then speak); inward
+    // ratios only shrink the other surface (checked by texels per side).
+    expect(() => checkExtents(validateConfig({ ...tube, sheet: { surfaceRatio: 1 + MAX_EXTENT_UM / 16 } }))).not.toThrow();
+    expect(() => checkExtents(validateConfig({ ...tube, sheet: { surfaceRatio: 1e308, direction: 'inward' } }))).not.toThrow();
+    expect(refusal({ ...tube, sheet: { surfaceRatio: 1e308, direction: 'inward' } }).message).not.toMatch(/NaN|Infinity/);
   });
 
   it('refuses a tube with one texel around, saying why and what to change', () => {

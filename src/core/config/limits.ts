@@ -133,6 +133,15 @@ export function checkExtents(config: Config): void {
   if (config.sheet.thickness > MAX_EXTENT_UM) {
     throw new ConfigError('sheet.thickness', `sheet.thickness: ${config.sheet.thickness} µm is above ${MAX_EXTENT_UM} µm; use a smaller thickness`);
   }
+  // A tube's ratio sets the other radius, R·s outward: the same bound as a thickness (without
+  // it a huge ratio overflowed the stack's offsets to Infinity and NaN).
+  const ratio = (config.sheet as { surfaceRatio?: number | null }).surfaceRatio;
+  if (s.kind === 'tube' && typeof ratio === 'number' && config.sheet.direction === 'outward' && !(s.radius * (ratio - 1) <= MAX_EXTENT_UM)) {
+    throw new ConfigError(
+      'sheet.surfaceRatio',
+      `sheet.surfaceRatio: ${ratio} x the radius (${s.radius} µm) puts the other surface more than ${MAX_EXTENT_UM} µm outside the tube; lower sheet.surfaceRatio to at most ${fmt(1 + MAX_EXTENT_UM / s.radius)}`,
+    );
+  }
 }
 
 /** Refuses grids with fewer than MIN_TEXELS_PER_SIDE texels along a side, naming the cause. */
