@@ -21,6 +21,7 @@ import {
 } from '../core/measure';
 import { labelFileFromPath } from '../node/labelImages';
 import { version } from '../version';
+import { scutoidsText, summaryNumber } from '../core/analysis/summaryText';
 
 const FORM =
   'measure LAYER_FILE... --out RESULT.json [--pixel-size µm] [--periodic-x] [--min-contact µm] [--compare] [--force], ' +
@@ -186,7 +187,7 @@ export async function measureCommand(args: string[], log: (line: string) => void
     writeAtomic(a.out, JSON.stringify(result, null, result.cells.length > PRETTY_CELLS ? undefined : 2) + '\n');
     const s = result.analyses[0].summary;
     log(
-      `done: ${s.cells} cells, ${s.validCells} valid, ${s.percentScutoids.toFixed(1)} % scutoids over ${s.surfaces} layers, ` +
+      `done: ${s.cells} cells, ${s.validCells} valid, ${scutoidsText(s.percentScutoids)} over ${s.surfaces} layers, ` +
         `min contact ${result.analyses[0].minContactLength.toPrecision(3)} µm, ${result.timings.totalMs.toFixed(0)} ms -> ${a.out}`,
     );
     return 0;
@@ -228,7 +229,7 @@ function volumeCommand(a: MeasureArgs, volume: string, log: (line: string) => vo
       log(
         `model: ${shape}; Voronoi ${comparison.bestK} matches best ` +
           `(L1 ${comparison.candidates[comparison.bestK - 1].distance.toFixed(3)}); it gives ${m.mean.toFixed(1)} % scutoids ` +
-          `(95 % CI ${m.ci95[0].toFixed(1)} to ${m.ci95[1].toFixed(1)}; measured ${comparison.measured.percentScutoids.toFixed(1)} %)`,
+          `(95 % CI ${m.ci95[0].toFixed(1)} to ${m.ci95[1].toFixed(1)}; measured ${summaryNumber(comparison.measured.percentScutoids, 1)} %)`,
       );
       result = { ...result, comparison };
     }
@@ -237,7 +238,7 @@ function volumeCommand(a: MeasureArgs, volume: string, log: (line: string) => vo
   const s = result.analyses[0].summary;
   const [basal, apical] = result.inputs.layers;
   log(
-    `done: ${s.cells} cells, ${s.validCells} valid, ${s.percentScutoids.toFixed(1)} % scutoids, ` +
+    `done: ${s.cells} cells, ${s.validCells} valid, ${scutoidsText(s.percentScutoids)}, ` +
       `min contact ${basal.minContact.toPrecision(3)} µm basal, ${apical.minContact.toPrecision(3)} µm apical, ${result.timings.totalMs.toFixed(0)} ms -> ${a.out}`,
   );
   return 0;
@@ -252,7 +253,7 @@ function withComparison(result: MeasuredResult, a: MeasureArgs, log: (line: stri
   log(
     `model: Voronoi ${comparison.bestK} matches best (L1 ${comparison.candidates[comparison.bestK - 1].distance.toFixed(3)}); ` +
       `at ratio ${comparison.surfaceRatio.toFixed(3)} it gives ${comparison.meanPercentScutoids.toFixed(1)} ± ${comparison.sdPercentScutoids.toFixed(1)} % scutoids ` +
-      `(measured ${result.analyses[0].summary.percentScutoids.toFixed(1)} %)`,
+      `(measured ${summaryNumber(result.analyses[0].summary.percentScutoids, 1)} %)`,
   );
   return { ...result, comparison };
 }

@@ -84,6 +84,19 @@ describe("a measured volume's exports", () => {
     expect(intervalText({ mean: 2, ci95: [Number.NaN, Number.NaN] }, 1)).toBe('2.0 (one realization, no CI)');
   });
 
+  it('a result with no valid cell, read back from its JSON (NaN became null): the CSV and the figure say "n/a", never NaN, and do not throw', () => {
+    const copy = JSON.parse(JSON.stringify(result)) as VolumeMeasuredResult;
+    const summary = copy.analyses[0].summary as unknown as Record<string, unknown>;
+    for (const key of ['percentScutoids', 'meanTransitions', 'meanNeighbours3D']) summary[key] = null;
+    summary.validCells = 0;
+    summary.scutoids = 0;
+    const text = volumeCellCsv(copy, null);
+    expect(text).toContain('# % scutoids n/a (0 of 0 valid cells; one tissue)');
+    const notes = volumeFigure(copy, null).notes.join('\n');
+    expect(notes).toContain('no % scutoids (no valid cell) (0 of 0 valid cells, one tissue), n/a transitions and n/a 3D neighbours per cell');
+    expect(text + notes).not.toMatch(/NaN/);
+  });
+
   it('a comparison kept in a project file is checked before it is shown: the real one passes, a tampered one is refused naming the field', () => {
     const stored = JSON.parse(JSON.stringify(comparison)) as Record<string, unknown>;
     expect(() => checkStoredComparison(stored, 'volume', 'c')).not.toThrow();

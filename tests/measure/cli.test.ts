@@ -26,6 +26,9 @@ beforeAll(() => {
   put('apical.png', png16(image));
   put('short.png', png16({ width: image.width, height: image.height - 1, data: image.data.subarray(0, image.width * (image.height - 1)) }));
   put('zeros.png', png16({ width: 8, height: image.height, data: new Uint16Array(8 * image.height) }));
+  // Two cells side by side, each touching the open top and bottom borders: none is valid.
+  const halves = new Uint16Array(16 * 16).map((_, k) => (k % 16 < 8 ? 1 : 2));
+  put('halves.png', png16({ width: 16, height: 16, data: halves }));
   put('notes.txt', 'these are not pixels\n');
   put('float.tif', writeTiff([{ ...page, bitsPerSample: 32, sampleFormat: 3, data: Float32Array.from(image.data) }]));
   put('rgb.png', encode({ width: 4, height: image.height, data: new Uint8Array(4 * image.height * 3), depth: 8, channels: 3 }));
@@ -52,6 +55,14 @@ async function run(args: string[]): Promise<{ code: number; errors: string[]; lo
 const f = (name: string) => join(dir, name);
 
 describe('tissue-sheet measure', () => {
+  it('with no valid cell: exit 0, a warning, and "no % scutoids", never "NaN %"', async () => {
+    const { code, log } = await run([f('halves.png'), f('halves.png'), '--out', f('none-valid.json'), '--pixel-size', '1']);
+    expect(code).toBe(0);
+    expect(log.join('\n')).toContain('warning: no valid cell');
+    expect(log.at(-1)).toMatch(/^done: 2 cells, 0 valid, no % scutoids \(no valid cell\) over 2 layers/);
+    expect(log.join('\n')).not.toMatch(/NaN/);
+  });
+
   it('measures two PNG layers and writes the result JSON (exit 0)', async () => {
     const out = f('result.json');
     const { code, errors, log } = await run([f('basal.png'), f('apical.png'), '--out', out, '--pixel-size', '0.5', '--periodic-x']);

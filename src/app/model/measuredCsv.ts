@@ -7,6 +7,7 @@
  */
 import { formatCsv } from '../../core/sweep';
 import type { MeasuredResult } from '../../core/measure';
+import { summaryNumber } from '../../core/analysis/summaryText';
 
 /** The per-cell CSVs' statistics columns for surfaces or layers `names`: sides, won to neighbours3D, areas. */
 export function statisticsColumns(names: string[]): string[] {
@@ -35,7 +36,7 @@ export function measuredCellCsv(result: MeasuredResult): string {
     `tissue-sheet measured tissue, per-cell table, written by tissue-sheet ${result.software.version}`,
     `method: pixel-based adjacency of the label images (measured); contacts shorter than ${result.analyses[0].minContactLength.toPrecision(3)} µm ignored`,
     `layers (the first is basal): ${layers}; pixel size ${result.inputs.pixelSize.value} µm; surface ratio ${result.surfaceRatio.value.toFixed(4)} (from the ${result.surfaceRatio.source})`,
-    `% scutoids ${s.percentScutoids.toFixed(2)} (${s.scutoids} of ${s.validCells} valid cells; one tissue); options: ${JSON.stringify(result.inputs.options)}`,
+    `% scutoids ${summaryNumber(s.percentScutoids, 2)} (${s.scutoids} of ${s.validCells} valid cells; one tissue); options: ${JSON.stringify(result.inputs.options)}`,
   ].map((line) => `# ${line.replace(/[\r\n]+/g, ' ')}\r\n`);
   return comments.join('') + formatCsv(header, rows);
 }

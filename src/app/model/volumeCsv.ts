@@ -8,6 +8,7 @@
  */
 import { formatCsv } from '../../core/sweep';
 import type { VolumeComparison, VolumeMeasuredResult } from '../../core/measure';
+import { summaryNumber } from '../../core/analysis/summaryText';
 
 export function volumeCellCsv(result: VolumeMeasuredResult, comparison: VolumeComparison | null = null): string {
   const header = [
@@ -56,7 +57,7 @@ export function volumeCellCsv(result: VolumeMeasuredResult, comparison: VolumeCo
     `file: ${files[0].name}; voxel ${v.x} x ${v.y} x ${v.z} µm (${v.source}: ${result.inputs.voxelSizeDetail})`,
     `method: contact curves on the voxel surfaces, lengths in µm along the curve (measured); ` +
       layers.map((l) => `${l.name} faces the ${l.faces}, contacts shorter than ${l.minContact.toPrecision(3)} µm ignored`).join('; '),
-    `% scutoids ${s.percentScutoids.toFixed(2)} (${s.scutoids} of ${s.validCells} valid cells; one tissue); options: ${JSON.stringify(result.inputs.options)}`,
+    `% scutoids ${summaryNumber(s.percentScutoids, 2)} (${s.scutoids} of ${s.validCells} valid cells; one tissue); options: ${JSON.stringify(result.inputs.options)}`,
     m
       ? `model (Voronoi ${comparison!.bestK}, exact; seed ${comparison!.seed}, n = ${comparison!.realizations}): ${m.percentScutoids.mean.toFixed(2)} % scutoids (95 % CI ${m.percentScutoids.ci95.map((x) => x.toFixed(2)).join(' to ')})`
       : 'no model comparison',

@@ -9,6 +9,7 @@
 import type { Interval, VolumeComparison, VolumeMeasuredResult } from '../../core/measure';
 import { SIDE_LABELS } from '../../view/sideColors';
 import type { ChartSeries, ChartSpec } from './chartSvg';
+import { scutoidsText, summaryNumber } from '../../core/analysis/summaryText';
 
 const COLORS = ['#1f5fa8', '#c0392b'];
 
@@ -54,7 +55,7 @@ export function volumeFigure(
   const max = Math.max(...series.flatMap((x) => x.points.map((p) => p.y)).filter(Number.isFinite));
   const v = result.inputs.voxelSize;
   const notes = [
-    `Measured (${result.inputs.files[0].name}, voxel ${v.x} x ${v.y} x ${v.z} µm): ${s.percentScutoids.toFixed(1)} % scutoids (${s.scutoids} of ${s.validCells} valid cells, one tissue), ${s.meanTransitions.toFixed(2)} transitions and ${s.meanNeighbours3D.toFixed(2)} 3D neighbours per cell.`,
+    `Measured (${result.inputs.files[0].name}, voxel ${v.x} x ${v.y} x ${v.z} µm): ${scutoidsText(s.percentScutoids)} (${s.scutoids} of ${s.validCells} valid cells, one tissue), ${summaryNumber(s.meanTransitions, 2)} transitions and ${summaryNumber(s.meanNeighbours3D, 2)} 3D neighbours per cell.`,
   ];
   if (comparison) {
     const m = comparison.model;

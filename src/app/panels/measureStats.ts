@@ -11,6 +11,7 @@ import 'uplot/dist/uPlot.min.css';
 import type { ScutoidSummary } from '../../core/analysis';
 import type { MeasuredResult, ModelComparison } from '../../core/measure';
 import { SIDE_LABELS } from '../../view/sideColors';
+import { scutoidsText } from '../../core/analysis/summaryText';
 
 const fmt = (value: number, digits = 2) => (Number.isFinite(value) ? value.toFixed(digits) : '–');
 
@@ -128,7 +129,7 @@ export class MeasureChart {
       yRange: [0, Math.min(100, Math.ceil(max * 1.15))],
       series,
       notes: [
-        `Measured: ${s.percentScutoids.toFixed(1)} % scutoids (${s.scutoids} of ${s.validCells} valid cells, one tissue), surface ratio ${result.surfaceRatio.value.toFixed(3)}, pixel-based adjacency.`,
+        `Measured: ${scutoidsText(s.percentScutoids)} (${s.scutoids} of ${s.validCells} valid cells, one tissue), surface ratio ${result.surfaceRatio.value.toFixed(3)}, pixel-based adjacency.`,
         comparison
           ? `Model (Voronoi ${comparison.bestK}, the best match by ${comparison.distance}; exact method): ${comparison.meanPercentScutoids.toFixed(1)} ± ${comparison.sdPercentScutoids.toFixed(1)} % scutoids (mean ± SD over n = ${comparison.realizations} realizations) at s = ${comparison.surfaceRatio.toFixed(3)}.`
           : 'No model comparison.',

@@ -23,6 +23,7 @@ import { downloadChart } from './chartExports';
 import { download } from './exports';
 import { describeVolume, volumeWords } from './volumeText';
 import { volumeTable } from './volumeStats';
+import { summaryNumber } from '../../core/analysis/summaryText';
 
 /** Everything a measured volume is, as kept in a project file (measureProject.ts). */
 export interface ShownVolume {
@@ -139,7 +140,7 @@ export class VolumePanel {
     this.root.dataset.mode = 'volume';
     const s = result.analyses[0].summary;
     const measured = this.$('#volume-measured-percent');
-    measured.textContent = `${s.percentScutoids.toFixed(1)} %`;
+    measured.textContent = `${summaryNumber(s.percentScutoids, 1)} %`;
     measured.dataset.value = String(s.percentScutoids);
     this.$('#volume-model-percent').textContent = 'comparing…';
     this.$('#volume-info').textContent = describeVolume(result);
@@ -190,7 +191,7 @@ export class VolumePanel {
     this.report.state('compared');
     this.report.status(
       comparison
-        ? `Measured and compared: the model gives ${intervalText(comparison.model.percentScutoids, 1)} % scutoids, measured ${this.shown.result.analyses[0].summary.percentScutoids.toFixed(1)} %.`
+        ? `Measured and compared: the model gives ${intervalText(comparison.model.percentScutoids, 1)} % scutoids, measured ${summaryNumber(this.shown.result.analyses[0].summary.percentScutoids, 1)} %.`
         : `Measured; ${note || 'no model (model realizations 0)'}.`,
     );
   }
