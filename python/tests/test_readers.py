@@ -139,9 +139,30 @@ def test_sweep_table_is_runs_csv_whatever_its_columns(outputs):
     assert list(again["sheet.surfaceRatio (1)"]) == list(runs["sheet.surfaceRatio"])
 
 
+def _poke_int32(directory, of, column, index, value):
+    """Writes one int32 of a side-file column in place (the column found from the JSON's record)."""
+    record = json.loads((directory / "compact.json").read_text())["cellsFile"]
+    entry = next(t for t in record["tables"] if t["of"] == of)["columns"][column]
+    data = bytearray((directory / "compact.cells.bin").read_bytes())
+    data[entry["offset"] + 4 * index : entry["offset"] + 4 * index + 4] = int(value).to_bytes(4, "little", signed=True)
+    (directory / "compact.cells.bin").write_bytes(bytes(data))
+
+
+def _edit_record(directory, edit):
+    result = json.loads((directory / "compact.json").read_text())
+    edit(result["cellsFile"])
+    (directory / "compact.json").write_text(json.dumps(result))
+
+
 @pytest.mark.parametrize(
     "damage, message",
     [
+        (lambda d: _poke_int32(d, "cells", "neighbourIds", 0, 10**6), r"cells.neighbourIds\[0\] is 1000000, not a cell of the"),
+        (lambda d: _poke_int32(d, "cells", "neighbourOffsets", 2, 2**31 - 1), "cells.neighbourOffsets decreases at cell 2"),
+        (lambda d: _poke_int32(d, "cells", "neighbourOffsets", 0, 1), "cells.neighbourOffsets starts at 1, not 0"),
+        (lambda d: _edit_record(d, lambda r: r["tables"][0]["columns"]["area"].update(type="int32")), "cells.area must be float64"),
+        (lambda d: _edit_record(d, lambda r: r["tables"][-1].update(count=1)), "cells where the file's cells table has"),
+        (lambda d: _edit_record(d, lambda r: r["tables"][0].update(count=1.5)), "count 1.5 is not a whole number of cells"),
         (lambda d: (d / "compact.cells.bin").write_bytes((d / "compact.cells.bin").read_bytes()[:-8]), "bytes where the result says"),
         (lambda d: (d / "compact.cells.bin").write_bytes(b"XXXXXXXX" + (d / "compact.cells.bin").read_bytes()[8:]), "no TSCELLS1 header"),
         (lambda d: (d / "compact.cells.bin").unlink(), "side file"),

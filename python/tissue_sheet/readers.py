@@ -99,14 +99,76 @@ def decode_cells_file(record: Mapping[str, Any], data: bytes, name: str = "cells
     def columns(of: str, names: tuple[str, ...]) -> dict:
         t = find(of)
         out = {column: read(t, column) for column in names}
-        out["count"] = int(t["count"])
+        count = t.get("count")
+        if not isinstance(count, int) or isinstance(count, bool) or count < 0:
+            raise ResultFormatError(f"{name}: {of}: count {count!r} is not a whole number of cells")
+        out["count"] = count
         return out
 
-    return {
+    out = {
         "cells": columns("cells", _CELL_COLUMNS),
         "surfaces": [columns(of, _CELL_COLUMNS) for of in ordered("surfaces")],
         "analyses": [columns(of, _ANALYSIS_COLUMNS) for of in ordered("analyses")],
     }
+    _check_tables(name, out, ["cells"] + ordered("surfaces"), ordered("analyses"))
+    return out
+
+
+_CELL_TYPES = {
+    "position": "<f8",
+    "surface": "<f8",
+    "area": "<f8",
+    "touchesBorder": "u1",
+    "neighbourOffsets": "<i4",
+    "neighbourIds": "<i4",
+    "neighbourLengths": "<f8",
+}
+_ANALYSIS_TYPES = {"valid": "u1", "scutoid": "u1", "won": "<i4", "lost": "<i4", "transitions": "<i4", "neighbours3D": "<i4", "sides": "<i4"}
+
+
+def _check_tables(name: str, tables: dict, cell_names: list[str], analysis_names: list[str]) -> None:
+    """Refuses a side file whose tables break their structure (as the JavaScript readers do,
+    src/run/cellsFileCheck.ts): types and lengths from each table's count, neighbour lists as
+    CSR with ids of cells of the table, every table of one count. A side file is data from anyone."""
+    count = tables["cells"]["count"]
+
+    def column(of: str, table: dict, column_name: str, dtype: str, length: int) -> np.ndarray:
+        values = table[column_name]
+        if values.dtype != np.dtype(dtype):
+            raise ResultFormatError(f"{name}: {of}.{column_name} must be {_TYPE_NAMES[np.dtype(dtype).str]}")
+        if len(values) != length:
+            raise ResultFormatError(f"{name}: {of}.{column_name} holds {len(values)} values where {length} are expected")
+        return values
+
+    for of, table in zip(cell_names, [tables["cells"], *tables["surfaces"]]):
+        if table["count"] != count:
+            raise ResultFormatError(f"{name}: {of} has {table['count']} cells where the file's cells table has {count}")
+        lengths = {"position": 3 * count, "surface": 2 * count, "area": count, "touchesBorder": count, "neighbourOffsets": count + 1}
+        for column_name, length in lengths.items():
+            column(of, table, column_name, _CELL_TYPES[column_name], length)
+        offsets = table["neighbourOffsets"]
+        if offsets[0] != 0:
+            raise ResultFormatError(f"{name}: {of}.neighbourOffsets starts at {offsets[0]}, not 0")
+        decreasing = np.flatnonzero(np.diff(offsets.astype(np.int64)) < 0)
+        if len(decreasing):
+            raise ResultFormatError(f"{name}: {of}.neighbourOffsets decreases at cell {decreasing[0]}")
+        ids = column(of, table, "neighbourIds", _CELL_TYPES["neighbourIds"], int(offsets[-1]))
+        column(of, table, "neighbourLengths", _CELL_TYPES["neighbourLengths"], int(offsets[-1]))
+        outside = np.flatnonzero((ids < 0) | (ids >= count))
+        if len(outside):
+            k = outside[0]
+            raise ResultFormatError(f"{name}: {of}.neighbourIds[{k}] is {ids[k]}, not a cell of the {count}")
+    for of, table in zip(analysis_names, tables["analyses"]):
+        if table["count"] != count:
+            raise ResultFormatError(f"{name}: {of} has {table['count']} cells where the file's cells table has {count}")
+        for column_name in ("valid", "scutoid", "won", "lost", "transitions", "neighbours3D"):
+            column(of, table, column_name, _ANALYSIS_TYPES[column_name], count)
+        sides = table["sides"]
+        if sides.dtype != np.dtype("<i4") or (len(sides) % count != 0 if count > 0 else len(sides) != 0):
+            raise ResultFormatError(f"{name}: {of}.sides holds {len(sides)} values, not a whole number of surfaces of {count} cells")
+
+
+_TYPE_NAMES = {"<f8": "float64", "<i4": "int32", "|u1": "uint8"}
 
 
 def _cell_columns_from_records(cells: list) -> dict:

@@ -27,6 +27,7 @@ import type { SurfaceAdjacency } from '../core/analysis';
 import type { CellStatistics } from '../core/analysis/scutoids';
 import { cellStatisticsRecords, type AnalysisRecord, type CellStatisticsRecord } from '../core/analysis/record';
 import type { CellRecord, SheetResult } from './result';
+import { checkCellTables } from './cellsFileCheck';
 
 /** The cells of one surface as columns (see the module comment). */
 export interface CellTable {
@@ -261,7 +262,9 @@ export function decodeCellsFile(record: CellsFileRecord, bytes: Uint8Array): Res
   const analysisOf = (of: string) => columnsOf(of, ANALYSIS_COLUMNS) as unknown as AnalysisCellTable;
   const surfaces = record.tables.filter((t) => /^surfaces\[\d+\]\.cells$/.test(t.of)).map((t) => cellsOf(t.of));
   const analyses = record.tables.filter((t) => /^analyses\[\d+\]\.cells$/.test(t.of)).map((t) => analysisOf(t.of));
-  return { cells: cellsOf('cells'), surfaces, analyses };
+  const tables = { cells: cellsOf('cells'), surfaces, analyses };
+  checkCellTables(record.path, tables);
+  return tables;
 }
 
 /** A result JSON written with a side file, as a plain SheetResult: every cell list filled from the tables. */
