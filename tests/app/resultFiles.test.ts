@@ -86,6 +86,28 @@ describe('opening a result with its cells side file', () => {
     );
   });
 
+  it('a result JSON whose cells name no cell of the result, or have no position, is refused naming the cell', async () => {
+    const plain = JSON.parse(readFileSync(join(dir, 'plain.json'), 'utf8'));
+    const edited = async (name: string, edit: (result: typeof plain) => void) => {
+      const copy = JSON.parse(JSON.stringify(plain));
+      edit(copy);
+      writeFileSync(join(dir, name), JSON.stringify(copy));
+      return openFiles([given(join(dir, name))]);
+    };
+    await expect(edited('far.json', (r) => (r.cells[2].neighbours[0].id = 60))).rejects.toThrow(
+      'far.json: cells[2].neighbours[0]: id 60 is not a cell of the 60.',
+    );
+    await expect(edited('neg.json', (r) => (r.surfaces[0].cells[5].neighbours[1].id = -1))).rejects.toThrow(
+      'neg.json: surfaces[0].cells[5].neighbours[1]: id -1 is not a cell of the 60.',
+    );
+    await expect(edited('nan.json', (r) => (r.surfaces[1].cells[0].surface = [null, 3]))).rejects.toThrow(
+      'nan.json: surfaces[1].cells[0].surface: expected [u, v], two finite numbers.',
+    );
+    await expect(edited('id.json', (r) => (r.surfaces[0].cells[7].id = 8))).rejects.toThrow(
+      'id.json: surfaces[0].cells[7]: expected id 7, surface [u, v] and neighbours.',
+    );
+  });
+
   it('a plain result JSON still opens alone', async () => {
     const { file } = await openFiles([given(join(dir, 'plain.json'))]);
     expect(file.kind).toBe('result');

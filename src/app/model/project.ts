@@ -151,18 +151,35 @@ function checkResult(value: unknown, where: string): SheetResult {
   if (!Array.isArray(value.cells) || value.cells.length === 0) throw new Error(`${where}: cells: expected the list of cells.`);
   if (!Array.isArray(value.surfaces) || !Array.isArray(value.analyses)) throw new Error(`${where}: surfaces and analyses: expected lists.`);
   const n = value.cells.length;
-  value.cells.forEach((cell, i) => {
-    if (!isObject(cell) || cell.id !== i || !Array.isArray(cell.surface) || !Array.isArray(cell.neighbours))
-      throw new Error(`${where}: cells[${i}]: expected id ${i}, surface [u, v] and neighbours.`);
-  });
+  checkCells(value.cells, n, `${where}: cells`);
   value.surfaces.forEach((surface, k) => {
     if (!isObject(surface) || !Array.isArray(surface.cells) || surface.cells.length !== n || !isObject(surface.grid)) {
       throw new Error(`${where}: surfaces[${k}]: expected a grid and ${n} cells.`);
     }
+    checkCells(surface.cells, n, `${where}: surfaces[${k}].cells`);
   });
   checkGrid(value.grid, `${where}: grid`);
   // Checked above field by field: the shape of a SheetResult.
   return value as typeof value & SheetResult;
+}
+
+/**
+ * Each cell i of a surface: id i, a surface position [u, v] of numbers, and neighbours that are
+ * cells of the result (an id out of range would be read as a cell by the views and the picked
+ * cell's panel).
+ */
+function checkCells(cells: unknown[], n: number, where: string): void {
+  cells.forEach((cell, i) => {
+    if (!isObject(cell) || cell.id !== i || !Array.isArray(cell.surface) || !Array.isArray(cell.neighbours))
+      throw new Error(`${where}[${i}]: expected id ${i}, surface [u, v] and neighbours.`);
+    if (cell.surface.length !== 2 || !cell.surface.every((x) => typeof x === 'number' && Number.isFinite(x)))
+      throw new Error(`${where}[${i}].surface: expected [u, v], two finite numbers.`);
+    cell.neighbours.forEach((neighbour, k) => {
+      const id = isObject(neighbour) ? neighbour.id : undefined;
+      if (!(Number.isInteger(id) && (id as number) >= 0 && (id as number) < n))
+        throw new Error(`${where}[${i}].neighbours[${k}]: id ${String(id)} is not a cell of the ${n}.`);
+    });
+  });
 }
 
 function checkGrid(value: unknown, where: string): Grid {
