@@ -93,9 +93,8 @@ export function exactSurface(grid: Grid, sites: ArrayLike<number>, label?: strin
       start[k + 1] = from + m;
     }
   } while (v.retry());
-  let total = 0;
-  for (let k = 0; k < n; k++) total += start[k + 1] - start[k];
-  const record = recordArrays(n, total);
+  // The cells' lists lie end to end in the scratch: start[n] entries in all.
+  const record = recordArrays(n, start[n]);
   const { offsets, neighbours, lengths } = record;
   record.areas.set(areas.subarray(0, n));
   record.border.set(border.subarray(0, n));
