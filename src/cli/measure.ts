@@ -4,11 +4,11 @@
  * or `tissue-sheet measure --volume VOLUME.tif --out RESULT.json [--voxel-size X,Y,Z]
  * [--apical lumen|outside] [--lumen-label N] [--min-contact µm] [--quartet-filter]`.
  *
- * Returns the exit code: 0 done, 2 bad input (one line `tissue-sheet: FILE: problem`). Other
- * errors are thrown to the caller (exit 1).
+ * Returns the exit code: 0 done, 2 bad input (one line `tissue-sheet: FILE: problem`), 3 an output
+ * that cannot be written (checked before any work). Other errors are thrown to the caller (exit 1).
  */
-import { closeSync, lstatSync, openSync, readSync, renameSync, rmSync, writeFileSync } from 'node:fs';
-import { basename, dirname, join, resolve } from 'node:path';
+import { totalmem } from 'node:os';
+import { resolve } from 'node:path';
 import {
   compareMeasured,
   compareVolume,
@@ -22,6 +22,8 @@ import {
 import { labelFileFromPath } from '../node/labelImages';
 import { version } from '../version';
 import { scutoidsText, summaryNumber } from '../core/analysis/summaryText';
+import { errorLine, exitCodeFor } from './errors';
+import { checkOutFile, writeFileAtomic } from './output';
 
 const FORM =
   'measure LAYER_FILE... --out RESULT.json [--pixel-size µm] [--periodic-x] [--min-contact µm] [--compare] [--force], ' +
@@ -126,46 +128,9 @@ export function parseMeasureArgs(args: string[]): MeasureArgs {
   const out = resolve(parsed.out);
   const clash = [...parsed.files, ...(parsed.volume ? [parsed.volume] : [])].find((f) => resolve(f) === out);
   if (clash) throw new MeasureInputError(clash, 'is also --out; write the result to another file');
-  checkOut(parsed.out, parsed.force);
+  // Before any work: a result that cannot be written is found now, not after the measurement.
+  checkOutFile(parsed.out, [], parsed.force);
   return parsed;
-}
-
-/** A result of ours starts with its software record (as `tissue-sheet run` writes it). */
-function isOurResult(path: string): boolean {
-  const fd = openSync(path, 'r');
-  try {
-    const buffer = Buffer.alloc(256);
-    const n = readSync(fd, buffer, 0, buffer.length, 0);
-    return /^\{\s*"software":\s*\{\s*"name":\s*"tissue-sheet"/.test(buffer.subarray(0, n).toString('utf8'));
-  } finally {
-    closeSync(fd);
-  }
-}
-
-/** --out may replace only a previous tissue-sheet result (or anything with --force), never through a link. */
-function checkOut(out: string, force: boolean): void {
-  let stat;
-  try {
-    stat = lstatSync(out);
-  } catch {
-    return; // a new file
-  }
-  if (stat.isSymbolicLink()) throw new MeasureInputError(`--out ${out}`, 'is a symbolic link, which is never followed; give the path of a regular file');
-  if (stat.isDirectory()) throw new MeasureInputError(`--out ${out}`, 'is a directory; give a file path');
-  if (!force && !isOurResult(out))
-    throw new MeasureInputError(`--out ${out}`, 'exists and is not a tissue-sheet result; pass --force to overwrite it, or give another path');
-}
-
-/** Through a temporary file and a rename: a reader never sees half a result. */
-function writeAtomic(path: string, text: string): void {
-  const temp = join(dirname(path), `.${basename(path)}.${process.pid}.tmp`);
-  try {
-    writeFileSync(temp, text);
-    renameSync(temp, path);
-  } catch (error) {
-    rmSync(temp, { force: true });
-    throw error;
-  }
 }
 
 export async function measureCommand(args: string[], log: (line: string) => void = (l) => process.stderr.write(l + '\n')): Promise<number> {
@@ -184,7 +149,7 @@ export async function measureCommand(args: string[], log: (line: string) => void
     if (a.compare) result = withComparison(result, a, log);
     // Pretty-printed like a simulated result, except for large tissues, where the indentation
     // would double the file and the memory needed to write it.
-    writeAtomic(a.out, JSON.stringify(result, null, result.cells.length > PRETTY_CELLS ? undefined : 2) + '\n');
+    writeFileAtomic(a.out, JSON.stringify(result, null, result.cells.length > PRETTY_CELLS ? undefined : 2) + '\n');
     const s = result.analyses[0].summary;
     log(
       `done: ${s.cells} cells, ${s.validCells} valid, ${scutoidsText(s.percentScutoids)} over ${s.surfaces} layers, ` +
@@ -192,9 +157,12 @@ export async function measureCommand(args: string[], log: (line: string) => void
     );
     return 0;
   } catch (error) {
-    if (error instanceof MeasureInputError) {
-      console.error(`tissue-sheet: ${error.message}`);
-      return 2;
+    // Bad input (2) and an output that cannot be written (3) end here with one line; anything
+    // else is a bug, for the caller (exit 1).
+    const code = error instanceof MeasureInputError ? 2 : exitCodeFor(error);
+    if (code === 2 || code === 3) {
+      console.error(`tissue-sheet: ${errorLine(error)}`);
+      return code;
     }
     throw error;
   }
@@ -208,6 +176,7 @@ function volumeCommand(a: MeasureArgs, volume: string, log: (line: string) => vo
     lumenLabel: a.lumenLabel,
     minContact: a.minContact,
     quartetFilter: a.quartetFilter,
+    memory: { maxBytes: totalmem() / 2, why: 'allowed on this machine (half its memory)' },
     version,
     onProgress: log,
     // A closed shell's model runs on its own surfaces: keep them as meshes.
@@ -234,7 +203,7 @@ function volumeCommand(a: MeasureArgs, volume: string, log: (line: string) => vo
       result = { ...result, comparison };
     }
   }
-  writeAtomic(a.out, JSON.stringify(result, null, result.cells.length > PRETTY_CELLS ? undefined : 2) + '\n');
+  writeFileAtomic(a.out, JSON.stringify(result, null, result.cells.length > PRETTY_CELLS ? undefined : 2) + '\n');
   const s = result.analyses[0].summary;
   const [basal, apical] = result.inputs.layers;
   log(

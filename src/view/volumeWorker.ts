@@ -16,6 +16,7 @@ import {
   type VolumeModelDrawing,
 } from '../core/measure';
 import { version } from '../version';
+import { PAGE_MAX_BYTES } from './pageBudget';
 import type { FromVolumeWorker, ToVolumeWorker } from './volumeProtocol';
 import { cellShape, drawSurface } from './volumeSurfaces';
 
@@ -57,6 +58,7 @@ self.onmessage = (event: MessageEvent<ToVolumeWorker>) => {
         minContact: options.minContact,
         lumenLabel: options.lumenLabel,
         quartetFilter: options.quartetFilter,
+        memory: { maxBytes: PAGE_MAX_BYTES, why: "a page may take (the command-line tool allows half the machine's memory: tissue-sheet measure --volume)" },
         version,
         onProgress: progress,
         onSurfaceMeshes: options.realizations > 0 || options.saved ? (m) => (meshes = m) : undefined,

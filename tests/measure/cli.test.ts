@@ -132,6 +132,11 @@ describe('tissue-sheet measure', () => {
         [f('basal.png'), f('apical.png'), '--out', f('notes.txt'), '--pixel-size', '1'],
         /--out .*notes\.txt: exists and is not a tissue-sheet result; pass --force/,
       ],
+      // Checked before the layers are read: a measurement is never thrown away for want of a directory.
+      [
+        [f('basal.png'), f('apical.png'), '--out', join(dir, 'no-such-dir', 'x.json'), '--pixel-size', '1'],
+        /--out .*x\.json: the directory .*no-such-dir does not exist; create it or give another path$/,
+      ],
     ];
     for (const [args, message] of cases) {
       const { code, errors } = await run(args);

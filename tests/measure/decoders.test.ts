@@ -105,9 +105,13 @@ describe('pixel size metadata', () => {
     expect(parseImageJDescription('ImageJ=1.54f\nimages=4\nchannels=2\nunit=\\u00B5m\nspacing=0.3\n')).toEqual({
       unit: '\\u00B5m',
       spacing: 0.3,
+      invalidSpacing: null,
       channels: 2,
       frames: 1,
     });
+    // A spacing that is no distance is kept apart from an absent one (which means 1 unit).
+    expect(parseImageJDescription('ImageJ=1.54f\nunit=um\nspacing=nan\n')).toMatchObject({ spacing: null, invalidSpacing: 'nan' });
+    expect(parseImageJDescription('ImageJ=1.54f\nunit=um\n')).toMatchObject({ spacing: null, invalidSpacing: null });
     expect(parseImageJDescription('not ImageJ')).toBeNull();
     const c = tiffCalibration({ xResolution: 10, yResolution: 10, resolutionUnit: 1, description: 'ImageJ=1.54f\nunit=nm\nspacing=200\n' });
     expect(c.pixelSize).toMatchObject({ value: 0.0001, source: 'imagej' });

@@ -243,6 +243,20 @@ describe('measure --volume: a closed ellipsoidal shell (cyst)', () => {
     expect(r.cells.map((c) => c.neighbours)).toEqual(shellResult.cells.map((c) => c.neighbours));
   });
 
+  it('refuses, from the header alone, a volume whose voxels would not fit the memory allowed', () => {
+    const bytes = tiffOf(shell, shellLabels, 16);
+    const voxels = shell.width * shell.height * shell.depth;
+    // 2 bytes a voxel of label, 2 of working arrays, and the file: one byte short is refused, the exact figure is not.
+    const needed = bytes.length + voxels * 4;
+    const options = (maxBytes: number) => ({ voxelSize: shell.voxel, version: 'test', memory: { maxBytes, why: 'allowed here' } });
+    expect(() => measureVolume(input(bytes), options(needed - 1))).toThrow(
+      new RegExp(
+        `volume\\.tif: ${shell.width} x ${shell.height} x ${shell.depth} voxels of 16 bits need about .* MiB to measure, over the .* MiB allowed here; crop`,
+      ),
+    );
+    expect(measureVolume(input(bytes), options(needed)).cells).toHaveLength(shellResult.cells.length);
+  });
+
   it('ignores small enclosed pockets of background between cells (not a lumen)', () => {
     const data = labelData(shell, shellLabels, 16) as Uint16Array;
     // Three 2 x 2 x 1 holes inside cells, in the middle of the shell's wall.
@@ -484,5 +498,10 @@ describe('measure --volume --compare: the model of the same tissue', () => {
     const i = interval([1, 2, 3, 4]);
     expect(i.mean).toBe(2.5);
     expect(i.ci95[1] - i.mean).toBeCloseTo((3.182 * Math.sqrt(5 / 3)) / 2, 9);
+    // A percentage's interval stays within 0..100 (realizations of 0 and 100 % would reach past both).
+    const p = interval([0, 100, 100], 100);
+    expect(p.ci95[0]).toBe(0);
+    expect(p.ci95[1]).toBe(100);
+    expect(interval([5, 6, 40], 100).ci95[0]).toBe(0);
   });
 });

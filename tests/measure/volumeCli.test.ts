@@ -77,6 +77,16 @@ beforeAll(() => {
   put('imagej.tif', writeTiff(pages({ description: IMAGEJ(shell.depth), xResolution: 2, yResolution: 2, resolutionUnit: 1 })));
   put('imagej-nm.tif', writeTiff(pages({ description: IMAGEJ(shell.depth, 'nm', '750'), xResolution: 0.002, yResolution: 0.002, resolutionUnit: 1 })));
   put('imagej-no-spacing.tif', writeTiff(pages({ description: IMAGEJ(shell.depth, 'um', ''), xResolution: 2, yResolution: 4, resolutionUnit: 1 })));
+  for (const [name, spacing] of [
+    ['zero', '0'],
+    ['nan', 'nan'],
+    ['negative', '-2'],
+  ]) {
+    put(
+      `imagej-spacing-${name}.tif`,
+      writeTiff(pages({ description: IMAGEJ(shell.depth, 'micron', spacing), xResolution: 2, yResolution: 2, resolutionUnit: 1 })),
+    );
+  }
   put('ome.tif', writeTiff(pages({ description: OME(shell.depth) }), false));
   put('lzw.tif', writeTiff(pages().map((p) => ({ ...p, compression: 5 as const }))));
   put('deflate32.tif', writeTiff(volumePages(shell, labelData(shell, labels, 32), 32).map((p) => ({ ...p, compression: 8 as const })) as TiffPage[], false));
@@ -332,6 +342,13 @@ describe('tissue-sheet measure --volume', () => {
   it('refuses a volume without a voxel size, and bad or misplaced options (exit 2)', async () => {
     const cases: [string[], RegExp][] = [
       [['--volume', f('plain.tif'), '--out', f('x.json')], /plain\.tif: no voxel size in the file .*give --voxel-size X,Y,Z/],
+      // A spacing the file gives that is no distance is refused, not read as 1 unit (it scales every volume).
+      [
+        ['--volume', f('imagej-spacing-zero.tif'), '--out', f('x.json')],
+        /imagej-spacing-zero\.tif: ImageJ spacing=0 is not a distance > 0 .*give --voxel-size/,
+      ],
+      [['--volume', f('imagej-spacing-nan.tif'), '--out', f('x.json')], /imagej-spacing-nan\.tif: ImageJ spacing=nan is not a distance > 0/],
+      [['--volume', f('imagej-spacing-negative.tif'), '--out', f('x.json')], /imagej-spacing-negative\.tif: ImageJ spacing=-2 is not a distance > 0/],
       [['--volume', f('plain.tif'), '--out', f('x.json'), '--voxel-size', '0.5,0.5'], /^tissue-sheet: --voxel-size: needs three numbers > 0/],
       [['--volume', f('plain.tif'), '--out', f('x.json'), '--voxel-size', '0.5,0,1'], /--voxel-size: needs three numbers > 0/],
       [['--volume', f('plain.tif'), '--out', f('x.json'), '--voxel-size', '1,1,1', '--apical', 'top'], /--apical: needs lumen or outside/],

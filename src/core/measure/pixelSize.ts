@@ -28,7 +28,10 @@ export function micronsPerUnit(unit: string): number | null {
 
 export interface ImageJDescription {
   readonly unit: string | null;
+  /** `spacing=` when it is a number > 0, else null (absent: ImageJ leaves out a spacing of 1 unit). */
   readonly spacing: number | null;
+  /** The text of a `spacing=` that is present but not a number > 0 (0, NaN, negative), else null. */
+  readonly invalidSpacing: string | null;
   readonly channels: number;
   readonly frames: number;
 }
@@ -46,9 +49,11 @@ export function parseImageJDescription(description: string | undefined): ImageJD
     return Number.isInteger(v) && v > 0 ? v : 1;
   };
   const spacing = Number(fields.get('spacing'));
+  const validSpacing = fields.has('spacing') && Number.isFinite(spacing) && spacing > 0;
   return {
     unit: fields.get('unit') ?? null,
-    spacing: fields.has('spacing') && Number.isFinite(spacing) && spacing > 0 ? spacing : null,
+    spacing: validSpacing ? spacing : null,
+    invalidSpacing: fields.has('spacing') && !validSpacing ? fields.get('spacing')! : null,
     channels: integer('channels'),
     frames: integer('frames'),
   };

@@ -21,6 +21,7 @@
  * many sites went each way.
  */
 import { analyzeSurfaces } from '../../analysis';
+import { meanInterval } from '../../analysis/realizations';
 import { KdTree3 } from '../../closed/kdTree';
 import { compareWithModel, LAB_MIN_SPACING_PIXELS, modelComparison, searchVoronoiK, type ModelComparison } from '../compare';
 import type { Grid } from '../../grid';
@@ -45,7 +46,7 @@ export interface ShellGeometry {
 
 export interface Interval {
   readonly mean: number;
-  /** 95 % confidence interval of the mean over realizations (Student t), NaN with one realization. */
+  /** 95 % confidence interval of the mean over realizations (Student t), within the quantity's range; NaN with one realization. */
   readonly ci95: [number, number];
 }
 
@@ -65,20 +66,13 @@ export interface CompareVolumeOptions {
   readonly onProgress?: (line: string) => void;
 }
 
-/** Two-sided 95 % Student t quantiles for 1..30 degrees of freedom. */
-const T975 = [
-  12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.16, 2.145, 2.131, 2.12, 2.11, 2.101, 2.093, 2.086, 2.08, 2.074, 2.069,
-  2.064, 2.06, 2.056, 2.052, 2.048, 2.045, 2.042,
-];
-
-export function interval(values: number[]): Interval {
-  const n = values.length;
-  const mean = values.reduce((a, b) => a + b, 0) / n;
-  if (n < 2) return { mean, ci95: [NaN, NaN] };
-  const sd = Math.sqrt(values.reduce((a, b) => a + (b - mean) ** 2, 0) / (n - 1));
-  const t = n - 1 <= 30 ? T975[n - 2] : 1.96 + 2.4 / (n - 1);
-  const half = (t * sd) / Math.sqrt(n);
-  return { mean, ci95: [mean - half, mean + half] };
+/**
+ * Mean and 95 % CI over realizations (realizations.ts's t interval), the interval clamped to the
+ * quantity's range (a percentage to 0..100, counts to >= 0); NaN bounds with one realization.
+ */
+export function interval(values: number[], max = Number.POSITIVE_INFINITY): Interval {
+  const { mean, ci95 } = meanInterval(values, 0, max);
+  return { mean, ci95: ci95 ? [ci95[0], ci95[1]] : [NaN, NaN] };
 }
 
 /** The height of the measured cell whose lumen-side centroid is nearest a point (else `fallback`). */
@@ -180,7 +174,11 @@ export function compareShell(
         projection: { alongNormal, parallel },
         thickness,
       },
-      model: { percentScutoids: interval(stack.percentScutoids), transitions: interval(stack.meanTransitions), neighbours3D: interval(stack.meanNeighbours3D) },
+      model: {
+        percentScutoids: interval(stack.percentScutoids, 100),
+        transitions: interval(stack.meanTransitions),
+        neighbours3D: interval(stack.meanNeighbours3D),
+      },
       measured: { percentScutoids: summary.percentScutoids, transitions: summary.meanTransitions, neighbours3D: summary.meanNeighbours3D },
     },
     note: '',
@@ -238,7 +236,7 @@ export function compareVolume(
       ...base,
       geometry,
       model: {
-        percentScutoids: interval(base.percentScutoids),
+        percentScutoids: interval(base.percentScutoids, 100),
         transitions: interval(base.meanTransitions),
         neighbours3D: interval(base.meanNeighbours3D),
       },

@@ -29,7 +29,7 @@ export function parseVoxelSizeOption(text: string): { x: number; y: number; z: n
 
 const positive = (v: number | null | undefined): v is number => v != null && Number.isFinite(v) && v > 0;
 
-/** The ImageJ calibration, or null when the file has none (or only pixel units). */
+/** The ImageJ calibration, or null when the file has none (or only pixel units, or a `spacing=` that is no distance). */
 export function imagejVoxelSize(chain: TiffChain): VoxelSize | null {
   const imagej = parseImageJDescription(chain.description ?? undefined);
   if (!imagej?.unit) return null;
@@ -38,6 +38,9 @@ export function imagejVoxelSize(chain: TiffChain): VoxelSize | null {
   const xr = chain.xResolution;
   const yr = positive(chain.yResolution) ? chain.yResolution : xr;
   if (!positive(xr) || !positive(yr)) return null;
+  // A spacing the file gives but that is no distance is not "1 unit", which would silently scale
+  // every volume, area and height along z: no calibration (chooseVoxelSize says why).
+  if (imagej.invalidSpacing !== null) return null;
   const spacing = imagej.spacing ?? 1;
   return {
     x: unit / xr,
@@ -129,6 +132,10 @@ export function chooseVoxelSize(
     return { voxelSize: { ...option, source: 'option', detail: '--voxel-size' }, warnings };
   }
   if (!fromFile) {
+    const badSpacing = parseImageJDescription(chain.description ?? undefined)?.invalidSpacing ?? null;
+    if (badSpacing !== null) {
+      throw new MeasureInputError(file, `ImageJ spacing=${badSpacing} is not a distance > 0 between slices; give --voxel-size X,Y,Z in µm`);
+    }
     throw new MeasureInputError(file, 'no voxel size in the file (neither ImageJ nor OME-XML calibration); give --voxel-size X,Y,Z in µm');
   }
   return { voxelSize: fromFile, warnings: [] };
