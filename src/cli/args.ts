@@ -48,27 +48,33 @@ export function parseArgs(args: string[], form: string, sweep = false): CliOptio
       if (v === undefined || v === '') throw new InputError(`${name} needs a value; ${usage}`);
       return v;
     };
+    // A flag is on when given; `--force=false` must not mean "on" (nor anything else).
+    const flag = (): true => {
+      if (inline !== undefined)
+        throw new InputError(`${name} takes no value (got ${JSON.stringify(arg)}): give ${name} to turn it on, leave it out to keep it off; ${usage}`);
+      return true;
+    };
     if (name === '--out' || name === '-o') out = value();
-    else if (name === '--force') options.force = true;
-    else if (name === '--allow-network' || name === '--allow-fetch') options.allowNetwork = true;
-    else if (name === '--allow-large') options.allowLarge = true;
-    else if (!sweep && name === '--cells-file') options.cellsFile = true;
+    else if (name === '--force') options.force = flag();
+    else if (name === '--allow-network' || name === '--allow-fetch') options.allowNetwork = flag();
+    else if (name === '--allow-large') options.allowLarge = flag();
+    else if (!sweep && name === '--cells-file') options.cellsFile = flag();
     else if (sweep && name === '--max-runs') {
       const v = value();
-      const n = Number(v);
-      if (!Number.isInteger(n) || n < 1) throw new InputError(`--max-runs: must be a positive integer (got ${JSON.stringify(v)})`);
+      const n = wholeNumber(v);
+      if (!(n >= 1)) throw new InputError(`--max-runs: must be a positive integer (got ${JSON.stringify(v)})`);
       options.maxRuns = n;
     } else if (sweep && name === '--shard') options.shard = value();
     else if (!sweep && name === '--realizations') {
       const v = value();
-      const n = Number(v);
-      if (!Number.isInteger(n) || n < 1 || n > MAX_REALIZATIONS)
+      const n = wholeNumber(v);
+      if (!(n >= 1 && n <= MAX_REALIZATIONS))
         throw new InputError(`--realizations: must be a whole number from 1 to ${MAX_REALIZATIONS} (got ${JSON.stringify(v)})`);
       options.realizations = n;
     } else if (name === '--workers') {
       const v = value();
-      const n = Number(v);
-      if (!Number.isInteger(n) || n < 1 || n > 1024) throw new InputError(`--workers: must be an integer from 1 to 1024 (got ${JSON.stringify(v)})`);
+      const n = wholeNumber(v);
+      if (!(n >= 1 && n <= 1024)) throw new InputError(`--workers: must be an integer from 1 to 1024 (got ${JSON.stringify(v)})`);
       options.workers = n;
     } else if (arg.startsWith('-') && arg !== '-') throw new InputError(`unknown option ${name}; ${usage}`);
     else if (input === undefined) input = arg;
@@ -77,4 +83,9 @@ export function parseArgs(args: string[], form: string, sweep = false): CliOptio
   if (!input) throw new InputError(`missing input file; ${usage}`);
   if (!out) throw new InputError(`missing --out; ${usage}`);
   return { input, out, ...options };
+}
+
+/** A whole number written in decimal digits (not `0x10`, `1e3` or ` 5`), else NaN. */
+export function wholeNumber(text: string): number {
+  return /^\d{1,15}$/.test(text) ? Number(text) : Number.NaN;
 }

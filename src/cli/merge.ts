@@ -10,18 +10,19 @@
  *   rows are reported by file and line and left out.
  * - A run found in several DIRs (a shard given twice, a shard rerun) is counted once: the first
  *   DIR's row is kept, with a warning when the rows differ.
+ * - --out must not hold a sweep's rows already (merge writes runs.csv anew), unless --force.
  * - Runs that no DIR holds are reported; the aggregate then covers the runs present (its n says
  *   so), and `tissue-sheet sweep SPEC --out DIR` on the merged directory computes the rest.
  */
-import { existsSync, lstatSync, mkdirSync, realpathSync } from 'node:fs';
+import { existsSync, mkdirSync, realpathSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { fileHeader, formatCsvRow, planResume, ResumeError, sortRowsByRuns, validateSweepSpec } from '../core/sweep';
 import { version } from '../version';
 import { InputError } from './errors';
 import { lockDirectory } from './lock';
 import { checkOutDir, writeFileAtomic } from './output';
-import { readJsonFile } from './prepare';
 import { gitCommitSoon, readRunsFile, sweepLayout, writeAggregates } from './sweepFiles';
+import { canonical, readSweepRecord } from './sweepRecord';
 
 const USAGE = 'usage: tissue-sheet merge DIR... --out DIR [--force]';
 
@@ -41,50 +42,15 @@ export function parseMergeArgs(args: string[]): MergeOptions {
     if (name === '--out' || name === '-o') {
       out = inline ?? args[++i];
       if (out === undefined || out === '') throw new InputError(`--out needs a value; ${USAGE}`);
-    } else if (name === '--force') force = true;
-    else if (arg.startsWith('-') && arg !== '-') throw new InputError(`unknown option ${name}; ${USAGE}`);
+    } else if (name === '--force') {
+      if (inline !== undefined) throw new InputError(`--force takes no value (got ${JSON.stringify(arg)}); ${USAGE}`);
+      force = true;
+    } else if (arg.startsWith('-') && arg !== '-') throw new InputError(`unknown option ${name}; ${USAGE}`);
     else dirs.push(arg);
   }
   if (dirs.length === 0) throw new InputError(`missing sweep directories to merge; ${USAGE}`);
   if (!out) throw new InputError(`missing --out; ${USAGE}`);
   return { dirs, out, force };
-}
-
-interface SweepRecord {
-  software?: { name?: unknown; version?: unknown };
-  renderer?: unknown;
-  spec?: unknown;
-  shard?: { index: number; count: number };
-}
-
-/** Object keys sorted at every level: two specs are the same when these texts are. */
-function canonical(value: unknown): string {
-  return JSON.stringify(value, (_key, v) =>
-    v && typeof v === 'object' && !Array.isArray(v) ? Object.fromEntries(Object.entries(v).sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0))) : v,
-  );
-}
-
-function readRecord(dir: string): SweepRecord {
-  let stat;
-  try {
-    stat = lstatSync(dir);
-  } catch {
-    throw new InputError(`${dir}: no such directory; give sweep output directories (each holding sweep.json)`);
-  }
-  if (!stat.isDirectory()) throw new InputError(`${dir}: is not a directory; give sweep output directories (each holding sweep.json)`);
-  const path = join(dir, 'sweep.json');
-  if (!existsSync(path)) throw new InputError(`${dir}: has no sweep.json; is it a tissue-sheet sweep directory?`);
-  const record = readJsonFile(path, 'sweep record') as SweepRecord;
-  if (
-    typeof record !== 'object' ||
-    record === null ||
-    record.software?.name !== 'tissue-sheet' ||
-    typeof record.software.version !== 'string' ||
-    record.spec === undefined
-  ) {
-    throw new InputError(`${path}: not a tissue-sheet sweep record (no software name, version and spec)`);
-  }
-  return record;
 }
 
 export async function mergeCommand(args: string[], log: (line: string) => void): Promise<void> {
@@ -94,7 +60,7 @@ export async function mergeCommand(args: string[], log: (line: string) => void):
   for (const dir of options.dirs) {
     if (real(dir) === real(options.out)) throw new InputError(`--out ${options.out}: is also an input (${dir}); merge into a new directory`);
   }
-  const records = options.dirs.map((dir) => ({ dir, record: readRecord(dir) }));
+  const records = options.dirs.map((dir) => ({ dir, record: readSweepRecord(dir) }));
   const first = records[0];
   for (const { dir, record } of records.slice(1)) {
     if (record.software!.version !== first.record.software!.version) {
@@ -118,6 +84,14 @@ export async function mergeCommand(args: string[], log: (line: string) => void):
     options.dirs.map((d) => join(d, 'runs.csv')),
     options.force,
   );
+  // merge writes runs.csv anew: a sweep's rows already there would be lost (merged into a new
+  // directory with the others, they are kept).
+  const rowsThere = (readRunsFile(join(options.out, 'runs.csv')) ?? '').split('\n').filter((line) => line.trim() !== '').length - 1;
+  if (rowsThere > 0 && !options.force) {
+    throw new InputError(
+      `--out ${options.out}: holds a sweep with ${rowsThere} rows in runs.csv, which merge would replace; merge into a new directory, with this one among the inputs to keep its rows, or pass --force to replace them`,
+    );
+  }
 
   const t0 = performance.now();
   const kept = new Map<string, { row: Record<string, string>; dir: string; text: string }>();

@@ -46,6 +46,10 @@ export function checkOutFile(out: string, inputs: readonly string[], force: bool
   }
   if (stat.isSymbolicLink()) throw new InputError(`--out ${out}: is a symbolic link, which is never followed; give the path of a regular file`);
   if (stat.isDirectory()) throw new InputError(`--out ${out}: is a directory; give a file path`);
+  // A sweep's record starts as a result does, but it is not one to replace.
+  if (!force && (SWEEP_FILES as readonly string[]).includes(basename(out)) && isOurSweep(dirname(resolve(out)))) {
+    throw new InputError(`--out ${out}: is a file of the sweep in ${dirname(resolve(out))}; give another path, or pass --force to overwrite it`);
+  }
   if (!force && !isOurs(out)) {
     throw new InputError(`--out ${out}: exists and is not a tissue-sheet result; pass --force to overwrite it, or give another path`);
   }
@@ -76,10 +80,15 @@ export function checkOutDir(dir: string, inputs: readonly string[], force: boole
     }
   }
   const entries = readdirSync(dir).filter((e) => !e.startsWith('.'));
-  const ours = existsSync(join(dir, 'sweep.json')) && /"name":\s*"tissue-sheet"/.test(head(join(dir, 'sweep.json')));
-  if (entries.length > 0 && !ours && !force) {
+  if (entries.length > 0 && !isOurSweep(dir) && !force) {
     throw new InputError(`--out ${dir}: is a non-empty directory that is not a tissue-sheet sweep; pass --force to write into it, or give a new directory`);
   }
+}
+
+/** Whether `dir` holds a sweep record of ours. */
+function isOurSweep(dir: string): boolean {
+  const record = join(dir, 'sweep.json');
+  return existsSync(record) && /"name":\s*"tissue-sheet"/.test(head(record));
 }
 
 function isLink(path: string): boolean {

@@ -47,6 +47,7 @@ import { Sources } from './sources';
 import { cachedFitter, fitOutcomes } from '../core/sweep/fitOutcomes';
 import { defaultWorkers, SweepThreadLost, SweepWorkers } from './sweepWorkers';
 import { gitCommitSoon, readRunsFile, seedGroups, sweepLayout, writeAggregates, type Run } from './sweepFiles';
+import { checkResumable } from './sweepRecord';
 
 export async function sweepCommand(options: CliOptions, signal: AbortSignal, writeLine: (line: string) => void): Promise<void> {
   const lines = batchedLines(writeLine);
@@ -83,6 +84,7 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
   const shard: Shard | null = options.shard === undefined ? null : parseShard(options.shard, process.env);
   const spec = validateSweepSpec(readJsonFile(options.input, 'sweep spec'), { maxRuns: options.maxRuns, raiseHint: 'pass --max-runs N to raise the limit' });
   checkOutDir(options.out, [options.input], options.force);
+  checkResumable(options.out, spec, shard);
   // The threads start now, before the grid is laid out and checked, the inputs, the GL context
   // and the checks below (about half a second on this thread), and load their modules meanwhile;
   // they get the context's capabilities once it exists (setUp). As many as the runs could use:

@@ -226,6 +226,12 @@ describe('bad input corpus: command-line arguments, shards and merge', () => {
     ['--max-runs 0', sweep(['s.json', '--out', 'x', '--max-runs', '0']), /--max-runs/],
     ['--max-runs text', sweep(['s.json', '--out', 'x', '--max-runs=many']), /--max-runs: .*"many"/],
     ['--shard without a value', sweep(['s.json', '--out', 'x', '--shard']), /--shard needs a value/],
+    // `--force=false` turned the flag on (and overwrote a file); a flag takes no value.
+    ['--force=false', sweep(['s.json', '--out', 'x', '--force=false']), /--force takes no value \(got "--force=false"\)/],
+    ['--allow-large=0', sweep(['s.json', '--out', 'x', '--allow-large=0']), /--allow-large takes no value/],
+    ['--cells-file=no', () => parseArgs(['c.json', '--out', 'x', '--cells-file=no'], 'run CONFIG.json --out RESULT.json'), /--cells-file takes no value/],
+    ['--workers in hexadecimal', sweep(['s.json', '--out', 'x', '--workers', '0x2']), /--workers: must be an integer from 1 to 1024 \(got "0x2"\)/],
+    ['--max-runs in exponent form', sweep(['s.json', '--out', 'x', '--max-runs', '1e3']), /--max-runs: must be a positive integer/],
     ['--shard 3/2', () => parseShard('3/2'), /--shard: I must be 1 to 2/],
     ['--shard 1/0', () => parseShard('1/0'), /--shard: the number of shards/],
     ['--shard -1/4', () => parseShard('-1/4'), /--shard: "-1\/4" is not I\/N/],

@@ -20,6 +20,14 @@ const spec = {
 };
 const specPath = join(dir, 'spec.json');
 writeFileSync(specPath, JSON.stringify(spec));
+const writeConfig = () => {
+  const path = join(dir, 'config.json');
+  writeFileSync(
+    path,
+    JSON.stringify({ surface: { kind: 'plane', width: 50, height: 50 }, resolution: 32, cells: 6, engine: 'exact', lloyd: { maxIterations: 1 } }),
+  );
+  return path;
+};
 const FILES = ['runs.csv', 'aggregate.csv', 'aggregate.json', 'flintstones.csv'];
 const read = (d: string, f: string) => readFileSync(join(d, f), 'utf8');
 
@@ -97,5 +105,59 @@ describe('sweep --shard and merge', () => {
       expect(run.stderr).not.toMatch(/\n\s+at /);
     }
     for (const m of ['m1', 'm2', 'm3', 'm4']) expect(existsSync(join(dir, m))).toBe(false);
+  }, 120_000);
+
+  it('resumes a directory only with the sweep that wrote it: the same base config, version and shard', () => {
+    const first = join(dir, 'first');
+    expect(cli(['sweep', specPath, '--out', first, '--shard', '1/8']).status).toBe(0);
+    const rows = read(first, 'runs.csv');
+    const copy = (name: string) => {
+      const to = join(dir, name);
+      cpSync(first, to, { recursive: true });
+      return to;
+    };
+    const specWith = (name: string, base: object) => {
+      const path = join(dir, name);
+      writeFileSync(path, JSON.stringify({ ...spec, base: { ...spec.base, ...base } }));
+      return path;
+    };
+    const older = copy('older-version');
+    const record = JSON.parse(read(older, 'sweep.json'));
+    writeFileSync(join(older, 'sweep.json'), JSON.stringify({ ...record, software: { ...record.software, version: '0.0.1-old' } }, null, 2));
+    const cases: [string[], RegExp, string][] = [
+      // Rows name their grid point by the varied values only: a row of cells 24 passed for one of cells 25.
+      [
+        ['sweep', specWith('cells25.json', { cells: 25 }), '--out', copy('cells'), '--shard', '1/8'],
+        /holds a sweep of another base config \(base\.cells: 24 there, 25 here\); its \d+ rows would be mixed/,
+        'cells',
+      ],
+      [['sweep', specPath, '--out', copy('shard2'), '--shard', '2/8'], /holds shard 1\/8, and this is shard 2\/8/, 'shard2'],
+      [['sweep', specPath, '--out', older, '--shard', '1/8'], /holds a sweep written by tissue-sheet 0\.0\.1-old/, 'older-version'],
+      // merge writes runs.csv anew: the rows a sweep already holds there would be lost.
+      [
+        ['merge', first, '--out', copy('merge-into')],
+        /holds a sweep with \d+ rows in runs\.csv, which merge would replace; merge into a new directory/,
+        'merge-into',
+      ],
+      // A sweep's record is not a result to replace.
+      [
+        ['run', writeConfig(), '--out', join(copy('run-into'), 'sweep.json')],
+        /sweep\.json: is a file of the sweep in .*run-into; give another path/,
+        'run-into',
+      ],
+    ];
+    for (const [args, pattern, name] of cases) {
+      const run = cli(args);
+      expect(run.status, `${args.join(' ')}: ${run.stderr}`).toBe(2);
+      expect(run.stderr).toMatch(pattern);
+      expect(run.stderr.trim().split('\n')).toHaveLength(1);
+      expect(read(join(dir, name), 'runs.csv')).toBe(rows);
+    }
+    // The same config with a default written out is the same sweep: resumed, nothing computed.
+    const same = cli(['sweep', specWith('explicit.json', { minSpacing: 0 }), '--out', copy('explicit'), '--shard', '1/8']);
+    expect(same.status, same.stderr).toBe(0);
+    expect(same.stderr).toMatch(/0 runs computed, \d+ resumed/);
+    // With --force, merge replaces the rows it was told to.
+    expect(cli(['merge', first, '--out', join(dir, 'merge-into'), '--force']).status).toBe(0);
   }, 120_000);
 });

@@ -42,6 +42,18 @@ describe('sweep spec validation', () => {
     ],
     ['varied value out of range', { base, vary: { resolution: [64, 99999] } }, 'vary["resolution"][1]', /from 16 to 16384/],
     ['empty value list', { base, vary: { cells: [] } }, 'vary["cells"]', /at least one value/],
+    [
+      'a value given twice',
+      { base, vary: { cells: [5, 6, 5] } },
+      'vary["cells"][2]',
+      /^vary\["cells"\]\[2\]: 5 repeats vary\["cells"\]\[0\]; give each value once/,
+    ],
+    [
+      'an object value given twice',
+      { base, vary: { density: [{ kind: 'uniform' }, { kind: 'uniform' }] } },
+      'vary["density"][1]',
+      /repeats vary\["density"\]\[0\]/,
+    ],
     ['value list not an array', { base, vary: { cells: 5 } }, 'vary["cells"]', /array/],
     ['__proto__ in a varied path', { base, vary: { '__proto__.polluted': [1] } }, 'vary["__proto__.polluted"]', /"__proto__" is not allowed/],
     ['constructor.prototype in a varied path', { base, vary: { 'constructor.prototype.x': [1] } }, 'vary["constructor.prototype.x"]', /not allowed/],

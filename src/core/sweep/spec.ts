@@ -76,6 +76,7 @@ export function validateSweepSpec(input: unknown, options: SweepSpecOptions = {}
     throw error;
   }
   for (const path of Object.keys(vary)) checkVariedPath(path);
+  for (const [path, values] of Object.entries(vary)) checkDistinctValues(path, values);
 
   const maxRuns = options.maxRuns ?? DEFAULT_MAX_RUNS;
   const runs = countRuns(spec);
@@ -104,6 +105,24 @@ export function validateSweepSpec(input: unknown, options: SweepSpecOptions = {}
   }
   void base;
   return spec as ValidSweepSpec;
+}
+
+/**
+ * Each value of a varied field once: a grid point and its runs are keyed by the values' JSON
+ * (expand.ts), so a repeated value would make two points of one key, whose runs could be neither
+ * told apart nor resumed.
+ */
+function checkDistinctValues(path: string, values: readonly unknown[]): void {
+  const first = new Map<string, number>();
+  values.forEach((value, index) => {
+    const text = JSON.stringify(value);
+    const earlier = first.get(text);
+    if (earlier !== undefined) {
+      const field = `vary["${path}"][${index}]`;
+      throw new SweepSpecError(field, `${field}: ${text} repeats vary["${path}"][${earlier}]; give each value once (realizations repeat a grid point)`);
+    }
+    first.set(text, index);
+  });
 }
 
 /** The first key named __proto__, constructor or prototype, as a path; undefined when none. */
