@@ -56,16 +56,19 @@ function optionError(option: string, problem: string): MeasureInputError {
   return new MeasureInputError(option, `${problem}; usage: tissue-sheet ${FORM}`);
 }
 
+/** A decimal number (`0.5`, `2e-3`; not `0x10`, `Infinity` or an empty text). */
+const DECIMAL = /^[+]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/;
+
 function positiveNumber(option: string, text: string | undefined, allowZero = false): number {
   const value = Number(text);
-  if (text === undefined || text.trim() === '' || !Number.isFinite(value) || value < 0 || (!allowZero && value === 0)) {
+  if (text === undefined || !DECIMAL.test(text.trim()) || !Number.isFinite(value) || value < 0 || (!allowZero && value === 0)) {
     throw optionError(option, `needs a number ${allowZero ? '>= 0' : '> 0'} (got ${text === undefined ? 'nothing' : JSON.stringify(text)})`);
   }
   return value;
 }
 
 function integer(option: string, text: string | undefined, min: number, max: number): number {
-  const value = Number(text);
+  const value = text !== undefined && /^\d{1,15}$/.test(text) ? Number(text) : Number.NaN;
   if (!Number.isInteger(value) || value < min || value > max) throw optionError(option, `needs an integer ${min}..${max} (got ${text ?? 'nothing'})`);
   return value;
 }
@@ -74,11 +77,18 @@ export function parseMeasureArgs(args: string[]): MeasureArgs {
   const parsed: MeasureArgs = { files: [], out: '', periodicX: false, compare: false, force: false, realizations: 10, seed: 1, quartetFilter: false };
   const layersOnly: string[] = [];
   const volumeOnly: string[] = [];
+  const compareOnly: string[] = [];
   for (let i = 0; i < args.length; i++) {
     const arg = args[i];
     const eq = arg.startsWith('--') ? arg.indexOf('=') : -1;
     const name = eq > 0 ? arg.slice(0, eq) : arg;
     const value = () => (eq > 0 ? arg.slice(eq + 1) : args[++i]);
+    // A flag is on when given: `--compare=false` must not mean "on".
+    if (eq > 0 && ['--quartet-filter', '--quartets', '--periodic-x', '--compare', '--force'].includes(name)) {
+      throw optionError(name, `takes no value (got ${JSON.stringify(arg)}): give ${name} to turn it on, leave it out to keep it off`);
+    }
+    // Given twice, the second would silently win.
+    if (name === '--volume' && parsed.volume !== undefined) throw optionError(name, 'given twice; measure one volume at a time');
     if (name === '--out' || name === '-o') parsed.out = value() ?? '';
     else if (name === '--volume') parsed.volume = value() ?? '';
     else if (name === '--voxel-size') {
@@ -106,9 +116,13 @@ export function parseMeasureArgs(args: string[]): MeasureArgs {
     else if (name === '--ratio') {
       parsed.ratio = positiveNumber(name, value());
       layersOnly.push(name);
-    } else if (name === '--realizations') parsed.realizations = integer(name, value(), 1, 1000);
-    else if (name === '--seed') parsed.seed = integer(name, value(), 0, 2 ** 31 - 1);
-    else if (name === '--periodic-x') {
+    } else if (name === '--realizations') {
+      parsed.realizations = integer(name, value(), 1, 1000);
+      compareOnly.push(name);
+    } else if (name === '--seed') {
+      parsed.seed = integer(name, value(), 0, 2 ** 31 - 1);
+      compareOnly.push(name);
+    } else if (name === '--periodic-x') {
       parsed.periodicX = true;
       layersOnly.push(name);
     } else if (name === '--compare') parsed.compare = true;
@@ -116,6 +130,7 @@ export function parseMeasureArgs(args: string[]): MeasureArgs {
     else if (arg.startsWith('-')) throw optionError(arg, 'unknown option');
     else parsed.files.push(arg);
   }
+  if (compareOnly.length > 0 && !parsed.compare) throw optionError(compareOnly[0], 'is for --compare (the model realizations); add --compare or leave it out');
   if (parsed.volume !== undefined) {
     if (!parsed.volume) throw optionError('--volume', 'needs a file: one 3D label TIFF');
     if (parsed.files.length > 0) throw optionError(parsed.files[0], 'with --volume, give no layer files');

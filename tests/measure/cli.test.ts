@@ -127,6 +127,10 @@ describe('tissue-sheet measure', () => {
       [[f('basal.png'), f('apical.png'), '--out', f('x.json'), '--pixel-size', '-1'], /^tissue-sheet: --pixel-size: needs a number > 0/],
       [[f('basal.png'), f('apical.png'), '--pixel-size', '1'], /^tissue-sheet: --out: missing/],
       [[f('basal.png'), f('apical.png'), '--out', f('x.json'), '--bogus'], /--bogus: unknown option/],
+      // Options that would be taken silently the wrong way.
+      [[f('basal.png'), f('apical.png'), '--out', f('x.json'), '--pixel-size', '0x10'], /--pixel-size: needs a number > 0 \(got "0x10"\)/],
+      [[f('basal.png'), f('apical.png'), '--out', f('x.json'), '--pixel-size', '1', '--compare=false'], /--compare: takes no value/],
+      [[f('basal.png'), f('apical.png'), '--out', f('x.json'), '--pixel-size', '1', '--realizations', '3'], /--realizations: is for --compare/],
       [[f('basal.png'), f('apical.png'), '--out', f('apical.png'), '--pixel-size', '1'], /apical\.png: is also --out/],
       [
         [f('basal.png'), f('apical.png'), '--out', f('notes.txt'), '--pixel-size', '1'],

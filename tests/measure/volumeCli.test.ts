@@ -357,6 +357,7 @@ describe('tissue-sheet measure --volume', () => {
       [[f('plain.tif'), '--out', f('x.json'), '--voxel-size', '1,1,1'], /--voxel-size: is for --volume VOLUME\.tif only/],
       [['--volume', f('plain.tif'), '--out', f('plain.tif'), '--voxel-size', '1,1,1'], /plain\.tif: is also --out/],
       [['--volume', f('plain.tif'), '--voxel-size', '1,1,1'], /--out: missing/],
+      [['--volume', f('plain.tif'), '--volume', f('imagej.tif'), '--out', f('x.json')], /--volume: given twice/],
     ];
     for (const [args, message] of cases) {
       const { code, errors } = await run(args);
