@@ -15,12 +15,13 @@
 import type { Grid } from './grid';
 import { distanceSquared } from './grid';
 import { Random } from './random';
+import { ConfigError } from './config/configError';
 
 /** Candidates that may fail in a row (per unit of max/mean density) before we give up. */
 export const MAX_CONSECUTIVE_FAILURES = 20000;
 
 /** Coverage at which random sequential adsorption of disks jams (Feder 1980; Hinrichsen et al.). */
-const RSA_JAMMING_COVERAGE = 0.547;
+export const RSA_JAMMING_COVERAGE = 0.547;
 
 export function placeSites(grid: Grid, count: number, seed: number, minSpacingUm: number, density?: Float32Array): Float32Array {
   const { width, height } = grid;
@@ -83,7 +84,8 @@ function acceptanceScale(density: Float32Array, texels: number): { max: number; 
   return { max, maxOverMean: max / (sum / density.length) };
 }
 
-function placementError(grid: Grid, count: number, placed: number, spacing: number, failures: number): Error {
+/** A placement that jammed: the config's fault (exit 2, naming minSpacing or density), not the code's. */
+function placementError(grid: Grid, count: number, placed: number, spacing: number, failures: number): ConfigError {
   const area = grid.width * grid.texelX * grid.height * grid.texelY;
   const jam = Math.sqrt((4 * RSA_JAMMING_COVERAGE * area) / (Math.PI * count));
   const why = spacing > 0 ? ` at least ${spacing} µm apart` : '';
@@ -91,7 +93,8 @@ function placementError(grid: Grid, count: number, placed: number, spacing: numb
     spacing > 0
       ? `lower minSpacing (random placement of ${count} sites on ${round(area)} µm² jams near ${round(jam)} µm; stay well below) or lower cells`
       : 'make the density field less peaked';
-  return new Error(`placeSites: placed ${placed} of ${count} sites${why}, then ${failures} candidates in a row were rejected; ${hint}`);
+  const field = spacing > 0 ? 'minSpacing' : 'density';
+  return new ConfigError(field, `${field}: placed ${placed} of ${count} sites${why}, then ${failures} candidates in a row were rejected; ${hint}`);
 }
 
 function round(value: number): string {

@@ -1,7 +1,18 @@
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
-import { ConfigError, DEFAULT_TUBE_RADIUS, checkFeasible, configSchema, makeGrid, unrolledDomain, type PlanarConfig } from '../../src/core/config';
+import {
+  ConfigError,
+  DEFAULT_TUBE_RADIUS,
+  checkFeasible,
+  configSchema,
+  makeGrid,
+  unrolledDomain,
+  validateConfig,
+  type ClosedConfig,
+  type PlanarConfig,
+} from '../../src/core/config';
+import { checkClosedFeasible } from '../../src/core/config/feasibility';
 import { validatePlanarConfig } from '../planarConfig';
 
 /** Runs validatePlanarConfig and returns the ConfigError it throws (fails the test if none). */
@@ -240,10 +251,30 @@ describe('checkFeasible', () => {
   it('bounds the minimum spacing by hexagonal packing', () => {
     // 100 x 100 µm torus: 100 points fit at spacing d only if 100·(√3/2)·d² <= 10000, d <= 10.75 µm.
     const base = { surface: { kind: 'plane', width: 100, height: 100, periodicX: true, periodicY: true }, cells: 100 };
-    expect(feasibilityError({ ...base, minSpacing: 10.7 })).toBeNull();
     const e = feasibilityError({ ...base, minSpacing: 10.8 });
     expect(e?.field).toBe('minSpacing');
-    expect(e?.message).toContain('lower minSpacing');
+    expect(e?.message).toMatch(/\(hexagonal packing\).*lower minSpacing to at most 10\.7457 µm/);
+  });
+
+  it('bounds it by the jamming of random placement, which comes well before the lattice', () => {
+    // Random sequential addition jams when the disks cover 0.547 of the area: 100 points on the
+    // 100 x 100 µm torus at d <= sqrt(4·0.547·10000/(π·100)) = 8.35 µm; a closed surface alike.
+    const torus = { surface: { kind: 'plane', width: 100, height: 100, periodicX: true, periodicY: true }, cells: 100 };
+    expect(feasibilityError({ ...torus, minSpacing: 8.3 })).toBeNull();
+    for (const minSpacing of [8.4, 10.7]) {
+      const e = feasibilityError({ ...torus, minSpacing });
+      expect(e?.field).toBe('minSpacing');
+      expect(e?.message).toMatch(/random placement jams near 54\.7 %; lower minSpacing to well below 8\.34543 µm or lower cells/);
+    }
+    // A density field places by rejection too, but its jam is not predicted: found as it happens.
+    expect(feasibilityError({ ...torus, minSpacing: 8.4, density: { kind: 'linear', axis: 'x', from: 1, to: 2 } })).toBeNull();
+    // A sphere of radius 20 µm: 100 points up to sqrt(4·0.547·5026.5/(π·100)) = 5.917 µm apart.
+    const sphere = (minSpacing: number) =>
+      checkClosedFeasible(
+        validateConfig({ surface: { kind: 'sphere', radius: 20 }, cells: 100, resolution: 64, minSpacing, sheet: { thickness: 2 } }) as ClosedConfig,
+      );
+    expect(() => sphere(5.9)).not.toThrow();
+    expect(() => sphere(6)).toThrow(/minSpacing: .*random placement jams near 54\.7 %; lower minSpacing to well below 5\.9167\d* µm/);
   });
 
   it('keeps a gaussian centre inside the domain', () => {

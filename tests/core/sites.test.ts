@@ -89,8 +89,10 @@ describe('placeSites', () => {
     } catch (error) {
       message = (error as Error).message;
     }
-    expect(message).toMatch(/^placeSites: placed \d+ of 100 sites at least 10 µm apart/);
+    expect(message).toMatch(/^minSpacing: placed \d+ of 100 sites at least 10 µm apart/);
     expect(message).toContain('lower minSpacing');
+    // The config's fault, not the code's: a ConfigError on the field (exit 2 in the CLI).
+    expect(() => placeSites(plane, 100, 1, 10)).toThrow(expect.objectContaining({ name: 'ConfigError', field: 'minSpacing' }));
   });
 
   it('rejects bad arguments', () => {

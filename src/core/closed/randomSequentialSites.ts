@@ -13,11 +13,13 @@
  *
  * RSA jams: on a surface of area A, discs of diameter d stop fitting near a covered fraction
  * of 0.547 (the 2D jamming limit), N π d² / 4 ≈ 0.547 A. The work is bounded: after
- * `maxFailures` draws in a row that were too close, it stops with an Error naming
- * `minSpacing` and the largest spacing that is likely to fit. Neighbour checks use a hash
+ * `maxFailures` draws in a row that were too close, it stops with a ConfigError on
+ * `minSpacing` (the config's fault: exit 2) and the largest spacing that is likely to fit. Neighbour checks use a hash
  * grid of cells `minSpacing` wide (typed arrays, collisions checked by distance).
  */
+import { ConfigError } from '../config/configError';
 import { createRandom, searchCdf } from '../random';
+import { RSA_JAMMING_COVERAGE } from '../sites';
 import { areaWeightedVertexNormals, triangleArea } from '../mesh/types';
 import { ellipsoidArea } from './conicArc';
 import type { RestrictedSurface } from './restrictedSurface';
@@ -36,9 +38,6 @@ export interface SeededSites {
   /** Draws made in all (accepted + rejected). */
   readonly draws: number;
 }
-
-/** RSA jamming coverage of equal discs in the plane (Feder 1980; Hinrichsen et al. 1986). */
-const JAMMING_COVERAGE = 0.547;
 
 export function randomSequentialSites(
   surface: RestrictedSurface,
@@ -68,9 +67,10 @@ export function randomSequentialSites(
     draws = 0;
   while (placed < count) {
     if (failures >= maxFailures) {
-      const fit = Math.sqrt((4 * JAMMING_COVERAGE * area) / (Math.PI * count));
-      throw new Error(
-        `minSpacing: placed only ${placed} of ${count} sites at least ${minSpacing} µm apart (${maxFailures} draws in a row fell closer); random sequential addition jams near ${JAMMING_COVERAGE * 100} % coverage, so ${count} sites on ${area.toPrecision(4)} µm² fit up to about ${fit.toPrecision(3)} µm apart; lower minSpacing or the number of cells`,
+      const fit = Math.sqrt((4 * RSA_JAMMING_COVERAGE * area) / (Math.PI * count));
+      throw new ConfigError(
+        'minSpacing',
+        `minSpacing: placed only ${placed} of ${count} sites at least ${minSpacing} µm apart (${maxFailures} draws in a row fell closer); random sequential addition jams near ${RSA_JAMMING_COVERAGE * 100} % coverage, so ${count} sites on ${area.toPrecision(4)} µm² fit up to about ${fit.toPrecision(3)} µm apart; lower minSpacing or the number of cells`,
       );
     }
     draws++;

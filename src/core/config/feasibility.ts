@@ -3,6 +3,7 @@ import { LAB_MEAN_CELL_DIAMETER_PIXELS, LAB_MIN_BOUNDARY_PIXELS } from '../analy
 import type { Grid } from '../grid';
 import { checkMethods } from './methods';
 import { ConfigError } from './configError';
+import { RSA_JAMMING_COVERAGE } from '../sites';
 import type { ClosedConfig, ClosedSurfaceConfig, PlanarConfig, SurfaceConfig } from './types';
 
 // ---------------------------------------------------------------------------------------------
@@ -53,6 +54,23 @@ function hexagonalAreaPerPoint(spacing: number): number {
 }
 
 /**
+ * Refuses a minSpacing that the hexagonal lattice could hold but random placement cannot: sites
+ * are placed by random sequential addition, which jams once the disks of diameter d around them
+ * cover RSA_JAMMING_COVERAGE of the area (about 0.547, against the lattice's 0.907). Such a run
+ * would place sites for a while and then fail; refused now, before anything is computed.
+ */
+function checkPlacementJam(cells: number, d: number, available: number, area: number): void {
+  const coverage = (cells * Math.PI * d * d) / 4 / available;
+  if (coverage > RSA_JAMMING_COVERAGE) {
+    const largest = Math.sqrt((4 * RSA_JAMMING_COVERAGE * area) / (Math.PI * cells));
+    throw new ConfigError(
+      'minSpacing',
+      `minSpacing: ${cells} cells at least ${d} µm apart would cover ${fmt(100 * coverage)} % of the surface with their disks, but random placement jams near ${100 * RSA_JAMMING_COVERAGE} %; lower minSpacing to well below ${fmt(largest)} µm or lower cells`,
+    );
+  }
+}
+
+/**
  * Rejects configurations that validate but cannot run sensibly on this grid. These checks need
  * the grid (or several fields at once), which is why they are not in the schema.
  */
@@ -84,6 +102,8 @@ export function checkFeasible(config: PlanarConfig, grid: Grid): void {
         `minSpacing: ${config.cells} cells at least ${d} µm apart need ${fmt(needed)} µm² (hexagonal packing) but the surface has ${fmt(area)} µm²; lower minSpacing to at most ${fmt(largest)} µm or lower cells`,
       );
     }
+    // A density field places sites by rejection too: the jam comes sooner, found as it happens.
+    if (config.density.kind === 'uniform') checkPlacementJam(config.cells, d, available, domain.lengthX * domain.lengthY);
   }
 
   checkSheet(config);
@@ -227,6 +247,7 @@ export function checkClosedFeasible(config: ClosedConfig, grid: CubeGrid = makeC
         `minSpacing: ${config.cells} cells at least ${d} µm apart need ${fmt(needed)} µm² (hexagonal packing) but the surface has ${fmt(area)} µm²; lower minSpacing to at most ${fmt(largest)} µm or lower cells`,
       );
     }
+    checkPlacementJam(config.cells, d, area, area);
   }
   checkClosedSheet(config);
 }
