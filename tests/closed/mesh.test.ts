@@ -1,3 +1,5 @@
+import { statSync } from 'node:fs';
+import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
 import { ConfigError, validateConfig, type ClosedConfig, type ConfigInput } from '../../src/core/config';
@@ -106,6 +108,17 @@ describe('malformed meshes get their message through the pipeline', () => {
     const missing = await messageOf({ surface: { kind: 'mesh', src: 'no-such-mesh.ply' }, resolution: 32, cells: 10 });
     expect(missing.message).toContain('cannot find "no-such-mesh.ply"');
     expect(() => loadMeshFile(MESH_DIR)).toThrow(/is a directory/);
+  });
+  it("finds a sample mesh by its name from any working directory (the package's public/meshes/)", () => {
+    const here = process.cwd();
+    try {
+      process.chdir(tmpdir());
+      const sample = loadMeshFile('organoid.ply', tmpdir());
+      expect(sample.name).toBe(join(MESH_DIR, 'organoid.ply'));
+      expect(sample.data.byteLength).toBe(statSync(join(MESH_DIR, 'organoid.ply')).size);
+    } finally {
+      process.chdir(here);
+    }
   });
   it('the pipeline reads no file: a mesh config without its loaded file is refused, naming what to do', async () => {
     const e = (await runSheet(closed({ surface: { kind: 'mesh', src: join(MESH_DIR, 'organoid.ply') }, resolution: 32, cells: 10 }), context).catch(

@@ -81,6 +81,17 @@ describe('checkMesh', () => {
     expect(() => assertGenusZero(flipOrientation(sphere))).not.toThrow();
   });
 
+  it('a closed surface that encloses no volume: a tetrahedron flattened into its plane', () => {
+    // Closed, manifold, consistently oriented, genus 0, no degenerate face: only its volume is wrong.
+    const flat = { positions: new Float32Array([1, 1, 0, -1, -1, 0, -1, 1, 0, 1, -1, 0]), indices: new Uint32Array([0, 1, 2, 0, 3, 1, 0, 2, 3, 1, 3, 2]) };
+    expect(checkMesh(flat).map((x) => [x.kind, x.severity])).toEqual([['flat', 'error']]);
+    expect(message(flat, 'flat')).toMatch(/^the mesh encloses no volume \(0 against a surface of 8\): its faces lie in one plane/);
+    expect(() => assertGenusZero(flat)).toThrow(/encloses no volume/);
+    // The same tetrahedron with its apex lifted is fine.
+    const lifted = { ...flat, positions: new Float32Array([1, 1, 0, -1, -1, 0, -1, 1, 1, 1, -1, 1]) };
+    expect(checkMesh(lifted).filter((x) => x.severity === 'error')).toEqual([]);
+  });
+
   it('torus: genus 1 from the Euler characteristic', () => {
     const torus = loadShipped('torus.ply');
     const p = checkMesh(torus);

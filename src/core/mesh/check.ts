@@ -18,6 +18,7 @@ export type MeshProblemKind =
   | 'non-manifold-vertex'
   | 'orientation'
   | 'inward'
+  | 'flat'
   | 'components'
   | 'genus';
 
@@ -347,7 +348,21 @@ export function checkMesh(mesh: TriangleMesh): MeshProblem[] {
         count: g,
       });
     }
-    if (inconsistent === 0 && signedVolume(mesh) < 0) {
+    // A closed, oriented surface with (next to) no volume inside: its faces lie in one plane or
+    // fold onto each other (two coincident sheets). It has no outside to offset a sheet along,
+    // and its sphere map is meaningless. The isoperimetric scale A^1.5 (a sphere: V = 0.094 A^1.5)
+    // makes the bound independent of units; 1e-6 of it is an aspect ratio of about 1e-5.
+    const volume = signedVolume(mesh);
+    let area = 0;
+    for (const a of faceAreas(mesh)) area += a;
+    if (Math.abs(volume) <= 1e-6 * area ** 1.5) {
+      problems.push({
+        kind: 'flat',
+        severity: 'error',
+        message: `the mesh encloses no volume (${fmt(volume)} against a surface of ${fmt(area)}): its faces lie in one plane or fold onto each other; tissue-sheet needs a closed surface around a volume`,
+        count: nf,
+      });
+    } else if (inconsistent === 0 && volume < 0) {
       problems.push({
         kind: 'inward',
         severity: 'warning',
