@@ -44,6 +44,15 @@ describe('byConstruction', () => {
     expect(byConstruction(config({ kind: 'sphere', radius: 60 }, { thickness: 0 }))?.reason).toBe('coincident');
   });
 
+  it('says what to change at thickness 0: a thickness, except where the geometry keeps 0 at any thickness', () => {
+    expect(byConstruction(config(tube, { thickness: 0 }))?.message).toMatch(/Give the sheet a thickness \(or a surface ratio above 1\)\.$/);
+    expect(byConstruction(config({ kind: 'ellipsoid', a: 50, b: 40, c: 30 }, { thickness: 0 }))?.message).toMatch(/Give the sheet a thickness\.$/);
+    expect(byConstruction(config(plane, { thickness: 0 }))?.message).toMatch(/parallel planes give 0 at any thickness; .*try a tube/);
+    expect(byConstruction(config({ kind: 'sphere', radius: 60 }, { thickness: 0 }))?.message).toMatch(
+      /concentric spheres give 0 at any thickness; try an ellipsoid/,
+    );
+  });
+
   it('leaves results that depend on the sites alone', () => {
     expect(byConstruction(config(tube, { surfaceRatio: 1.5 }))).toBeNull();
     expect(byConstruction(config(tube, { thickness: 10 }))).toBeNull();

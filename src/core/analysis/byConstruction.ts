@@ -41,11 +41,19 @@ export function byConstruction(config: Config): ByConstruction | null {
         'Surface ratio s = 1: both surfaces are the same cylinder, so every cell keeps its neighbours and % scutoids is 0 by construction. Raise s above 1.',
     };
   }
+  const isSphere = surface.kind === 'sphere' || (surface.kind === 'ellipsoid' && sameLength(surface.a, surface.b) && sameLength(surface.b, surface.c));
   if (ratio === null && sheet.thickness === 0) {
+    // What to change: a thickness, except where the geometry keeps 0 at any thickness.
+    const hint =
+      surface.kind === 'plane'
+        ? 'A thickness alone would not help: parallel planes give 0 at any thickness; curvature makes scutoids: try a tube, an ellipsoid or a mesh.'
+        : isSphere
+          ? 'A thickness alone would not help: concentric spheres give 0 at any thickness; try an ellipsoid or a mesh with a thickness.'
+          : `Give the sheet a thickness${surface.kind === 'tube' ? ' (or a surface ratio above 1)' : ''}.`;
     return {
       percent: 0,
       reason: 'coincident',
-      message: `Thickness 0: the basal and apical surfaces coincide, so every cell keeps its neighbours and % scutoids is 0 by construction. Give the sheet a thickness${surface.kind === 'tube' ? ' (or a surface ratio above 1)' : ''}.`,
+      message: `Thickness 0: the basal and apical surfaces coincide, so every cell keeps its neighbours and % scutoids is 0 by construction. ${hint}`,
     };
   }
   if (surface.kind === 'plane') {
@@ -56,7 +64,6 @@ export function byConstruction(config: Config): ByConstruction | null {
         'Parallel planes: each site keeps its position on the other plane, so the Voronoi diagrams are identical and % scutoids is 0 by construction. Curvature makes scutoids: try a tube, an ellipsoid or a mesh.',
     };
   }
-  const isSphere = surface.kind === 'sphere' || (surface.kind === 'ellipsoid' && sameLength(surface.a, surface.b) && sameLength(surface.b, surface.c));
   if (isSphere) {
     return {
       percent: 0,
