@@ -35,6 +35,7 @@ beforeAll(() => {
   put('rgb.tif', writeTiff([{ ...page, bitsPerSample: 8, samplesPerPixel: 3, data: new Uint8Array(image.width * image.height * 3) }]));
   put('one-page.tif', writeTiff([page]));
   put('stack.tif', writeTiff([page, page], false));
+  put('mixed-bits.tif', writeTiff([page, { ...page, bitsPerSample: 8, data: Uint8Array.from(image.data, (v) => v & 255) }]));
   mkdirSync(join(dir, 'folder'));
 });
 afterAll(() => rmSync(dir, { recursive: true, force: true }));
@@ -105,6 +106,7 @@ describe('tissue-sheet measure', () => {
     ['an RGB PNG', ['rgb.png', 'basal.png'], /rgb\.png: unsupported pixel type: 8-bit RGB colour/],
     ['an RGB TIFF', ['basal.png', 'rgb.tif'], /rgb\.tif: unsupported pixel type: 3 samples per pixel/],
     ['a 3D stack with one page', ['one-page.tif'], /one-page\.tif: a 3D stack with one page/],
+    ['a 3D stack of 16- and 8-bit pages', ['mixed-bits.tif'], /mixed-bits\.tif: page 2: 8-bit, page 1 is 16-bit; every page must have the same type/],
     ['a single 2D image', ['basal.png'], /basal\.png: one 2D image; give a 3D TIFF/],
     ['a missing file', ['basal.png', 'nowhere.png'], /nowhere\.png: no such file$/],
     ['a directory', ['basal.png', 'folder'], /folder: is a directory/],

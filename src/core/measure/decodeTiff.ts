@@ -73,6 +73,15 @@ export function inspectTiff(bytes: Uint8Array, file: string): LabelFileHeader {
   const ifds = readIfds(bytes, file, { ignoreImageData: true });
   if (ifds.length === 0) throw new MeasureInputError(file, 'TIFF without any image');
   const pages = ifds.map((ifd, k) => checkPage(ifd, file, k, ifds.length));
+  // One label space for a whole stack (docs/measure.md): a page of 16 bits beside pages of 8
+  // is not the same labelling saved twice.
+  const odd = pages.findIndex((page) => page.bitsPerSample !== pages[0].bitsPerSample);
+  if (odd >= 0) {
+    throw new MeasureInputError(
+      file,
+      `page ${odd + 1}: ${pages[odd].bitsPerSample}-bit, page 1 is ${pages[0].bitsPerSample}-bit; every page must have the same type`,
+    );
+  }
   const first = ifds[0];
   const imagej = parseImageJDescription(first.imageDescription);
   if (imagej && imagej.channels > 1) {
