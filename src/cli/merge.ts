@@ -3,8 +3,8 @@
  * runs of it) into one sweep directory, written as the unsharded sweep writes it: runs.csv in the
  * same order, aggregate.csv/json, flintstones.csv, sweep.json.
  *
- * - Every DIR must hold a sweep.json of ours; all must record the same spec and the same software
- *   version (else exit 2 naming the first that differs): rows of another spec or version would
+ * - Every DIR must hold a sweep.json of ours; all must record the same spec, the same input files
+ *   (mesh, density: size and SHA-256) and the same software version (else exit 2 naming the first that differs): rows of another spec or version would
  *   mix numbers that are not comparable.
  * - Every runs.csv is validated as a resumed one is (header, key, seed, columns: resume.ts); bad
  *   rows are reported by file and line and left out.
@@ -70,6 +70,12 @@ export async function mergeCommand(args: string[], log: (line: string) => void):
     }
     if (canonical(record.spec) !== canonical(first.record.spec)) {
       throw new InputError(`${join(dir, 'sweep.json')}: another spec than ${join(first.dir, 'sweep.json')}; merge only shards of one sweep spec`);
+    }
+    // The same spec over other contents of its mesh or density files is another sweep.
+    if (canonical(record.inputFiles ?? []) !== canonical(first.record.inputFiles ?? [])) {
+      throw new InputError(
+        `${join(dir, 'sweep.json')}: read other mesh or density files than ${join(first.dir, 'sweep.json')} (inputFiles: sizes or SHA-256 differ); merge only shards of one sweep`,
+      );
     }
   }
   let spec;
@@ -153,6 +159,7 @@ export async function mergeCommand(args: string[], log: (line: string) => void):
           runs: layout.runs.length,
           ended: new Date().toISOString(),
           merged: { from: options.dirs, rows: rows.length, missing: missing.length, repeated, differing, rejected, mergedBy: version },
+          ...(first.record.inputFiles ? { inputFiles: first.record.inputFiles } : {}),
           spec: first.record.spec,
         },
         null,

@@ -90,7 +90,8 @@ export async function runCommand(options: CliOptions, signal: AbortSignal, log: 
       return other.headline;
     };
     const headline = threads ? await threads.headline(drawn.headline, runOne, signal) : await headlineOverRealizations(config.seed, n, drawn.headline, runOne);
-    const result = { ...drawn, headline };
+    const files = sources.files();
+    const result = { ...drawn, headline, ...(files.length > 0 ? { inputFiles: files } : {}) };
     const side = writeResult(options.out, result, tables, [options.input], options.force);
     log(
       `done: ${tables?.cells.count ?? result.cells.length} cells, ${result.lloyd.iterations.length} iterations, ` +

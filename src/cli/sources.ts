@@ -9,14 +9,16 @@
  * - A mesh is parsed and checked here (finite coordinates, closed genus 0, consistent PLY
  *   element counts), so a broken mesh fails in a second, not when its run starts.
  */
+import { createHash } from 'node:crypto';
 import { resolve } from 'node:path';
 import type { GrayImage } from '../core/density';
 import { checkMesh } from '../core/mesh/check';
 import { parseMesh } from '../core/mesh/parse';
 import { MAX_MESH_BYTES, MAX_PNG_BYTES } from '../core/inputLimits';
-import { decodeGrayPng, ImageError, loadGrayImage } from '../node/image';
+import { decodeGrayPng, ImageError, readImageFile } from '../node/image';
 import { loadMeshFile } from '../node/meshFile';
 import type { MeshFile } from '../run/index';
+import type { InputFileRecord } from '../run/result';
 import { InputError } from './errors';
 
 export const isUrl = (src: string): boolean => /^https?:\/\//i.test(src);
@@ -31,7 +33,18 @@ export interface SourceOptions {
 export class Sources {
   private readonly images = new Map<string, Promise<GrayImage>>();
   private readonly meshes = new Map<string, Promise<MeshFile>>();
+  private readonly records = new Map<string, InputFileRecord>();
   constructor(private readonly options: SourceOptions) {}
+
+  /** The files read so far, one record each (field, src, size, SHA-256), in a fixed order. */
+  files(): InputFileRecord[] {
+    return [...this.records.values()].sort((a, b) => (a.field + a.src < b.field + b.src ? -1 : a.field + a.src > b.field + b.src ? 1 : 0));
+  }
+
+  private record(field: InputFileRecord['field'], src: string, bytes: Uint8Array | string): void {
+    const data = typeof bytes === 'string' ? Buffer.from(bytes, 'utf8') : bytes;
+    this.records.set(`${field} ${src}`, { field, src, bytes: data.byteLength, sha256: createHash('sha256').update(data).digest('hex') });
+  }
 
   densityImage(src: string): Promise<GrayImage> {
     const key = isUrl(src) ? src : resolve(this.options.baseDir, src);
@@ -49,8 +62,10 @@ export class Sources {
 
   private async loadImage(src: string, path: string): Promise<GrayImage> {
     try {
-      if (isUrl(src)) return decodeGrayPng(await this.fetchBytes(src, 'density.src', MAX_PNG_BYTES), src);
-      return loadGrayImage(path);
+      const bytes = isUrl(src) ? await this.fetchBytes(src, 'density.src', MAX_PNG_BYTES) : readImageFile(path);
+      const image = decodeGrayPng(bytes, isUrl(src) ? src : path);
+      this.record('density.src', src, bytes);
+      return image;
     } catch (error) {
       if (error instanceof ImageError) throw new InputError(`density.src: ${error.message}`);
       throw error;
@@ -66,6 +81,7 @@ export class Sources {
       file = loadMeshFile(src, this.options.baseDir);
     }
     checkMeshFile(file);
+    this.record('surface.src', src, typeof file.data === 'string' ? file.data : new Uint8Array(file.data));
     return file;
   }
 

@@ -47,7 +47,7 @@ import { Sources } from './sources';
 import { cachedFitter, fitOutcomes } from '../core/sweep/fitOutcomes';
 import { defaultWorkers, SweepThreadLost, SweepWorkers } from './sweepWorkers';
 import { gitCommitSoon, readRunsFile, seedGroups, sweepLayout, writeAggregates, type Run } from './sweepFiles';
-import { checkResumable } from './sweepRecord';
+import { checkResumable, checkResumedInputs } from './sweepRecord';
 
 export async function sweepCommand(options: CliOptions, signal: AbortSignal, writeLine: (line: string) => void): Promise<void> {
   const lines = batchedLines(writeLine);
@@ -116,6 +116,8 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
       if (inputs.has(run.pointKey)) continue;
       inputs.set(run.pointKey, await atPoint(run, () => loadInputs(configOf(run), sources)));
     }
+    const inputFiles = sources.files();
+    checkResumedInputs(options.out, inputFiles);
     const context = createHeadlessContext();
     let release = () => {};
     try {
@@ -144,6 +146,7 @@ async function sweepLogging(options: CliOptions, signal: AbortSignal, log: (line
               renderer: context.capabilities.renderer,
               started,
               ...(shard ? { shard: { index: shard.index, count: shard.count, of: layout.runs.length } } : {}),
+              ...(inputFiles.length > 0 ? { inputFiles } : {}),
               ...extra,
               spec,
             },

@@ -10,6 +10,7 @@ import { existsSync, lstatSync } from 'node:fs';
 import { join } from 'node:path';
 import { ConfigError, validateConfig } from '../core/config';
 import type { Shard, ValidSweepSpec } from '../core/sweep';
+import type { InputFileRecord } from '../run/result';
 import { version } from '../version';
 import { InputError } from './errors';
 import { readJsonFile } from './prepare';
@@ -20,6 +21,8 @@ export interface SweepRecord {
   renderer?: unknown;
   spec?: unknown;
   shard?: { index: number; count: number };
+  /** The mesh and density files the spec points to, as read (sources.ts). */
+  inputFiles?: InputFileRecord[];
 }
 
 /** Object keys sorted at every level: two specs (or configs) are the same when these texts are. */
@@ -78,16 +81,9 @@ const shardText = (shard: Shard | { index: number; count: number } | null | unde
  * and the rows that do not fit are set aside and computed again (resume.ts).
  */
 export function checkResumable(out: string, spec: ValidSweepSpec, shard: Shard | null): void {
-  if (!existsSync(join(out, 'sweep.json'))) return;
-  const record = readSweepRecord(out);
-  // No row computed yet (a sweep stopped at once): nothing to mix.
-  const lines = (readRunsFile(join(out, 'runs.csv')) ?? '').split('\n').filter((line) => line.trim() !== '');
-  if (lines.length <= 1) return;
-  const path = join(out, 'sweep.json');
-  const refuse = (why: string) =>
-    new InputError(
-      `--out ${out}: ${why}; its ${lines.length - 1} rows would be mixed with this sweep's: give a new directory, or resume with the spec that wrote it`,
-    );
+  const held = heldSweep(out);
+  if (!held) return;
+  const { record, path, refuse } = held;
   if (record.software!.version !== version) {
     throw refuse(`holds a sweep written by tissue-sheet ${String(record.software!.version)} (${path}), and this is ${version}`);
   }
@@ -108,4 +104,36 @@ export function checkResumable(out: string, spec: ValidSweepSpec, shard: Shard |
   const recordedShard = record.shard ?? null;
   const sameShard = recordedShard && shard && recordedShard.index === shard.index && recordedShard.count === shard.count;
   if (shard && !sameShard) throw refuse(`holds ${shardText(recordedShard)}, and this is ${shardText(shard)}`);
+}
+
+/**
+ * Refuses to resume in `out` a sweep whose mesh or density files changed since its rows were
+ * computed: the spec names them by path, their contents are recorded (size and SHA-256).
+ */
+export function checkResumedInputs(out: string, files: readonly InputFileRecord[]): void {
+  const held = heldSweep(out);
+  if (!held?.record.inputFiles) return;
+  const before = new Map(held.record.inputFiles.map((f) => [`${f.field} ${f.src}`, f]));
+  for (const file of files) {
+    const old = before.get(`${file.field} ${file.src}`);
+    if (old && old.sha256 !== file.sha256) {
+      throw held.refuse(
+        `${file.field} "${file.src}" has changed since (${old.bytes} bytes, SHA-256 ${old.sha256.slice(0, 12)}… then; ${file.bytes} bytes, ${file.sha256.slice(0, 12)}… now)`,
+      );
+    }
+  }
+}
+
+/** The sweep `out` holds with rows computed (its record, and how to refuse to mix them), or null. */
+function heldSweep(out: string): { record: SweepRecord; path: string; refuse: (why: string) => InputError } | null {
+  if (!existsSync(join(out, 'sweep.json'))) return null;
+  const record = readSweepRecord(out);
+  // No row computed yet (a sweep stopped at once): nothing to mix.
+  const lines = (readRunsFile(join(out, 'runs.csv')) ?? '').split('\n').filter((line) => line.trim() !== '');
+  if (lines.length <= 1) return null;
+  const refuse = (why: string) =>
+    new InputError(
+      `--out ${out}: ${why}; its ${lines.length - 1} rows would be mixed with this sweep's: give a new directory, or resume with the spec that wrote it`,
+    );
+  return { record, path: join(out, 'sweep.json'), refuse };
 }

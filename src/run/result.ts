@@ -88,6 +88,21 @@ export interface SheetResult {
   readonly byConstruction: ByConstruction | null;
   /** Closed surfaces only (sphere, ellipsoid, mesh): see docs/closed-surfaces.md. */
   readonly closed?: ClosedSurfaceRecord;
+  /**
+   * The files the config points to (mesh, density image) as the host read them, where it says
+   * (the CLI does): a path in `config` names a file, not its contents.
+   */
+  readonly inputFiles?: readonly InputFileRecord[];
+}
+
+/** A file a run read for its config: which field named it, its size and SHA-256 digest. */
+export interface InputFileRecord {
+  readonly field: 'surface.src' | 'density.src';
+  /** As the config gives it (a path relative to the config, or a URL). */
+  readonly src: string;
+  readonly bytes: number;
+  /** Lower-case hexadecimal. */
+  readonly sha256: string;
 }
 
 /** What a closed-surface run adds to the result (docs/closed-surfaces.md). */

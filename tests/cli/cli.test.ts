@@ -1,4 +1,5 @@
 import { spawn, spawnSync } from 'node:child_process';
+import { createHash } from 'node:crypto';
 import { existsSync, mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { hostname, tmpdir } from 'node:os';
 import { join } from 'node:path';
@@ -273,6 +274,27 @@ describe('tissue-sheet sweep', () => {
     const run = cli(['sweep', spec, '--out', join(dir, 'density')]);
     expect(run.stderr).toMatch(/2 runs computed/);
     expect(run.status).toBe(0);
+    // The spec names the image by path; the record holds what was read: its size and SHA-256.
+    const bytes = readFileSync(join(dir, 'half.png'));
+    const digest = createHash('sha256').update(bytes).digest('hex');
+    const record = JSON.parse(readFileSync(join(dir, 'density', 'sweep.json'), 'utf8'));
+    expect(record.inputFiles).toEqual([{ field: 'density.src', src: 'half.png', bytes: bytes.length, sha256: digest }]);
+    // The same file: resumed. Another image under the same name: refused, its rows kept.
+    expect(cli(['sweep', spec, '--out', join(dir, 'density')]).stderr).toMatch(/0 runs computed, 2 resumed/);
+    const rows = readFileSync(join(dir, 'density', 'runs.csv'), 'utf8');
+    writeFileSync(join(dir, 'half.png'), encode({ width: 8, height: 4, data: data.map((v, k) => (k % 4 === 3 ? v : 255 - v)), depth: 8, channels: 4 }));
+    const changed = cli(['sweep', spec, '--out', join(dir, 'density')]);
+    expect(changed.status).toBe(2);
+    expect(changed.stderr).toMatch(
+      /density\.src "half\.png" has changed since \(\d+ bytes, SHA-256 [0-9a-f]{12}… then; \d+ bytes, [0-9a-f]{12}… now\); its 2 rows would be mixed/,
+    );
+    expect(readFileSync(join(dir, 'density', 'runs.csv'), 'utf8')).toBe(rows);
+    // A run records the file it read too.
+    const config = writeJson('density-run.json', { ...small, lloyd: { maxIterations: 1 }, sheet: {}, density: { kind: 'image', src: 'half.png', high: 4 } });
+    expect(cli(['run', config, '--out', join(dir, 'density-run.out.json'), '--realizations', '1']).status).toBe(0);
+    const result = JSON.parse(readFileSync(join(dir, 'density-run.out.json'), 'utf8'));
+    const now = readFileSync(join(dir, 'half.png'));
+    expect(result.inputFiles).toEqual([{ field: 'density.src', src: 'half.png', bytes: now.length, sha256: createHash('sha256').update(now).digest('hex') }]);
   });
 
   const badSpecs: Array<[string, unknown, RegExp]> = [

@@ -115,7 +115,7 @@ describe('malformed meshes get their message through the pipeline', () => {
       process.chdir(tmpdir());
       const sample = loadMeshFile('organoid.ply', tmpdir());
       expect(sample.name).toBe(join(MESH_DIR, 'organoid.ply'));
-      expect(sample.data.byteLength).toBe(statSync(join(MESH_DIR, 'organoid.ply')).size);
+      expect((sample.data as ArrayBuffer).byteLength).toBe(statSync(join(MESH_DIR, 'organoid.ply')).size);
     } finally {
       process.chdir(here);
     }
