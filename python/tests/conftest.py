@@ -6,6 +6,7 @@ import shutil
 import subprocess
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import tissue_sheet
@@ -31,6 +32,25 @@ SWEEP = {
     "realizations": 2,
     "seed": 7,
 }
+
+
+VOXEL = (0.5, 0.5, 0.75)
+
+
+def shell_volume(sectors=10, rings=3, slices=6, size=44, inner=8.0, outer=17.0, twist=0.0):
+    """A tube cut open by the volume: a cylindrical shell along z in sectors x rings of cells.
+
+    ``twist`` turns the sector boundaries with the radius (radians across the shell), so cells
+    change neighbours between the lumen and the outside side.
+    """
+    z, y, x = np.mgrid[0 : rings * slices, 0:size, 0:size]
+    dx, dy = x + 0.5 - size / 2, y + 0.5 - size / 2
+    r = np.hypot(dx, dy)
+    angle = (np.arctan2(dy, dx) + 2 * np.pi + twist * (r - inner) / (outer - inner)) % (2 * np.pi)
+    sector = np.floor(angle / (2 * np.pi / sectors)).astype(int) % sectors
+    ring = z // slices
+    labels = (1 + sector + sectors * ring) * ((r >= inner) & (r < outer))
+    return labels.astype(np.uint16)
 
 
 def cli_command():
@@ -59,4 +79,17 @@ def outputs(tmp_path_factory):
                     result["cellsFile"]["path"] = "compact.cells.bin"
                 (d / f"{form}.json").write_text(json.dumps(result, indent=2))
     subprocess.run([*cli, "sweep", str(d / "sweep.json"), "--out", str(d / "sweep"), "--workers", "1"], check=True, capture_output=True)
+    return d
+
+
+@pytest.fixture(scope="session")
+def measured(tmp_path_factory):
+    """Measure results written by the CLI itself: layers.json (the example's two PNG layers) and
+    volume.json (a twisted shell volume, so its surfaces differ and have their own min contact)."""
+    d = tmp_path_factory.mktemp("measured")
+    cli = cli_command()
+    layers = [str(ROOT / "examples" / "measure" / f"{name}.png") for name in ("basal", "apical")]
+    subprocess.run([*cli, "measure", *layers, "--out", str(d / "layers.json"), "--pixel-size", "0.5", "--periodic-x"], check=True, capture_output=True)
+    tissue_sheet.write_label_tiff(d / "volume.tif", shell_volume(twist=1.2), VOXEL)
+    subprocess.run([*cli, "measure", "--volume", str(d / "volume.tif"), "--out", str(d / "volume.json")], check=True, capture_output=True)
     return d

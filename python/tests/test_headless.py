@@ -11,25 +11,7 @@ import pytest
 
 import tissue_sheet
 from tissue_sheet.tiff import read_label_tiff
-from conftest import ROOT, SWEEP, TUBE
-
-VOXEL = (0.5, 0.5, 0.75)
-
-
-def shell_volume(sectors=10, rings=3, slices=6, size=44, inner=8.0, outer=17.0, twist=0.0):
-    """A tube cut open by the volume: a cylindrical shell along z in sectors x rings of cells.
-
-    ``twist`` turns the sector boundaries with the radius (radians across the shell), so cells
-    change neighbours between the lumen and the outside side.
-    """
-    z, y, x = np.mgrid[0 : rings * slices, 0:size, 0:size]
-    dx, dy = x + 0.5 - size / 2, y + 0.5 - size / 2
-    r = np.hypot(dx, dy)
-    angle = (np.arctan2(dy, dx) + 2 * np.pi + twist * (r - inner) / (outer - inner)) % (2 * np.pi)
-    sector = np.floor(angle / (2 * np.pi / sectors)).astype(int) % sectors
-    ring = z // slices
-    labels = (1 + sector + sectors * ring) * ((r >= inner) & (r < outer))
-    return labels.astype(np.uint16)
+from conftest import ROOT, SWEEP, TUBE, VOXEL, shell_volume
 
 
 def test_label_tiff_round_trip(tmp_path):
@@ -151,3 +133,108 @@ def test_old_node_is_named(monkeypatch, tmp_path):
     monkeypatch.setenv("TISSUE_SHEET_CLI", str(ROOT / "bin" / "tissue-sheet.mjs"))
     with pytest.raises(tissue_sheet.TissueSheetCliNotFound, match="Node.js v18.19.1; tissue-sheet needs 20 or later"):
         tissue_sheet.run(TUBE)
+
+
+def test_an_array_the_cli_refuses_is_named_as_the_array():
+    # The CLI reads a temporary TIFF, gone by the time the message is read: name the array.
+    with pytest.raises(tissue_sheet.TissueSheetInputError) as e:
+        tissue_sheet.measure(np.zeros((3, 8, 8), dtype=np.uint8), voxel_size=VOXEL)
+    assert "the array: no cell labels" in str(e.value)
+    assert "labels.tif" not in str(e.value) and "tissue-sheet-" not in str(e.value)
+    with pytest.raises(tissue_sheet.TissueSheetInputError, match=r"the array labels\[0\]: no labels"):
+        tissue_sheet.measure([np.zeros((8, 8), dtype=np.uint8), np.ones((8, 8), dtype=np.uint8)], pixel_size=1)
+
+
+def write_png16(path, labels):
+    """A 16-bit grey PNG (no filter, one zlib stream): what a segmentation tool saves as a layer."""
+    import struct
+    import zlib
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    h, w = labels.shape
+    rows = b"".join(b"\0" + labels[y].astype(">u2").tobytes() for y in range(h))
+    ihdr = struct.pack(">IIBBBBB", w, h, 16, 0, 0, 0, 0)
+    Path(path).write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
+
+
+def brick_layers(rows=6, cols=8, size=12):
+    """An unrolled tube of brick cells: the apical layer twice as wide, its rows offset the other way (scutoids)."""
+    y, x = np.mgrid[0 : rows * size, 0 : cols * size]
+    row = y // size
+    basal = 1 + row * cols + ((x + (row % 2) * size // 2) // size) % cols
+    y, x = np.mgrid[0 : rows * size, 0 : 2 * cols * size]
+    row = y // size
+    apical = 1 + row * cols + ((x // 2 + ((row + 1) % 2) * size // 2) // size) % cols
+    return [basal.astype(np.uint16), apical.astype(np.uint16)]
+
+
+def test_measure_layer_arrays_equal_the_same_layers_as_images(tmp_path):
+    layers = brick_layers()
+    df = tissue_sheet.measure(layers, pixel_size=0.5, periodic_x=True)
+    for k, layer in enumerate(layers):
+        write_png16(tmp_path / f"{k}.png", layer)
+    files = tissue_sheet.measure([tmp_path / "0.png", tmp_path / "1.png"], pixel_size=0.5, periodic_x=True)
+    pd.testing.assert_frame_equal(df, files)
+    assert df.attrs["mode"] == "layers" and df.attrs["surfaceRatio"]["value"] == 2
+    assert list(df["layer_name"].unique()) == ["basal", "apical"]
+    for k, layer in enumerate(layers):
+        counts = np.bincount(layer.ravel())
+        rows = df[df["layer"] == k].set_index("label")
+        assert sorted(rows.index) == list(np.unique(layer))
+        for label, row in rows.iterrows():
+            assert row["area"] == counts[label] * 0.25
+    assert df["scutoid"].any()
+    # A path and an array mixed: the same measurement.
+    mixed = tissue_sheet.measure([tmp_path / "0.png", layers[1]], pixel_size=0.5, periodic_x=True)
+    pd.testing.assert_frame_equal(df, mixed)
+
+
+def test_layer_arrays_refused_with_what_is_accepted():
+    layers = brick_layers()
+    with pytest.raises(ValueError, match="voxel_size: is for a volume .* layer images takes pixel_size"):
+        tissue_sheet.measure(layers, voxel_size=VOXEL, pixel_size=0.5)
+    with pytest.raises(ValueError, match=r"pixel_size: give the pixel size in µm for the label array labels\[0\]"):
+        tissue_sheet.measure(layers)
+    with pytest.raises(ValueError, match=r"labels\[1\]: value 70048 is over 65,535"):
+        tissue_sheet.measure([layers[0], layers[1].astype(np.uint32) + 70000], pixel_size=0.5)
+    with pytest.raises(ValueError, match=r"labels\[0\]: a 2D array"):
+        tissue_sheet.measure([shell_volume(), layers[1]], pixel_size=0.5)
+    with pytest.raises(TypeError, match=r"labels\[1\]: a layer is the path of a label image or a 2D numpy label array, got int"):
+        tissue_sheet.measure([layers[0], 3], pixel_size=0.5)
+
+
+def _processes_naming(text):
+    """Processes whose command line holds ``text`` (Linux /proc)."""
+    found = []
+    for proc in Path("/proc").iterdir():
+        try:
+            if proc.name.isdigit() and text in (proc / "cmdline").read_bytes().decode(errors="replace"):
+                found.append(proc.name)
+        except OSError:
+            pass
+    return found
+
+
+def test_timeout_raises_our_error():
+    with pytest.raises(tissue_sheet.TissueSheetTimeout, match="tissue-sheet measure did not finish in 0.05 s") as e:
+        tissue_sheet.measure(shell_volume(), voxel_size=VOXEL, timeout=0.05)
+    assert isinstance(e.value, TimeoutError) and isinstance(e.value, tissue_sheet.TissueSheetCliError)
+    assert e.value.exit_code is None
+    with pytest.raises(ValueError, match="timeout: seconds > 0"):
+        tissue_sheet.run(TUBE, timeout=0)
+
+
+@pytest.mark.skipif(not Path("/proc/self/cmdline").exists(), reason="needs Linux /proc to look for processes left running")
+def test_timeout_stops_the_cli_and_what_it_started(monkeypatch, tmp_path):
+    # Without a display the launcher waits on xvfb-run and a second node: a stand-in CLI that
+    # waits on a child shell (named by tmp_path) as the launcher does. Both must be stopped.
+    cli = tmp_path / "tissue-sheet"
+    cli.write_text(f'#!/bin/sh\necho "tissue-sheet: started" >&2\nsh -c "sleep 300; echo {tmp_path}"\n')
+    cli.chmod(0o755)
+    monkeypatch.setenv("TISSUE_SHEET_CLI", str(cli))
+    with pytest.raises(tissue_sheet.TissueSheetTimeout, match="tissue-sheet run did not finish in 1 s .*its last line: tissue-sheet: started") as e:
+        tissue_sheet.run(TUBE, timeout=1)
+    assert "started" in e.value.stderr
+    assert _processes_naming(str(tmp_path)) == []

@@ -3,6 +3,7 @@
 import csv
 import json
 import math
+import re
 import shutil
 
 import numpy as np
@@ -198,3 +199,168 @@ def test_wrong_kinds_are_refused(outputs, tmp_path):
     bad = tmp_path / "bad.csv"
     with pytest.raises(ValueError, match="line 2 has 1 cells where the header has 2"):
         tissue_sheet.read_csv_text("a,b\n1\n", str(bad))
+
+
+def _damaged(source, tmp_path, edit, name="damaged.json"):
+    """A copy of a CLI result with ``edit`` applied to its JSON."""
+    result = json.loads(source.read_text())
+    edit(result)
+    path = tmp_path / name
+    path.write_text(json.dumps(result))
+    return path
+
+
+def _drop(key, at=0):
+    return lambda r: r["cells"][at].pop(key)
+
+
+def _set(key, value, at=0):
+    return lambda r: r["cells"][at].update({key: value})
+
+
+@pytest.mark.parametrize(
+    "damage, table, message",
+    [
+        (lambda r: r.update(cells="abc"), "cells", "cells is the string 'abc', not a list"),
+        (lambda r: r.update(cells=[1, 2]), "cells", r"cells\[0\] is the number 1, not an object"),
+        (_drop("sides"), "cells", r"cells\[0\] has no sides"),
+        (_set("sides", [6]), "cells", r"cells\[0\].sides has 1 entries, not 2 \(one per layer\)"),
+        (_set("areas", ["x", 1.0]), "cells", r"cells\[0\].areas\[0\] is the string 'x', not a number"),
+        # A cell whose areas are gone or null used to vanish from the table.
+        (_drop("areas", 5), "cells", r"cells\[5\] has no areas"),
+        (_set("areas", None, 5), "cells", r"cells\[5\].areas is null, not a list"),
+        (_set("valid", "yes"), "cells", r"cells\[0\].valid is the string 'yes', not true or false"),
+        (_set("won", -1), "cells", r"cells\[0\].won is the number -1, not a whole number"),
+        (_set("exclusion", 3), "cells", r"cells\[0\].exclusion is the number 3, not an object"),
+        # The CLI refuses images with no labels, so a result with no cells is damaged.
+        (lambda r: r.update(cells=[]), "cells", "cells is empty"),
+        (lambda r: r.update(inputs="x"), "cells", "inputs is the string 'x', not an object"),
+        (lambda r: r["inputs"].pop("layers"), "cells", "inputs has no layers"),
+        (lambda r: r["inputs"].update(layers=[{"name": "basal"}]), "cells", "inputs.layers lists 1 layer"),
+        (lambda r: r.update(analyses=5), "summary", "analyses is the number 5, not a list"),
+        (lambda r: r.update(analyses=5), "cells", "analyses is the number 5, not a list"),
+        (lambda r: r["analyses"][0].update(summary=[]), "summary", r"analyses\[0\].summary is a list, not an object"),
+        (lambda r: r["analyses"][0]["summary"].update(perSurface=[1]), "summary", r"perSurface\[0\] is the number 1, not an object"),
+        (lambda r: r.update(software="x"), "cells", "software is the string 'x', not an object"),
+    ],
+)
+def test_damaged_measure_results_are_refused_by_name(measured, tmp_path, damage, table, message):
+    path = _damaged(measured / "layers.json", tmp_path, damage)
+    with pytest.raises(tissue_sheet.ResultFormatError, match=re.escape(str(path)) + ": .*" + message):
+        tissue_sheet.read_measure(path, table)
+
+
+@pytest.mark.parametrize(
+    "damage, message",
+    [
+        (_set("centroids", [[1.0, 2.0, 3.0]]), r"cells\[0\].centroids has 1 entries, not 2 \(one per layer\)"),
+        (_set("centroids", [[1.0, 2.0], None]), r"cells\[0\].centroids\[0\] has 2 entries, not 3"),
+        (_set("height", "tall"), r"cells\[0\].height is the string 'tall', not a number"),
+        (_drop("volume"), r"cells\[0\] has no volume"),
+        (_set("lateralNeighbours", None), r"cells\[0\].lateralNeighbours is null, not a list"),
+    ],
+)
+def test_damaged_volume_results_are_refused_by_name(measured, tmp_path, damage, message):
+    path = _damaged(measured / "volume.json", tmp_path, damage)
+    with pytest.raises(tissue_sheet.ResultFormatError, match=re.escape(str(path)) + ": " + message):
+        tissue_sheet.read_measure(path)
+
+
+def test_measure_tables_are_the_json(measured):
+    for name in ("layers.json", "volume.json"):
+        result = json.loads((measured / name).read_text())
+        df = tissue_sheet.read_measure(measured / name)
+        assert len(df) == 2 * len(result["cells"])
+        rows = df.set_index(["layer", "label"])
+        for c in result["cells"]:
+            for k in range(2):
+                row = rows.loc[(k, c["label"])]
+                assert (row["area"], row["sides"], row["neighbours"]) == (c["areas"][k], c["sides"][k], len(c["neighbours"][k]))
+                assert (row["valid"], row["scutoid"]) == (c["valid"], c["scutoid"])
+                reason = (c["exclusion"] or {}).get("reason")
+                assert row["excluded"] == reason if reason else pd.isna(row["excluded"])
+
+
+def test_volume_summary_has_each_surface_min_contact(measured):
+    # A volume's surfaces each have their own default min contact (scaled to their cells): the
+    # apical row once showed the basal one (analyses[0].minContactLength).
+    result = json.loads((measured / "volume.json").read_text())
+    own = [layer["minContact"] for layer in result["inputs"]["layers"]]
+    assert own[0] != own[1]
+    summary = tissue_sheet.read_measure(measured / "volume.json", "summary")
+    assert list(summary["surface_name"]) == ["basal", "apical"]
+    assert list(summary["min_contact_length"]) == own
+    assert summary.attrs["minContactLength"] == result["analyses"][0]["minContactLength"] == own[0]
+    # Layers share one threshold: every row carries it.
+    layers = tissue_sheet.read_measure(measured / "layers.json", "summary")
+    threshold = json.loads((measured / "layers.json").read_text())["analyses"][0]["minContactLength"]
+    assert list(layers["min_contact_length"]) == [threshold, threshold]
+
+
+@pytest.mark.parametrize(
+    "damage, table, message",
+    [
+        (lambda r: r.update(cells="abc"), "cells", "cells is the string 'abc', not a list"),
+        (lambda r: r.update(cells="abc"), "contacts", "cells is the string 'abc', not a list"),
+        (_set("area", "x"), "cells", r"cells\[0\].area is the string 'x', not a number"),
+        (_set("position", [1.0, 2.0]), "cells", r"cells\[0\].position has 2 entries, not 3"),
+        (_drop("touchesBorder"), "cells", r"cells\[0\] has no touchesBorder"),
+        (lambda r: r["cells"][0]["neighbours"][0].update(id=999), "contacts", r"cells\[0\].neighbours\[0\].id is the number 999, not a cell of the 40"),
+        # A short sides list used to be read as zeros for the missing surfaces.
+        (lambda r: r["analyses"][0]["cells"][3].update(sides=[5]), "cells", r"analyses\[0\].cells\[3\].sides has 1 entries, not 3 \(one per surface\)"),
+        (lambda r: r["surfaces"][0]["cells"].pop(), "cells", r"surfaces\[0\].cells"),
+        (lambda r: r.update(analyses=5), "summary", "analyses is the number 5, not a list"),
+        (lambda r: r.update(analyses=[5]), "summary", r"analyses\[0\] is the number 5, not an object"),
+        (lambda r: r["analyses"][0]["summary"].update(perSurface=[1]), "summary", r"perSurface\[0\] is the number 1, not an object"),
+        (lambda r: r.update(surfaces=[5]), "cells", r"surfaces\[0\] is the number 5, not an object"),
+        (lambda r: r.update(config="x"), "cells", "config is the string 'x', not an object"),
+        (lambda r: r.update(headline="x"), "summary", "headline is the string 'x', not an object"),
+        (lambda r: r.update(lloyd="x"), "cells", "lloyd is the string 'x', not an object"),
+        (lambda r: r.update(cellsFile="x"), "cells", "cellsFile is the string 'x', not an object"),
+    ],
+)
+def test_damaged_run_results_are_refused_by_name(outputs, tmp_path, damage, table, message):
+    path = _damaged(outputs / "plain.json", tmp_path, damage)
+    with pytest.raises(tissue_sheet.ResultFormatError, match=re.escape(str(path)) + ": .*" + message):
+        tissue_sheet.read_result(path, table)
+
+
+@pytest.mark.parametrize(
+    "edit, message",
+    [
+        (lambda r: r.update(tables="x"), "cellsFile.tables is the string 'x', not a list"),
+        (lambda r: r["tables"][0].pop("columns"), r"cellsFile.tables\[0\].columns is null, not an object"),
+        (lambda r: r["tables"][0]["columns"].update(area=[]), "cells.area is a list, not an object"),
+        (lambda r: r["tables"][0]["columns"]["area"].update(type=["float64"]), "cells.area has type"),
+        (lambda r: r["tables"][1].update(of="surfaces[x].cells"), r"the surfaces tables are numbered \[1\], not 0 to 0"),
+        (lambda r: r["tables"].pop(2), "1 surface tables of cells where the result lists 2 surfaces"),
+    ],
+)
+def test_damaged_side_file_records_are_refused_by_name(outputs, tmp_path, edit, message):
+    for name in ("compact.json", "compact.cells.bin"):
+        shutil.copy(outputs / name, tmp_path / name)
+    _edit_record(tmp_path, edit)
+    with pytest.raises(tissue_sheet.ResultFormatError, match=message):
+        tissue_sheet.read_result(tmp_path / "compact.json")
+
+
+@pytest.mark.parametrize("reader", [tissue_sheet.read_result, tissue_sheet.read_measure])
+def test_files_that_are_no_results_are_refused_by_name(tmp_path, reader):
+    image = ROOT / "examples" / "measure" / "basal.png"
+    with pytest.raises(tissue_sheet.ResultFormatError, match=re.escape(str(image)) + ": not a result file but a PNG image"):
+        reader(image)
+    with pytest.raises(tissue_sheet.ResultFormatError, match=re.escape(str(tmp_path)) + ": a directory, not a result file"):
+        reader(tmp_path)
+    (tmp_path / "list.json").write_text("[1, 2]")
+    with pytest.raises(tissue_sheet.ResultFormatError, match="list.json: "):
+        reader(tmp_path / "list.json")
+
+
+def test_damaged_sweep_files_are_refused_by_name(outputs, tmp_path):
+    shutil.copytree(outputs / "sweep", tmp_path / "sweep")
+    (tmp_path / "sweep" / "sweep.json").write_text("[1]")
+    with pytest.raises(tissue_sheet.ResultFormatError, match="sweep.json is a list, not an object"):
+        tissue_sheet.read_sweep(tmp_path / "sweep")
+    shutil.copy(ROOT / "examples" / "measure" / "basal.png", tmp_path / "sweep" / "runs.csv")
+    with pytest.raises(tissue_sheet.ResultFormatError, match="runs.csv: not runs.csv but a PNG image"):
+        tissue_sheet.read_sweep(tmp_path / "sweep")

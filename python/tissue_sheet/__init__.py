@@ -6,7 +6,16 @@
 """
 
 from ._version import __version__
-from .headless import TissueSheetCliError, TissueSheetCliNotFound, TissueSheetInputError, find_cli, measure, run, sweep
+from .headless import (
+    TissueSheetCliError,
+    TissueSheetCliNotFound,
+    TissueSheetInputError,
+    TissueSheetTimeout,
+    find_cli,
+    measure,
+    run,
+    sweep,
+)
 from .readers import (
     ResultFormatError,
     cells_table,
@@ -53,5 +62,6 @@ __all__ = [
     "TissueSheetCliError",
     "TissueSheetCliNotFound",
     "TissueSheetInputError",
+    "TissueSheetTimeout",
     "ResultFormatError",
 ]

@@ -1,9 +1,10 @@
-"""A minimal multi-page TIFF writer for label volumes (no dependency beyond numpy).
+"""A minimal multi-page TIFF writer for label volumes and layers (no dependency beyond numpy).
 
-Writes what ``tissue-sheet measure --volume`` reads: one uncompressed page per z-slice, one
-unsigned 8-, 16- or 32-bit sample per pixel, little-endian, one strip per page, and an ImageJ
-description with the voxel size (``unit=micron``, ``spacing=``) and X/YResolution in pixels per
-µm, so the file also opens in Fiji with its calibration.
+Writes what ``tissue-sheet measure`` reads: one uncompressed page per z-slice, one unsigned 8-,
+16- or 32-bit sample per pixel, little-endian, one strip per page, and an ImageJ description
+with the voxel size (``unit=micron``, ``spacing=``) and X/YResolution in pixels per µm, so the
+file also opens in Fiji with its calibration. ``write_layer_tiff`` writes one 2D layer of the
+layers mode (one page, 8 or 16 bits: that mode reads no 32-bit labels).
 """
 
 from __future__ import annotations
@@ -61,12 +62,35 @@ def write_label_tiff(path: str | os.PathLike, labels: np.ndarray, voxel_size: Se
         raise ValueError(f"labels: at least two z-slices are needed, got {depth}")
     if len(voxel_size) != 3 or not all(isinstance(v, (int, float, np.number)) and np.isfinite(v) and v > 0 for v in voxel_size):
         raise ValueError(f"voxel_size: three positive numbers (x, y, z) in µm are needed, got {voxel_size!r}")
+    x, y, z = (float(v) for v in voxel_size)
+    description = f"ImageJ=1.54f\nimages={depth}\nslices={depth}\nunit=micron\nspacing={z!r}\nloop=false\n"
+    _write_pages(path, labels, label_dtype(labels), x, y, description)
+
+
+def write_layer_tiff(path: str | os.PathLike, labels: np.ndarray, pixel_size: float) -> None:
+    """Writes a (y, x) label image, one layer of ``tissue-sheet measure LAYER_FILE...``, as a one-page TIFF.
+
+    ``pixel_size``: the (square) pixel's edge in µm. Labels up to 65,535: the layers mode reads
+    8- and 16-bit images only.
+    """
+    labels = np.asarray(labels)
+    if labels.ndim != 2:
+        raise ValueError(f"labels: a 2D array (y, x) is needed for a layer, got {labels.ndim} dimensions {labels.shape}")
+    if not (isinstance(pixel_size, (int, float, np.number)) and np.isfinite(pixel_size) and pixel_size > 0):
+        raise ValueError(f"pixel_size: a positive number of µm is needed, got {pixel_size!r}")
     dtype = label_dtype(labels)
+    if dtype.itemsize > 2:
+        raise ValueError(f"labels: value {labels.max()} is over 65,535 (layer images hold 8- or 16-bit labels; renumber the cells)")
+    _write_pages(path, labels[np.newaxis], dtype, float(pixel_size), float(pixel_size), "ImageJ=1.54f\nunit=micron\n")
+
+
+def _write_pages(path: str | os.PathLike, labels: np.ndarray, dtype: np.dtype, x: float, y: float, description_text: str) -> None:
+    """The TIFF itself: a (pages, y, x) array, ``x`` and ``y`` the pixel's size in µm, an ImageJ description."""
+    depth, height, width = labels.shape
     data = np.ascontiguousarray(labels.astype(dtype, copy=False))
     bits = dtype.itemsize * 8
     page_bytes = width * height * dtype.itemsize
-    x, y, z = (float(v) for v in voxel_size)
-    description = f"ImageJ=1.54f\nimages={depth}\nslices={depth}\nunit=micron\nspacing={z!r}\nloop=false\n".encode("ascii") + b"\0"
+    description = description_text.encode("ascii") + b"\0"
 
     out = bytearray(b"II*\0" + struct.pack("<I", 0))
     first_ifd_at = 4
