@@ -62,6 +62,12 @@ export async function mergeCommand(args: string[], log: (line: string) => void):
   }
   const records = options.dirs.map((dir) => ({ dir, record: readSweepRecord(dir) }));
   const first = records[0];
+  // One version may span commits (a checkout between shards): said, not refused.
+  const commits = [...new Set(records.map((r) => r.record.software!.commit).filter((c): c is string => typeof c === 'string'))];
+  if (commits.length > 1)
+    log(
+      `warning: the directories were written by ${commits.length} commits of tissue-sheet ${String(first.record.software!.version)} (${commits.map((c) => c.slice(0, 10)).join(', ')}); their rows are merged as one version's`,
+    );
   for (const { dir, record } of records.slice(1)) {
     if (record.software!.version !== first.record.software!.version) {
       throw new InputError(

@@ -17,7 +17,7 @@ import { readJsonFile } from './prepare';
 import { readRunsFile } from './sweepFiles';
 
 export interface SweepRecord {
-  software?: { name?: unknown; version?: unknown };
+  software?: { name?: unknown; version?: unknown; commit?: unknown };
   renderer?: unknown;
   spec?: unknown;
   shard?: { index: number; count: number };

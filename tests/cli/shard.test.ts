@@ -159,5 +159,15 @@ describe('sweep --shard and merge', () => {
     expect(same.stderr).toMatch(/0 runs computed, \d+ resumed/);
     // With --force, merge replaces the rows it was told to.
     expect(cli(['merge', first, '--out', join(dir, 'merge-into'), '--force']).status).toBe(0);
+    // One version across two commits: merged, and said.
+    const [a, b] = ['commit-a', 'commit-b'].map((name, k) => {
+      const to = copy(name);
+      const r = JSON.parse(read(to, 'sweep.json'));
+      writeFileSync(join(to, 'sweep.json'), JSON.stringify({ ...r, software: { ...r.software, commit: `${k}`.repeat(40) } }, null, 2));
+      return to;
+    });
+    const mixed = cli(['merge', a, b, '--out', join(dir, 'merged-commits')]);
+    expect(mixed.status, mixed.stderr).toBe(0);
+    expect(mixed.stderr).toMatch(/warning: the directories were written by 2 commits of tissue-sheet .* \(0000000000, 1111111111\)/);
   }, 120_000);
 });
