@@ -16,7 +16,7 @@ import { viewStack, type ViewStack } from '../view/stack';
 import { Charts } from './panels/charts';
 import { ConfigControls } from './panels/controls';
 import { bindExports } from './panels/exports';
-import { rerunNote, type OpenedFile } from './model/project';
+import { rerunNote, type OpenedFile, type RunOutcome } from './model/project';
 import { renderHeadline, renderResults } from './panels/results';
 import { cellSizeNote, explainRefusal } from './model/refusal';
 import { changedFields, setMeshExtent } from './panels/fields';
@@ -56,6 +56,9 @@ const realizations = new RealizationsPanel({
   shown: () => stack,
   replace: (next) => (stack = next),
   onError: (message) => showError(message),
+  onValid: (message) => {
+    if (errorBox.querySelector('.error-main')?.textContent === message) clearError();
+  },
   onBusy: () => (cancelButton.disabled = !runner.running && !realizations.running),
 });
 
@@ -112,9 +115,15 @@ function markStale(): void {
   note.textContent = `Stale: this result is for ${diffs.map((d) => `${d.label} ${d.shown}`).join(', ')}; the form says ${diffs.map((d) => `${d.label} ${d.form}`).join(', ')}; ${why}`;
 }
 
-/** True when `config` is the link's own configuration (its errors stay until dismissed). */
-function isLinkConfig(config: unknown): boolean {
-  return linkConfig !== null && JSON.stringify(config) === JSON.stringify(linkConfig);
+/**
+ * True when `draft` (or its validated `config`) is the link's own configuration (its errors stay
+ * until dismissed, its questions say "This link"). Both forms are compared: validation fills in
+ * defaults (a mesh surface's), so a validated config never equals the link's draft as written.
+ */
+function isLinkConfig(draft: unknown, config?: Config): boolean {
+  if (linkConfig === null) return false;
+  if (JSON.stringify(draft) === JSON.stringify(linkConfig)) return true;
+  return config !== undefined && linkValidated !== null && JSON.stringify(config) === linkValidated;
 }
 
 /** A configuration that cannot run: a link's refusal stays until dismissed, an edit's until the next run. */
@@ -136,6 +145,14 @@ renderLegend($('#legend'));
 const link = readLink(location.href);
 const linkConfig = link.kind === 'ok' ? link.config : null;
 const openedLink = linkConfig ? { config: linkConfig, href: location.href } : null;
+/** The link's configuration validated (JSON), or null when it has none or it does not validate. */
+const linkValidated = ((): string | null => {
+  try {
+    return linkConfig ? JSON.stringify(validateConfig(validateConfigDraft(linkConfig))) : null;
+  } catch {
+    return null;
+  }
+})();
 const linkAlert = new LinkAlert($('#link-alert'));
 const sourceQuestion = new SourceQuestion($('#source-question'));
 for (const element of document.querySelectorAll('[data-version]')) element.textContent = version;
@@ -194,9 +211,12 @@ async function openInPage(file: OpenedFile, name: string): Promise<void> {
   clearError();
   const config = file.kind === 'result-rerun' ? file.result.config : file.output.result.config;
   controls.setConfig(config);
+  // The file's number of realizations: the control and the address say the n of its headline.
+  realizations.setFromFile((file.kind === 'result-rerun' ? file.result : file.output.result).headline?.realizations);
   if (file.kind === 'result-rerun') {
-    await run(config);
-    statusLine.textContent = `Opened ${name}: ${rerunNote(file.result, stack)}`;
+    // The note compares the file with this run's result only, never with what was on screen.
+    const outcome = await run(config);
+    statusLine.textContent = `Opened ${name}: ${rerunNote(file.result, outcome)}`;
     return;
   }
   // The form's rebuild and the views in tasks of their own (issue 27: no task over 50 ms).
@@ -204,6 +224,7 @@ async function openInPage(file: OpenedFile, name: string): Promise<void> {
   await show(file.output, config, false, true);
   if (file.kind === 'project' && stack) viewPanel.restore(stack, file.view);
   saveConfig(config, openedLink);
+  realizations.syncParam();
   statusLine.textContent =
     file.kind === 'project'
       ? `Opened project ${name}: the result and view as saved; nothing was run.`
@@ -269,7 +290,7 @@ async function show(output: SheetOutput, draft: ConfigDraft, live = false, opene
  * Validates and runs `draft`; on success the result replaces the one on screen. `live` (a slider
  * being dragged) waits for the run in flight instead of cancelling it, so pictures stream.
  */
-async function run(draft: ConfigDraft, live = false): Promise<void> {
+async function run(draft: ConfigDraft, live = false): Promise<RunOutcome> {
   lastDraft = JSON.stringify(draft);
   lastRunLive = live;
   let config: Config;
@@ -279,22 +300,23 @@ async function run(draft: ConfigDraft, live = false): Promise<void> {
     config = validateConfig(input);
   } catch (error) {
     refuse(error, isLinkConfig(draft));
-    return;
+    return { kind: 'refused', message: (error as Error).message };
   }
   try {
     // The work is bounded before anything is allocated (the page cannot raise the budget).
     checkPageBudget(config, computeContext().capabilities.maxTextureSize);
   } catch (error) {
-    refuse(error, isLinkConfig(config), config);
-    return;
+    refuse(error, isLinkConfig(draft, config), config);
+    return { kind: 'refused', message: (error as Error).message };
   }
   const pending = pendingSources(config, location.href);
   if (pending.length > 0) {
     // Nothing is requested from another origin before the user's click.
-    sourceQuestion.ask(pending, isLinkConfig(config) ? 'This link' : 'This configuration', () => void run(config));
+    sourceQuestion.ask(pending, isLinkConfig(draft, config) ? 'This link' : 'This configuration', () => void run(config));
     statusLine.textContent = `Waiting: load ${pending[0].path} from ${pending[0].host}?`;
     setState('waiting');
-    return;
+    markStale();
+    return { kind: 'waiting', path: pending[0].path, host: pending[0].host };
   }
   sourceQuestion.close();
   clearError();
@@ -331,6 +353,7 @@ async function run(draft: ConfigDraft, live = false): Promise<void> {
     setState('done');
     markStale();
     if (!live) void realizations.start(output);
+    return { kind: 'done', result: output.result };
   } catch (error) {
     if (isAbort(error)) {
       // A newer run replaced this one, or the user cancelled: the previous result stays.
@@ -339,11 +362,18 @@ async function run(draft: ConfigDraft, live = false): Promise<void> {
         setState('cancelled');
         markStale();
       }
-      return;
+      return { kind: 'cancelled' };
+    }
+    // A link's input the run could not use (its density image, its mesh): said as the link's.
+    if (error instanceof ConfigError && isLinkConfig(draft, config)) {
+      refuse(error, true, config);
+      statusLine.textContent = 'The link was not used.';
+      return { kind: 'refused', message: error.message };
     }
     setState(error instanceof GpuCapabilityError ? 'no-webgl' : 'error');
     showError(error, config);
     statusLine.textContent = stack ? 'Failed; the previous result is still shown.' : 'Failed.';
+    return { kind: 'failed', message: (error as Error).message };
   } finally {
     cancelButton.disabled = !runner.running;
   }
@@ -395,7 +425,8 @@ $('#share').addEventListener('click', async () => {
   try {
     // The configuration of the result on screen, not the form's draft.
     if (!stack) throw new Error('Nothing to share yet: run a sheet first.');
-    const shared = urlWithConfig(location.href, stack.result.config);
+    // Its draft (a default resolution kept null, docs/app.md), as the address holds it.
+    const shared = urlWithConfig(location.href, shownDraft ?? stack.result.config);
     $('#share').dataset.link = shared;
     await navigator.clipboard?.writeText(shared);
     statusLine.textContent = 'Link copied: it reproduces the result on screen.';

@@ -51,6 +51,10 @@ export class TissueSheetElement extends HTMLElement {
   private mesh: MeshFile | null = null;
   private last: SheetResult | null = null;
   private view: SheetView3D | null = null;
+  /** Stops the view's hover tracking (trackCellHover), while a view is open. */
+  private untrackHover: (() => void) | null = null;
+  /** The output in the 3D view (drawn again when the view is made anew: reconnected, context restored). */
+  private drawn: SheetOutput | null = null;
   private readonly runner = new LatestRunner();
   /** The slider path: a change of `sheet.*` only redraws the result on screen from its seeded surface. */
   private readonly livePath = new LivePath(this.runner, (full) => this.drawStack(full));
@@ -100,9 +104,23 @@ export class TissueSheetElement extends HTMLElement {
     return configFromAttributes(this, this.base, this.mesh?.name);
   }
 
-  /** A configuration (fields may be left out); attributes still override its fields. */
+  /**
+   * A configuration (fields may be left out); attributes still override its fields. Anything but
+   * an object or null (`el.config = 5`, a JSON string) is refused: the setter throws a ConfigError
+   * on `config`, also sent as an `error` event, and the configuration stays as it was.
+   */
   set config(value: ConfigInput | null) {
-    this.base = value ? structuredClone(value) : null;
+    const given = value as unknown;
+    if (given !== null && given !== undefined && (typeof given !== 'object' || Array.isArray(given))) {
+      const what = Array.isArray(given) ? 'an array' : `a ${typeof given}`;
+      const error = new ConfigError(
+        'config',
+        `config: expected a configuration object (or null), got ${what}; set fields as an object, e.g. el.config = { cells: 100 }`,
+      );
+      this.fail(error);
+      throw error;
+    }
+    this.base = given ? structuredClone(value) : null;
     this.schedule();
   }
 
@@ -149,30 +167,105 @@ export class TissueSheetElement extends HTMLElement {
   }
 
   connectedCallback(): void {
+    this.warned.clear();
     this.checkAttributes();
-    if (!this.view) {
-      try {
-        this.view = new SheetView3D(this.shadow.querySelector('canvas')!);
-        trackCellHover(this.view.canvas, this.view, ({ picked, changed }) => {
-          if (changed) this.emit('cell-hover', picked ? { cell: picked.cell, surface: picked.surface } : null);
-        });
-      } catch {
-        this.view = null; // the error event of the run says why
-      }
-    }
+    // Attributes set later that the element does not observe (a typo such as `cels`) are said too.
+    this.attributeWatch.observe(this, { attributes: true });
+    this.openView();
     this.schedule();
   }
 
   disconnectedCallback(): void {
+    this.attributeWatch.disconnect();
     this.runner.cancel();
     this.realizationRuns.stop();
+    // A browser keeps only so many WebGL contexts (about 16) and drops the oldest beyond that:
+    // a removed element gives its context back at once (connecting it again makes a new one).
+    this.closeView();
   }
+
+  /** The 3D view on the Shadow DOM's canvas, with the result drawn before (if any). */
+  private openView(): void {
+    if (this.view) return;
+    const canvas = this.shadow.querySelector('canvas')!;
+    try {
+      this.view = new SheetView3D(canvas);
+    } catch {
+      this.view = null; // the error event of the run says why
+      return;
+    }
+    this.untrackHover = trackCellHover(canvas, this.view, ({ picked, changed }) => {
+      if (changed) this.emit('cell-hover', picked ? { cell: picked.cell, surface: picked.surface } : null);
+    });
+    canvas.addEventListener('webglcontextlost', this.onContextLost);
+    canvas.addEventListener('webglcontextrestored', this.onContextRestored);
+    if (this.drawn) this.redraw();
+  }
+
+  /** Releases the 3D view's GL resources and its context; a fresh canvas waits for the next openView. */
+  private closeView(): void {
+    const view = this.view;
+    if (!view) return;
+    this.view = null;
+    const canvas = view.canvas;
+    canvas.removeEventListener('webglcontextlost', this.onContextLost);
+    canvas.removeEventListener('webglcontextrestored', this.onContextRestored);
+    this.untrackHover?.();
+    this.untrackHover = null;
+    view.dispose();
+    view.renderer.forceContextLoss();
+    // A canvas keeps its context, lost now, for good: a new canvas takes its place.
+    canvas.replaceWith(canvas.cloneNode(false));
+  }
+
+  /**
+   * The browser took the view's context away (too many WebGL contexts in the page, or a GPU
+   * reset): said in the status line and as an `error` event, never a silently blank view.
+   */
+  private readonly onContextLost = (event: Event): void => {
+    event.preventDefault(); // lets the browser restore it (webglcontextrestored)
+    this.fail(
+      new WebGLContextLostError(
+        'tissue-sheet: the 3D view lost its WebGL context (the browser drops the oldest one when a page holds too many, or the GPU was reset); it stays blank until the browser restores it or the element is connected again.',
+      ),
+    );
+  };
+
+  private readonly onContextRestored = (): void => {
+    this.redraw();
+    this.status('The 3D view was restored.');
+  };
+
+  /** Draws the output drawn before into the view again (a new view, or a restored context). */
+  private redraw(): void {
+    if (!this.drawn) return;
+    try {
+      this.drawStack(this.drawn);
+    } catch (error) {
+      this.status(`3D view: ${(error as Error).message}`, true);
+    }
+  }
+
+  /** The unknown attributes already warned about while connected (each is said once). */
+  private readonly warned = new Set<string>();
+
+  /** Changes of attributes the element does not observe (attributeChangedCallback sees the others). */
+  private readonly attributeWatch = new MutationObserver((records) => {
+    const observed = TissueSheetElement.observedAttributes;
+    if (records.some((record) => record.attributeName !== null && !observed.includes(record.attributeName))) {
+      this.checkAttributes();
+      this.statusLine.refresh();
+    }
+  });
 
   /** Attributes the element does not know are said (a warning event each, and in the status). */
   private checkAttributes(): void {
     const unknown = unknownAttributes(this.getAttributeNames(), TissueSheetElement.observedAttributes);
     this.statusLine.setUnknownAttributes(unknown.map((warning) => warning.message));
-    for (const warning of unknown) this.emit<TissueSheetWarningDetail>('warning', warning);
+    const fresh = unknown.filter((warning) => !this.warned.has(warning.attribute));
+    this.warned.clear();
+    for (const warning of unknown) this.warned.add(warning.attribute);
+    for (const warning of fresh) this.emit<TissueSheetWarningDetail>('warning', warning);
   }
 
   /** Once: runs fell back from the worker to the page; said in the status and as a warning event. */
@@ -260,6 +353,7 @@ export class TissueSheetElement extends HTMLElement {
 
   /** The stack of `output` in the 3D view (throws when the view cannot draw it). */
   private drawStack(output: SheetOutput): void {
+    this.drawn = output;
     this.view?.setStack(viewStack(output));
     this.view?.acceleratePicking();
   }
@@ -348,4 +442,9 @@ export class TissueSheetElement extends HTMLElement {
   private emit<T>(type: keyof TissueSheetEventMap, detail: T): void {
     this.dispatchEvent(new CustomEvent(type, { detail, bubbles: true, composed: true }));
   }
+}
+
+/** The `error` event's name when the browser took the 3D view's WebGL context away. */
+class WebGLContextLostError extends Error {
+  override name = 'WebGLContextLostError';
 }

@@ -11,7 +11,7 @@
 import { ConfigError, configSchema, validateConfig, type Config, type ConfigInput, type SurfaceConfig } from '../core/config';
 import { densityPreset, surfaceOfKind } from '../core/config/presets';
 import { layoutOfKind, surfaceLayout } from '../core/config/surfaceLayout';
-import { kindsWithField, schemaField } from '../core/config/schemaFields';
+import { kindsWithField, schemaField, schemaUnion } from '../core/config/schemaFields';
 import { setPath } from '../core/sweep';
 import { readDecimal } from '../core/config/decimal';
 
@@ -137,8 +137,21 @@ export function configFromAttributes(element: Element, base: ConfigInput | null,
   if (!element.hasAttribute('surface-ratio') && (kind !== 'tube' || element.hasAttribute('thickness'))) sheet.surfaceRatio = null;
   input.sheet = sheet;
   let config = validateConfig(input);
-  const density = element.getAttribute('density');
+  const density = densityAttribute(element.getAttribute('density'));
   if (density !== null && density !== config.density.kind) config = validateConfig({ ...config, density: densityPreset(density, config) });
   if (surfaceLayout(config).uniformDensityOnly && density === null && config.density.kind !== 'uniform') config = { ...config, density: { kind: 'uniform' } };
   return config;
+}
+
+/**
+ * The `density` attribute (a preset's kind), checked like every enumerated attribute: a value
+ * that is not a density kind (`"gausian"`) is refused naming the attribute and the kinds, never
+ * run as uniform density.
+ */
+function densityAttribute(text: string | null): string | null {
+  if (text === null) return null;
+  const kinds = schemaUnion('density').branches.map((branch) => branch.kind);
+  const kind = text.trim();
+  if (!kinds.includes(kind)) throw new ConfigError('density.kind', `density: must be one of ${kinds.map((k) => `"${k}"`).join(', ')} (got "${text}")`);
+  return kind;
 }

@@ -14,11 +14,14 @@ export interface StatusElement {
 export class StatusLine {
   private unknown: string[] = [];
   private fallback: string | null = null;
+  /** The text shown last (without the warnings), for `refresh`. */
+  private text: { text: string; error: boolean } | null = null;
 
   constructor(private readonly line: StatusElement) {}
 
   /** `text` with the warnings after it; `error` marks it as a failure. */
   show(text: string, error = false): void {
+    this.text = { text, error };
     const warnings = [...this.unknown, ...(this.fallback ? [this.fallback] : [])];
     this.line.textContent = warnings.length ? `${text} — ${warnings.join('; ')}.` : text;
     this.line.classList.toggle('error', error);
@@ -27,6 +30,12 @@ export class StatusLine {
   /** The unknown-attribute warnings now (they replace the previous ones). */
   setUnknownAttributes(messages: readonly string[]): void {
     this.unknown = [...messages];
+  }
+
+  /** Writes the last text again with the warnings as they are now (an attribute changed since). */
+  refresh(): void {
+    if (this.text) this.show(this.text.text, this.text.error);
+    else if (this.unknown.length) this.show('');
   }
 
   /**

@@ -287,6 +287,8 @@ export class SheetView3D {
   }
 
   dispose(): void {
+    cancelAnimationFrame(this.frame);
+    this.frame = 0;
     this.resizeObserver.disconnect();
     this.controls.dispose();
     this.clearMeshes();

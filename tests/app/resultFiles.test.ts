@@ -108,6 +108,36 @@ describe('opening a result with its cells side file', () => {
     );
   });
 
+  it("every surface's grid is sized like the result's, and the analyses are checked, before anything is allocated", async () => {
+    const plain = JSON.parse(readFileSync(join(dir, 'plain.json'), 'utf8'));
+    const edited = async (name: string, edit: (result: typeof plain) => void) => {
+      const copy = JSON.parse(JSON.stringify(plain));
+      edit(copy);
+      writeFileSync(join(dir, name), JSON.stringify(copy));
+      return openFiles([given(join(dir, name))]);
+    };
+    const huge = (size: number) => (r: typeof plain) => {
+      r.surfaces[0].grid.width = size;
+      r.surfaces[0].grid.height = size;
+    };
+    const sizes = /^[a-z0-9]+\.json: surfaces\[0\]\.grid: width and height: positive integers, at most 16777216 texels in all\.$/;
+    await expect(edited('huge.json', huge(12000))).rejects.toThrow(sizes);
+    await expect(edited('huger.json', huge(100000))).rejects.toThrow(sizes);
+    await expect(edited('neg.json', (r) => (r.surfaces[0].grid.width = -5))).rejects.toThrow(sizes);
+    await expect(edited('texel.json', (r) => (r.surfaces[1].grid.texelX = 0))).rejects.toThrow(/^texel\.json: surfaces\[1\]\.grid: texelX, texelY/);
+    await expect(edited('nosurf.json', (r) => (r.surfaces = []))).rejects.toThrow(/^nosurf\.json: surfaces: expected/);
+    await expect(edited('noana.json', (r) => (r.analyses = []))).rejects.toThrow(/^noana\.json: analyses: expected/);
+    await expect(edited('nosum.json', (r) => (r.analyses[0].summary = null))).rejects.toThrow(
+      'nosum.json: analyses[0].summary: expected the analysis summary (an object).',
+    );
+    await expect(edited('pct.json', (r) => (r.analyses[0].summary.percentScutoids = 'x'))).rejects.toThrow(
+      'pct.json: analyses[0].summary.percentScutoids: expected a number.',
+    );
+    await expect(edited('short.json', (r) => (r.analyses[0].cells = r.analyses[0].cells.slice(0, 3)))).rejects.toThrow(
+      'short.json: analyses[0].cells: expected 60 cell records, one per cell.',
+    );
+  });
+
   it('a plain result JSON still opens alone', async () => {
     const { file } = await openFiles([given(join(dir, 'plain.json'))]);
     expect(file.kind).toBe('result');

@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { configFromAttributes } from '../../src/element/attributes';
-import { validateConfig, type ConfigInput } from '../../src/core/config';
+import { ConfigError, validateConfig, type ConfigInput } from '../../src/core/config';
 import { surfaceOfKind } from '../../src/core/config/presets';
 
 /**
@@ -36,5 +36,21 @@ describe('configFromAttributes', () => {
     expect(configFromAttributes(element({ surface: 'ellipsoid' }), base).resolution).toBe(64);
     expect(configFromAttributes(element({ surface: 'tube' }), base).resolution).toBe(validateConfig({}).resolution);
     expect(configFromAttributes(element({ surface: 'tube', resolution: '256' }), base).resolution).toBe(256);
+  });
+
+  it('refuses a density that is not a preset, naming the attribute and the kinds (never uniform in silence)', () => {
+    for (const value of ['evil', 'gausian', '']) {
+      let error: unknown = null;
+      try {
+        configFromAttributes(element({ density: value }), null);
+      } catch (e) {
+        error = e;
+      }
+      expect(error).toBeInstanceOf(ConfigError);
+      expect((error as ConfigError).field).toBe('density.kind');
+      expect((error as Error).message).toBe(`density: must be one of "uniform", "linear", "gaussian", "stripes", "image" (got "${value}")`);
+    }
+    expect(configFromAttributes(element({ density: 'gaussian' }), null).density.kind).toBe('gaussian');
+    expect(configFromAttributes(element({ density: ' stripes ' }), null).density.kind).toBe('stripes');
   });
 });

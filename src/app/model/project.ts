@@ -26,6 +26,8 @@ export const PROJECT_FORMAT = 'tissue-sheet-project';
 export const PROJECT_FORMAT_VERSION = 1;
 /** Largest label image a file may bring, texels (the page's own runs stay far below). */
 const MAX_TEXELS = 1 << 24;
+/** Largest stack of grids a result may bring, texels in all (its label images are drawn from them). */
+const MAX_STACK_TEXELS = 1 << 26;
 
 export interface ViewState {
   camera: { position: [number, number, number]; target: [number, number, number] } | null;
@@ -149,16 +151,26 @@ function checkResult(value: unknown, where: string): SheetResult {
     throw new Error(`${where}: config: ${(error as Error).message}`);
   }
   if (!Array.isArray(value.cells) || value.cells.length === 0) throw new Error(`${where}: cells: expected the list of cells.`);
-  if (!Array.isArray(value.surfaces) || !Array.isArray(value.analyses)) throw new Error(`${where}: surfaces and analyses: expected lists.`);
+  if (!Array.isArray(value.surfaces) || value.surfaces.length === 0)
+    throw new Error(`${where}: surfaces: expected the list of the stack's other surfaces (at least one).`);
+  if (!Array.isArray(value.analyses) || value.analyses.length === 0) throw new Error(`${where}: analyses: expected the list of analyses (at least one).`);
   const n = value.cells.length;
-  checkCells(value.cells, n, `${where}: cells`);
+  // Every grid is sized before anything is allocated from it (label images, pictures, textures).
+  checkGrid(value.grid, `${where}: grid`);
+  let texels = (value.grid as Grid).width * (value.grid as Grid).height;
   value.surfaces.forEach((surface, k) => {
     if (!isObject(surface) || !Array.isArray(surface.cells) || surface.cells.length !== n || !isObject(surface.grid)) {
       throw new Error(`${where}: surfaces[${k}]: expected a grid and ${n} cells.`);
     }
-    checkCells(surface.cells, n, `${where}: surfaces[${k}].cells`);
+    const grid = checkGrid(surface.grid, `${where}: surfaces[${k}].grid`);
+    texels += grid.width * grid.height;
+    if (texels > MAX_STACK_TEXELS) throw new Error(`${where}: surfaces[${k}].grid: the grids of the stack exceed ${MAX_STACK_TEXELS} texels in all.`);
   });
-  checkGrid(value.grid, `${where}: grid`);
+  checkCells(value.cells, n, `${where}: cells`);
+  value.surfaces.forEach((surface, k) => checkCells((surface as { cells: unknown[] }).cells, n, `${where}: surfaces[${k}].cells`));
+  value.analyses.forEach((analysis, k) => checkAnalysis(analysis, n, `${where}: analyses[${k}]`));
+  if (value.headline !== undefined && value.headline !== null && !isObject(value.headline))
+    throw new Error(`${where}: headline: expected the headline record or null.`);
   // Checked above field by field: the shape of a SheetResult.
   return value as typeof value & SheetResult;
 }
@@ -182,6 +194,50 @@ function checkCells(cells: unknown[], n: number, where: string): void {
   });
 }
 
+/** The fields of an analysis's summary the page reads (a saved NaN is null). */
+const SUMMARY_NUMBERS = [
+  'cells',
+  'validCells',
+  'excludedCells',
+  'surfaces',
+  'scutoids',
+  'percentScutoids',
+  'percentScutoidsEnds',
+  'meanTransitions',
+  'meanWon',
+  'meanLost',
+  'meanNeighbours3D',
+] as const;
+
+/**
+ * An analysis as the views, the results panel and the charts read it: its method, a summary
+ * with numbers (or null) and one record per surface, and one record per cell with its sides.
+ */
+function checkAnalysis(value: unknown, n: number, where: string): void {
+  if (!isObject(value)) throw new Error(`${where}: expected an analysis (method, summary, cells).`);
+  if (value.method !== 'labels' && value.method !== 'exact') throw new Error(`${where}.method: expected "labels" or "exact".`);
+  const summary = value.summary;
+  if (!isObject(summary)) throw new Error(`${where}.summary: expected the analysis summary (an object).`);
+  for (const key of SUMMARY_NUMBERS) {
+    if (!(typeof summary[key] === 'number' || summary[key] === null)) throw new Error(`${where}.summary.${key}: expected a number.`);
+  }
+  if (!Array.isArray(summary.perSurface) || summary.perSurface.length === 0) throw new Error(`${where}.summary.perSurface: expected one record per surface.`);
+  const numbers = (v: unknown) => Array.isArray(v) && v.every((x) => typeof x === 'number' || x === null);
+  summary.perSurface.forEach((surface, k) => {
+    const at = `${where}.summary.perSurface[${k}]`;
+    if (!isObject(surface)) throw new Error(`${at}: expected a surface's summary.`);
+    if (!(typeof surface.meanSides === 'number' || surface.meanSides === null)) throw new Error(`${at}.meanSides: expected a number.`);
+    for (const key of ['polygonDistribution', 'polygonCounts']) if (!numbers(surface[key])) throw new Error(`${at}.${key}: expected a list of numbers.`);
+    for (const key of ['lewis', 'aboavWeaire']) if (!Array.isArray(surface[key])) throw new Error(`${at}.${key}: expected a list.`);
+  });
+  const cells = value.cells;
+  if (!Array.isArray(cells) || cells.length !== n) throw new Error(`${where}.cells: expected ${n} cell records, one per cell.`);
+  cells.forEach((cell, i) => {
+    if (!isObject(cell) || cell.id !== i || typeof cell.valid !== 'boolean' || typeof cell.scutoid !== 'boolean' || !numbers(cell.sides))
+      throw new Error(`${where}.cells[${i}]: expected id ${i}, valid, scutoid and sides per surface.`);
+  });
+}
+
 function checkGrid(value: unknown, where: string): Grid {
   if (!isObject(value)) throw new Error(`${where}: expected a grid.`);
   const { width, height, texelX, texelY, periodicX, periodicY } = value;
@@ -189,7 +245,8 @@ function checkGrid(value: unknown, where: string): Grid {
   if (!whole(width) || !whole(height) || (width as number) * (height as number) > MAX_TEXELS) {
     throw new Error(`${where}: width and height: positive integers, at most ${MAX_TEXELS} texels in all.`);
   }
-  if (!((texelX as number) > 0) || !((texelY as number) > 0) || typeof periodicX !== 'boolean' || typeof periodicY !== 'boolean') {
+  const positive = (x: unknown) => typeof x === 'number' && Number.isFinite(x) && x > 0;
+  if (!positive(texelX) || !positive(texelY) || typeof periodicX !== 'boolean' || typeof periodicY !== 'boolean') {
     throw new Error(`${where}: texelX, texelY (> 0) and periodicX, periodicY (booleans) are required.`);
   }
   return { width, height, texelX, texelY, periodicX, periodicY } as Grid;
@@ -266,16 +323,40 @@ function isObject(value: unknown): value is Record<string, unknown> {
   return typeof value === 'object' && value !== null && !Array.isArray(value);
 }
 
+/** What became of a run the page asked for (main.ts `run`). */
+export type RunOutcome =
+  | { kind: 'done'; result: SheetResult }
+  | { kind: 'refused'; message: string }
+  | { kind: 'waiting'; path: string; host: string }
+  | { kind: 'cancelled' }
+  | { kind: 'failed'; message: string };
+
 /**
  * Says whether a re-run of a closed-surface result's configuration reproduced the file: same
- * number of cells, every site within 1e-3 µm (relative to the sheet) of the file's.
+ * number of cells, every site within 1e-3 µm (relative to the sheet) of the file's. Only a run
+ * of the file's configuration that finished (`outcome.kind === 'done'`) is compared; otherwise
+ * the note says what became of the run (refused, waiting for the user's approval, cancelled,
+ * failed), never comparing the file with the result that was on screen before.
  */
-export function rerunNote(file: SheetResult, shown: { result: SheetResult } | null): string {
-  const base = 'a result JSON holds no label images and a closed surface cannot be drawn from its cells, so its configuration was run again';
-  if (!shown) return `${base}, and the run did not finish.`;
+export function rerunNote(file: SheetResult, outcome: RunOutcome): string {
+  const base = 'a result JSON holds no label images and a closed surface cannot be drawn from its cells, so its configuration';
+  const kept = 'the previous result is still shown';
+  switch (outcome.kind) {
+    case 'refused':
+      return `${base} was to be run again, but the run was refused (see the message); nothing was run and ${kept}.`;
+    case 'waiting':
+      return `${base} will be run again once you allow loading ${outcome.path} from ${outcome.host} (the question above); nothing has run yet.`;
+    case 'cancelled':
+      return `${base} was being run again, and the run was cancelled; ${kept}.`;
+    case 'failed':
+      return `${base} was run again, and the run failed (see the message); ${kept}.`;
+    case 'done':
+      break;
+  }
+  const ran = `${base} was run again`;
   const a = file.cells;
-  const b = shown.result.cells;
-  if (a.length !== b.length) return `${base}: the run gave ${b.length} cells, the file has ${a.length}; the page shows the run's statistics.`;
+  const b = outcome.result.cells;
+  if (a.length !== b.length) return `${ran}: the run gave ${b.length} cells, the file has ${a.length}; the page shows the run's statistics.`;
   let worst = 0;
   let scale = 0;
   for (let i = 0; i < a.length; i++) {
@@ -286,6 +367,6 @@ export function rerunNote(file: SheetResult, shown: { result: SheetResult } | nu
   }
   const same = worst <= 1e-3 * Math.max(1, scale);
   return same
-    ? `${base}; it reproduced the file's sites (largest difference ${worst.toExponential(2)} µm).`
-    : `${base}; its sites differ from the file's by up to ${worst.toPrecision(3)} µm (another version or engine?): the page shows the run's statistics.`;
+    ? `${ran}; it reproduced the file's sites (largest difference ${worst.toExponential(2)} µm).`
+    : `${ran}; its sites differ from the file's by up to ${worst.toPrecision(3)} µm (another version or engine?): the page shows the run's statistics.`;
 }

@@ -26,8 +26,18 @@ export interface RealizationsPanelOptions {
   /** Puts `stack` (the one on screen, with its headline over realizations) in its place. */
   readonly replace: (stack: ViewStack) => void;
   readonly onError: (message: string) => void;
+  /** The box's value is valid again: its earlier error (`message`) goes. */
+  readonly onValid: (message: string) => void;
   /** Realizations started or stopped (the page's cancel button follows). */
   readonly onBusy: () => void;
+}
+
+/** `href` with `&realizations=n`, or without the parameter when n is the default (5). */
+export function urlWithRealizations(href: string, n: number): string {
+  const url = new URL(href);
+  if (n === DEFAULT_REALIZATIONS) url.searchParams.delete(REALIZATIONS_PARAM);
+  else url.searchParams.set(REALIZATIONS_PARAM, String(n));
+  return url.toString();
 }
 
 /** `shown` with `headline` as its result's headline (the views and exports read the same stack). */
@@ -45,6 +55,13 @@ export function drawnHeadline(h: Headline): Headline {
 export class RealizationsPanel {
   private controller: AbortController | null = null;
   private readonly combined = new Map<string, Headline>();
+  /**
+   * The number of realizations of the result on screen (the last valid value of the box): the
+   * headline is over it and the address carries it. An invalid value in the box changes nothing.
+   */
+  private n: number = DEFAULT_REALIZATIONS;
+  /** The box's error on screen, if any (cleared once its value is valid). */
+  private error: string | null = null;
 
   constructor(private readonly options: RealizationsPanelOptions) {
     const { input } = options;
@@ -54,10 +71,19 @@ export class RealizationsPanel {
         input.value = String(checkRealizations(fromLink, 'realizations (in the link)'));
       } catch (error) {
         // After the page's modules are set up (the form exists then).
-        queueMicrotask(() => options.onError((error as Error).message));
+        queueMicrotask(() => {
+          this.error = (error as Error).message;
+          options.onError(this.error);
+        });
       }
     }
+    const initial = Number(input.value);
+    this.n = Number.isInteger(initial) && initial >= 1 && initial <= 100 ? initial : DEFAULT_REALIZATIONS;
     input.addEventListener('change', () => {
+      // Validated first: an invalid value leaves the screen, and the address, as they are.
+      const n = this.asked();
+      if (n === null) return;
+      this.n = n;
       this.syncParam();
       const stack = options.shown();
       if (!stack) return;
@@ -67,6 +93,19 @@ export class RealizationsPanel {
       } as SheetOutput;
       void this.start(output);
     });
+  }
+
+  /**
+   * An opened file's number of realizations (its headline's n), set in the control before the
+   * file is shown (or its configuration run again); the address follows once it is on screen
+   * (syncParam), as for a result run here. A value that is not one is ignored.
+   */
+  setFromFile(n: unknown): void {
+    if (!(typeof n === 'number' && Number.isInteger(n) && n >= 1 && n <= 100)) return;
+    this.n = n;
+    this.options.input.value = String(n);
+    this.options.input.removeAttribute('aria-invalid');
+    this.clearOwnError();
   }
 
   /** Whether realizations are being computed. */
@@ -84,22 +123,25 @@ export class RealizationsPanel {
     try {
       const n = checkRealizations(input.value.trim().replace(',', '.'), 'Realizations');
       input.removeAttribute('aria-invalid');
+      this.clearOwnError();
       return n;
     } catch (error) {
       input.setAttribute('aria-invalid', 'true');
-      this.options.onError((error as Error).message);
+      this.error = (error as Error).message;
+      this.options.onError(this.error);
       return null;
     }
   }
 
-  /** The address carries the number of realizations when it is not the default. */
+  private clearOwnError(): void {
+    if (this.error !== null) this.options.onValid(this.error);
+    this.error = null;
+  }
+
+  /** The address carries the number of realizations of the result on screen when it is not the default. */
   syncParam(): void {
-    const { input } = this.options;
-    const url = new URL(location.href);
-    const n = input.value.trim();
-    if (n === String(DEFAULT_REALIZATIONS) || input.getAttribute('aria-invalid') === 'true') url.searchParams.delete(REALIZATIONS_PARAM);
-    else url.searchParams.set(REALIZATIONS_PARAM, n);
-    if (url.toString() !== location.href) history.replaceState(null, '', url.toString());
+    const next = urlWithRealizations(location.href, this.n);
+    if (next !== location.href) history.replaceState(null, '', next);
   }
 
   /**
@@ -107,7 +149,7 @@ export class RealizationsPanel {
    * known for its configuration and n, and whether it waits for realizations (marked on the page).
    */
   prepare(shown: ViewStack, opened: boolean): { stack: ViewStack; waiting: boolean; n: number } {
-    const n = Number(this.options.input.value);
+    const n = this.n;
     const known = n > 1 ? this.combined.get(this.key(shown, n)) : undefined;
     const stack = known ? withHeadline(shown, known) : shown;
     const waiting = !known && !opened && n > 1 && (stack.result.headline?.realizations ?? 1) <= 1;
@@ -126,8 +168,7 @@ export class RealizationsPanel {
     const { main, shown: current, replace, onBusy } = this.options;
     const shown = current();
     if (!shown) return;
-    const n = this.asked();
-    if (n === null) return;
+    const n = this.n;
     const drawn = output.result.headline;
     const done = (headline: Headline | null) => {
       if (current() !== shown) return;
