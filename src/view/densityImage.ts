@@ -11,6 +11,7 @@
  */
 import { ConfigError } from '../core/config';
 import type { GrayImage } from '../core/density';
+import { decodeGrayPng, ImageError } from '../core/grayPng';
 import { ImageHeaderError, readImageSize } from './imageHeader';
 import { fetchSourceBytes } from './sources';
 
@@ -60,8 +61,9 @@ export async function imageFileToDataUrl(file: Blob): Promise<string> {
 }
 
 /**
- * Decodes an image (URL or data URL) into luminance 0..1, row 0 = top. A foreign URL loads only
- * once approved; the header is checked before decoding. Errors are ConfigErrors on density.src.
+ * Decodes an image (URL or data URL) into luminance 0..1, row 0 = top: a PNG as every host does
+ * (core/grayPng.ts), a JPEG by the browser. A foreign URL loads only once approved; the header is
+ * checked before decoding. Errors are ConfigErrors on density.src.
  */
 export async function decodeGrayImage(src: string): Promise<GrayImage> {
   const bytes = new Uint8Array(await fetchSourceBytes('density.src', src));
@@ -72,6 +74,16 @@ export async function decodeGrayImage(src: string): Promise<GrayImage> {
   } catch (error) {
     if (error instanceof ImageHeaderError) throw new ConfigError('density.src', error.message);
     throw error;
+  }
+  // A PNG is decoded as the CLI decodes it (core/grayPng.ts): the same density from the same
+  // link or file in every host, and a corrupt file refused (the browser shows it as black).
+  if (format === 'png') {
+    try {
+      return decodeGrayPng(bytes, src.startsWith('data:') ? 'from the data: URL' : src);
+    } catch (error) {
+      if (error instanceof ImageError) throw new ConfigError('density.src', `density.src: ${error.message}`);
+      throw error;
+    }
   }
   const url = URL.createObjectURL(new Blob([bytes], { type: `image/${format}` }));
   let image: HTMLImageElement;
