@@ -116,8 +116,11 @@ test('uploading a mesh runs; a corrupt file and a genus-1 mesh show their messag
 
 test('a link with an uploaded file name asks for the file again', async ({ page }) => {
   await page.goto(linkTo({ ...eggChamber, surface: { kind: 'mesh', src: 'my-organoid.ply', scale: 50 } }));
-  await expect(page.locator('#error')).toContainText('"my-organoid.ply" is a file uploaded from a computer', { timeout: 60_000 });
-  await expect(page.locator('#error')).toContainText('upload it again');
+  // The link's own configuration: said in the link's alert, which stays until dismissed.
+  const alert = page.locator('#link-alert');
+  await expect(alert).toContainText('"my-organoid.ply" is a file uploaded from a computer', { timeout: 60_000 });
+  await expect(alert).toContainText('upload it again');
+  await expect(alert).toContainText("This link's configuration was not run");
 });
 
 test('a URL round trip reproduces a closed-surface result (sphere and sample mesh)', async ({ page, browser }) => {
