@@ -312,12 +312,14 @@ test('uploading the file a link asked for runs it, and the error goes', async ({
   await page.goto(
     linkTo({ surface: { kind: 'mesh', src: 'my-organoid.ply', scale: 50 }, resolution: 32, cells: 40, lloyd: { maxIterations: 1 }, sheet: { thickness: 5 } }),
   );
-  await expect(page.locator('#error')).toContainText('"my-organoid.ply" is a file uploaded from a computer', { timeout: 60_000 });
+  // The link's own configuration: said in the link's alert; it goes once the file runs.
+  await expect(page.locator('#link-alert')).toContainText('"my-organoid.ply" is a file uploaded from a computer', { timeout: 60_000 });
   const before = await runs(page);
   await page
     .locator('input[name="surface.src"]')
     .setInputFiles({ name: 'my-organoid.ply', mimeType: 'application/octet-stream', buffer: readFileSync('public/meshes/organoid.ply') });
   await waitForRun(page, before);
   await expect(page.locator('#error')).toBeHidden();
+  await expect(page.locator('#link-alert')).toBeHidden();
   await expect(page.locator('#run-info')).toContainText('my-organoid.ply (2562 vertices');
 });

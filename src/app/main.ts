@@ -163,9 +163,12 @@ const controls = new ConfigControls($('#controls'), initialConfig(link), {
   onEdit: (draft, live, forced) => {
     queueMicrotask(markStale);
     // A mesh file uploaded under the name the configuration already holds (a link asking for
-    // the file again): the draft is the same, but the file is new, so it runs.
+    // the file again): the draft is the same, but the file is new, so it runs; once it has, the
+    // link's "upload it again" is answered.
     if (forced) {
-      void run(draft);
+      void run(draft).then((outcome) => {
+        if (outcome.kind === 'done') linkAlert.dismiss();
+      });
       return;
     }
     // A slider's "change" after its last "input" asks for the run already under way: skip it,
