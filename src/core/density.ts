@@ -10,6 +10,7 @@
  * the unrolled domain (see grid.ts). "Start of an axis" means coordinate 0.
  */
 import type { DensitySpec } from './config';
+import { ConfigError } from './config/configError';
 import { distanceSquared, type Grid } from './grid';
 
 /** A decoded grayscale image. */
@@ -133,7 +134,8 @@ function assertPositiveFinite(values: Float32Array, kind: string): void {
   for (let k = 0; k < values.length; k++) {
     const v = values[k];
     if (!(v > 0 && Number.isFinite(v))) {
-      throw new Error(
+      throw new ConfigError(
+        'density',
         `density "${kind}": value ${v} at texel ${k} is not positive and finite; densities must be > 0 (check low/high/from/to/peak and the image's luminance)`,
       );
     }

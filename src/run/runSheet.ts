@@ -1,5 +1,6 @@
 import { byConstruction, runHeadline } from '../core/analysis';
-import type { Config, ClosedConfig, PlanarConfig } from '../core/config';
+import { validateConfig, type Config, type ClosedConfig, type PlanarConfig } from '../core/config';
+import { checkScale } from '../core/config/limits';
 import { surfaceLayout } from '../core/config/surfaceLayout';
 import type { GpuContext } from '../gpu/context';
 import { version } from '../version';
@@ -22,8 +23,15 @@ export type { RunInputs, RunOptions } from './family';
  * surface and Lloyd -> projection onto layers and the other surface -> labels -> adjacency ->
  * statistics -> the documented result. Same config, same result.
  */
-export function runSheet(config: Config, context: GpuContext, options: RunOptions = {}): Promise<SheetOutput> {
-  return new SheetRunner(context).run(config, options);
+export async function runSheet(config: Config, context: GpuContext, options: RunOptions = {}): Promise<SheetOutput> {
+  // A library caller's config, checked here as the CLI and the page check theirs: validated again
+  // (an object changed since it was validated, `maxIterations = 1e9`, a radius of NaN, is refused
+  // naming the field) and held to the scale guards and this GPU's texture size (a sphere at
+  // resolution 16384 failed deep inside with "Invalid typed array length"). The work and memory
+  // budget stays the caller's: a library may run what a page may not.
+  const checked = validateConfig(config);
+  checkScale(checked, context.capabilities.maxTextureSize);
+  return new SheetRunner(context).run(checked, options);
 }
 
 /**

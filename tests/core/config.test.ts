@@ -277,6 +277,20 @@ describe('checkFeasible', () => {
     expect(() => sphere(6)).toThrow(/minSpacing: .*random placement jams near 54\.7 %; lower minSpacing to well below 5\.9167\d* µm/);
   });
 
+  it('keeps densities within what the density texture holds, and stripes at least two texels wide', () => {
+    // The default tube: 64 x 512 texels of 8 µm.
+    const extreme = feasibilityError({ density: { kind: 'linear', axis: 'x', from: 1e-300, to: 1e300 } });
+    expect(extreme?.field).toBe('density.from');
+    expect(extreme?.message).toMatch(/^density\.from: 1e-300 is outside 1e-30 to 1e\+30/);
+    expect(feasibilityError({ density: { kind: 'stripes', axis: 'y', period: 1e10, low: 1, high: 1e31 } })?.field).toBe('density.high');
+    expect(feasibilityError({ density: { kind: 'linear', axis: 'x', from: 1e-6, to: 1e6 } })).toBeNull();
+    // A period of 1e-6 µm never finished on the exact engine (every cell cut at each stripe).
+    const fine = feasibilityError({ density: { kind: 'stripes', axis: 'x', period: 1e-6, low: 1, high: 2 } });
+    expect(fine?.field).toBe('density.period');
+    expect(fine?.message).toMatch(/^density\.period: 0\.000001 µm is finer than two texels of this grid \(2 x 8 µm along x\).*at least 16 µm/);
+    expect(feasibilityError({ density: { kind: 'stripes', axis: 'x', period: 16, low: 1, high: 2 } })).toBeNull();
+  });
+
   it('keeps a gaussian centre inside the domain', () => {
     const inside = { kind: 'gaussian', center: [512, 4096], sigma: 10, peak: 3 };
     expect(feasibilityError({ density: inside })).toBeNull();

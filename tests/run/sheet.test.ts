@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { type ConfigInput } from '../../src/core/config';
+import { ConfigError, validateConfig, type Config, type ConfigInput } from '../../src/core/config';
 import { validatePlanarConfig } from '../planarConfig';
 import { exactVoronoi } from '../../src/core/exact';
 import { withMinBoundaryLength } from '../../src/core/analysis';
@@ -177,4 +177,40 @@ describe('pixel adjacency against exact adjacency at the default resolution', ()
       expect(agreement).toBeGreaterThanOrEqual(0.98);
     });
   }
+});
+
+describe('runSheet checks a library caller config as the CLI does', () => {
+  const small = () =>
+    validateConfig({ surface: { kind: 'plane', width: 100, height: 100 }, resolution: 32, cells: 10, engine: 'exact', lloyd: { maxIterations: 1 } });
+  const refusal = (config: unknown) =>
+    runSheet(config as Config, context).then(
+      () => null,
+      (error: unknown) => error as ConfigError,
+    );
+
+  it('validates again: a config changed since it was validated is refused naming the field', async () => {
+    const changed = (edit: (c: Record<string, Record<string, unknown>>) => void) => {
+      const c = small() as unknown as Record<string, Record<string, unknown>>;
+      edit(c);
+      return c;
+    };
+    expect((await refusal(changed((c) => (c.lloyd.maxIterations = 1e9))))?.field).toBe('lloyd.maxIterations');
+    expect((await refusal(changed((c) => (c.surface.width = NaN))))?.field).toBe('surface.width');
+    expect((await refusal(changed((c) => (c.surface.kind = 'torus'))))?.field).toBe('surface.kind');
+    expect((await refusal(changed((c) => ((c as unknown as { cells: number }).cells = -5))))?.field).toBe('cells');
+  });
+
+  it('holds it to the scale guards and the texture size, whatever the budget', async () => {
+    const tooFar = await refusal(validateConfig({ surface: { kind: 'plane', width: 100, height: 100 }, resolution: 32, cells: 10, sheet: { thickness: 2e7 } }));
+    expect(tooFar).toBeInstanceOf(ConfigError);
+    expect(tooFar?.field).toBe('sheet.thickness');
+    const max = context.capabilities.maxTextureSize;
+    const wide = await refusal(
+      validateConfig({ surface: { kind: 'sphere', radius: 50 }, resolution: Math.min(16384, 2 * max), cells: 20, sheet: { thickness: 5 } }),
+    );
+    expect(wide?.field).toBe('resolution');
+    expect(wide?.message).toMatch(/this GPU allows at most/);
+    // A valid config still runs.
+    expect((await runSheet(small(), context)).result.cells).toHaveLength(10);
+  });
 });

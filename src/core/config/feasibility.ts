@@ -107,6 +107,7 @@ export function checkFeasible(config: PlanarConfig, grid: Grid): void {
   }
 
   checkSheet(config);
+  checkDensityScale(config, grid);
 
   if (config.density.kind === 'gaussian') {
     const [u, v] = config.density.center;
@@ -114,6 +115,37 @@ export function checkFeasible(config: PlanarConfig, grid: Grid): void {
       throw new ConfigError(
         'density.center',
         `density.center: [${u}, ${v}] µm is outside the domain [0, ${fmt(domain.lengthX)}] x [0, ${fmt(domain.lengthY)}] µm; move the centre inside`,
+      );
+    }
+  }
+}
+
+/** Density values the density texture (32-bit floats) holds, with room for their products. */
+const DENSITY_RANGE = [1e-30, 1e30] as const;
+
+/**
+ * A density the grid can hold: every value within DENSITY_RANGE (1e-300 became 0 in the texture,
+ * 1e300 infinity) and stripes at least two texels wide per period (finer ones cannot be drawn on
+ * the grid, and the exact engine's cell integrals cut every cell at each stripe: a period of 1e-6
+ * µm never finished).
+ */
+function checkDensityScale(config: PlanarConfig, grid: Grid): void {
+  const density = config.density as unknown as Record<string, unknown>;
+  for (const key of ['from', 'to', 'low', 'high', 'peak']) {
+    const value = density[key];
+    if (typeof value === 'number' && !(value >= DENSITY_RANGE[0] && value <= DENSITY_RANGE[1])) {
+      throw new ConfigError(
+        `density.${key}`,
+        `density.${key}: ${value} is outside ${DENSITY_RANGE[0]} to ${DENSITY_RANGE[1]}, what the density texture holds; densities are relative: scale them together`,
+      );
+    }
+  }
+  if (config.density.kind === 'stripes') {
+    const texel = config.density.axis === 'x' ? grid.texelX : grid.texelY;
+    if (!(config.density.period >= 2 * texel)) {
+      throw new ConfigError(
+        'density.period',
+        `density.period: ${config.density.period} µm is finer than two texels of this grid (2 x ${fmt(texel)} µm along ${config.density.axis}): the stripes cannot be drawn on it; raise density.period to at least ${fmt(2 * texel)} µm, or resolution`,
       );
     }
   }

@@ -226,11 +226,16 @@ export function checkBudget(config: Config, budget: ComputeBudget, raiseHint: st
   return e;
 }
 
-/** Every check of this module, in the order a user would fix them. */
-export function checkLimits(config: Config, budget: ComputeBudget, raiseHint: string): RunEstimate {
+/** The checks that hold whatever the budget: the scale guards and this GPU's texture size. */
+export function checkScale(config: Config, maxTextureSize: number): void {
   checkExtents(config);
   checkTexelsPerSide(config);
-  checkTextureSize(config, budget.maxTextureSize);
+  checkTextureSize(config, maxTextureSize);
+}
+
+/** Every check of this module, in the order a user would fix them. */
+export function checkLimits(config: Config, budget: ComputeBudget, raiseHint: string): RunEstimate {
+  checkScale(config, budget.maxTextureSize);
   return checkBudget(config, budget, raiseHint);
 }
 
