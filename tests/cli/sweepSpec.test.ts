@@ -67,6 +67,11 @@ describe('sweep spec validation', () => {
     });
   }
 
+  it('refuses a cap that is no number >= 1 (NaN let every spec through)', () => {
+    for (const maxRuns of [NaN, 0, -1]) expect(() => validateSweepSpec({ base }, { maxRuns })).toThrow(/maxRuns must be a number >= 1/);
+    expect(validateSweepSpec({ base }, { maxRuns: Infinity }).realizations).toBe(1);
+  });
+
   it('caps the number of runs before expanding anything, saying how to raise it', () => {
     const huge = {
       base,

@@ -73,4 +73,57 @@ describe('prototype keys in a config', () => {
       expect((error as ConfigError).message.startsWith(`${field}: must be `)).toBe(true);
     }
   });
+
+  it('an object that contains itself, a throwing getter or Proxy trap: a ConfigError naming the field, not the caller error', () => {
+    const cyclic: Record<string, unknown> = { cells: 20 };
+    cyclic.sheet = cyclic;
+    const getter = {
+      surface: {
+        kind: 'tube',
+        radius: 10,
+        get length(): number {
+          throw new Error('boom');
+        },
+      },
+    };
+    const keys = {
+      cells: 20,
+      sheet: new Proxy(
+        {},
+        {
+          ownKeys: () => {
+            throw new Error('no keys');
+          },
+        },
+      ),
+    };
+    const prototype = {
+      cells: 20,
+      lloyd: new Proxy(
+        {},
+        {
+          getPrototypeOf: () => {
+            throw new Error('no prototype');
+          },
+        },
+      ),
+    };
+    const cases: [unknown, string, RegExp][] = [
+      [cyclic, 'sheet.sheet.sheet', /nested more than 32 levels deep \(an object that contains itself\?\)/],
+      [getter, 'surface.length', /^surface\.length: could not be read \(boom\)/],
+      [keys, 'sheet', /^sheet: could not be read \(no keys\)/],
+      [prototype, 'lloyd', /^lloyd: could not be read \(no prototype\)/],
+    ];
+    for (const [input, field, message] of cases) {
+      let error: unknown;
+      try {
+        validateConfig(input);
+      } catch (e) {
+        error = e;
+      }
+      expect(error, field).toBeInstanceOf(ConfigError);
+      expect((error as ConfigError).field).toBe(field);
+      expect((error as ConfigError).message).toMatch(message);
+    }
+  });
 });

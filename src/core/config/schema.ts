@@ -267,7 +267,7 @@ export const configSchema = {
       enum: ['auto', 'gpu', 'exact'],
       default: 'auto',
       description:
-        'Which engine runs Lloyd and finds the neighbours: "gpu" (jump flood and centroid passes in WebGL2), "exact" (planes and tubes only: Lloyd on the exact Voronoi diagram on the CPU, every analysis exact, no label textures) or "auto" (exact on planes and tubes where the renderer is software, e.g. SwiftShader or llvmpipe, and the labels method is not asked for; the GPU otherwise). The result records which engine ran and why.',
+        'Which engine runs Lloyd and finds the neighbours: "gpu" (jump flood and centroid passes in WebGL2), "exact" (planes and tubes only: Lloyd on the exact Voronoi diagram on the CPU, every analysis exact, no label textures) or "auto" (exact on planes and tubes where the renderer is software, e.g. SwiftShader or llvmpipe, and sheet.adjacency is not "labels" alone (with "both", the labels method is then left out and the result says so under headline.omittedMethods); the GPU otherwise). The result records which engine ran and why.',
     },
     sheet: {
       description: 'The sheet: the seeded surface (where Lloyd runs), the other surface at a thickness along the normal, and layers between them.',

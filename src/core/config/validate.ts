@@ -66,6 +66,11 @@ export const PROTOTYPE_KEYS: ReadonlySet<string> = new Set(['__proto__', 'constr
  */
 function cloneJson(value: unknown, path: (string | number)[]): unknown {
   if (value === null || typeof value === 'string' || typeof value === 'boolean') return value;
+  // A config is a few levels deep: deeper is an object that refers to itself (or a crafted one).
+  if (path.length > MAX_DEPTH) {
+    const field = formatPath(path.slice(0, 3));
+    throw new ConfigError(field, `${label(field)}: nested more than ${MAX_DEPTH} levels deep (an object that contains itself?); give plain JSON data`);
+  }
   if (typeof value === 'number') {
     if (!Number.isFinite(value)) {
       const field = formatPath(path);
@@ -82,10 +87,26 @@ function cloneJson(value: unknown, path: (string | number)[]): unknown {
     }
     return out;
   }
-  if (typeof value === 'object' && (Object.getPrototypeOf(value) === Object.prototype || Object.getPrototypeOf(value) === null)) {
+  if (typeof value === 'object' && isPlainObject(value, path)) {
     const out: Record<string, unknown> = {};
-    for (const key of Object.keys(value)) {
-      const item = (value as Record<string, unknown>)[key];
+    // A getter or a Proxy may throw: said as the field it is, not as the caller's error.
+    const unreadable = (key: string | null, error: unknown): ConfigError => {
+      const field = formatPath(key === null ? path : [...path, key]);
+      return new ConfigError(field, `${label(field)}: could not be read (${error instanceof Error ? error.message : String(error)}); give plain JSON data`);
+    };
+    let keys: string[];
+    try {
+      keys = Object.keys(value);
+    } catch (error) {
+      throw unreadable(null, error);
+    }
+    for (const key of keys) {
+      let item: unknown;
+      try {
+        item = (value as Record<string, unknown>)[key];
+      } catch (error) {
+        throw unreadable(key, error);
+      }
       // JSON.parse keeps "__proto__" as an own key; `out[key] = ...` would then set the
       // prototype. Refuse these keys: any other key assigned below is an own data property
       // (Object.prototype's one accessor is __proto__), as defineProperty made it, at a fraction
@@ -105,6 +126,21 @@ function cloneJson(value: unknown, path: (string | number)[]): unknown {
   const field = formatPath(path);
   throw new ConfigError(field, `${label(field)}: must be JSON data (got a ${describeType(value)}); use numbers, strings, booleans, arrays and plain objects`);
 }
+
+/** An object whose prototype is Object.prototype or null (a Proxy's trap may throw: said as its field). */
+function isPlainObject(value: object, path: (string | number)[]): boolean {
+  let prototype: unknown;
+  try {
+    prototype = Object.getPrototypeOf(value);
+  } catch (error) {
+    const field = formatPath(path);
+    throw new ConfigError(field, `${label(field)}: could not be read (${error instanceof Error ? error.message : String(error)}); give plain JSON data`);
+  }
+  return prototype === Object.prototype || prototype === null;
+}
+
+/** How deep a config's data may nest (the schema's deepest field is 4 levels down). */
+const MAX_DEPTH = 32;
 
 function describeType(value: unknown): string {
   if (typeof value === 'object' && value !== null) return (value as object).constructor?.name ?? 'object';

@@ -79,6 +79,8 @@ export function validateSweepSpec(input: unknown, options: SweepSpecOptions = {}
   for (const [path, values] of Object.entries(vary)) checkDistinctValues(path, values);
 
   const maxRuns = options.maxRuns ?? DEFAULT_MAX_RUNS;
+  // A NaN cap would let every spec through (no count is above NaN): a caller's mistake, said.
+  if (!(maxRuns >= 1)) throw new RangeError(`validateSweepSpec: maxRuns must be a number >= 1 (got ${String(maxRuns)})`);
   const runs = countRuns(spec);
   if (runs > maxRuns) {
     const sizes = Object.entries(vary).map(([p, v]) => `${v.length} ${p}`);
