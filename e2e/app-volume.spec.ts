@@ -327,6 +327,14 @@ test.describe('which file is which layer', () => {
     expect(rows.map((r) => Number(r.label))).toEqual(json.cells.map((c) => c.label));
     expect(rows.map((r) => r.neighbour_labels_apical)).toEqual(json.cells.map((c) => c.neighbours[1].join(' ')));
     expect(await dataValue(page, '#measured-percent')).toBe(json.analyses[0].summary.percentScutoids);
+    // A volume that cannot be read leaves the layers on screen, and the status says so.
+    writeFileSync(join(dir, 'cut.tif'), Buffer.from([0x49, 0x49, 0x2a, 0x00, 0x08, 0x00, 0x00, 0x00, 0x01]));
+    await page.locator('#measure-files').setInputFiles(join(dir, 'cut.tif'));
+    await expect(page.locator('#measure-alert')).toContainText('cut.tif:');
+    await expect(page.locator('#measure')).toHaveAttribute('data-state', 'shown');
+    await expect(page.locator('#measure-results')).toBeVisible();
+    await expect(page.locator('#measure-status')).toContainText('Not measured; the previous tissue is still shown.');
+    expect(await dataValue(page, '#measured-percent')).toBe(json.analyses[0].summary.percentScutoids);
     // The project keeps the reassigned order.
     const project = await download(page, '[data-export="project"]');
     const path = join(dir, project.name);

@@ -23,6 +23,20 @@ export class MeasureFileError extends Error {
   }
 }
 
+/**
+ * A chosen file's bytes, checked for size first. The browser refuses to read a dropped folder
+ * or a file moved or deleted since it was chosen (a NotFoundError naming no file): said as that
+ * file's problem.
+ */
+export async function readChosenFile(file: File): Promise<ArrayBuffer> {
+  if (file.size > MAX_MEASURE_FILE_BYTES) throw new MeasureFileError(file.name, `${file.name}: ${file.size} bytes is over the limit of 1 GiB per file`);
+  try {
+    return await file.arrayBuffer();
+  } catch {
+    throw new MeasureFileError(file.name, `${file.name}: could not be read (a folder, or a file moved or deleted since it was chosen); choose the file again`);
+  }
+}
+
 export interface MeasureCallbacks {
   onProgress?(line: string): void;
   /** The measured tissue (the comparison follows in onCompared when asked for). */
@@ -42,10 +56,7 @@ export class MeasureClient {
    */
   async measure(files: readonly File[], options: MeasureRequestOptions, callbacks: MeasureCallbacks = {}): Promise<void> {
     const id = ++this.latest;
-    for (const file of files) {
-      if (file.size > MAX_MEASURE_FILE_BYTES) throw new MeasureFileError(file.name, `${file.name}: ${file.size} bytes is over the limit of 1 GiB per file`);
-    }
-    const buffers = await Promise.all(files.map((f) => f.arrayBuffer()));
+    const buffers = await Promise.all(files.map(readChosenFile));
     if (id !== this.latest) throw new MeasureFileError(null, 'superseded by a newer measurement');
     const message: ToMeasureWorker = { type: 'measure', id, files: files.map((f, k) => ({ name: f.name, bytes: buffers[k] })), options };
     const worker = this.start();

@@ -5,7 +5,7 @@
  * measurement supersedes an older one (its late messages are ignored).
  */
 import type { VolumeComparison, VolumeMeasuredResult, VolumeModelDrawing } from '../core/measure';
-import { MAX_MEASURE_FILE_BYTES, MeasureFileError } from './measureClient';
+import { MeasureFileError, readChosenFile } from './measureClient';
 import type { FromVolumeWorker, ToVolumeWorker, VolumeRequestOptions } from './volumeProtocol';
 import type { CellShape, DrawnSurface } from './volumeSurfaces';
 import { requestWorker } from './workerRequest';
@@ -26,8 +26,7 @@ export class VolumeClient {
   /** Measures one 3D TIFF; resolves once the result (and the model, when asked) has been delivered. */
   async measure(file: File, options: VolumeRequestOptions, callbacks: VolumeCallbacks = {}): Promise<void> {
     const id = ++this.latest;
-    if (file.size > MAX_MEASURE_FILE_BYTES) throw new MeasureFileError(file.name, `${file.name}: ${file.size} bytes is over the limit of 1 GiB per file`);
-    const bytes = await file.arrayBuffer();
+    const bytes = await readChosenFile(file);
     if (id !== this.latest) throw new MeasureFileError(null, 'superseded by a newer measurement');
     const message: ToVolumeWorker = { type: 'measure', id, file: { name: file.name, bytes }, options };
     return this.exchange(id, message, [bytes], (data, done) => {

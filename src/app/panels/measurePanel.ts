@@ -80,6 +80,10 @@ export class MeasurePanel {
   private readonly assign: LayerAssign;
   /** The files of the latest attempt (Measure again, Reverse), basal first. */
   private files: File[] = [];
+  /** The files of the tissue on screen (a failed attempt leaves them): what a project keeps. */
+  private shownFiles: File[] = [];
+  /** The file of the volume being measured, on screen once measured. */
+  private volumeFiles: File[] = [];
   private result: MeasuredResult | null = null;
   private comparison: ModelComparison | null = null;
   private shown = 0;
@@ -92,6 +96,11 @@ export class MeasurePanel {
       status: (text) => this.status(text),
       alert: (message) => this.alert(message),
       state: (state) => (this.root.dataset.state = state),
+      shown: () => {
+        this.$('#measure-results').hidden = true;
+        this.shownFiles = this.volumeFiles;
+      },
+      anyShown: () => this.anyShown(),
     });
     this.assign = new LayerAssign(this.$('#measure-layer-files'), (files) => void this.measure(files));
     const input = this.$<HTMLInputElement>('#measure-files');
@@ -116,10 +125,10 @@ export class MeasurePanel {
   shownTissue(): { mode: 'layers' | 'volume'; files: File[]; result: unknown; comparison: unknown; note: string | null } | null {
     if (this.root.dataset.mode === 'volume' && this.volume.shown) {
       const v = this.volume.shown;
-      return { mode: 'volume', files: this.files, result: v.result, comparison: v.comparison, note: v.note };
+      return { mode: 'volume', files: this.shownFiles, result: v.result, comparison: v.comparison, note: v.note };
     }
     if (this.root.dataset.mode === 'layers' && this.result)
-      return { mode: 'layers', files: this.files, result: this.result, comparison: this.comparison, note: null };
+      return { mode: 'layers', files: this.shownFiles, result: this.result, comparison: this.comparison, note: null };
     return null;
   }
 
@@ -205,16 +214,15 @@ export class MeasurePanel {
         this.alert((error as Error).message);
         return;
       }
-      this.$('#measure-results').hidden = true;
+      // The layers on screen stay until the volume is measured (a bad file keeps them).
       this.$<HTMLButtonElement>('#measure-reverse').disabled = true;
+      this.volumeFiles = files;
       return this.volume.measure(
         files[0],
         volumeOptions,
         stored ? { comparison: stored.comparison as VolumeComparison | null, note: stored.note ?? '' } : undefined,
       );
     }
-    this.$('#volume-results').hidden = true;
-    this.root.dataset.mode = 'layers';
     this.root.dataset.state = 'measuring';
     this.status(`Measuring ${files.map((f) => f.name).join(', ')} (basal first)…`);
     let measured: Promise<void> = Promise.resolve();
@@ -222,7 +230,7 @@ export class MeasurePanel {
       await this.client.measure(files, stored ? { ...options, realizations: 0 } : options, {
         onProgress: (line) => this.status(line),
         onMeasured: (result, pictures) => {
-          measured = this.showMeasured(result, pictures);
+          measured = this.showMeasured(result, pictures, files);
         },
         onCompared: (comparison, note) => {
           void measured.then(() => this.showComparison(comparison, note));
@@ -233,19 +241,29 @@ export class MeasurePanel {
     } catch (error) {
       if (error instanceof MeasureFileError && error.message.startsWith('superseded')) return;
       this.alert(inPageWords(error instanceof Error ? error.message : String(error)));
-      this.status(this.result ? 'Not measured; the previous tissue is still shown.' : 'Not measured.');
-      this.root.dataset.state = this.result ? 'shown' : 'error';
+      const kept = this.anyShown();
+      this.status(kept ? 'Not measured; the previous tissue is still shown.' : 'Not measured.');
+      this.root.dataset.state = kept ? 'shown' : 'error';
     }
   }
 
-  private async showMeasured(result: MeasuredResult, pictures: LayerPicture[]): Promise<void> {
+  /** Whether a measured tissue (layers or a volume) is on screen. */
+  private anyShown(): boolean {
+    return !this.$('#measure-results').hidden || !this.$('#volume-results').hidden;
+  }
+
+  private async showMeasured(result: MeasuredResult, pictures: LayerPicture[], files: File[]): Promise<void> {
     const shown = ++this.shown;
+    this.shownFiles = files;
+    // The layers take the place of a volume on screen only now that they are measured.
+    this.$('#volume-results').hidden = true;
+    this.root.dataset.mode = 'layers';
     this.result = result;
     this.comparison = null;
     this.$<HTMLButtonElement>('#measure-json').disabled = false;
     for (const id of ['#measure-figure-svg', '#measure-figure-png', '#measure-cells-csv']) this.$<HTMLButtonElement>(id).disabled = false;
     this.$('#measure-results').hidden = false;
-    this.assign.show(this.files);
+    this.assign.show(files);
     renderHeadline(this.root, result, null, null);
     this.$('#measure-info').textContent = describe(result);
     this.sides(result);

@@ -43,7 +43,15 @@ export class VolumePanel {
 
   constructor(
     private readonly root: HTMLElement,
-    private readonly report: { status(text: string): void; alert(message: string): void; state(state: string): void },
+    private readonly report: {
+      status(text: string): void;
+      alert(message: string): void;
+      state(state: string): void;
+      /** A volume is now shown (in place of measured layers, if any were). */
+      shown(): void;
+      /** Whether a tissue, layers or a volume, is on screen. */
+      anyShown(): boolean;
+    },
   ) {
     this.$('#volume-json').addEventListener('click', () => this.shown && download('measured-volume.json', this.json(), 'application/json'));
     this.$('#volume-cells-csv').addEventListener(
@@ -128,14 +136,16 @@ export class VolumePanel {
       const message = volumeWords(error instanceof Error ? error.message : String(error));
       this.report.alert(message);
       if (/voxel size/.test(message) && !options.voxelSize) this.$<HTMLInputElement>('#volume-voxel-x').focus();
-      this.report.status(this.shown ? 'Not measured; the previous volume is still shown.' : 'Not measured.');
-      this.report.state(this.shown ? 'shown' : 'error');
+      const kept = this.report.anyShown();
+      this.report.status(kept ? 'Not measured; the previous tissue is still shown.' : 'Not measured.');
+      this.report.state(kept ? 'shown' : 'error');
     }
   }
 
   private async showMeasured(result: VolumeMeasuredResult, surfaces: DrawnSurface[], request: number): Promise<void> {
     if (request !== this.request) return;
     this.shown = { result, comparison: null, note: '' };
+    this.report.shown();
     this.$('#volume-results').hidden = false;
     this.root.dataset.mode = 'volume';
     const s = result.analyses[0].summary;
