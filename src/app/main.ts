@@ -59,7 +59,9 @@ const realizations = new RealizationsPanel({
   onValid: (message) => {
     if (errorBox.querySelector('.error-main')?.textContent === message) clearError();
   },
-  onBusy: () => (cancelButton.disabled = !runner.running && !realizations.running),
+  // The realizations' worker may report it stopped after a new run has begun (run() stops it
+  // first): a run under way keeps Cancel enabled whatever the runner has reached.
+  onBusy: () => (cancelButton.disabled = !runner.running && !realizations.running && document.body.dataset.state !== 'running'),
 });
 
 function setState(state: 'running' | 'done' | 'error' | 'cancelled' | 'no-webgl' | 'waiting' | 'refused'): void {
