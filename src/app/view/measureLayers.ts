@@ -48,7 +48,9 @@ export class MeasureLayers {
       );
       canvas.style.height = `${height}px`;
       canvas.style.width = `${height * aspects[k]}px`;
-      canvas.getContext('2d')?.putImageData(new ImageData(picture.rgba, picture.width, picture.height), 0, 0);
+      // A canvas in memory, not on the GPU: its pixels are put, never drawn (putImageData on a
+      // GPU canvas cost a first 70 ms task on SwiftShader).
+      canvas.getContext('2d', { willReadFrequently: true })?.putImageData(new ImageData(picture.rgba, picture.width, picture.height), 0, 0);
       canvas.addEventListener('click', (event) => this.pick(this.labelAt(k, canvas, event)));
       const caption = document.createElement('figcaption');
       caption.textContent = `${picture.name}: ${layer.file}${result.inputs.files.length === 1 ? ` page ${layer.page + 1}` : ''}, ${layer.width} x ${layer.height} px, ${layer.labels} labels`;
@@ -76,7 +78,7 @@ export class MeasureLayers {
     const periodicX = this.result.inputs.options.periodicX;
     this.pictures.forEach((picture, k) => {
       const rgba = withSelected(picture, this.selected, periodicX);
-      this.canvases[k].getContext('2d')?.putImageData(new ImageData(rgba, picture.width, picture.height), 0, 0);
+      this.canvases[k].getContext('2d', { willReadFrequently: true })?.putImageData(new ImageData(rgba, picture.width, picture.height), 0, 0);
     });
     this.describe();
   }
