@@ -22,6 +22,9 @@ describe('PNG tEXt provenance', () => {
     expect(decoded.text.Software).toBe('tissue-sheet 0.1.0');
     const text = readPngText(tagged);
     expect(JSON.parse(text['tissue-sheet:config'])).toEqual(JSON.parse(config));
+    // Latin-1 text as it is (a reader shows "µm", not "\u00b5m"); beyond Latin-1, escaped.
+    const method = withPngText(png, [['tissue-sheet:method', 'contact curves in µm, areas in µm² ≥ 0']]);
+    expect(decode(method).text['tissue-sheet:method']).toBe('contact curves in µm, areas in µm² \\u2265 0');
   });
 
   it('refuses what is not a PNG and bad keywords', () => {

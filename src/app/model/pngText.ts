@@ -24,7 +24,9 @@ export function crc32(bytes: Uint8Array): number {
 }
 
 function latin1(text: string): Uint8Array {
-  const escaped = text.replace(/[^\x20-\x7e\n]/g, (ch) => `\\u${ch.charCodeAt(0).toString(16).padStart(4, '0')}`);
+  // Latin-1's printable characters as they are (µm, ², ° read as such in exiftool or Fiji); only
+  // what Latin-1 cannot hold, and control characters but the line feed, is escaped.
+  const escaped = text.replace(/[^\x20-\x7e\xa0-\xff\n]/g, (ch) => `\\u${ch.charCodeAt(0).toString(16).padStart(4, '0')}`);
   return Uint8Array.from(escaped, (ch) => ch.charCodeAt(0));
 }
 
