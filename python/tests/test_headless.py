@@ -203,6 +203,8 @@ def test_layer_arrays_refused_with_what_is_accepted():
         tissue_sheet.measure([shell_volume(), layers[1]], pixel_size=0.5)
     with pytest.raises(TypeError, match=r"labels\[1\]: a layer is the path of a label image or a 2D numpy label array, got int"):
         tissue_sheet.measure([layers[0], 3], pixel_size=0.5)
+    with pytest.raises(ValueError, match=r"labels: one 2D layer; give two or more \(basal first\)"):
+        tissue_sheet.measure([layers[0]], pixel_size=0.5)
 
 
 def _processes_naming(text):

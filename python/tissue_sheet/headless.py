@@ -343,6 +343,9 @@ def measure(
 def _layer_files(labels: Sequence[Any], pixel_size: float | None, directory: Path, names: dict[str, str]) -> list[str]:
     """The layers' files, basal first: a path as given, a 2D array written to a one-page TIFF
     (the layers mode reads 2D TIFFs, of any width: an unrolled tube's apical layer is wider)."""
+    # One 2D array alone would reach the CLI as a one-page TIFF, "a 3D stack with one page".
+    if len(labels) == 1 and isinstance(labels[0], np.ndarray):
+        raise ValueError("labels: one 2D layer; give two or more (basal first), or one 3D array (a label volume)")
     files = []
     for k, layer in enumerate(labels):
         if isinstance(layer, np.ndarray):
