@@ -1,4 +1,5 @@
 import { describe, expect, it } from 'vitest';
+import { ConfigError } from '../../src/core/config';
 import { analyzeSurfaces, withMinBoundaryLength } from '../../src/core/analysis';
 import { offsetClosedSurface } from '../../src/core/closed/closedOffset';
 import { ellipsoidArea } from '../../src/core/closed/conicArc';
@@ -60,6 +61,22 @@ describe('offset surfaces of the stack', () => {
     // And the diagram on it is the analytic one: areas add up to the outer ellipsoid's.
     const rvd = restrictedVoronoi(outer.surface, outer.sites, count);
     expect(Math.abs(rvd.adjacency.areas.reduce((s, v) => s + v, 0) / ellipsoidArea(a + t, b + t, c + t) - 1)).toBeLessThan(1e-9);
+  });
+
+  it('an inward parallel ellipsoid too close to its curvature radius for the triangle budget: a ConfigError on sheet.thickness saying what fits', () => {
+    // 40:20:20 curves down to b²/a = 10 µm; at 9.99 µm inward the parallel surface needs > 2e6 triangles.
+    let error: unknown;
+    try {
+      offsetClosedSurface({ kind: 'ellipsoid', a: 40, b: 20, c: 20 }, [40, 0, 0], [1, 0, 0], 30, -9.99, 'normal');
+    } catch (e) {
+      error = e;
+    }
+    expect(error).toBeInstanceOf(ConfigError);
+    expect((error as ConfigError).field).toBe('sheet.thickness');
+    const fits = Number((error as Error).message.match(/up to about ([\d.]+) µm/)![1]);
+    expect(fits).toBeGreaterThan(5);
+    expect(fits).toBeLessThan(9.99);
+    expect((error as Error).message).toMatch(/or sheet\.adjacency "labels"$/);
   });
 
   it('"normal" on a sphere is the concentric sphere; on a mesh the vertices move along the area-weighted vertex normals', () => {

@@ -153,6 +153,28 @@ describe('closest-point projectors', () => {
     }
   });
 
+  it('closestPointOnEllipsoid on a spheroid (b = c), from a point on its long axis: a point of the closest circle', () => {
+    // Inside |x| < a - b²/a the closest points to (x, 0, 0) form a circle around the axis; the
+    // projector returned the point itself (a Lloyd centroid on a 100:5:5 tip ended the run).
+    for (const [a, b, c] of [
+      [100, 5, 5],
+      [5, 100, 5],
+      [5, 5, 100],
+    ] as Vec3[]) {
+      const long = a > b ? 0 : b > c ? 1 : 2;
+      const p: Vec3 = [0, 0, 0];
+      p[long] = 96.1;
+      const x = closestPointOnEllipsoid(p, a, b, c);
+      expect((x[0] / a) ** 2 + (x[1] / b) ** 2 + (x[2] / c) ** 2).toBeCloseTo(1, 12);
+      const r = [a, b, c][long];
+      const short = 5;
+      // The circle: along the axis at r² q / (r² - s²), at radius s·sqrt(1 - (that / r)²).
+      const along = (r * r * 96.1) / (r * r - short * short);
+      expect(x[long]).toBeCloseTo(along, 9);
+      expect(Math.hypot(...x.filter((_, k) => k !== long))).toBeCloseTo(short * Math.sqrt(1 - (along / r) ** 2), 9);
+    }
+  });
+
   it('createMeshProjector: points pushed off an icosphere come back to distance ≈ |offset|', () => {
     const mesh = icosphere(8);
     const project = createMeshProjector(mesh);

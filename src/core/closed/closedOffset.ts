@@ -17,6 +17,7 @@
  * `offset: "axes"` (the lab's spheroid model; sphere and ellipsoid only): the ellipsoid with
  * semi-axes a + t, b + t, c + t (analytic), every site moved to its closest point on it.
  */
+import { ConfigError } from '../config/configError';
 import { closestPointOnEllipsoid } from '../cubemap/sample';
 import { icosphere } from '../mesh/generate';
 import { areaWeightedVertexNormals } from '../mesh/types';
@@ -140,6 +141,19 @@ function parallelEllipsoid(surface: EllipsoidGeometry, sites: ArrayLike<number>,
   let f = roundFrequency(Math.max(2, Math.ceil((1.15 * (hi + Math.max(0, t))) / Math.sqrt(6 * rho * maxDeviation))));
   for (;;) {
     if (20 * f * f > maxTriangles) {
+      if (options.maxDeviation === undefined && t < 0) {
+        // Near the smallest radius of curvature the parallel surface bends too sharply for the
+        // triangles the exact method may use: the config's thickness, refused naming what fits.
+        // The largest frequency the budget allows (frequencies go in steps of 16), and the
+        // smallest radius of curvature it meshes, with room for edges longer than estimated.
+        const fMax = 16 * Math.floor(Math.sqrt(maxTriangles / 20) / 16);
+        const rhoMin = (1.5 * (1.15 * hi) ** 2) / (6 * maxDeviation * fMax * fMax);
+        const fits = Math.floor(((lo * lo) / hi - rhoMin) * 1e3) / 1e3;
+        throw new ConfigError(
+          'sheet.thickness',
+          `sheet.thickness: an inward offset of ${-t} µm comes so close to the ellipsoid's smallest radius of curvature (${((lo * lo) / hi).toPrecision(4)} µm) that the exact method's parallel surface would need about ${20 * f * f} triangles (at most ${maxTriangles}); use an inward thickness up to about ${Math.max(0, fits)} µm, or sheet.adjacency "labels"`,
+        );
+      }
       throw new Error(
         `maxDeviation: ${maxDeviation} µm would need about ${20 * f * f} triangles for the parallel surface at ${t} µm (more than maxTriangles ${maxTriangles}); allow a larger deviation`,
       );

@@ -228,6 +228,9 @@ export function closestPointOnEllipsoid(p: Vec3, a: number, b: number, c: number
       if (k === minAxis) continue;
       const den = r[k] * r[k] - rmin2;
       if (den <= 0) {
+        // Another axis as short as the shortest (a spheroid's b = c), with the point on it too:
+        // the closest points form a circle around the long axis; its point along minAxis serves.
+        if (q[k] <= 1e-12 * norm) continue;
         ok = false;
         break;
       }
