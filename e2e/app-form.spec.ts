@@ -272,6 +272,11 @@ test("the sweep's vary list says when a mode switch changes its field; a loaded 
   await expect(page.locator('[name="sweep-to"]')).toHaveValue('6');
   await expect(page.locator('[name="sweep-steps"]')).toHaveValue('3');
   await expect(page.locator('[name="sweep-realizations"]')).toHaveValue('1');
+  // A file holding no spec is refused; the sweep loaded stays.
+  await page.locator('[name="sweep-load"]').setInputFiles({ name: 'sweep.json', mimeType: 'application/json', buffer: Buffer.from('null') });
+  await expect(page.locator('#error')).toContainText('sweep.json: holds no sweep spec (got null)');
+  await expect(page.locator('#sweep')).toHaveAttribute('data-done', '3');
+  await expect(page.locator('[name="sweep-to"]')).toHaveValue('6');
 });
 
 test('a mesh missing on the server is said to be missing, not "not a PLY"', async ({ page }) => {

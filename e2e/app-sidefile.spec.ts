@@ -1,4 +1,4 @@
-import { readFileSync, writeFileSync } from 'node:fs';
+import { copyFileSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
 import { linkTo, runs, waitForRun } from './appHelpers';
@@ -37,6 +37,16 @@ test('a result with its cells side file opens when both files are chosen; one al
   await expect(page.locator('#error')).toContainText('big.json: its cells are in the side file big.cells.bin');
   await page.locator('#open-file').setInputFiles(join(dir, 'big.cells.bin'));
   await expect(page.locator('#error')).toContainText('big.cells.bin is a cells side file: choose it together with its result JSON (big.json');
+  // A side file cut short is refused, and the status says nothing was opened (not "Decoding ...").
+  const cut = join(dir, 'cut');
+  mkdirSync(cut);
+  copyFileSync(join(dir, 'big.json'), join(cut, 'big.json'));
+  const side = readFileSync(join(dir, 'big.cells.bin'));
+  writeFileSync(join(cut, 'big.cells.bin'), side.subarray(0, side.length >> 1));
+  await page.locator('#open-file').setInputFiles([join(cut, 'big.json'), join(cut, 'big.cells.bin')]);
+  await expect(page.locator('#error')).toContainText('big.cells.bin');
+  await expect(page.locator('#status')).toContainText('Not opened (big.json + big.cells.bin); the result on screen is as it was.');
+  expect(await runs(page)).toBe(before);
 
   await page.locator('#open-file').setInputFiles([join(dir, 'big.cells.bin'), join(dir, 'big.json')]);
   await expect(page.locator('#status')).toContainText('Opened big.json + big.cells.bin');

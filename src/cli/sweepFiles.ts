@@ -84,7 +84,14 @@ export function sweepLayout(spec: ValidSweepSpec, pointConfig: (run: Run) => Con
     header,
     reuseGroup,
     pointConfigOf: (run) => configs.get(run.pointKey)!,
-    resume: { header, fields, runs, filledColumns: (run) => filled.get(run.pointKey)!, textColumns: new Set([...TEXT_COLUMNS, ...geometry.text]) },
+    resume: {
+      header,
+      fields,
+      runs,
+      filledColumns: (run) => filled.get(run.pointKey)!,
+      textColumns: new Set([...TEXT_COLUMNS, ...geometry.text]),
+      pointValues: (run) => values.get(run.pointKey)!,
+    },
   };
 }
 

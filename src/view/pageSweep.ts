@@ -194,7 +194,14 @@ function pointConfig(run: Run): Config {
 export async function sweepInPage(input: unknown, options: PageSweepOptions = {}): Promise<PageSweepResult> {
   const plan = planSweep(input, options.maxRuns);
   const { spec, fields, runs, header, summary, filled } = plan;
-  const resumed = planResume(options.resumeCsv ?? '', { header, fields, runs, filledColumns: (run) => filled.get(run.pointKey)!, textColumns: plan.text });
+  const resumed = planResume(options.resumeCsv ?? '', {
+    header,
+    fields,
+    runs,
+    filledColumns: (run) => filled.get(run.pointKey)!,
+    textColumns: plan.text,
+    pointValues: (run) => plan.geometryValues.get(run.pointKey)!,
+  });
   let csv = resumed.cleanText;
   const rows = [...resumed.rows];
   // Each run's row by its key: a progress event names its run, whose row is already appended.

@@ -153,6 +153,24 @@ describe('sweep --shard and merge', () => {
       expect(run.stderr.trim().split('\n')).toHaveLength(1);
       expect(read(join(dir, name), 'runs.csv')).toBe(rows);
     }
+    // A row of another configuration under a key of this spec (runs.csv edited or swapped by
+    // hand): its base columns differ, so it is set aside and computed again.
+    const edited = copy('edited');
+    const table = readCsvTable(read(edited, 'runs.csv'));
+    const cellsAt = table.header.indexOf('cells');
+    expect(cellsAt).toBeGreaterThan(0);
+    const lines = read(edited, 'runs.csv').split('\r\n');
+    const fields = lines[1].split(',');
+    expect(fields[cellsAt]).toBe('24');
+    fields[cellsAt] = '25';
+    lines[1] = fields.join(',');
+    writeFileSync(join(edited, 'runs.csv'), lines.join('\r\n'));
+    const foreign = cli(['sweep', specPath, '--out', edited, '--shard', '1/8']);
+    expect(foreign.status, foreign.stderr).toBe(0);
+    expect(foreign.stderr).toMatch(
+      /runs\.csv:2: cells is "25" but run .* of this spec has 24 \(a row of another configuration\); dropped, the run is computed again/,
+    );
+    expect(foreign.stderr).toMatch(/1 runs computed, \d+ resumed/);
     // The same config with a default written out is the same sweep: resumed, nothing computed.
     const same = cli(['sweep', specWith('explicit.json', { minSpacing: 0 }), '--out', copy('explicit'), '--shard', '1/8']);
     expect(same.status, same.stderr).toBe(0);

@@ -129,6 +129,8 @@ export function bindExports(root: HTMLElement, sources: ExportSources): ResultOp
       await sources.onOpen(file, name);
       if (file.kind === 'project') await openSections(file.sections, name);
     } catch (error) {
+      // The progress line ("Opening ...: Decoding ...") would read as a hang.
+      sources.onOpenProgress?.(`Not opened (${chosen.map((f) => f.name).join(' + ')}); the result on screen is as it was.`, 0);
       sources.onError((error as Error).message);
     }
   });

@@ -275,6 +275,7 @@ export class SweepPanel {
     input.value = '';
     try {
       let spec: unknown = null;
+      let specGiven = false;
       let csv = '';
       for (const file of files) {
         const text = await file.text();
@@ -287,9 +288,15 @@ export class SweepPanel {
             throw new Error(`${file.name}: not JSON; load a sweep.json and its runs.csv`);
           }
           spec = data && typeof data === 'object' && 'spec' in data ? (data as { spec: unknown }).spec : data;
+          // A file that holds no spec (null, a record whose spec is null) is refused, never read
+          // as "keep the sweep on screen with no rows".
+          if (spec === null || typeof spec !== 'object')
+            throw new Error(`${file.name}: holds no sweep spec (got ${spec === null ? 'null' : typeof spec}); load a sweep.json and its runs.csv`);
+          specGiven = true;
         }
       }
-      spec ??= this.spec;
+      // A runs.csv alone: the rows of the sweep on screen.
+      if (!specGiven) spec = this.spec;
       if (!spec) throw new Error('Load a sweep.json (the spec) together with its runs.csv.');
       const plan = planSweep(spec);
       this.spec = spec;

@@ -47,6 +47,12 @@ export interface ResumeSpec<C extends ConfigObject> {
   /** Summary columns a run fills (the others must be empty). */
   filledColumns: (run: SweepRun<C>) => ReadonlySet<string>;
   textColumns: ReadonlySet<string>;
+  /**
+   * The base configuration's values a run's row carries (runs.csv's geometry columns, units.ts):
+   * a row of another configuration under the same key and varied values (cells 50 where this
+   * spec has 60) is set aside, not mixed with this spec's rows.
+   */
+  pointValues?: (run: SweepRun<C>) => Readonly<Record<string, string | number | boolean>>;
 }
 
 const isNumberText = (cell: string): boolean => cell === 'NaN' || (cell.trim() === cell && cell !== '' && !Number.isNaN(Number(cell)));
@@ -125,6 +131,16 @@ function checkRecord<C extends ConfigObject>(
   if (cell('seed') !== String(run.seed)) return `seed ${JSON.stringify(cell('seed'))} but run ${key} has seed ${run.seed}`;
   for (const f of spec.fields) {
     if (cell(f) !== valueText(run.point[f])) return `${f} is ${JSON.stringify(cell(f))} but run ${key} has ${valueText(run.point[f])}`;
+  }
+  const expected = spec.pointValues?.(run);
+  if (expected) {
+    for (const name in expected) {
+      const at = spec.header.indexOf(name);
+      // The row's text as runCells wrote it: String() of the value.
+      if (at >= 0 && record[at] !== String(expected[name])) {
+        return `${name} is ${JSON.stringify(record[at])} but run ${key} of this spec has ${String(expected[name])} (a row of another configuration)`;
+      }
+    }
   }
   const filled = spec.filledColumns(run);
   const fixed = new Set(['key', 'realization', 'seed', ...spec.fields]);
