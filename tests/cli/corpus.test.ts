@@ -126,6 +126,9 @@ describe('bad input corpus: runs.csv rows', () => {
       if (h === 'seed') return String(run.seed);
       if (layout.fields.includes(h)) return String(run.point[h]);
       if (h === 'centroidPath') return 'none (exact engine)';
+      // The base columns hold the run's configuration (units.ts geometryValues).
+      const base = layout.geometryOf(run);
+      if (h in base) return String(base[h]);
       if (!layout.resume.filledColumns(run).has(h) || h.startsWith('labels.')) return '';
       return '1';
     });
@@ -145,6 +148,11 @@ describe('bad input corpus: runs.csv rows', () => {
     ['another realization', () => edit('realization', '1'), /realization "1"/],
     ['another seed', () => edit('seed', '12345'), /seed "12345"/],
     ['another varied value', () => edit('sheet.surfaceRatio', '2'), /sheet\.surfaceRatio is "2"/],
+    [
+      'another base value (a row of another configuration)',
+      () => edit('cells', '7'),
+      /cells is "7" but run .* of this spec has \d+ \(a row of another configuration\)/,
+    ],
     ['text in a number column', () => edit('exact.percentScutoids', 'lots'), /exact\.percentScutoids: "lots" is not a number/],
     ['a formula in a number column', () => edit('finalEnergy', '=1+1'), /finalEnergy/],
     ['an empty required column', () => edit('iterations', ''), /iterations is empty/],
