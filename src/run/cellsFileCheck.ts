@@ -3,7 +3,8 @@
  * before anything reads them: a file from anyone is untrusted. Column bounds within the file are
  * checked where the columns are read; here, each column's type and length against its table's
  * count, neighbour lists as CSR (offsets from 0, never decreasing, ending at the list's length;
- * ids of cells of the table), and every table of one result of the same count. Without it a
+ * ids of cells of the table), every table of one result of the same count, and the values read
+ * as they are (flags 0 or 1, counts >= 0, finite positions). Without it a
  * wrong file gave wrong neighbours silently, and an offset of 2^31 made a reader loop for minutes.
  */
 import type { AnalysisCellTable, CellTable, ResultCellTables } from './cellTables';
@@ -21,10 +22,10 @@ export function checkCellTables(path: string, tables: ResultCellTables): void {
 
 function checkCells(path: string, of: string, table: CellTable, count: number): void {
   checkCount(path, of, table.count, count);
-  column(path, of, 'position', table.position, Float64Array, 3 * count);
-  column(path, of, 'surface', table.surface, Float64Array, 2 * count);
+  finite(path, of, 'position', column(path, of, 'position', table.position, Float64Array, 3 * count));
+  finite(path, of, 'surface', column(path, of, 'surface', table.surface, Float64Array, 2 * count));
   column(path, of, 'area', table.area, Float64Array, count);
-  column(path, of, 'touchesBorder', table.touchesBorder, Uint8Array, count);
+  flags(path, of, 'touchesBorder', column(path, of, 'touchesBorder', table.touchesBorder, Uint8Array, count));
   const offsets = column(path, of, 'neighbourOffsets', table.neighbourOffsets, Int32Array, count + 1);
   const ids = table.neighbourIds;
   if (offsets[0] !== 0) throw new Error(`${path}: ${of}.neighbourOffsets starts at ${offsets[0]}, not 0`);
@@ -40,14 +41,35 @@ function checkCells(path: string, of: string, table: CellTable, count: number): 
 
 function checkAnalysis(path: string, of: string, table: AnalysisCellTable, count: number): void {
   checkCount(path, of, table.count, count);
-  column(path, of, 'valid', table.valid, Uint8Array, count);
-  column(path, of, 'scutoid', table.scutoid, Uint8Array, count);
-  for (const name of ['won', 'lost', 'transitions', 'neighbours3D'] as const) column(path, of, name, table[name], Int32Array, count);
+  flags(path, of, 'valid', column(path, of, 'valid', table.valid, Uint8Array, count));
+  flags(path, of, 'scutoid', column(path, of, 'scutoid', table.scutoid, Uint8Array, count));
+  for (const name of ['won', 'lost', 'transitions', 'neighbours3D'] as const) counts(path, of, name, column(path, of, name, table[name], Int32Array, count));
   // Side counts per surface, surface-major: a whole number of surfaces.
   const sides = table.sides;
   if (!(sides instanceof Int32Array) || (count > 0 ? sides.length % count !== 0 : sides.length !== 0)) {
     throw new Error(`${path}: ${of}.sides holds ${sides.length} values, not a whole number of surfaces of ${count} cells`);
   }
+  counts(path, of, 'sides', sides);
+}
+
+/**
+ * The values the views and exports read as they are: flags 0 or 1 (a `valid` of 7 was drawn as
+ * a border cell while the summary counted it), counts never negative, positions finite (the JSON
+ * form is refused otherwise too: app/model/project.ts).
+ */
+function flags(path: string, of: string, name: string, values: Uint8Array): void {
+  const k = values.findIndex((v) => v > 1);
+  if (k >= 0) throw new Error(`${path}: ${of}.${name}[${k}] is ${values[k]}, not 0 or 1`);
+}
+
+function counts(path: string, of: string, name: string, values: Int32Array): void {
+  const k = values.findIndex((v) => v < 0);
+  if (k >= 0) throw new Error(`${path}: ${of}.${name}[${k}] is ${values[k]}, not a count`);
+}
+
+function finite(path: string, of: string, name: string, values: Float64Array): void {
+  const k = values.findIndex((v) => !Number.isFinite(v));
+  if (k >= 0) throw new Error(`${path}: ${of}.${name}[${k}] is ${values[k]}, not a finite number`);
 }
 
 function checkCount(path: string, of: string, actual: number, count: number): void {

@@ -63,7 +63,27 @@ function withInt(name: string, index: number, value: number): () => ResultCellTa
   return () => decodeCellsFile(record, bytes);
 }
 
+/** The file's bytes with one value of a column of table `t` replaced (int32, uint8 or float64 as the column is). */
+function withValue(t: number, name: string, index: number, value: number): () => ResultCellTables {
+  const { record, bytes } = file(tables());
+  const column = record.tables[t].columns[name] as { offset: number; type: string };
+  const view = new DataView(bytes.buffer);
+  if (column.type === 'uint8') view.setUint8(column.offset + index, value);
+  else if (column.type === 'int32') view.setInt32(column.offset + 4 * index, value, true);
+  else view.setFloat64(column.offset + 8 * index, value, true);
+  return () => decodeCellsFile(record, bytes);
+}
+
 describe('the structure of a side file', () => {
+  it('flags other than 0 and 1, negative counts and positions that are not finite are refused', () => {
+    expect(withValue(2, 'valid', 0, 7)).toThrow('r.cells.bin: analyses[0].cells.valid[0] is 7, not 0 or 1');
+    expect(withValue(0, 'touchesBorder', 1, 2)).toThrow('cells.touchesBorder[1] is 2, not 0 or 1');
+    expect(withValue(2, 'sides', 3, -5)).toThrow('analyses[0].cells.sides[3] is -5, not a count');
+    expect(withValue(2, 'won', 1, -1)).toThrow('analyses[0].cells.won[1] is -1, not a count');
+    expect(withValue(1, 'position', 4, Infinity)).toThrow('surfaces[0].cells.position[4] is Infinity, not a finite number');
+    expect(withValue(0, 'surface', 0, NaN)).toThrow('cells.surface[0] is NaN, not a finite number');
+  });
+
   it('a well-formed file decodes to its tables; an empty one too', () => {
     const { record, bytes } = file(tables());
     const decoded = decodeCellsFile(record, bytes);
