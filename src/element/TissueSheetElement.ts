@@ -26,18 +26,17 @@ import type {
   TissueSheetWaitingDetail,
   TissueSheetWarningDetail,
 } from './events';
-import { SheetView3D } from '../view/sheetView3d';
-import { trackCellHover } from '../view/cellHover';
 import { byConstruction } from '../core/analysis/byConstruction';
 import { checkPageBudget } from '../view/pageBudget';
 import { pendingSources, type ForeignSource } from '../view/sources';
-import { primaryAnalysis, viewStack } from '../view/stack';
+import { primaryAnalysis } from '../view/stack';
 import { askToLoad } from './sourcePrompt';
 import { ATTRIBUTES, OTHER_ATTRIBUTES, configFromAttributes } from './attributes';
 import { TEMPLATE } from './template';
 import { unknownAttributes } from './unknownAttributes';
 import { ElementRealizations, realizationStatus, realizationsOf } from './realizations';
 import { LivePath } from './livePath';
+import { ElementView } from './elementView';
 import { StatusLine } from './statusLine';
 import { resultStatus, showDrawn, showHeadline } from './resultDisplay';
 
@@ -50,11 +49,8 @@ export class TissueSheetElement extends HTMLElement {
   private image: GrayImage | null = null;
   private mesh: MeshFile | null = null;
   private last: SheetResult | null = null;
-  private view: SheetView3D | null = null;
-  /** Stops the view's hover tracking (trackCellHover), while a view is open. */
-  private untrackHover: (() => void) | null = null;
-  /** The output in the 3D view (drawn again when the view is made anew: reconnected, context restored). */
-  private drawn: SheetOutput | null = null;
+  /** The 3D view, open while connected (elementView.ts). */
+  private readonly view: ElementView;
   private readonly runner = new LatestRunner();
   /** The slider path: a change of `sheet.*` only redraws the result on screen from its seeded surface. */
   private readonly livePath = new LivePath(this.runner, (full) => this.drawStack(full));
@@ -70,6 +66,17 @@ export class TissueSheetElement extends HTMLElement {
     this.shadow = this.attachShadow({ mode: 'open' });
     this.shadow.innerHTML = TEMPLATE;
     this.statusLine = new StatusLine(this.shadow.querySelector<HTMLElement>('.status')!);
+    this.view = new ElementView(this.shadow, {
+      hover: (picked) => this.emit('cell-hover', picked),
+      lost: () =>
+        this.fail(
+          new WebGLContextLostError(
+            'tissue-sheet: the 3D view lost its WebGL context (the browser drops the oldest one when a page holds too many, or the GPU was reset); it stays blank until the browser restores it or the element is connected again.',
+          ),
+        ),
+      restored: () => this.status('The 3D view was restored.'),
+      failed: (message) => this.status(`3D view: ${message}`, true),
+    });
   }
 
   /**
@@ -171,7 +178,7 @@ export class TissueSheetElement extends HTMLElement {
     this.checkAttributes();
     // Attributes set later that the element does not observe (a typo such as `cels`) are said too.
     this.attributeWatch.observe(this, { attributes: true });
-    this.openView();
+    this.view.connect();
     this.schedule();
   }
 
@@ -181,69 +188,7 @@ export class TissueSheetElement extends HTMLElement {
     this.realizationRuns.stop();
     // A browser keeps only so many WebGL contexts (about 16) and drops the oldest beyond that:
     // a removed element gives its context back at once (connecting it again makes a new one).
-    this.closeView();
-  }
-
-  /** The 3D view on the Shadow DOM's canvas, with the result drawn before (if any). */
-  private openView(): void {
-    if (this.view) return;
-    const canvas = this.shadow.querySelector('canvas')!;
-    try {
-      this.view = new SheetView3D(canvas);
-    } catch {
-      this.view = null; // the error event of the run says why
-      return;
-    }
-    this.untrackHover = trackCellHover(canvas, this.view, ({ picked, changed }) => {
-      if (changed) this.emit('cell-hover', picked ? { cell: picked.cell, surface: picked.surface } : null);
-    });
-    canvas.addEventListener('webglcontextlost', this.onContextLost);
-    canvas.addEventListener('webglcontextrestored', this.onContextRestored);
-    if (this.drawn) this.redraw();
-  }
-
-  /** Releases the 3D view's GL resources and its context; a fresh canvas waits for the next openView. */
-  private closeView(): void {
-    const view = this.view;
-    if (!view) return;
-    this.view = null;
-    const canvas = view.canvas;
-    canvas.removeEventListener('webglcontextlost', this.onContextLost);
-    canvas.removeEventListener('webglcontextrestored', this.onContextRestored);
-    this.untrackHover?.();
-    this.untrackHover = null;
-    view.dispose();
-    view.renderer.forceContextLoss();
-    // A canvas keeps its context, lost now, for good: a new canvas takes its place.
-    canvas.replaceWith(canvas.cloneNode(false));
-  }
-
-  /**
-   * The browser took the view's context away (too many WebGL contexts in the page, or a GPU
-   * reset): said in the status line and as an `error` event, never a silently blank view.
-   */
-  private readonly onContextLost = (event: Event): void => {
-    event.preventDefault(); // lets the browser restore it (webglcontextrestored)
-    this.fail(
-      new WebGLContextLostError(
-        'tissue-sheet: the 3D view lost its WebGL context (the browser drops the oldest one when a page holds too many, or the GPU was reset); it stays blank until the browser restores it or the element is connected again.',
-      ),
-    );
-  };
-
-  private readonly onContextRestored = (): void => {
-    this.redraw();
-    this.status('The 3D view was restored.');
-  };
-
-  /** Draws the output drawn before into the view again (a new view, or a restored context). */
-  private redraw(): void {
-    if (!this.drawn) return;
-    try {
-      this.drawStack(this.drawn);
-    } catch (error) {
-      this.status(`3D view: ${(error as Error).message}`, true);
-    }
+    this.view.disconnect();
   }
 
   /** The unknown attributes already warned about while connected (each is said once). */
@@ -353,9 +298,7 @@ export class TissueSheetElement extends HTMLElement {
 
   /** The stack of `output` in the 3D view (throws when the view cannot draw it). */
   private drawStack(output: SheetOutput): void {
-    this.drawn = output;
-    this.view?.setStack(viewStack(output));
-    this.view?.acceleratePicking();
+    this.view.show(output);
   }
 
   /** Where runs compute: `{ where: 'worker' }`, or `{ where: 'page', reason }` after a fallback. */
@@ -392,7 +335,6 @@ export class TissueSheetElement extends HTMLElement {
 
   /** A PNG (or `type`) of the 3D view. */
   toBlob(options: { type?: string } = {}): Promise<Blob> {
-    if (!this.view) return Promise.reject(new Error('tissue-sheet: no 3D view (WebGL is not available)'));
     return this.view.toBlob(options.type);
   }
 
