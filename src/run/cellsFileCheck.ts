@@ -4,7 +4,8 @@
  * checked where the columns are read; here, each column's type and length against its table's
  * count, neighbour lists as CSR (offsets from 0, never decreasing, ending at the list's length;
  * ids of cells of the table), every table of one result of the same count, and the values read
- * as they are (flags 0 or 1, counts >= 0, finite positions). Without it a
+ * as they are (flags 0 or 1, counts >= 0, finite positions, areas and contact lengths finite and
+ * >= 0). Without it a
  * wrong file gave wrong neighbours silently, and an offset of 2^31 made a reader loop for minutes.
  */
 import type { AnalysisCellTable, CellTable, ResultCellTables } from './cellTables';
@@ -24,7 +25,7 @@ function checkCells(path: string, of: string, table: CellTable, count: number): 
   checkCount(path, of, table.count, count);
   finite(path, of, 'position', column(path, of, 'position', table.position, Float64Array, 3 * count));
   finite(path, of, 'surface', column(path, of, 'surface', table.surface, Float64Array, 2 * count));
-  column(path, of, 'area', table.area, Float64Array, count);
+  measures(path, of, 'area', column(path, of, 'area', table.area, Float64Array, count));
   flags(path, of, 'touchesBorder', column(path, of, 'touchesBorder', table.touchesBorder, Uint8Array, count));
   const offsets = column(path, of, 'neighbourOffsets', table.neighbourOffsets, Int32Array, count + 1);
   const ids = table.neighbourIds;
@@ -33,7 +34,7 @@ function checkCells(path: string, of: string, table: CellTable, count: number): 
     if (offsets[i + 1] < offsets[i]) throw new Error(`${path}: ${of}.neighbourOffsets decreases at cell ${i}`);
   }
   column(path, of, 'neighbourIds', ids, Int32Array, offsets[count]);
-  column(path, of, 'neighbourLengths', table.neighbourLengths, Float64Array, offsets[count]);
+  measures(path, of, 'neighbourLengths', column(path, of, 'neighbourLengths', table.neighbourLengths, Float64Array, offsets[count]));
   for (let k = 0; k < ids.length; k++) {
     if (!(ids[k] >= 0 && ids[k] < count)) throw new Error(`${path}: ${of}.neighbourIds[${k}] is ${ids[k]}, not a cell of the ${count}`);
   }
@@ -70,6 +71,12 @@ function counts(path: string, of: string, name: string, values: Int32Array): voi
 function finite(path: string, of: string, name: string, values: Float64Array): void {
   const k = values.findIndex((v) => !Number.isFinite(v));
   if (k >= 0) throw new Error(`${path}: ${of}.${name}[${k}] is ${values[k]}, not a finite number`);
+}
+
+/** Areas (µm²) and contact lengths (µm): an area of -1e300 was shown and summed as a cell's. */
+function measures(path: string, of: string, name: string, values: Float64Array): void {
+  const k = values.findIndex((v) => !(Number.isFinite(v) && v >= 0));
+  if (k >= 0) throw new Error(`${path}: ${of}.${name}[${k}] is ${values[k]}, not a finite measure >= 0`);
 }
 
 function checkCount(path: string, of: string, actual: number, count: number): void {

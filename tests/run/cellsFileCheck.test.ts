@@ -84,6 +84,14 @@ describe('the structure of a side file', () => {
     expect(withValue(0, 'surface', 0, NaN)).toThrow('cells.surface[0] is NaN, not a finite number');
   });
 
+  it('areas and contact lengths that are negative or not finite are refused; zero is a measure', () => {
+    expect(withValue(0, 'area', 2, -1e300)).toThrow('r.cells.bin: cells.area[2] is -1e+300, not a finite measure >= 0');
+    expect(withValue(1, 'area', 0, NaN)).toThrow('surfaces[0].cells.area[0] is NaN, not a finite measure >= 0');
+    expect(withValue(0, 'neighbourLengths', 3, Infinity)).toThrow('cells.neighbourLengths[3] is Infinity, not a finite measure >= 0');
+    expect(withValue(1, 'neighbourLengths', 1, -2)).toThrow('surfaces[0].cells.neighbourLengths[1] is -2, not a finite measure >= 0');
+    expect(withValue(0, 'area', 1, 0)).not.toThrow();
+  });
+
   it('a well-formed file decodes to its tables; an empty one too', () => {
     const { record, bytes } = file(tables());
     const decoded = decodeCellsFile(record, bytes);
