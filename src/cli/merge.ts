@@ -21,7 +21,8 @@ import { version } from '../version';
 import { InputError } from './errors';
 import { lockDirectory } from './lock';
 import { checkOutDir, writeFileAtomic } from './output';
-import { gitCommitSoon, readRunsFile, sweepLayout, writeAggregates } from './sweepFiles';
+import { sweepLayout } from '../run/sweepLayout';
+import { gitCommitSoon, readRunsFile, writeAggregates } from './sweepFiles';
 import { canonical, readSweepRecord } from './sweepRecord';
 
 const USAGE = 'usage: tissue-sheet merge DIR... --out DIR [--force]';

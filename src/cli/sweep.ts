@@ -46,7 +46,8 @@ import { checkRunnable, computeBudget, loadInputs, readJsonFile, type RunInputs 
 import { Sources } from './sources';
 import { cachedFitter, fitOutcomes } from '../core/sweep/fitOutcomes';
 import { defaultWorkers, SweepThreadLost, SweepWorkers } from './sweepWorkers';
-import { gitCommitSoon, readRunsFile, seedGroups, sweepLayout, writeAggregates, type Run } from './sweepFiles';
+import { seedGroups, sweepLayout, type Run } from '../run/sweepLayout';
+import { gitCommitSoon, readRunsFile, writeAggregates } from './sweepFiles';
 import { checkResumable, checkResumedInputs } from './sweepRecord';
 
 export async function sweepCommand(options: CliOptions, signal: AbortSignal, writeLine: (line: string) => void): Promise<void> {

@@ -21,24 +21,17 @@ import {
   aggregateColumns,
   aggregateRows,
   aggregateToCsv,
-  baseColumns,
-  expandSweep,
   fileHeader,
   flintstonesProblems,
   formatCsvRow,
-  geometryColumns,
-  geometryValues,
   meanSd,
   parseCsv,
   planResume,
   runSweep,
-  summaryColumns,
-  sweepColumns,
   sweepFlintstones,
   SweepSpecError,
   TEXT_COLUMNS,
   validateSweepSpec,
-  variedFields,
   type Aggregate,
   type ColumnStats,
   type RejectedRow,
@@ -47,13 +40,12 @@ import {
   type ValidSweepSpec,
 } from '../core/sweep';
 import { cachedFitter, fitOutcome, pointsKey, type FitOutcome } from '../core/sweep/fitOutcomes';
-import { seededKey, sweepSummary, type WorkerSheetRunner } from '../run';
+import { sweepSummary, type WorkerSheetRunner } from '../run';
 import { yieldToEventLoop } from '../run/relax';
 import { chainKey } from '../run/runSheet';
+import { seedGroups, sweepLayout, type Run, type SweepLayout } from '../run/sweepLayout';
 import { tQuantile975 } from '../core/analysis/realizations';
 import { acquirePipelineRunner, isAbort, releasePipelineRunner, runInputs } from './pageRunner';
-
-type Run = SweepRun<Config & Record<string, unknown>>;
 
 export interface PageSweepProgress {
   phase: 'done' | 'error';
@@ -116,21 +108,9 @@ export interface PageSweepResult {
   workers: number;
 }
 
-/** Everything fixed before the first run: the spec, its runs in run order, the header. */
-export interface SweepPlan {
+/** Everything fixed before the first run: the spec and its layout (the CLI's: src/run/sweepLayout.ts). */
+export interface SweepPlan extends SweepLayout {
   spec: ValidSweepSpec;
-  fields: string[];
-  runs: Run[];
-  header: string[];
-  summary: string[];
-  /** Base geometry columns (units.ts), and each grid point's values. */
-  geometry: string[];
-  geometryValues: Map<string, Record<string, string | number | boolean>>;
-  /** Columns holding text. */
-  text: Set<string>;
-  /** Geometry and summary columns each grid point fills. */
-  filled: Map<string, Set<string>>;
-  configs: Map<string, Config>;
 }
 
 /** Plans already made, by spec object: a panel plans before it runs, and runs plan again. */
@@ -139,44 +119,10 @@ const plans = new WeakMap<object, { maxRuns?: number; plan: SweepPlan }>();
 export function planSweep(input: unknown, maxRuns?: number): SweepPlan {
   const known = typeof input === 'object' && input !== null ? plans.get(input) : undefined;
   if (known && known.maxRuns === maxRuns) return known.plan;
-  const plan = makePlan(input, maxRuns);
+  const spec = validateSweepSpec(input, maxRuns === undefined ? {} : { maxRuns });
+  const plan = { ...sweepLayout(spec, pointConfig), spec };
   if (typeof input === 'object' && input !== null) plans.set(input, { maxRuns, plan });
   return plan;
-}
-
-function makePlan(input: unknown, maxRuns?: number): SweepPlan {
-  const spec = validateSweepSpec(input, maxRuns === undefined ? {} : { maxRuns });
-  const fields = variedFields(spec);
-  const runs = expandSweep(spec);
-  const configs = new Map<string, Config>();
-  for (const run of runs) if (!configs.has(run.pointKey)) configs.set(run.pointKey, pointConfig(run));
-  const summary = sweepColumns(configs.values());
-  const geometry = geometryColumns(configs.values(), fields);
-  const values = new Map([...configs].map(([key, config]) => [key, geometryValues(config, fields)]));
-  const filled = new Map([...configs].map(([key, config]) => [key, new Set([...Object.keys(values.get(key)!), ...summaryColumns(config)])]));
-  return {
-    spec,
-    fields,
-    runs: seededOrder(runs),
-    header: [...baseColumns(fields), ...geometry.columns, ...summary],
-    summary,
-    geometry: geometry.columns,
-    geometryValues: values,
-    text: new Set([...TEXT_COLUMNS, ...geometry.text]),
-    filled,
-    configs,
-  };
-}
-
-/**
- * The CLI's run order: runs sharing a seeded surface (their config but for `sheet`) one after
- * another, in order of first appearance, so each realization is relaxed once per sweep.
- */
-export function seededOrder(runs: readonly Run[]): Run[] {
-  const keyed = runs.map((run) => ({ run, key: seededKey(validateConfig(run.config)) }));
-  const first = new Map<string, number>();
-  keyed.forEach(({ key }, index) => first.has(key) || first.set(key, index));
-  return keyed.sort((a, b) => first.get(a.key)! - first.get(b.key)! || a.run.index - b.run.index).map(({ run }) => run);
 }
 
 /** A grid point's validated, feasible config; errors name the point. */
@@ -193,15 +139,8 @@ function pointConfig(run: Run): Config {
 
 export async function sweepInPage(input: unknown, options: PageSweepOptions = {}): Promise<PageSweepResult> {
   const plan = planSweep(input, options.maxRuns);
-  const { spec, fields, runs, header, summary, filled } = plan;
-  const resumed = planResume(options.resumeCsv ?? '', {
-    header,
-    fields,
-    runs,
-    filledColumns: (run) => filled.get(run.pointKey)!,
-    textColumns: plan.text,
-    pointValues: (run) => plan.geometryValues.get(run.pointKey)!,
-  });
+  const { spec, fields, ordered: runs, header, summary } = plan;
+  const resumed = planResume(options.resumeCsv ?? '', { ...plan.resume, runs });
   let csv = resumed.cleanText;
   const rows = [...resumed.rows];
   // Each run's row by its key: a progress event names its run, whose row is already appended.
@@ -214,13 +153,7 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
   // CLI's reuse, with the same numbers (each equals the grid point computed alone). Rows are
   // written in run order whatever order the workers finish in (runSweep), so runs.csv is the CLI's.
   const done = new Set(resumed.rows.map((row) => row.key));
-  const chains = new Map<string, string>();
-  const chainOf = (run: Run): string => {
-    const id = `${run.pointKey}#${run.seed}`;
-    let key = chains.get(id);
-    if (key === undefined) chains.set(id, (key = chainKey({ ...plan.configs.get(run.pointKey)!, seed: run.seed })));
-    return key;
-  };
+  const chainOf = seedGroups(plan.pointConfigOf, chainKey);
   const tasks = new Set(runs.filter((run) => !done.has(run.key)).map(chainOf)).size;
   const asked = options.workers ?? defaultPageWorkers();
   if (!Number.isInteger(asked) || asked < 1 || asked > MAX_PAGE_WORKERS)
@@ -228,7 +161,7 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
   const size = Math.max(1, Math.min(asked, tasks));
   const idle: WorkerSheetRunner[] = Array.from({ length: size }, acquirePipelineRunner);
   const pool = [...idle];
-  const iterationsOf = (run: Run) => plan.configs.get(run.pointKey)!.lloyd.maxIterations;
+  const iterationsOf = (run: Run) => plan.pointConfigOf(run).lloyd.maxIterations;
   let aborted = false;
   let result: Awaited<ReturnType<typeof runSweep>> | null = null;
   try {
@@ -240,7 +173,7 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
       signal: options.signal,
       concurrency: size,
       // The row carries the run's base geometry beside its summary, as the CLI's does.
-      runValues: (run) => plan.geometryValues.get(run.pointKey)!,
+      runValues: plan.geometryOf,
       append: (text) => {
         csv += text;
         const records = parseCsv(text).records;

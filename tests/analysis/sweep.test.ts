@@ -50,6 +50,27 @@ describe('expandSweep', () => {
     expect((spec.base.geometry as { ratio: number }).ratio).toBe(1);
     expect(r.config.geometry).not.toBe(runs[10].config.geometry);
   });
+  it('copies the base as structuredClone would: arrays, nulls, nested objects, own "__proto__" keys; runs share nothing', () => {
+    const base = JSON.parse(
+      '{"seed": 1, "a": {"list": [1, [2, {"x": null}]], "__proto__": {"polluted": true}}, "b": {"c": "text"}, "d": [{"e": 1}]}',
+    ) as Record<string, unknown>;
+    const expanded = expandSweep({ base, vary: { 'b.c': ['one', 'two'] }, realizations: 2 });
+    for (const run of expanded) {
+      const expected = structuredClone(base) as Record<string, unknown> & { b: Record<string, unknown> };
+      expected.b.c = run.point['b.c'];
+      expected.seed = run.seed;
+      expect(run.config).toEqual(expected);
+      expect(Object.keys(run.config.a as object)).toEqual(['list', '__proto__']);
+      expect(({} as { polluted?: boolean }).polluted).toBeUndefined();
+    }
+    const [first, second] = expanded;
+    (first.config.d as { e: number }[])[0].e = 99;
+    ((first.config.a as { list: unknown[] }).list[1] as unknown[])[0] = 99;
+    expect((second.config.d as { e: number }[])[0].e).toBe(1);
+    expect(((second.config.a as { list: unknown[] }).list[1] as unknown[])[0]).toBe(2);
+    expect((base.d as { e: number }[])[0].e).toBe(1);
+    expect(() => expandSweep({ base: { seed: 1, f: () => 1 }, vary: { x: [1] } })).toThrow(/could not be cloned/);
+  });
   it('gives distinct deterministic uint32 seeds per run, stable across calls', () => {
     const seeds = runs.map((r) => r.seed);
     expect(new Set(seeds).size).toBe(runs.length);

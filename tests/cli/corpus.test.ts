@@ -14,7 +14,7 @@ import { errorLine, exitCodeFor, InputError } from '../../src/cli/errors';
 import { parseMergeArgs } from '../../src/cli/merge';
 import { checkRunnable, computeBudget, loadInputs, readJsonFile } from '../../src/cli/prepare';
 import { Sources } from '../../src/cli/sources';
-import { sweepLayout } from '../../src/cli/sweepFiles';
+import { sweepLayout } from '../../src/run/sweepLayout';
 import { validateConfig } from '../../src/core/config';
 import { fileHeader, formatCsvRow, parseShard, planResume, ResumeError, validateSweepSpec, type ValidSweepSpec } from '../../src/core/sweep';
 

@@ -126,7 +126,7 @@ export class SweepPanel {
     // Only the methods the runs report on this renderer: "both" on the exact engine (auto on a
     // software renderer) gives the exact method alone, so no empty labels series is listed.
     const renderer = { softwareRenderer: safeSoftwareRenderer() };
-    const reported = new Set([...plan.configs.values()].flatMap((config) => methodsOnRenderer(config, renderer)));
+    const reported = new Set([...plan.pointConfigs.values()].flatMap((config) => methodsOnRenderer(config, renderer)));
     const methods = ['exact', 'labels'].filter((m) => plan.summary.includes(`${m}.percentScutoids`) && reported.has(m as 'exact' | 'labels'));
     this.chart.reset({ label, field, methods, x: (cell) => (voronoi ? Number(cell) + 1 : Number(cell)) });
     this.reference.setSweep(field, (spec as { base?: unknown }).base);

