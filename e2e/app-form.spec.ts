@@ -1,4 +1,4 @@
-import { readFileSync } from 'node:fs';
+import { readFileSync, writeFileSync } from 'node:fs';
 import { expect, test, type Page } from '@playwright/test';
 import { downloadExport, linkTo, runs, waitForRun } from './appHelpers';
 
@@ -277,6 +277,25 @@ test("the sweep's vary list says when a mode switch changes its field; a loaded 
   await expect(page.locator('#error')).toContainText('sweep.json: holds no sweep spec (got null)');
   await expect(page.locator('#sweep')).toHaveAttribute('data-done', '3');
   await expect(page.locator('[name="sweep-to"]')).toHaveValue('6');
+  // A row of another configuration (its cells edited) is set aside at load: not drawn, not
+  // counted, and Resume is offered to compute it again.
+  const [header, ...rows] = readFileSync(files[1], 'utf8').trimEnd().split('\n');
+  const cellsColumn = header.split(',').indexOf('cells');
+  const edited = rows.map((row, k) =>
+    k === 1
+      ? row
+          .split(',')
+          .map((cell, c) => (c === cellsColumn ? String(Number(cell) + 1) : cell))
+          .join(',')
+      : row,
+  );
+  const foreign = `${files[1]}-foreign.csv`;
+  writeFileSync(foreign, [header, ...edited].join('\n') + '\n');
+  await page.locator('[name="sweep-load"]').setInputFiles([files[0], foreign]);
+  await expect(page.locator('[data-sweep="status"]')).toContainText('Loaded a sweep of 3 runs with 2 valid rows');
+  await expect(page.locator('[data-sweep="status"]')).toContainText('1 rows do not fit this spec and are not drawn');
+  await expect(page.locator('#sweep')).toHaveAttribute('data-done', '2');
+  await expect(page.locator('[data-sweep="resume"]')).toBeEnabled();
 });
 
 test('a mesh missing on the server is said to be missing, not "not a PLY"', async ({ page }) => {

@@ -125,6 +125,17 @@ export function planSweep(input: unknown, maxRuns?: number): SweepPlan {
   return plan;
 }
 
+/**
+ * The rows of an earlier runs.csv that a resume of this plan keeps, and those it sets aside with
+ * why (planResume, as sweepInPage reads it): what the panel draws for a loaded file, so a row of
+ * another configuration never reaches the chart. Throws, naming the file, where the file is not
+ * a runs.csv of this spec (another header).
+ */
+export function resumableRows(plan: SweepPlan, csv: string): { rows: Record<string, string>[]; rejected: RejectedRow[] } {
+  const { rows, rejected } = planResume(csv, { ...plan.resume, runs: plan.ordered });
+  return { rows, rejected };
+}
+
 /** A grid point's validated, feasible config; errors name the point. */
 function pointConfig(run: Run): Config {
   try {

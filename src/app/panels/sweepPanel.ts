@@ -16,7 +16,7 @@ import type { ConfigDraft } from '../../core/config';
 import { readRunsCsv, FLINTSTONES_RATIO } from '../../core/sweep';
 import { computeContext, isAbort } from '../../view/pageRunner';
 import { methodsOnRenderer } from '../../core/config/analysisMethods';
-import { flintstonesInTurns, planSweep, sweepInPage, type SweepPlan } from '../../view/pageSweep';
+import { flintstonesInTurns, planSweep, resumableRows, sweepInPage, type SweepPlan } from '../../view/pageSweep';
 import { FlintstonesChart } from './flintstonesChart';
 import { version } from '../../version';
 import { download } from './exports';
@@ -160,15 +160,17 @@ export class SweepPanel {
     const controller = new AbortController();
     this.controller = controller;
     let plan: SweepPlan;
+    let resumed: Record<string, string>[];
     try {
       plan = planSweep(spec);
+      resumed = resumableRows(plan, resumeCsv).rows;
     } catch (error) {
       this.refuse(error);
       return;
     }
     this.spec = spec;
     this.chartFor(plan, spec);
-    this.chart.add(readRunsCsv(resumeCsv).rows);
+    this.chart.add(resumed);
     this.setBusy(true);
     delete this.root.dataset.done;
     this.root.dataset.state = 'running';
@@ -230,10 +232,13 @@ export class SweepPanel {
   private setBusy(busy: boolean): void {
     this.button('cancel').disabled = !busy;
     this.button('run').disabled = busy;
-    const done = readRunsCsv(this.runsCsv).rows.length;
+    // Resume is offered while some run lacks a valid row (rows set aside count as lacking).
+    let done = 0;
     let total = 0;
     try {
-      total = this.spec ? planSweep(this.spec).runs.length : 0;
+      const plan = this.spec ? planSweep(this.spec) : null;
+      total = plan ? plan.runs.length : 0;
+      done = plan ? resumableRows(plan, this.runsCsv).rows.length : 0;
     } catch {
       total = 0;
     }
@@ -299,15 +304,20 @@ export class SweepPanel {
       if (!specGiven) spec = this.spec;
       if (!spec) throw new Error('Load a sweep.json (the spec) together with its runs.csv.');
       const plan = planSweep(spec);
+      // The rows a resume keeps, checked now: a row of another configuration is never drawn.
+      const { rows, rejected } = resumableRows(plan, csv);
       this.spec = spec;
       this.runsCsv = csv;
       this.aggregateCsv = '';
       this.form.show(spec);
       this.chartFor(plan, spec);
-      const rows = readRunsCsv(csv).rows;
       this.chart.add(rows);
       this.root.dataset.done = String(rows.length);
-      this.status(`Loaded a sweep of ${plan.runs.length} runs with ${rows.length} rows in its runs.csv; Resume checks them and computes the rest.`);
+      const aside =
+        rejected.length > 0
+          ? ` ${rejected.length} rows do not fit this spec and are not drawn; Resume computes them again (first: line ${rejected[0].line}, ${rejected[0].reason}).`
+          : '';
+      this.status(`Loaded a sweep of ${plan.runs.length} runs with ${rows.length} valid rows in its runs.csv; Resume computes the rest.${aside}`);
       this.setBusy(false);
     } catch (error) {
       this.events.onError((error as Error).message);
