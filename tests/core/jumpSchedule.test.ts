@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { coldSchedule, FloodSchedules, nextPowerOfTwo, warmFirstStep, warmSchedule } from '../src/core/jumpSchedule';
+import { coldSchedule, FloodSchedules, nextPowerOfTwo, warmFirstStep, warmSchedule } from '../../src/core/jumpSchedule';
 
 describe('jump flood schedules', () => {
   it('halves from half the next power of two of the larger side', () => {

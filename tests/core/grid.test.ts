@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { distanceSquared, wrapCoordinate, wrapDelta } from '../src/core/grid';
+import { distanceSquared, wrapCoordinate, wrapDelta } from '../../src/core/grid';
 
 describe('grid', () => {
   it('takes the minimum image across a periodic seam', () => {
