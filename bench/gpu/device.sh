@@ -3,7 +3,7 @@
 # --check first (or GPU_RUN=check), runs the correctness check (bench/gpuCheck.ts) instead, with
 # the other arguments, e.g. `bash bench/gpu/device.sh --check --large`: $OUT/gpuCheck.txt and .json.
 # Made by bench/gpu/prepare.sh; carried in .gpu/: node.xz (Node 20), llvm.xz (libLLVM-15 for Xvfb's swrast GLX provider),
-# gpulibs.tar.xz (Xvfb, xkbcomp, swrast_dri.so, X/GLVND client libs, stub z3/xml2, the bench bundle).
+# gpulibs.tar.xz (Xvfb, xkbcomp, swrast_dri.so, X/GLVND client libs, stub z3/xml2, the bench and check bundles).
 set -u
 R=$(pwd); OUT=${OUT:-/tmp/out}; mkdir -p "$OUT"; D=/opt/gpu; mkdir -p $D; cd $D
 unxz() { if command -v xz >/dev/null; then xz -dc "$1"; else python3 -c "import lzma,sys,shutil; shutil.copyfileobj(lzma.open(sys.argv[1]), sys.stdout.buffer)" "$1"; fi; }
