@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# Times the GPU engine (headless-gl under Xvfb, NVIDIA GLX) on the lent device machine.
+# Times the GPU engine (headless-gl under Xvfb, NVIDIA GLX) on the lent device machine; with
+# --check first (or GPU_RUN=check), runs the correctness check (bench/gpuCheck.ts) instead, with
+# the other arguments, e.g. `bash bench/gpu/device.sh --check --large`: $OUT/gpuCheck.txt and .json.
 # Made by bench/gpu/prepare.sh; carried in .gpu/: node.xz (Node 20), llvm.xz (libLLVM-15 for Xvfb's swrast GLX provider),
-# gpulibs.tar.xz (Xvfb, xkbcomp, swrast_dri.so, X/GLVND client libs, stub z3/xml2, the bench bundle).
+# gpulibs.tar.xz (Xvfb, xkbcomp, swrast_dri.so, X/GLVND client libs, stub z3/xml2, the bench and check bundles).
 set -u
 R=$(pwd); OUT=${OUT:-/tmp/out}; mkdir -p "$OUT"; D=/opt/gpu; mkdir -p $D; cd $D
 unxz() { if command -v xz >/dev/null; then xz -dc "$1"; else python3 -c "import lzma,sys,shutil; shutil.copyfileobj(lzma.open(sys.argv[1]), sys.stdout.buffer)" "$1"; fi; }
@@ -32,7 +34,15 @@ const maps = (await import('node:fs')).readFileSync('/proc/self/maps','utf8').sp
 console.log([...new Set(maps)].join(' '));
 P
 echo "== probe"; timeout 60 $D/node probe.mjs 2>&1 | tail -4
-echo "== bench $*"
-timeout ${BENCH_S:-400} $D/node bench.mjs --only node --no-max-size "$@" 2>&1 | tee $OUT/bench.txt | tail -40
-cp bench/out/bench.json $OUT/ 2>/dev/null
+RUN=${GPU_RUN:-bench}; [ "${1:-}" = "--check" ] && { RUN=check; shift; }
+if [ "$RUN" = check ]; then
+  # The full table and the JSON come back as files; the reply shows the summary and any failures.
+  echo "== check $*"
+  timeout ${CHECK_S:-300} $D/node gpucheck.mjs --json $OUT/gpuCheck.json --mesh "$R/public/meshes/egg-chamber.ply" "$@" > $OUT/gpuCheck.txt 2>&1
+  echo "== check exit $?"; head -9 $OUT/gpuCheck.txt; grep -E "figures within|^FAILED|Error" $OUT/gpuCheck.txt
+else
+  echo "== bench $*"
+  timeout ${BENCH_S:-400} $D/node bench.mjs --only node --no-max-size "$@" 2>&1 | tee $OUT/bench.txt | tail -40
+  cp bench/out/bench.json $OUT/ 2>/dev/null
+fi
 tail -5 $OUT/xvfb.log

@@ -3,18 +3,22 @@
 # (GLX libraries) but neither Node, Xvfb nor Mesa: writes .gpu/ (git-ignored), under 60 MiB so
 # that the repository and it travel together (docs/benchmark.md, "On a GPU"). Run on Debian 12
 # with xvfb, libgl1-mesa-dri and the project's node_modules installed; then on the GPU machine,
-# in the repository root: `bash bench/gpu/device.sh --sizes 4096,8192 --sites 100000,1000000`.
+# in the repository root: `bash bench/gpu/device.sh --sizes 4096,8192 --sites 100000,1000000`
+# (the bench) or `bash bench/gpu/device.sh --check` (the correctness check, bench/gpuCheck.ts).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 out=${GPU_CARRY_DIR:-.gpu}; work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 mkdir -p "$out" "$work/gpulibs/lib" "$work/gpulibs/bin" "$work/gpulibs/dri" "$work/gpulibs/bench/node_modules/gl/build/Release" "$work/stubs"
 lib=/usr/lib/x86_64-linux-gnu; gl=node_modules/gl
 
-# The bench, one file; `gl` (native) stays a package beside it with its run-time dependencies.
-node_modules/tsx/node_modules/esbuild/bin/esbuild bench/run.ts --bundle --platform=node --format=esm \
-  --outfile="$work/gpulibs/bench/bench.mjs" --external:gl --external:@playwright/test --external:vite \
-  --external:../playwright.config --log-level=warning \
-  --banner:js="import { createRequire as __cr } from 'module'; const require = __cr(import.meta.url);"
+# The bench and the correctness check (bench/gpuCheck.ts), one file each; `gl` (native) stays a
+# package beside them with its run-time dependencies.
+for entry in run.ts:bench.mjs gpuCheck.ts:gpucheck.mjs; do
+  node_modules/tsx/node_modules/esbuild/bin/esbuild "bench/${entry%%:*}" --bundle --platform=node --format=esm \
+    --outfile="$work/gpulibs/bench/${entry##*:}" --external:gl --external:@playwright/test --external:vite \
+    --external:../playwright.config --log-level=warning \
+    --banner:js="import { createRequire as __cr } from 'module'; const require = __cr(import.meta.url);"
+done
 for m in bindings file-uri-to-path bit-twiddle glsl-tokenizer through2 readable-stream inherits string_decoder safe-buffer util-deprecate xtend; do
   cp -r "node_modules/$m" "$work/gpulibs/bench/node_modules/"
 done
@@ -42,7 +46,12 @@ awk '{ print ($2 == "xmlFree" ? "void *xmlFree;" : "void " $2 "(void) {}") }' "$
 awk '{v[$1] = v[$1] " " $2 ";"} END {for (k in v) print k " {" v[k] " };"}' "$work/stubs/xml.txt" > "$work/stubs/xml2.map"
 gcc -shared -fPIC -Wl,-soname,libxml2.so.2 -Wl,--version-script="$work/stubs/xml2.map" -o "$work/gpulibs/lib/libxml2.so.2" "$work/stubs/xml2.c"
 
-tar -C "$work" -cf - gpulibs | xz -6 -T0 > "$out/gpulibs.tar.xz"
-xz -6 -T0 -c $lib/libLLVM-15.so.1 > "$out/llvm.xz"
-cp "$(command -v node)" "$work/node" && strip --strip-debug "$work/node" && xz -6 -T0 -c "$work/node" > "$out/node.xz"
+# The carry and the repository must stay under the device's 64 MiB together: one xz block each
+# (-T1: threads split a stream into blocks, ~1 MB more), x86 branch filters on the two binaries
+# (~1.4 MB less; Python's lzma, device.sh's fallback, reads them), and Node without its symbol
+# table (--strip-all keeps .dynsym, which gl's native module binds to; 10 MB less unpacked).
+bin="--x86 --lzma2=preset=6 -T1"
+tar -C "$work" -cf - gpulibs | xz -6 -T1 > "$out/gpulibs.tar.xz"
+xz $bin -c $lib/libLLVM-15.so.1 > "$out/llvm.xz"
+cp "$(command -v node)" "$work/node" && strip --strip-all "$work/node" && xz $bin -c "$work/node" > "$out/node.xz"
 du -ch "$out"/*.xz | tail -1

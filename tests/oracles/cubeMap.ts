@@ -80,3 +80,35 @@ export function directionTexelReference(x: number, y: number, z: number, n: numb
   const cell = (c: number) => Math.min(n - 1, Math.max(0, Math.floor(((c / ma + 1) / 2) * n)));
   return (face * n + cell(tc)) * n + cell(sc);
 }
+
+/**
+ * Per site, 5 sums over the texels labelled with it, from the definition of a cube-map cell's
+ * centroid (the atlas's points and area elements, 3D offsets from the site): [Σ w·dx, Σ w·dy,
+ * Σ w·dz, Σ w, Σ w·|d|²] with d = point − site (µm) and w the texel's area (µm²) — the
+ * quantities the GPU centroid paths sum (SUMS_STRIDE order). Float64, texel by texel; texels
+ * labelled -1 are skipped.
+ */
+export function cubeReduceCentroids(
+  position: ArrayLike<number>,
+  area: ArrayLike<number>,
+  labels: ArrayLike<number>,
+  sites: ArrayLike<number>,
+  count: number,
+): Float64Array {
+  const sums = new Float64Array(5 * count);
+  for (let k = 0; k < labels.length; k++) {
+    const id = labels[k];
+    if (id < 0) continue;
+    if (id >= count) throw new Error(`cubeReduceCentroids: label ${id} at texel ${k} but only ${count} sites`);
+    const w = area[k];
+    const dx = position[3 * k] - sites[3 * id],
+      dy = position[3 * k + 1] - sites[3 * id + 1],
+      dz = position[3 * k + 2] - sites[3 * id + 2];
+    sums[5 * id] += w * dx;
+    sums[5 * id + 1] += w * dy;
+    sums[5 * id + 2] += w * dz;
+    sums[5 * id + 3] += w;
+    sums[5 * id + 4] += w * (dx * dx + dy * dy + dz * dz);
+  }
+  return sums;
+}
