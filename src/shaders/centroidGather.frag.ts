@@ -7,10 +7,13 @@
  * Site i's window is (2R_i+1)² texels (R_i from the radii texture). One draw covers one tile
  * of the largest window (at most tileSize² texels per pixel, because software renderers
  * silently stop long loops); each pixel walks the part of its own window inside that tile and
- * adds it to the sums of the previous draw (ping-pong). Voronoi cells are convex, so if no texel on the window's outer
- * ring belongs to the cell, the whole cell was inside. Otherwise the pixel reports weight -1
- * (kept through later tiles) and the engine retries with a larger window: a window that is too
- * small is never a silent wrong centroid.
+ * adds it to the sums of the previous draw (ping-pong). Voronoi cells are convex and hold their
+ * site, so a cell that comes nowhere near the window's outer ring lies inside it with all its
+ * texels. A thin sliver can cross the ring between texel centres (owning texels beyond, none on
+ * it), so a ring texel q of cell j counts as reached when d(q, site) <= d(q, j) + 2h (h: half a
+ * texel's diagonal; any point p of q's square in this cell gives d(q, site) <= d(p, j) + h).
+ * Then the pixel reports weight -1 (kept through later tiles) and the engine retries with a
+ * larger window: a window that is too small is never a silent wrong centroid.
  */
 export default /* glsl */ `
 uniform highp sampler2D labels;
@@ -54,13 +57,22 @@ void main() {
   }
   ivec2 from = max(low, tileLow);
   ivec2 to = min(high, tileLow + tileSize - 1);
+  float slack = sqrt(1.0 + aspect * aspect); // 2h in flood units (y scaled by the aspect)
   bool touchesRing = false;
   for (int dy = from.y; dy <= to.y; ++dy) {
     for (int dx = from.x; dx <= to.x; ++dx) {
       ivec2 q = origin + ivec2(dx, dy);
       if (!wrapTexel(q)) continue;
-      if (texelFetch(labels, q, 0).w != float(site)) continue;
-      if ((!whole.x && abs(dx) == radius) || (!whole.y && abs(dy) == radius)) touchesRing = true;
+      vec4 label = texelFetch(labels, q, 0);
+      bool ring = (!whole.x && abs(dx) == radius) || (!whole.y && abs(dy) == radius);
+      if (label.w != float(site)) {
+        if (ring && label.w >= 0.0) { // another cell's ring texel: reached by this cell?
+          float other = sqrt(floodDistance(label.xyz, texelPoint(q))) + slack;
+          if (floodDistance(siteValue.xyz, texelPoint(q)) <= other * other) touchesRing = true;
+        }
+        continue;
+      }
+      if (ring) touchesRing = true;
       vec3 d = metricOffset(siteValue.xyz, texelPoint(q));
       float w = texelWeight(q);
       total += vec4(w * d.xy, w, w * physicalSquared(d));

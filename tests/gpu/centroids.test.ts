@@ -103,6 +103,53 @@ describe('centroid pass against a CPU reduction of the same labels', () => {
     }
   });
 
+  it('gather: a thin sliver owning texels past its window but none on its ring is summed whole', () => {
+    // Site 0's cell is a band 0.7 texel wide at 0.35 rad between sites 1 and 2, closed by sites
+    // 3 and 4 18 texels along it (every site in a texel of its own): 12 texels at Chebyshev
+    // distances 0-3 and 5-8 from the site's texel, none at 4. Once the cell's area is known (the
+    // second sum, as in a converged loop) its window has radius 4: the band crosses that ring
+    // between texel centres. Found by bench/gpuCheck.ts (a 512², 10,000-site plane lost such a texel).
+    const grid: Grid = { width: 64, height: 64, texelX: 1, texelY: 1, periodicX: false, periodicY: false };
+    const theta = 0.35;
+    const [cx, cy] = [32.1, 32.3];
+    const [ux, uy] = [Math.cos(theta), Math.sin(theta)];
+    const [nx, ny] = [-uy, ux];
+    const sites = Float32Array.from([
+      cx,
+      cy,
+      cx + 0.5 * nx,
+      cy + 0.5 * ny,
+      cx - 0.5 * nx,
+      cy - 0.5 * ny,
+      cx + 18 * ux,
+      cy + 18 * uy,
+      cx - 18 * ux,
+      cy - 18 * uy,
+    ]);
+    const engine = new GpuEngine(context, gridLayout(grid), 5, { variant: 'jfa+2', centroidPath: 'gather' });
+    try {
+      engine.setSites(sites);
+      engine.floodLabels();
+      engine.computeSums();
+      const gpu = engine.computeSums();
+      const labels = engine.readLabels();
+      // The case holds on the GPU's own labels: texels past radius 4, none on it.
+      const distances: number[] = [];
+      labels.forEach((label, k) => label === 0 && distances.push(Math.max(Math.abs((k % 64) - 32), Math.abs(Math.floor(k / 64) - 32))));
+      expect(distances.some((d) => d > 4)).toBe(true);
+      expect(distances).not.toContain(4);
+      expect(engine.gatherStats!.lastRetries).toBeGreaterThan(0);
+      const cpu = reduceCentroids(grid, labels, sites, null);
+      for (let i = 0; i < 5; i++) {
+        expect(gpu[5 * i + 3]).toBe(cpu[4 * i + 2]);
+        expect(Math.abs(gpu[5 * i] - cpu[4 * i])).toBeLessThanOrEqual(1e-3 * cpu[4 * i + 2]);
+        expect(Math.abs(gpu[5 * i + 1] - cpu[4 * i + 1])).toBeLessThanOrEqual(1e-3 * cpu[4 * i + 2]);
+      }
+    } finally {
+      engine.dispose();
+    }
+  });
+
   it('grows the gather window instead of returning a truncated centroid', () => {
     const grid: Grid = { width: 256, height: 64, texelX: 1, texelY: 1, periodicX: false, periodicY: false };
     // 40 sites crowded at one end: the last cell reaches ~230 texels, far past the first
