@@ -118,7 +118,6 @@ export function texelSolidAngle(i: number, j: number, n: number): number {
  * so the numbers can be copied into GLSL as they are.
  */
 export const CUBE_EDGE = { MinusS: 0, PlusS: 1, MinusT: 2, PlusT: 3 } as const;
-export type CubeEdge = (typeof CUBE_EDGE)[keyof typeof CUBE_EDGE];
 
 /**
  * How face-plane coordinates continue across one edge: the neighbour face and the affine map

@@ -18,14 +18,6 @@ export interface TriangleMesh {
 
 export type Vec3 = [number, number, number];
 
-export function vertexCount(mesh: TriangleMesh): number {
-  return mesh.positions.length / 3;
-}
-
-export function faceCount(mesh: TriangleMesh): number {
-  return mesh.indices.length / 3;
-}
-
 /** Axis-aligned bounding box; `diagonal` is the length of its diagonal (0 for an empty mesh). */
 export function boundingBox(positions: ArrayLike<number>): { min: Vec3; max: Vec3; diagonal: number } {
   const min: Vec3 = [Infinity, Infinity, Infinity];
