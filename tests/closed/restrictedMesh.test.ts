@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { isSymmetric } from '../../src/core/analysis/adjacency';
+import { isSymmetric } from '../oracles/adjacency';
 import { offsetClosedSurface } from '../../src/core/closed/closedOffset';
 import { randomSequentialSites } from '../../src/core/closed/randomSequentialSites';
 import { restrictedVoronoi } from '../../src/core/closed/restrictedVoronoi';

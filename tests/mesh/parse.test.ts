@@ -3,7 +3,8 @@ import { meshTopology } from '../../src/core/mesh/check';
 import { bumpySphere, icosphere } from '../../src/core/mesh/generate';
 import { detectFormat, MeshParseError, parseMesh, weldVertices } from '../../src/core/mesh/parse';
 import { surfaceArea, type TriangleMesh } from '../../src/core/mesh/types';
-import { writeObj, writePlyAscii, writePlyBinary, writeStlAscii, writeStlBinary } from '../../src/core/mesh/write';
+import { writePlyAscii } from '../../src/core/mesh/write';
+import { writeObj, writePlyBinary, writeStlAscii, writeStlBinary } from './writers';
 import { loadShipped } from './helpers';
 
 const source = bumpySphere(6, 11);

@@ -90,8 +90,3 @@ export function countContacts(image: LabelPixels, periodicX: boolean): LayerCont
   for (let v = 1; v < labelSpace; v++) if (pixels[v] > 0) labels++;
   return { width, height, labelSpace, pixels, border, edges, labels };
 }
-
-/** Edge count between raw labels a and b (0 when they do not touch). */
-export function edgesBetween(contacts: LayerContacts, a: number, b: number): number {
-  return a === b ? 0 : (contacts.edges.get(pairKey(a, b)) ?? 0);
-}
