@@ -71,7 +71,7 @@ export function sheetOffsets(config: Config): number[] {
  * protocol's): in surface-ratio units on a tube (s = 1, 1 + step, ..., the other surface), in µm
  * of thickness elsewhere (planes and closed surfaces).
  */
-export function stackOffsets(config: Config, otherOffset: number): number[] {
+function stackOffsets(config: Config, otherOffset: number): number[] {
   const { sheet, surface } = config;
   const step = layerStepOf(sheet);
   if (step === null) {

@@ -35,7 +35,7 @@ import { closedSections } from './cellSolidClosed';
 import { cross, sub, type Section, type Vec3 } from './cellSolidSection';
 import type { ViewStack } from './stack';
 
-export interface CellSolidSection {
+interface CellSolidSection {
   /** Index of the surface in the stack. */
   readonly surface: number;
   /** Corners of the cell's polygon there (its sides, border edges included). */

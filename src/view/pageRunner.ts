@@ -50,7 +50,7 @@ export function computeContext(): GpuContext {
 }
 
 /** A new pipeline runner in its own worker (the view's worker: it can draw the views' pictures). */
-export function createPipelineRunner(): WorkerSheetRunner {
+function createPipelineRunner(): WorkerSheetRunner {
   return new WorkerSheetRunner(computeContext, () => new Worker(new URL('./viewWorker.ts', import.meta.url), { type: 'module' }));
 }
 

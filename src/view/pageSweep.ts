@@ -82,7 +82,7 @@ export interface PageSweepOptions {
 }
 
 /** At most this many pipeline workers for one sweep: each holds its own pipeline and surfaces. */
-export const MAX_PAGE_WORKERS = 8;
+const MAX_PAGE_WORKERS = 8;
 
 /**
  * The page's default number of sweep workers: the browser's cores (hardwareConcurrency) less one
@@ -90,7 +90,7 @@ export const MAX_PAGE_WORKERS = 8;
  * starve the main thread (the app's own pipeline worker is there too): its tasks then run
  * past 50 ms in wall time.
  */
-export function defaultPageWorkers(): number {
+function defaultPageWorkers(): number {
   const cores = typeof navigator !== 'undefined' && Number.isInteger(navigator.hardwareConcurrency) ? navigator.hardwareConcurrency : 2;
   return Math.max(1, Math.min(MAX_PAGE_WORKERS, cores - 1));
 }
@@ -172,7 +172,7 @@ function makePlan(input: unknown, maxRuns?: number): SweepPlan {
  * The CLI's run order: runs sharing a seeded surface (their config but for `sheet`) one after
  * another, in order of first appearance, so each realization is relaxed once per sweep.
  */
-export function seededOrder(runs: readonly Run[]): Run[] {
+function seededOrder(runs: readonly Run[]): Run[] {
   const keyed = runs.map((run) => ({ run, key: seededKey(validateConfig(run.config)) }));
   const first = new Map<string, number>();
   keyed.forEach(({ key }, index) => first.has(key) || first.set(key, index));
@@ -309,9 +309,6 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
     workers: size,
   };
 }
-
-/** Two-sided 97.5 % quantile of Student's t (the headline's realizations use the same). */
-export { tQuantile975 };
 
 export interface IntervalPoint {
   mean: number;

@@ -85,7 +85,7 @@ export function approveSource(source: ForeignSource): void {
 }
 
 /** The page's own sources, or an approved foreign one: at most this many bytes are read (the limit every host shares). */
-export const MAX_SOURCE_BYTES = Math.max(MAX_MESH_BYTES, MAX_PNG_BYTES);
+const MAX_SOURCE_BYTES = Math.max(MAX_MESH_BYTES, MAX_PNG_BYTES);
 
 /**
  * The bytes of `src` (a same-origin URL, a data: or blob: URL, or a foreign URL the user

@@ -8,7 +8,7 @@
  */
 import { escapeXml, legendSvg, num, svgDocument, textWidth, type LegendItem } from './svgFigure';
 
-export interface ChartPoint {
+interface ChartPoint {
   x: number;
   y: number;
   /** Interval drawn as an error bar (or a band for a line with `band`). */
@@ -45,7 +45,7 @@ export interface ChartSpec {
 }
 
 /** 1, 2 or 5 x 10^n steps, about `count` of them over [lo, hi]. */
-export function niceTicks(lo: number, hi: number, count = 5): number[] {
+function niceTicks(lo: number, hi: number, count = 5): number[] {
   if (!(hi > lo)) return [lo];
   const raw = (hi - lo) / count;
   const power = 10 ** Math.floor(Math.log10(raw));

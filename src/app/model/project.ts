@@ -22,8 +22,8 @@ import type { Grid } from '../../core/grid';
 import type { LabelImage, SheetOutput, SheetResult } from '../../run';
 import { savedSections } from './projectSections';
 
-export const PROJECT_FORMAT = 'tissue-sheet-project';
-export const PROJECT_FORMAT_VERSION = 1;
+const PROJECT_FORMAT = 'tissue-sheet-project';
+const PROJECT_FORMAT_VERSION = 1;
 /** Largest label image a file may bring, texels (the page's own runs stay far below). */
 const MAX_TEXELS = 1 << 24;
 /** Largest stack of grids a result may bring, texels in all (its label images are drawn from them). */
@@ -50,7 +50,7 @@ interface StoredImage {
   positions?: string;
 }
 
-export interface ProjectFile {
+interface ProjectFile {
   format: typeof PROJECT_FORMAT;
   formatVersion: number;
   software: SheetResult['software'];
@@ -126,7 +126,7 @@ export function openParsed(data: unknown, name: string): OpenedFile {
 }
 
 /** Label images of a plane's or tube's result drawn from its cells (exact cells, rasterized). */
-export function labelsFromCells(result: SheetResult): LabelImage[] {
+function labelsFromCells(result: SheetResult): LabelImage[] {
   const last = result.surfaces[result.surfaces.length - 1];
   const seededName = last?.name === 'apical' ? 'basal' : 'apical';
   const surfaces = [{ name: seededName, grid: result.grid, cells: result.cells }, ...result.surfaces];

@@ -116,7 +116,7 @@ export function explainRefusal(error: unknown, config: Config | null): Refusal {
 }
 
 /** The seeded surface's area in µm² where the configuration alone gives it (null for meshes). */
-export function surfaceArea(config: Config): number | null {
+function surfaceArea(config: Config): number | null {
   const s = config.surface;
   switch (s.kind) {
     case 'tube':

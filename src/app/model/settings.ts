@@ -40,7 +40,7 @@ export function urlWithConfig(href: string, config: ConfigDraft): string {
   return url.toString();
 }
 
-export function configFromStorage(storage: Storage | undefined = globalThis.localStorage): ConfigDraft | null {
+function configFromStorage(storage: Storage | undefined = globalThis.localStorage): ConfigDraft | null {
   try {
     const text = storage?.getItem(STORAGE_KEY);
     return text ? validateConfigDraft(JSON.parse(text)) : null;

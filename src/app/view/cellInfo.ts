@@ -10,7 +10,7 @@
 import { exactCell, outlineCells } from '../../view/cellOutline';
 import type { ViewStack, ViewSurface } from '../../view/stack';
 
-export interface CellSummary {
+interface CellSummary {
   id: number;
   valid: boolean;
   scutoid: boolean;
@@ -23,14 +23,14 @@ export interface CellSummary {
   flagsMethod: 'exact' | 'labels' | null;
 }
 
-export function neighbourIds(stack: ViewStack, surface: ViewSurface, id: number): number[] {
+function neighbourIds(stack: ViewStack, surface: ViewSurface, id: number): number[] {
   // The cell's own exact polygon (cellOutline.ts): the same neighbours as the whole surface's
   // exact cells, at a pick's cost whatever the cell count (issue 27).
   if (!stack.closed) return id >= 0 && id < surface.cells.length ? exactCell(surface.image.grid, outlineCells(surface.cells), id).neighbours : [];
   return (surface.cells[id]?.neighbours ?? []).map((n) => n.id).sort((a, b) => a - b);
 }
 
-export function cellSummary(stack: ViewStack, id: number): CellSummary {
+function cellSummary(stack: ViewStack, id: number): CellSummary {
   const first = stack.surfaces[0];
   const last = stack.surfaces[stack.surfaces.length - 1];
   const seeded = new Set(neighbourIds(stack, first, id));

@@ -18,7 +18,7 @@ export interface FigureOptions {
 }
 
 /** Longest side allowed, px: bounds the canvas before it is allocated. */
-export const MAX_FIGURE_PIXELS = 8192;
+const MAX_FIGURE_PIXELS = 8192;
 
 export function figureSize(options: FigureOptions, aspect: number): { width: number; height: number } {
   const { dpi, widthMm } = options;
@@ -49,7 +49,7 @@ async function unrolledFigure(stack: ViewStack, options: FigureOptions): Promise
 }
 
 /** An SVG drawn on a white canvas of the size `options` give (width in mm at dpi, the SVG's aspect). */
-export async function rasterizeSvg(svg: string, options: FigureOptions): Promise<HTMLCanvasElement> {
+async function rasterizeSvg(svg: string, options: FigureOptions): Promise<HTMLCanvasElement> {
   const box = /viewBox="([^"]+)"/.exec(svg)![1].split(' ').map(Number);
   const { width, height } = figureSize(options, box[2] / box[3]);
   const url = URL.createObjectURL(new Blob([svg], { type: 'image/svg+xml' }));

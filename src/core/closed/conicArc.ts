@@ -20,7 +20,7 @@
  */
 
 /** Gauss–Legendre nodes and weights on [-1, 1] (Newton on P_n, Golub–Welsch not needed). */
-export function gaussLegendre(n: number): { x: Float64Array; w: Float64Array } {
+function gaussLegendre(n: number): { x: Float64Array; w: Float64Array } {
   const x = new Float64Array(n),
     w = new Float64Array(n);
   for (let i = 0; i < n; i++) {

@@ -12,8 +12,8 @@ type SchemaConfig = FromSchema<typeof configSchema>;
 
 /** Every surface kind the schema knows. */
 export type AnySurfaceConfig = SchemaConfig['surface'];
-export type PlaneSurface = Extract<AnySurfaceConfig, { kind: 'plane' }>;
-export type TubeSurface = Extract<AnySurfaceConfig, { kind: 'tube' }>;
+type PlaneSurface = Extract<AnySurfaceConfig, { kind: 'plane' }>;
+type TubeSurface = Extract<AnySurfaceConfig, { kind: 'tube' }>;
 /** Surfaces unrolled to a rectangle (the planar pipeline: plane, tube). */
 export type SurfaceConfig = PlaneSurface | TubeSurface;
 
@@ -47,7 +47,7 @@ export interface ClosedConfig extends Omit<SchemaConfig, 'surface' | 'resolution
 export type Config = PlanarConfig | ClosedConfig;
 
 /** The closed kinds as a value (for runtime checks); the compiler keeps it equal to ClosedSurfaceConfig's kinds. */
-export const CLOSED_SURFACE_KINDS = ['sphere', 'ellipsoid', 'mesh'] as const satisfies readonly ClosedSurfaceConfig['kind'][];
+const CLOSED_SURFACE_KINDS = ['sphere', 'ellipsoid', 'mesh'] as const satisfies readonly ClosedSurfaceConfig['kind'][];
 // A closed kind added to the schema but missing from the list above fails to compile here.
 const closedKindsListed: Exclude<ClosedSurfaceConfig['kind'], (typeof CLOSED_SURFACE_KINDS)[number]> extends never ? true : never = true;
 void closedKindsListed;

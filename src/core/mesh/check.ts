@@ -8,7 +8,7 @@
  */
 import { boundingBox, faceAreas, signedVolume, type TriangleMesh } from './types';
 
-export type MeshProblemKind =
+type MeshProblemKind =
   | 'empty'
   | 'unreferenced-vertices'
   | 'degenerate-face'
@@ -80,7 +80,7 @@ interface EdgeInfo {
 }
 
 /** Undirected edges of the mesh with their incident faces. Key: min * V + max. */
-export function buildEdges(mesh: TriangleMesh): Map<number, EdgeInfo> {
+function buildEdges(mesh: TriangleMesh): Map<number, EdgeInfo> {
   const t = mesh.indices;
   const nv = mesh.positions.length / 3;
   const edges = new Map<number, EdgeInfo>();

@@ -81,7 +81,7 @@ export function csrAddDiagonal(A: CsrMatrix, d: ArrayLike<number>, scale = 1): C
  * the other. Small parts are ordered by BFS (a Cuthill-McKee-like local order).
  * Returns perm with perm[newIndex] = oldIndex.
  */
-export function nestedDissection(A: CsrMatrix, leafSize = 48): Int32Array {
+function nestedDissection(A: CsrMatrix, leafSize = 48): Int32Array {
   const n = A.n;
   const inPart = new Int32Array(n).fill(-1); // part stamp
   const level = new Int32Array(n);

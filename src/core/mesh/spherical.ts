@@ -29,7 +29,7 @@ import { cotanLaplacian } from './heat';
 import { csrFromTriplets, SparseCholesky } from './sparse';
 import { faceAreas, signedVolume, type TriangleMesh, type Vec3 } from './types';
 
-export interface AreaDistortion {
+interface AreaDistortion {
   /** Per triangle r = (parameter-sphere area / 4π) / (surface area / total): 1 is area preserving. */
   min: number;
   max: number;
@@ -162,7 +162,7 @@ function solve3(J: number[], r: Vec3): Vec3 {
  * 2(I - v vᵀ)c, so the Jacobian is J = 2 Σ m_i (I - v_i v_iᵀ) / Σ m_i and the step c = -J⁻¹ μ.
  * Steps are limited to |c| ≤ 0.5 so a badly off-centre start converges.
  */
-export function mobiusCenter(
+function mobiusCenter(
   indices: Uint32Array,
   sphere: Float64Array,
   weights: Float64Array,
@@ -206,7 +206,7 @@ export function mobiusCenter(
 }
 
 /** Statistics of r = (Ω_f / 4π) / (A_f / A) over the triangles. */
-export function areaDistortion(indices: Uint32Array, sphere: Float64Array, areas: Float64Array): AreaDistortion {
+function areaDistortion(indices: Uint32Array, sphere: Float64Array, areas: Float64Array): AreaDistortion {
   let total = 0;
   for (const a of areas) total += a;
   let min = Infinity,
@@ -227,7 +227,7 @@ export function areaDistortion(indices: Uint32Array, sphere: Float64Array, areas
  * weighted average of its neighbours (cotangent weights clamped at 0), rejecting any move that
  * would make one of its triangles inverted. Returns the number of accepted moves.
  */
-export function relaxSphere(mesh: TriangleMesh, sphere: Float64Array, sweeps: number): number {
+function relaxSphere(mesh: TriangleMesh, sphere: Float64Array, sweeps: number): number {
   const W = cotanLaplacian(mesh, true);
   const vf = vertexFaces(mesh);
   const t = mesh.indices;

@@ -141,7 +141,7 @@ function abortError(): DOMException {
 }
 
 /** The same error classes as a run on the page throws. */
-export function rebuildError(error: SerializedError): Error {
+function rebuildError(error: SerializedError): Error {
   if (error.name === 'AbortError') return abortError();
   if (error.name === 'ConfigError') return new ConfigError(error.field ?? '', error.message);
   if (error.name === 'GpuCapabilityError') return new GpuCapabilityError(error.message);

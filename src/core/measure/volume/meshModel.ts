@@ -67,7 +67,7 @@ const point = new Vector3();
 const target = { point: new Vector3(), distance: 0, faceIndex: 0 };
 
 /** Closest point of the mesh to (x, y, z) into out[o..o+2]; returns its triangle. */
-export function closestOnMesh(mesh: PreparedMesh, x: number, y: number, z: number, out: Float64Array, o: number): number {
+function closestOnMesh(mesh: PreparedMesh, x: number, y: number, z: number, out: Float64Array, o: number): number {
   mesh.bvh.closestPointToPoint(point.set(x, y, z), target);
   out[o] = target.point.x;
   out[o + 1] = target.point.y;
