@@ -96,11 +96,6 @@ export class CellSolidDisplay {
     return solid;
   }
 
-  /** Whether a solid is shown. */
-  get shown(): boolean {
-    return this.object !== null;
-  }
-
   /** The solid's bounding sphere in world space, or null when none is shown. */
   bounds(): THREE.Sphere | null {
     return this.object ? new THREE.Box3().setFromObject(this.object).getBoundingSphere(new THREE.Sphere()) : null;

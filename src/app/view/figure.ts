@@ -33,7 +33,7 @@ export function figureSize(options: FigureOptions, aspect: number): { width: num
 }
 
 export async function figurePng(stack: ViewStack, view: SheetView3D | null, options: FigureOptions): Promise<Uint8Array> {
-  const canvas = stack.closed ? closedFigure(stack, view, options) : await unrolledFigure(stack, options);
+  const canvas = stack.closed ? closedFigure(view, options) : await unrolledFigure(stack, options);
   const blob = await new Promise<Blob>((resolve, reject) =>
     canvas.toBlob((b) => (b ? resolve(b) : reject(new Error('the figure could not be encoded'))), 'image/png'),
   );
@@ -79,7 +79,7 @@ export async function svgPng(svg: string, options: FigureOptions, text: [string,
   return withPngText(withPngDpi(new Uint8Array(await blob.arrayBuffer()), options.dpi), text);
 }
 
-function closedFigure(stack: ViewStack, view: SheetView3D | null, options: FigureOptions): HTMLCanvasElement {
+function closedFigure(view: SheetView3D | null, options: FigureOptions): HTMLCanvasElement {
   if (!view) throw new Error('There is no 3D view to save: this browser does not provide WebGL.');
   const { width } = figureSize(options, 1);
   const viewHeight = Math.round(width * 0.75);
