@@ -45,7 +45,7 @@ export function countContacts(image: LabelPixels, periodicX: boolean): LayerCont
   let lastKey = -1;
   let lastCount = 0;
   const add = (a: number, b: number) => {
-    const key = a < b ? a * 65536 + b : b * 65536 + a;
+    const key = pairKey(a, b);
     if (key === lastKey) {
       lastCount++;
       return;

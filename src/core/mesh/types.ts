@@ -93,12 +93,6 @@ export function faceAreas(mesh: TriangleMesh): Float64Array {
   return out;
 }
 
-export function surfaceArea(mesh: TriangleMesh): number {
-  let s = 0;
-  for (const a of faceAreas(mesh)) s += a;
-  return s;
-}
-
 /**
  * Signed enclosed volume (divergence theorem). Positive when the triangles are oriented
  * outward; used to detect inside-out meshes.
