@@ -318,12 +318,12 @@ export interface IntervalPoint {
   n: number;
 }
 
-/** Mean and 95 % confidence interval of `values`, the interval clamped to [min, max]. */
-export function meanInterval(values: readonly number[], min = 0, max = 100): IntervalPoint {
+/** Mean and 95 % confidence interval of `values` (percentages), the interval clamped to [0, 100]. */
+export function meanInterval(values: readonly number[]): IntervalPoint {
   const stats: ColumnStats = meanSd(values);
   if (stats.n === 0) return { mean: Number.NaN, low: Number.NaN, high: Number.NaN, n: 0 };
   const half = stats.n >= 2 ? tQuantile975(stats.n - 1) * stats.se : 0;
-  const clamp = (x: number) => Math.min(max, Math.max(min, x));
+  const clamp = (x: number) => Math.min(100, Math.max(0, x));
   return { mean: stats.mean, low: clamp(stats.mean - half), high: clamp(stats.mean + half), n: stats.n };
 }
 

@@ -184,8 +184,8 @@ export class SheetView3D {
   }
 
   /** Builds the pick hierarchies of the large meshes on screen in idle time (pickAcceleration.ts). */
-  acceleratePicking(minTriangles = 50_000): void {
-    acceleratePicking(this.meshes, (mesh) => this.meshes.includes(mesh), minTriangles);
+  acceleratePicking(): void {
+    acceleratePicking(this.meshes, (mesh) => this.meshes.includes(mesh));
   }
 
   /** Visibility of surface `index` of the stack. */

@@ -92,8 +92,8 @@ const MAX_SOURCE_BYTES = Math.max(MAX_MESH_BYTES, MAX_PNG_BYTES);
  * approved). A foreign source without approval is refused with no request made. Errors are
  * one-line ConfigErrors on `field`.
  */
-export async function fetchSourceBytes(field: SourceField, src: string, pageHref = location.href): Promise<ArrayBuffer> {
-  const foreign = foreignSource(field, src, pageHref);
+export async function fetchSourceBytes(field: SourceField, src: string): Promise<ArrayBuffer> {
+  const foreign = foreignSource(field, src, location.href);
   if (foreign && !approved.has(foreign.href)) {
     throw new ConfigError(
       field,

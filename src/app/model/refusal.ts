@@ -42,9 +42,9 @@ function fits(config: Config, sheet: Record<string, unknown>): boolean {
 }
 
 /** The largest value in [0, hi] for which `ok` holds (bisection, 0.1 % of hi), or null. */
-function largest(hi: number, ok: (v: number) => boolean, lo = 0): number | null {
-  if (!ok(lo)) return null;
-  let a = lo;
+function largest(hi: number, ok: (v: number) => boolean): number | null {
+  if (!ok(0)) return null;
+  let a = 0;
   let b = hi;
   for (let k = 0; k < 40 && b - a > hi * 1e-3; k++) {
     const mid = (a + b) / 2;

@@ -124,6 +124,6 @@ export const LAB_MEAN_CELL_DIAMETER_PIXELS = Math.sqrt((512 * 4096) / 200);
  * 6 µm; on other sizes and densities it keeps ignoring the same relative contact length,
  * whatever the grid's resolution.
  */
-export function labMinBoundaryLength(areaUm2: number, cells: number, pixels = LAB_MIN_BOUNDARY_PIXELS): number {
-  return (pixels * Math.sqrt(areaUm2 / cells)) / LAB_MEAN_CELL_DIAMETER_PIXELS;
+export function labMinBoundaryLength(areaUm2: number, cells: number): number {
+  return (LAB_MIN_BOUNDARY_PIXELS * Math.sqrt(areaUm2 / cells)) / LAB_MEAN_CELL_DIAMETER_PIXELS;
 }

@@ -62,15 +62,9 @@ function surfaceCache(grid: Grid, sites: ArrayLike<number>, surfaceOf: SurfaceOf
 }
 
 /** The lab protocol's analysis of one tube at one apical ratio. */
-export function analyzeTubeLab(
-  grid: Grid,
-  sites: ArrayLike<number>,
-  apicalRatio: number,
-  settings: LabProtocolSettings = LAB_PROTOCOL,
-  surfaceOf: SurfaceOf = exactVoronoiSurface,
-): LabTubeAnalysis {
+export function analyzeTubeLab(grid: Grid, sites: ArrayLike<number>, apicalRatio: number, settings: LabProtocolSettings = LAB_PROTOCOL): LabTubeAnalysis {
   const count = Math.floor(sites.length / 2);
-  const surfaceAt = surfaceCache(grid, sites, surfaceOf);
+  const surfaceAt = surfaceCache(grid, sites, exactVoronoiSurface);
   const validity = validityRatios(settings, apicalRatio < 1);
   const stackRatios = labLayerRatios(apicalRatio, settings);
   const stack = stackRatios.map(surfaceAt);

@@ -20,7 +20,7 @@
  *    triangle areas, so the surface's area, not its vertex count, is balanced on the sphere.
  *    A Möbius map is conformal, so it keeps the map flip-free up to triangles whose circumcircle
  *    would exceed a hemisphere (never for real meshes; we count flips at the end anyway).
- * 4. Refinement (default 20 sweeps): spherical relaxation (each vertex moves to the normalised
+ * 4. Refinement (20 sweeps): spherical relaxation (each vertex moves to the normalised
  *    cotangent-weighted average of its neighbours, the harmonic-map iteration of Gu et al.
  *    2004), a move being rejected if it would flip a triangle; then centering again.
  */
@@ -51,17 +51,15 @@ export interface SphericalParameterization {
   inward: boolean;
 }
 
-export interface SphericalOptions {
-  /** Stop Möbius centering when |μ| is below this (default 1e-8). */
-  centeringTolerance?: number;
-  maxMobiusIterations?: number;
-  /**
-   * Sweeps of flip-guarded spherical relaxation after the conformal map (default 20): it evens
-   * out the distortion the 3 pinned vertices of the puncture leave (measured on a 2562-vertex
-   * icosphere: area ratio range 0.42..1.74 without, 0.96..1.04 with 20 sweeps).
-   */
-  relaxIterations?: number;
-}
+/** Möbius centering stops when |μ| is below this, or after MAX_MOBIUS_ITERATIONS. */
+const CENTERING_TOLERANCE = 1e-8;
+const MAX_MOBIUS_ITERATIONS = 200;
+/**
+ * Sweeps of flip-guarded spherical relaxation after the conformal map: they even out the
+ * distortion the 3 pinned vertices of the puncture leave (measured on a 2562-vertex icosphere:
+ * area ratio range 0.42..1.74 without, 0.96..1.04 with 20 sweeps).
+ */
+const RELAX_SWEEPS = 20;
 
 function det3(s: ArrayLike<number>, a: number, b: number, c: number): number {
   const ax = s[3 * a],
@@ -271,7 +269,7 @@ function relaxSphere(mesh: TriangleMesh, sphere: Float64Array, sweeps: number): 
  * Maps a closed genus-0 mesh onto the unit sphere (see the module comment). Throws with the
  * checkMesh messages if the mesh is not closed, manifold, connected and of genus 0.
  */
-export function sphericalParameterization(input: TriangleMesh, options: SphericalOptions = {}): SphericalParameterization {
+export function sphericalParameterization(input: TriangleMesh): SphericalParameterization {
   assertGenusZero(input);
   const inward = signedVolume(input) < 0;
   let mesh = input;
@@ -345,23 +343,16 @@ export function sphericalParameterization(input: TriangleMesh, options: Spherica
   // as seen from outside; a mirror fixes it whichever way the puncture was laid out.
   if (countFlipped(t, sphere) > t.length / 6) for (let v = 0; v < nv; v++) sphere[3 * v + 2] *= -1;
 
-  // 3. Möbius centering; 4. optional relaxation, then centre again.
-  const tol = options.centeringTolerance ?? 1e-8;
-  const maxIt = options.maxMobiusIterations ?? 200;
-  let { iterations, mu } = mobiusCenter(t, sphere, areas, tol, maxIt);
-  const sweeps = options.relaxIterations ?? 20;
-  if (sweeps > 0) {
-    relaxSphere(mesh, sphere, sweeps);
-    const again = mobiusCenter(t, sphere, areas, tol, maxIt);
-    iterations += again.iterations;
-    mu = again.mu;
-  }
+  // 3. Möbius centering; 4. relaxation, then centre again.
+  const first = mobiusCenter(t, sphere, areas, CENTERING_TOLERANCE, MAX_MOBIUS_ITERATIONS);
+  relaxSphere(mesh, sphere, RELAX_SWEEPS);
+  const { iterations, mu } = mobiusCenter(t, sphere, areas, CENTERING_TOLERANCE, MAX_MOBIUS_ITERATIONS);
   return {
     sphere,
     flipped: countFlipped(t, sphere),
     centerOfMass: mu,
     centerOfMassNorm: Math.hypot(...mu),
-    mobiusIterations: iterations,
+    mobiusIterations: first.iterations + iterations,
     areaDistortion: areaDistortion(t, sphere, areas),
     inward,
   };
