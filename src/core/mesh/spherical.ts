@@ -16,7 +16,7 @@
  *    removed triangle becoming a cap around the north pole.
  * 3. Möbius centering (Baden et al. 2018, the seed's "centered" map): find the inversion centre
  *    c with Newton's method on μ(c) = area-weighted centre of mass of the mapped triangles,
- *    apply v → c + (1 - |c|²)(v + c)/|v + c|², repeat until |μ| < tolerance. Masses are the mesh's
+ *    apply v → c + (1 - |c|²)(v + c)/|v + c|², repeat until |μ| < 1e-8. Masses are the mesh's
  *    triangle areas, so the surface's area, not its vertex count, is balanced on the sphere.
  *    A Möbius map is conformal, so it keeps the map flip-free up to triangles whose circumcircle
  *    would exceed a hemisphere (never for real meshes; we count flips at the end anyway).
@@ -160,16 +160,10 @@ function solve3(J: number[], r: Vec3): Vec3 {
  * 2(I - v vᵀ)c, so the Jacobian is J = 2 Σ m_i (I - v_i v_iᵀ) / Σ m_i and the step c = -J⁻¹ μ.
  * Steps are limited to |c| ≤ 0.5 so a badly off-centre start converges.
  */
-function mobiusCenter(
-  indices: Uint32Array,
-  sphere: Float64Array,
-  weights: Float64Array,
-  tolerance = 1e-8,
-  maxIterations = 200,
-): { iterations: number; mu: Vec3 } {
+function mobiusCenter(indices: Uint32Array, sphere: Float64Array, weights: Float64Array): { iterations: number; mu: Vec3 } {
   let mu = sphereCenterOfMass(indices, sphere, weights);
   let it = 0;
-  while (Math.hypot(...mu) > tolerance && it < maxIterations) {
+  while (Math.hypot(...mu) > CENTERING_TOLERANCE && it < MAX_MOBIUS_ITERATIONS) {
     const J = [0, 0, 0, 0, 0, 0, 0, 0, 0];
     let wsum = 0;
     for (let f = 0; f < indices.length / 3; f++) {
@@ -344,9 +338,9 @@ export function sphericalParameterization(input: TriangleMesh): SphericalParamet
   if (countFlipped(t, sphere) > t.length / 6) for (let v = 0; v < nv; v++) sphere[3 * v + 2] *= -1;
 
   // 3. Möbius centering; 4. relaxation, then centre again.
-  const first = mobiusCenter(t, sphere, areas, CENTERING_TOLERANCE, MAX_MOBIUS_ITERATIONS);
+  const first = mobiusCenter(t, sphere, areas);
   relaxSphere(mesh, sphere, RELAX_SWEEPS);
-  const { iterations, mu } = mobiusCenter(t, sphere, areas, CENTERING_TOLERANCE, MAX_MOBIUS_ITERATIONS);
+  const { iterations, mu } = mobiusCenter(t, sphere, areas);
   return {
     sphere,
     flipped: countFlipped(t, sphere),

@@ -124,7 +124,7 @@ export function shellSetup(result: VolumeMeasuredResult, meshes: ShellMeshes): S
     other,
     thickness,
     minSpacing,
-    carry: (sites) => carryAlongNormals(seeded, sites, other, 1, 3 * reach, thicknessAt),
+    carry: (sites) => carryAlongNormals(seeded, sites, other, 3 * reach, thicknessAt),
   };
 }
 
