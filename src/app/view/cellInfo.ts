@@ -71,6 +71,15 @@ export function cellInfoLines(stack: ViewStack, id: number): string[] {
   return lines;
 }
 
+/** One <p> per line of text (the cell descriptions of the 3D, measured and volume views). */
+export function paragraphs(lines: readonly string[]): HTMLParagraphElement[] {
+  return lines.map((line) => {
+    const p = document.createElement('p');
+    p.textContent = line;
+    return p;
+  });
+}
+
 export function renderCellInfo(container: HTMLElement, stack: ViewStack | null, id: number): void {
   container.replaceChildren();
   if (!stack || id < 0 || id >= stack.result.cells.length) {
@@ -78,11 +87,7 @@ export function renderCellInfo(container: HTMLElement, stack: ViewStack | null, 
     return;
   }
   const s = cellSummary(stack, id);
-  for (const line of cellInfoLines(stack, id)) {
-    const p = document.createElement('p');
-    p.textContent = line;
-    container.append(p);
-  }
+  container.append(...paragraphs(cellInfoLines(stack, id)));
   container.dataset.cell = String(id);
   container.dataset.won = s.won.join(' ');
   container.dataset.lost = s.lost.join(' ');
