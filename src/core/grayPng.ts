@@ -40,8 +40,8 @@ export function readPngHeader(bytes: Uint8Array, name = 'image', maxPixels = MAX
 }
 
 /** Decodes PNG bytes (header checked first); `name` only labels error messages. */
-export function decodeGrayPng(bytes: Uint8Array, name = 'image'): GrayImage {
-  readPngHeader(bytes, name);
+export function decodeGrayPng(bytes: Uint8Array, name = 'image', maxPixels = MAX_IMAGE_PIXELS): GrayImage {
+  readPngHeader(bytes, name, maxPixels);
   if (!endsWithIend(bytes)) throw new ImageError(`density image ${name}: truncated PNG (it ends before its IEND chunk); re-export it`);
   let png: DecodedPng;
   try {
