@@ -29,7 +29,7 @@
  */
 import { embed } from '../core/surface';
 import { wrapDelta } from '../core/grid';
-import { signedVolume as meshSignedVolume } from '../core/mesh/types';
+import { signedVolume } from '../core/mesh/types';
 import { surfacePolygons } from './cellPolygons';
 import { closedSections } from './cellSolidClosed';
 import { cross, sub, type Section, type Vec3 } from './cellSolidSection';
@@ -108,7 +108,7 @@ export function cellSolid(stack: ViewStack, id: number): CellSolid | null {
     }
   }
   const indices = Uint32Array.from(triangles);
-  if (signedVolume(positions, indices) < 0) {
+  if (signedVolume({ positions, indices }) < 0) {
     for (let t = 0; t < indices.length; t += 3) [indices[t + 1], indices[t + 2]] = [indices[t + 2], indices[t + 1]];
   }
   return {
@@ -121,11 +121,6 @@ export function cellSolid(stack: ViewStack, id: number): CellSolid | null {
     sections: outputSections,
     exact: !stack.closed,
   };
-}
-
-/** Volume enclosed by a closed, consistently oriented triangle mesh (µm³). */
-export function signedVolume(positions: ArrayLike<number>, indices: ArrayLike<number>): number {
-  return meshSignedVolume({ positions, indices });
 }
 
 /** Planes and tubes: each surface's exact polygon in µm of the unrolled surface, around the site. */
