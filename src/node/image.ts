@@ -8,7 +8,7 @@ import { decodeGrayPng, ImageError, readPngHeader } from '../core/grayPng';
 import type { GrayImage } from '../core/density';
 import { MAX_PNG_BYTES } from '../core/inputLimits';
 
-export { decodeGrayPng, ImageError, readPngHeader };
+export { decodeGrayPng, ImageError };
 
 export function loadGrayImage(path: string): GrayImage {
   return decodeGrayPng(readImageFile(path), path);
