@@ -136,7 +136,8 @@ function pageCallbacks({ present: _present, onPresented: _onPresented, ...callba
   return callbacks;
 }
 
-function abortError(): DOMException {
+/** What a cancelled run throws, on the page and from the worker alike. */
+export function abortError(): DOMException {
   return new DOMException('The run was cancelled', 'AbortError');
 }
 
