@@ -10,7 +10,7 @@
  * and the median of the following rounds, and cells/s.
  */
 import { offsetClosedSurface } from '../src/core/closed/closedOffset';
-import { randomSequentialSites } from '../src/core/closed/randomSequentialSites';
+import { randomSequentialSites } from '../tests/closed/randomSequentialSites';
 import { restrictedVoronoi } from '../src/core/closed/restrictedVoronoi';
 import { triangleNeighbours, type MeshGeometry, type RestrictedSurface } from '../src/core/closed/restrictedSurface';
 import { icosphere } from '../src/core/mesh/generate';

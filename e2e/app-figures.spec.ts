@@ -2,7 +2,7 @@ import { writeFileSync } from 'node:fs';
 import { expect, test, type Page } from '@playwright/test';
 import { download, downloadExport, linkTo, smallTube, waitForRun } from './appHelpers';
 import { tempDir } from './cli';
-import { readPngDpi, readPngText } from '../src/app/model/pngText';
+import { readPngDpi, readPngText } from '../tests/app/pngRead';
 import { parseCsv } from '../src/core/sweep/csv';
 import { join } from 'node:path';
 import { png16, randomSites, rasterizeVoronoi } from '../tests/measure/images';

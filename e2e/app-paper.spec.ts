@@ -1,7 +1,7 @@
 import { expect, test, type Page } from '@playwright/test';
 import { downloadExport, linkTo, runs, smallTube, waitForRun } from './appHelpers';
 import { cliRun } from './cli';
-import { readPngText } from '../src/app/model/pngText';
+import { readPngText } from '../tests/app/pngRead';
 
 /**
  * Issue 26, numbers a paper can carry: the headline is a mean over realizations with its 95 %

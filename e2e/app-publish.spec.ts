@@ -3,7 +3,7 @@ import { join } from 'node:path';
 import { expect, test, type Page } from '@playwright/test';
 import { downloadExport, linkTo, runs, unrolledWhitePixels, waitForRun } from './appHelpers';
 import { cliRun, runCli, tempDir } from './cli';
-import { readPngDpi, readPngText } from '../src/app/model/pngText';
+import { readPngDpi, readPngText } from '../tests/app/pngRead';
 import { SIDE_COLORS } from '../src/view/sideColors';
 
 /**

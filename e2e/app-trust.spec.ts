@@ -1,7 +1,7 @@
 import { readFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
 import { downloadExport, injectedScriptRuns, linkTo, runs, smallTube, waitForRun } from './appHelpers';
-import { readPngText } from '../src/app/model/pngText';
+import { readPngText } from '../tests/app/pngRead';
 import { parseCsv } from '../src/core/sweep/csv';
 
 /**

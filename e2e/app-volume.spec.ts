@@ -10,7 +10,7 @@ import {
   type VolumeModelDrawing,
 } from '../src/core/measure';
 import { parseCsv } from '../src/core/sweep';
-import { readPngText } from '../src/app/model/pngText';
+import { readPngText } from '../tests/app/pngRead';
 import { png16, randomSites, rasterizeVoronoi } from '../tests/measure/images';
 import { writeTiff } from '../tests/measure/tiffWriter';
 import { download, expectNoLongTasks } from './appHelpers';

@@ -160,7 +160,7 @@ const sourceQuestion = new SourceQuestion($('#source-question'));
 for (const element of document.querySelectorAll('[data-version]')) element.textContent = version;
 bindHelp($('#help-open'), $<HTMLDialogElement>('#help'));
 const viewPanel = new ViewPanel($('main'), $('#unrolled'));
-const charts = new Charts($('#chart-polygons'), $('#chart-energy'), $('#chart-sweep'), $('#chart-lewis'), $('#chart-aboav'));
+const charts = new Charts($('#chart-polygons'), $('#chart-energy'), $('#chart-lewis'), $('#chart-aboav'));
 const controls = new ConfigControls($('#controls'), initialConfig(link), {
   onEdit: (draft, live, forced) => {
     queueMicrotask(markStale);

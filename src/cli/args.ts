@@ -86,6 +86,6 @@ export function parseArgs(args: string[], form: string, sweep = false): CliOptio
 }
 
 /** A whole number written in decimal digits (not `0x10`, `1e3` or ` 5`), else NaN. */
-export function wholeNumber(text: string): number {
+function wholeNumber(text: string): number {
   return /^\d{1,15}$/.test(text) ? Number(text) : Number.NaN;
 }

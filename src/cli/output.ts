@@ -29,7 +29,7 @@ function head(path: string, bytes = 512): string {
 }
 
 /** A result JSON written by `tissue-sheet run` starts with its software record. */
-export const isOurResult = (path: string): boolean => /^\{\s*"software":\s*\{\s*"name":\s*"tissue-sheet"/.test(head(path));
+const isOurResult = (path: string): boolean => /^\{\s*"software":\s*\{\s*"name":\s*"tissue-sheet"/.test(head(path));
 
 /** Refuses an --out file that is an input, a link, a directory, or someone else's file. */
 export function checkOutFile(out: string, inputs: readonly string[], force: boolean, isOurs: (path: string) => boolean = isOurResult): void {
@@ -56,7 +56,7 @@ export function checkOutFile(out: string, inputs: readonly string[], force: bool
 }
 
 /** Files a sweep writes in its output directory. */
-export const SWEEP_FILES = ['sweep.json', 'runs.csv', 'aggregate.csv', 'aggregate.json', 'flintstones.csv', 'runs.rejected.csv'] as const;
+const SWEEP_FILES = ['sweep.json', 'runs.csv', 'aggregate.csv', 'aggregate.json', 'flintstones.csv', 'runs.rejected.csv'] as const;
 
 /**
  * Refuses an --out directory that is a link or a file, holds an input, or is a non-empty

@@ -14,7 +14,7 @@ import type { MeshFile } from '../run/index';
 import { InputError } from './errors';
 import type { Sources } from './sources';
 
-export const MAX_JSON_BYTES = 64 * 2 ** 20;
+const MAX_JSON_BYTES = 64 * 2 ** 20;
 
 /** Reads and parses a JSON file (a UTF-8 byte-order mark is accepted); errors name the file. */
 export function readJsonFile(path: string, what: string): unknown {
@@ -52,7 +52,7 @@ export function computeBudget(maxTextureSize: number, allowLarge: boolean): Comp
   };
 }
 
-export const RAISE_HINT = 'pass --allow-large to lift the work and memory limits';
+const RAISE_HINT = 'pass --allow-large to lift the work and memory limits';
 
 /** Feasibility, scale guards and budget of one validated config; throws ConfigError (exit 2). */
 export function checkRunnable(config: Config, budget: ComputeBudget): RunEstimate {
@@ -72,5 +72,3 @@ export async function loadInputs(config: Config, sources: Sources): Promise<RunI
   if (config.surface.kind === 'mesh') inputs.meshFile = await sources.mesh(config.surface.src);
   return inputs;
 }
-
-export { InputError };

@@ -21,7 +21,7 @@ import type { MeshFile } from '../run/index';
 import type { InputFileRecord } from '../run/result';
 import { InputError } from './errors';
 
-export const isUrl = (src: string): boolean => /^https?:\/\//i.test(src);
+const isUrl = (src: string): boolean => /^https?:\/\//i.test(src);
 
 export interface SourceOptions {
   /** Directory of the config or spec file: relative paths start there. */
@@ -114,7 +114,7 @@ export class Sources {
 }
 
 /** Parses and checks a mesh file; every problem is one InputError line on surface.src. */
-export function checkMeshFile(file: MeshFile): void {
+function checkMeshFile(file: MeshFile): void {
   const name = file.name ?? 'mesh';
   checkPlyCounts(file, name);
   let mesh;

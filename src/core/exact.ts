@@ -45,7 +45,7 @@ import type { Grid } from './grid';
 import { wrapCoordinate } from './grid';
 import type { SurfaceAdjacency } from './analysis/adjacency';
 
-export interface ExactCell {
+interface ExactCell {
   /** Site id. */
   readonly id: number;
   /** Vertices in texel units, interleaved x, y, unwrapped around the site, counter-clockwise. */

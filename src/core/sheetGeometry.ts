@@ -71,7 +71,7 @@ export function sheetOffsets(config: Config): number[] {
  * protocol's): in surface-ratio units on a tube (s = 1, 1 + step, ..., the other surface), in µm
  * of thickness elsewhere (planes and closed surfaces).
  */
-export function stackOffsets(config: Config, otherOffset: number): number[] {
+function stackOffsets(config: Config, otherOffset: number): number[] {
   const { sheet, surface } = config;
   const step = layerStepOf(sheet);
   if (step === null) {
@@ -94,7 +94,8 @@ export function stackOffsets(config: Config, otherOffset: number): number[] {
  * Projects sites (interleaved x, y texel units of `from`) along the normal onto the surface with
  * grid `to`: the same angle around a tube (x scaled by the texel counts), the same y.
  */
-export function projectSites(from: Grid, to: Grid, sites: Float32Array, out = new Float32Array(sites.length)): Float32Array {
+export function projectSites(from: Grid, to: Grid, sites: Float32Array): Float32Array {
+  const out = new Float32Array(sites.length);
   const scale = to.width / from.width;
   for (let i = 0; i < sites.length; i += 2) {
     out[i] = Math.min(sites[i] * scale, to.width * (1 - Number.EPSILON));

@@ -18,7 +18,7 @@ import { Random } from './random';
 import { ConfigError } from './config/configError';
 
 /** Candidates that may fail in a row (per unit of max/mean density) before we give up. */
-export const MAX_CONSECUTIVE_FAILURES = 20000;
+const MAX_CONSECUTIVE_FAILURES = 20000;
 
 /** Coverage at which random sequential adsorption of disks jams (Feder 1980; Hinrichsen et al.). */
 export const RSA_JAMMING_COVERAGE = 0.547;

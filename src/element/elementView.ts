@@ -32,11 +32,6 @@ export class ElementView {
     private readonly events: ElementViewEvents,
   ) {}
 
-  /** Whether a view exists (WebGL available and the element connected). */
-  get open(): boolean {
-    return this.view !== null;
-  }
-
   /** The view on the canvas, with the output drawn before (if any); no view where WebGL fails (the run's error says why). */
   connect(): void {
     if (this.view) return;

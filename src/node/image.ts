@@ -6,11 +6,9 @@
 import { closeSync, fstatSync, openSync, readSync, statSync } from 'node:fs';
 import { decodeGrayPng, ImageError, readPngHeader } from '../core/grayPng';
 import type { GrayImage } from '../core/density';
-import { MAX_IMAGE_PIXELS, MAX_PNG_BYTES } from '../core/inputLimits';
+import { MAX_PNG_BYTES } from '../core/inputLimits';
 
-// The limits every host shares (core/inputLimits.ts): 8192 x 8192 pixels, 256 MiB.
-export { MAX_IMAGE_PIXELS, MAX_PNG_BYTES };
-export { decodeGrayPng, ImageError, readPngHeader };
+export { decodeGrayPng, ImageError };
 
 export function loadGrayImage(path: string): GrayImage {
   return decodeGrayPng(readImageFile(path), path);

@@ -6,7 +6,7 @@ import { readFileSync, statSync } from 'node:fs';
 import { MeasureInputError, type LabelFileInput } from '../core/measure';
 
 /** Largest file read (a 3D stack is held in memory whole while its pages are decoded). */
-export const MAX_LABEL_FILE_BYTES = 2 ** 30;
+const MAX_LABEL_FILE_BYTES = 2 ** 30;
 
 export function labelFileFromPath(path: string): LabelFileInput {
   return {

@@ -5,7 +5,7 @@ import { GpuCapabilityError } from '../gpu/context';
 export type CreateHeadlessGL = typeof import('gl');
 
 /** The `gl` version this package is tested with (WebGL2 needs 9.x; `gl@8` is WebGL1 only). */
-export const HEADLESS_GL_VERSION = '9.0.0-rc.10';
+const HEADLESS_GL_VERSION = '9.0.0-rc.10';
 
 /**
  * Loads headless-gl (`gl`), an optional dependency: a browser-only consumer can leave it out

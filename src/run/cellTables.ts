@@ -73,13 +73,13 @@ export interface CellsFileRecord {
   readonly tables: CellsFileTable[];
 }
 
-export interface CellsFileTable {
+interface CellsFileTable {
   readonly of: string;
   readonly count: number;
   readonly columns: Record<string, CellsFileColumn>;
 }
 
-export interface CellsFileColumn {
+interface CellsFileColumn {
   readonly type: 'float64' | 'int32' | 'uint8';
   readonly offset: number;
   readonly length: number;

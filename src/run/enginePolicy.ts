@@ -7,7 +7,7 @@ import type { GpuCapabilities } from '../gpu/context';
 export type EngineChoice = GpuEngineChoice | ExactEngineChoice;
 
 /** Jump flood and centroid passes in WebGL2 render targets. */
-export interface GpuEngineChoice {
+interface GpuEngineChoice {
   readonly name: 'gpu';
   readonly family: SurfaceFamilyName;
   /** How the GPU sums centroids. */
@@ -17,7 +17,7 @@ export interface GpuEngineChoice {
 }
 
 /** Lloyd on the exact Voronoi diagram on the CPU (planes and tubes): every analysis exact, no label textures. */
-export interface ExactEngineChoice {
+interface ExactEngineChoice {
   readonly name: 'exact';
   readonly family: SurfaceFamilyName;
   readonly centroidPath: null;

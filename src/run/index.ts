@@ -5,17 +5,7 @@
  */
 export { runSheet, SheetRunner, seededKey, type RunInputs, type RunOptions } from './runSheet';
 export { sweepSummary, sweepSummaryValues } from './sweepSummary';
-export {
-  analysisCellRecordsOf,
-  cellRecordsOf,
-  decodeCellsFile,
-  withCellRecords,
-  CELLS_FILE_FORMAT,
-  type AnalysisCellTable,
-  type CellTable,
-  type CellsFileRecord,
-  type ResultCellTables,
-} from './cellTables';
+export { decodeCellsFile, withCellRecords, type CellsFileRecord, type ResultCellTables } from './cellTables';
 export { WorkerSheetRunner, type ComputeSite } from './worker/workerRunner';
 export { describeEngine, type EngineChoice } from './enginePolicy';
 export { fetchMeshFile, type MeshFile } from './closedMesh';

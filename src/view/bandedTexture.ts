@@ -23,7 +23,7 @@ export function bandedTexture(rgba: Uint8Array | Uint8ClampedArray, width: numbe
 }
 
 /** Queues `texture`'s next band of rows (when it is a banded texture with rows left); whether one was queued. */
-export function uploadNextBand(texture: THREE.Texture | null | undefined): boolean {
+function uploadNextBand(texture: THREE.Texture | null | undefined): boolean {
   const state = texture?.userData as Banded | undefined;
   if (!texture || !(texture instanceof THREE.DataTexture) || typeof state?.nextRow !== 'number') return false;
   const { width, height } = texture.image;
@@ -36,7 +36,7 @@ export function uploadNextBand(texture: THREE.Texture | null | undefined): boole
 }
 
 /** The rows [from, to) of the band starting at `row` of a `width` x `height` picture. */
-export function bandRows(width: number, height: number, row: number): [number, number] {
+function bandRows(width: number, height: number, row: number): [number, number] {
   const perBand = Math.max(1, Math.floor(BAND_BYTES / (4 * Math.max(1, width))));
   return [row, Math.min(height, row + perBand)];
 }

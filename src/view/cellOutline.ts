@@ -89,13 +89,13 @@ export function exactCell(grid: Grid, cells: OutlineCells, id: number): { polygo
 }
 
 /** A convex polygon (x, y pairs) and, per edge, the site that made it. */
-export interface Clipped {
+interface Clipped {
   points: number[];
   edges: number[];
 }
 
 /** The part of convex `polygon` closer to (sx, sy) than to (ox, oy) (Sutherland-Hodgman); new edges carry `label`. */
-export function clipCloser(polygon: Clipped, sx: number, sy: number, ox: number, oy: number, label = -1): Clipped {
+function clipCloser(polygon: Clipped, sx: number, sy: number, ox: number, oy: number, label = -1): Clipped {
   const nx = ox - sx;
   const ny = oy - sy;
   if (nx === 0 && ny === 0) return polygon;

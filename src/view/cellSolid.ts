@@ -4,7 +4,7 @@
  *
  * Construction. On every surface k the cell's cross-section is a convex polygon around the
  * cell's site there, written in a 2D frame tangent at the site (the same directions on every
- * surface). A common set of ray angles — a uniform set (`rays`, default 64) united with the angle
+ * surface). A common set of ray angles — a uniform set (64 rays) united with the angle
  * of every polygon corner on every surface — is traced from the site to each cross-section's
  * boundary, so each cross-section passes through its own polygon's corners exactly. Each traced
  * 2D point is then put on surface k in 3D. Consecutive surfaces are joined by two triangles per
@@ -29,13 +29,13 @@
  */
 import { embed } from '../core/surface';
 import { wrapDelta } from '../core/grid';
-import { signedVolume as meshSignedVolume } from '../core/mesh/types';
+import { signedVolume } from '../core/mesh/types';
 import { surfacePolygons } from './cellPolygons';
 import { closedSections } from './cellSolidClosed';
 import { cross, sub, type Section, type Vec3 } from './cellSolidSection';
 import type { ViewStack } from './stack';
 
-export interface CellSolidSection {
+interface CellSolidSection {
   /** Index of the surface in the stack. */
   readonly surface: number;
   /** Corners of the cell's polygon there (its sides, border edges included). */
@@ -63,18 +63,16 @@ export interface CellSolid {
   readonly exact: boolean;
 }
 
-export interface CellSolidOptions {
-  /** Uniform ray angles added to the corners' angles (default 64). */
-  rays?: number;
-}
+/** Uniform ray angles added to the corners' angles. */
+const UNIFORM_RAYS = 64;
 
 /** The solid of cell `id` through every surface of `stack`, or null when it has none. */
-export function cellSolid(stack: ViewStack, id: number, options: CellSolidOptions = {}): CellSolid | null {
+export function cellSolid(stack: ViewStack, id: number): CellSolid | null {
   if (stack.surfaces.length < 2 || id < 0 || id >= stack.result.cells.length) return null;
   const sections = stack.closed ? closedSections(stack, id) : planarSections(stack, id);
   if (!sections || sections.some((s) => s.polygon.length < 6)) return null;
 
-  const angles = rayAngles(sections, options.rays ?? 64);
+  const angles = rayAngles(sections, UNIFORM_RAYS);
   const rays = angles.length;
   const ringSize = rays + 1;
   const origin: Vec3 = [...sections[0].centre];
@@ -110,7 +108,7 @@ export function cellSolid(stack: ViewStack, id: number, options: CellSolidOption
     }
   }
   const indices = Uint32Array.from(triangles);
-  if (signedVolume(positions, indices) < 0) {
+  if (signedVolume({ positions, indices }) < 0) {
     for (let t = 0; t < indices.length; t += 3) [indices[t + 1], indices[t + 2]] = [indices[t + 2], indices[t + 1]];
   }
   return {
@@ -123,11 +121,6 @@ export function cellSolid(stack: ViewStack, id: number, options: CellSolidOption
     sections: outputSections,
     exact: !stack.closed,
   };
-}
-
-/** Volume enclosed by a closed, consistently oriented triangle mesh (µm³). */
-export function signedVolume(positions: ArrayLike<number>, indices: ArrayLike<number>): number {
-  return meshSignedVolume({ positions, indices });
 }
 
 /** Planes and tubes: each surface's exact polygon in µm of the unrolled surface, around the site. */

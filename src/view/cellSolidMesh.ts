@@ -14,7 +14,7 @@ import { SELECTED_RGB } from './sideColors';
 const SOLID_ORDER = 1000;
 
 /** A group (mesh + crease lines) placed in the sheet's frame at the solid's origin. */
-export function cellSolidObject(solid: CellSolid): THREE.Group {
+function cellSolidObject(solid: CellSolid): THREE.Group {
   const geometry = new THREE.BufferGeometry();
   geometry.setAttribute('position', new THREE.BufferAttribute(solid.positions, 3));
   geometry.setAttribute('normal', new THREE.BufferAttribute(solid.normals, 3));
@@ -43,7 +43,7 @@ export function cellSolidObject(solid: CellSolid): THREE.Group {
 }
 
 /** Frees what `cellSolidObject` allocated. */
-export function disposeCellSolidObject(group: THREE.Group): void {
+function disposeCellSolidObject(group: THREE.Group): void {
   group.traverse((object) => {
     if (object instanceof THREE.Mesh || object instanceof THREE.LineSegments) {
       object.geometry.dispose();
@@ -53,7 +53,7 @@ export function disposeCellSolidObject(group: THREE.Group): void {
 }
 
 /** The light the solid is shaded with: a headlight on the camera and a soft fill. */
-export function cellSolidLights(): { headlight: THREE.DirectionalLight; fill: THREE.HemisphereLight } {
+function cellSolidLights(): { headlight: THREE.DirectionalLight; fill: THREE.HemisphereLight } {
   const headlight = new THREE.DirectionalLight(0xffffff, 2.2);
   headlight.position.set(0.4, 0.8, 0.2);
   const fill = new THREE.HemisphereLight(0xffffff, 0x8a8a80, 1.1);
@@ -94,11 +94,6 @@ export class CellSolidDisplay {
     this.object = cellSolidObject(solid);
     this.parent.add(this.object);
     return solid;
-  }
-
-  /** Whether a solid is shown. */
-  get shown(): boolean {
-    return this.object !== null;
   }
 
   /** The solid's bounding sphere in world space, or null when none is shown. */

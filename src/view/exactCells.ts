@@ -18,7 +18,7 @@ const MAX_SIDE = 2048;
  * polygons: 100,000 filled and stroked polygons took the main thread ~10 s on a software
  * renderer (issue 27), and at that count a cell is a few pixels of the picture anyway.
  */
-export const MAX_POLYGON_CELLS = 20_000;
+const MAX_POLYGON_CELLS = 20_000;
 
 /** Whether the page draws `surface` by its texels (see MAX_POLYGON_CELLS). */
 export function drawnByTexels(surface: ViewSurface): boolean {

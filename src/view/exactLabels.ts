@@ -8,7 +8,7 @@ import type { Grid } from '../core/grid';
 import { PlanarVoronoi, PolygonBuffer, rasterizeCells } from '../core/exactEngine';
 
 /** Each site's exact cell polygon, in texel units, unwrapped around its site (id = index). */
-export function exactCellPolygons(grid: Grid, sites: ArrayLike<number>): { id: number; polygon: Float64Array }[] {
+function exactCellPolygons(grid: Grid, sites: ArrayLike<number>): { id: number; polygon: Float64Array }[] {
   const n = Math.floor(sites.length / 2);
   const voronoi = new PlanarVoronoi(grid, n).build(sites);
   const cell = new PolygonBuffer();

@@ -26,19 +26,19 @@ export interface ImageSize {
 }
 
 /**
- * The image's size from its header, checked against `maxPixels` and for completeness.
+ * The image's size from its header, checked against PAGE_MAX_IMAGE_PIXELS and for completeness.
  * `what` names the image in errors ("density.src: density image x.png").
  */
-export function readImageSize(bytes: Uint8Array, what: string, maxPixels = PAGE_MAX_IMAGE_PIXELS): ImageSize {
+export function readImageSize(bytes: Uint8Array, what: string): ImageSize {
   if (bytes.length === 0) throw new ImageHeaderError(`${what}: the file is empty; give a PNG or JPEG image`);
   let size: ImageSize;
   if (hasPngSignature(bytes)) size = pngSize(bytes, what);
   else if (bytes.length >= 3 && bytes[0] === 0xff && bytes[1] === 0xd8 && bytes[2] === 0xff) size = jpegSize(bytes, what);
   else throw new ImageHeaderError(`${what}: not a PNG or JPEG image; convert it to PNG`);
   if (size.width === 0 || size.height === 0) throw new ImageHeaderError(`${what}: declares ${size.width} x ${size.height} pixels; re-export it`);
-  if (size.width * size.height > maxPixels) {
+  if (size.width * size.height > PAGE_MAX_IMAGE_PIXELS) {
     throw new ImageHeaderError(
-      `${what}: ${size.width} x ${size.height} pixels is more than the ${maxPixels} the page decodes; downscale it (the density is stretched over the grid anyway)`,
+      `${what}: ${size.width} x ${size.height} pixels is more than the ${PAGE_MAX_IMAGE_PIXELS} the page decodes; downscale it (the density is stretched over the grid anyway)`,
     );
   }
   return size;

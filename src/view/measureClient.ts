@@ -10,7 +10,7 @@ import type { FromMeasureWorker, MeasureRequestOptions, ToMeasureWorker } from '
 import { requestWorker } from './workerRequest';
 
 /** Largest file read (as the CLI): 1 GiB. */
-export const MAX_MEASURE_FILE_BYTES = 2 ** 30;
+const MAX_MEASURE_FILE_BYTES = 2 ** 30;
 
 /** A problem with one input file: shown as "FILE: problem". */
 export class MeasureFileError extends Error {

@@ -27,7 +27,7 @@ export interface LayerPicture extends LayerLabels {
 }
 
 /** Picture pixels per side at most (a 1024 x 1024 picture is 4 MB of RGBA). */
-export const MAX_PICTURE_SIDE = 1024;
+const MAX_PICTURE_SIDE = 1024;
 
 /** The labels of `pixels` reduced to at most `maxSide` per side (nearest pixel: labels never blend). */
 export function reduceLabels(pixels: LabelPixels, maxSide = MAX_PICTURE_SIDE): LayerLabels {
@@ -68,7 +68,7 @@ const BACKGROUND = [40, 40, 40] as const;
 const SCUTOID_STRIPE = [20, 20, 20] as const;
 
 /** Whether picture pixel (x, y) lies on a cell boundary (its right or lower neighbour differs). */
-export function isLayerBoundary(layer: LayerLabels, periodicX: boolean, x: number, y: number): boolean {
+function isLayerBoundary(layer: LayerLabels, periodicX: boolean, x: number, y: number): boolean {
   const { width, height, labels } = layer;
   const id = labels[y * width + x];
   const right = x + 1 < width ? x + 1 : periodicX ? 0 : x;

@@ -17,7 +17,7 @@ export const PAGE_MAX_BYTES = 1.5 * 2 ** 30;
 
 const RAISE_HINT = 'run it with the command-line tool (tissue-sheet run --allow-large), where the limit can be raised';
 
-export function pageBudget(maxTextureSize: number): ComputeBudget {
+function pageBudget(maxTextureSize: number): ComputeBudget {
   return { maxTextureSize, maxWork: PAGE_MAX_WORK, maxBytes: PAGE_MAX_BYTES };
 }
 

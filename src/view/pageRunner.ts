@@ -29,7 +29,7 @@ import {
   type MeshFile,
   type SheetOutput,
 } from '../run';
-import type { WorkerRunOptions } from '../run/worker/workerRunner';
+import { abortError, type WorkerRunOptions } from '../run/worker/workerRunner';
 import { decodeGrayImage } from './densityImage';
 import { meshFileFor } from './meshFiles';
 import { rememberPictures, type PictureRequest } from './workerPictures';
@@ -50,7 +50,7 @@ export function computeContext(): GpuContext {
 }
 
 /** A new pipeline runner in its own worker (the view's worker: it can draw the views' pictures). */
-export function createPipelineRunner(): WorkerSheetRunner {
+function createPipelineRunner(): WorkerSheetRunner {
   return new WorkerSheetRunner(computeContext, () => new Worker(new URL('./viewWorker.ts', import.meta.url), { type: 'module' }));
 }
 
@@ -172,10 +172,6 @@ export async function runInPage(request: RunRequest): Promise<SheetOutput> {
   } finally {
     for (const listener of siteListeners) listener(runner.site);
   }
-}
-
-function abortError(): DOMException {
-  return new DOMException('The run was cancelled', 'AbortError');
 }
 
 export function isAbort(error: unknown): boolean {

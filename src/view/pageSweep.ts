@@ -74,7 +74,7 @@ export interface PageSweepOptions {
 }
 
 /** At most this many pipeline workers for one sweep: each holds its own pipeline and surfaces. */
-export const MAX_PAGE_WORKERS = 8;
+const MAX_PAGE_WORKERS = 8;
 
 /**
  * The page's default number of sweep workers: the browser's cores (hardwareConcurrency) less one
@@ -82,7 +82,7 @@ export const MAX_PAGE_WORKERS = 8;
  * starve the main thread (the app's own pipeline worker is there too): its tasks then run
  * past 50 ms in wall time.
  */
-export function defaultPageWorkers(): number {
+function defaultPageWorkers(): number {
   const cores = typeof navigator !== 'undefined' && Number.isInteger(navigator.hardwareConcurrency) ? navigator.hardwareConcurrency : 2;
   return Math.max(1, Math.min(MAX_PAGE_WORKERS, cores - 1));
 }
@@ -254,9 +254,6 @@ export async function sweepInPage(input: unknown, options: PageSweepOptions = {}
   };
 }
 
-/** Two-sided 97.5 % quantile of Student's t (the headline's realizations use the same). */
-export { tQuantile975 };
-
 export interface IntervalPoint {
   mean: number;
   /** 95 % confidence interval of the mean (t distribution), clamped to [lower, upper] bounds. */
@@ -265,12 +262,12 @@ export interface IntervalPoint {
   n: number;
 }
 
-/** Mean and 95 % confidence interval of `values`, the interval clamped to [min, max]. */
-export function meanInterval(values: readonly number[], min = 0, max = 100): IntervalPoint {
+/** Mean and 95 % confidence interval of `values` (percentages), the interval clamped to [0, 100]. */
+export function meanInterval(values: readonly number[]): IntervalPoint {
   const stats: ColumnStats = meanSd(values);
   if (stats.n === 0) return { mean: Number.NaN, low: Number.NaN, high: Number.NaN, n: 0 };
   const half = stats.n >= 2 ? tQuantile975(stats.n - 1) * stats.se : 0;
-  const clamp = (x: number) => Math.min(max, Math.max(min, x));
+  const clamp = (x: number) => Math.min(100, Math.max(0, x));
   return { mean: stats.mean, low: clamp(stats.mean - half), high: clamp(stats.mean + half), n: stats.n };
 }
 

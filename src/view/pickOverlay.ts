@@ -16,7 +16,7 @@ import { clipHalfPlane } from './cellSolidSection';
 import type { ViewStack, ViewSurface } from './stack';
 
 /** The part of convex `polygon` (x, y pairs) with a <= x <= b. */
-export function clipStrip(polygon: readonly number[], a: number, b: number): number[] {
+function clipStrip(polygon: readonly number[], a: number, b: number): number[] {
   const out = clipHalfPlane(clipHalfPlane(Float64Array.from(polygon), -1, 0, -a), 1, 0, b);
   return out.length >= 6 ? Array.from(out) : [];
 }

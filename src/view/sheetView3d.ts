@@ -183,14 +183,9 @@ export class SheetView3D {
     return true;
   }
 
-  /** Whether a cell's solid is drawn. */
-  get cellSolidShown(): boolean {
-    return this.solid.shown;
-  }
-
   /** Builds the pick hierarchies of the large meshes on screen in idle time (pickAcceleration.ts). */
-  acceleratePicking(minTriangles = 50_000): void {
-    acceleratePicking(this.meshes, (mesh) => this.meshes.includes(mesh), minTriangles);
+  acceleratePicking(): void {
+    acceleratePicking(this.meshes, (mesh) => this.meshes.includes(mesh));
   }
 
   /** Visibility of surface `index` of the stack. */
@@ -198,10 +193,6 @@ export class SheetView3D {
     const mesh = this.meshes[index];
     if (mesh) mesh.visible = visible;
     this.requestRender();
-  }
-
-  surfaceVisible(index: number): boolean {
-    return this.meshes[index]?.visible ?? false;
   }
 
   /** 0: no cut; 0..1: removes that fraction of the sheet's depth, nearest the viewer first. */
@@ -225,10 +216,6 @@ export class SheetView3D {
     this.controls.update();
     this.updateClip();
     this.requestRender();
-  }
-
-  get cut(): number {
-    return this.cutFraction;
   }
 
   resetCamera(): void {

@@ -85,15 +85,15 @@ export function approveSource(source: ForeignSource): void {
 }
 
 /** The page's own sources, or an approved foreign one: at most this many bytes are read (the limit every host shares). */
-export const MAX_SOURCE_BYTES = Math.max(MAX_MESH_BYTES, MAX_PNG_BYTES);
+const MAX_SOURCE_BYTES = Math.max(MAX_MESH_BYTES, MAX_PNG_BYTES);
 
 /**
  * The bytes of `src` (a same-origin URL, a data: or blob: URL, or a foreign URL the user
  * approved). A foreign source without approval is refused with no request made. Errors are
  * one-line ConfigErrors on `field`.
  */
-export async function fetchSourceBytes(field: SourceField, src: string, pageHref = location.href): Promise<ArrayBuffer> {
-  const foreign = foreignSource(field, src, pageHref);
+export async function fetchSourceBytes(field: SourceField, src: string): Promise<ArrayBuffer> {
+  const foreign = foreignSource(field, src, location.href);
   if (foreign && !approved.has(foreign.href)) {
     throw new ConfigError(
       field,

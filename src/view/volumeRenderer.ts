@@ -112,7 +112,7 @@ class Row {
 }
 
 /** The camera position of an orbit. */
-export function orbitPosition(orbit: Orbit): [number, number, number] {
+function orbitPosition(orbit: Orbit): [number, number, number] {
   const c = Math.cos(orbit.elevation);
   return [
     orbit.target[0] + orbit.distance * c * Math.cos(orbit.azimuth),

@@ -33,14 +33,14 @@ export interface CellShape {
   readonly indices: Uint32Array;
 }
 
-export const MAX_DRAWN_TRIANGLES = 300_000;
+const MAX_DRAWN_TRIANGLES = 300_000;
 
 /**
  * The block size (µm) for drawing a surface of `area` µm² (measured as voxel faces): the
  * smallest voxel edge, or coarser where the mesh would pass `maxTriangles` (about two triangles
  * per block face).
  */
-export function drawingSpacing(area: number, voxel: { x: number; y: number; z: number }, maxTriangles = MAX_DRAWN_TRIANGLES): number {
+function drawingSpacing(area: number, voxel: { x: number; y: number; z: number }, maxTriangles = MAX_DRAWN_TRIANGLES): number {
   const finest = Math.min(voxel.x, voxel.y, voxel.z);
   return Math.max(finest, Math.sqrt((2 * area) / maxTriangles));
 }

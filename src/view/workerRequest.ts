@@ -21,7 +21,7 @@ export interface WorkerRequest<Reply> {
   handle(reply: Reply, finish: RequestFinish): void;
 }
 
-export interface RequestFinish {
+interface RequestFinish {
   done(): void;
   fail(error: Error): void;
 }

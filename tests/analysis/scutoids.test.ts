@@ -4,7 +4,6 @@ import { exactVoronoi } from '../../src/core/exact';
 import {
   adjacencyFromLists,
   analyzeSurfaces,
-  isSymmetric,
   labMinBoundaryLength,
   neighbourSet,
   SIDE_CLASSES,
@@ -13,6 +12,7 @@ import {
   type SurfaceAdjacency,
 } from '../../src/core/analysis';
 import { BORDER_Y_START } from '../../src/core/border';
+import { isSymmetric } from '../oracles/adjacency';
 import { randomSites } from './helpers';
 
 /** Symmetric adjacency lists from an edge list. */

@@ -7,7 +7,8 @@
 import { beforeAll, describe, expect, it } from 'vitest';
 import { validatePlanarConfig } from '../planarConfig';
 import { measureTissue, type MeasuredResult } from '../../src/core/measure';
-import { fromBase64, readMeasuredSection, sameMeasurement, toBase64, type MeasuredSection } from '../../src/app/model/measureProject';
+import { fromBase64, toBase64 } from '../../src/app/model/base64';
+import { readMeasuredSection, sameMeasurement, type MeasuredSection } from '../../src/app/model/measureProject';
 import { openParsed, parseFileJson, projectJson } from '../../src/app/model/project';
 import { openSections, registerProjectSection } from '../../src/app/model/projectSections';
 import { reassign } from '../../src/app/panels/layerAssign';

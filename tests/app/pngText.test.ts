@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
-import { crc32, readPngText, withPngText } from '../../src/app/model/pngText';
+import { crc32, withPngText } from '../../src/app/model/pngText';
+import { readPngText } from './pngRead';
 import { decode, encode } from 'fast-png';
 
 describe('PNG tEXt provenance', () => {

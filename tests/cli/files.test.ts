@@ -6,7 +6,8 @@ import { encode } from 'fast-png';
 import { describe, expect, it } from 'vitest';
 import { lockDirectory, LOCK_NAME } from '../../src/cli/lock';
 import { checkOutDir, checkOutFile, writeFileAtomic } from '../../src/cli/output';
-import { decodeGrayPng, ImageError, loadGrayImage, readPngHeader } from '../../src/node/image';
+import { readPngHeader } from '../../src/core/grayPng';
+import { decodeGrayPng, ImageError, loadGrayImage } from '../../src/node/image';
 
 const dir = mkdtempSync(join(tmpdir(), 'tissue-sheet-files-'));
 

@@ -10,7 +10,7 @@ import { describe, expect, it } from 'vitest';
 import { labMinBoundaryLength } from '../../src/core/analysis/adjacency';
 import { cubeLabelAdjacency } from '../../src/core/closed/geometry';
 import { cubeBruteForceLabels } from '../oracles/cubeMap';
-import { randomSequentialSites } from '../../src/core/closed/randomSequentialSites';
+import { randomSequentialSites } from './randomSequentialSites';
 import { restrictedVoronoi } from '../../src/core/closed/restrictedVoronoi';
 import { sphereSurface, type EllipsoidGeometry } from '../../src/core/closed/restrictedSurface';
 import { sampleSurface } from '../../src/core/cubemap/sample';

@@ -4,13 +4,12 @@ import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
 import { ConfigError, validateConfig, type ClosedConfig, type ConfigInput } from '../../src/core/config';
 import { icosphere, mapVertices } from '../../src/core/mesh/generate';
-import { surfaceArea } from '../../src/core/mesh/types';
 import { writePlyAscii } from '../../src/core/mesh/write';
 import { runSheet } from '../../src/run/runSheet';
 import type { SheetResult } from '../../src/run/result';
 import { useHeadlessContext } from '../gpu/context';
 import { loadMeshFile } from '../../src/node/meshFile';
-import { MESH_DIR, meshInputs } from '../mesh/helpers';
+import { MESH_DIR, meshInputs, surfaceArea } from '../mesh/helpers';
 
 const context = useHeadlessContext();
 const closed = (input: ConfigInput) => validateConfig(input) as ClosedConfig;

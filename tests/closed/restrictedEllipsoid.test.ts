@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
-import { isSymmetric } from '../../src/core/analysis/adjacency';
+import { isSymmetric } from '../oracles/adjacency';
 import { ellipsoidArea } from '../../src/core/closed/conicArc';
-import { randomSequentialSites } from '../../src/core/closed/randomSequentialSites';
+import { randomSequentialSites } from './randomSequentialSites';
 import { restrictedVoronoi } from '../../src/core/closed/restrictedVoronoi';
 import { icosphere } from '../../src/core/mesh/generate';
 import { compareNeighbourSets, ellipsoidContactsReference, neighbourLists } from './restrictedReference';

@@ -1,11 +1,10 @@
 import { describe, expect, it } from 'vitest';
-import { isSymmetric } from '../../src/core/analysis/adjacency';
+import { isSymmetric } from '../oracles/adjacency';
 import { offsetClosedSurface } from '../../src/core/closed/closedOffset';
-import { randomSequentialSites } from '../../src/core/closed/randomSequentialSites';
+import { randomSequentialSites } from './randomSequentialSites';
 import { restrictedVoronoi } from '../../src/core/closed/restrictedVoronoi';
 import type { MeshGeometry } from '../../src/core/closed/restrictedSurface';
-import { surfaceArea } from '../../src/core/mesh/types';
-import { loadShipped } from '../mesh/helpers';
+import { loadShipped, surfaceArea } from '../mesh/helpers';
 import { compareNeighbourSets, meshContactsReference, neighbourLists } from './restrictedReference';
 
 /** A shipped mesh scaled to µm. */

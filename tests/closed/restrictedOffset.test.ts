@@ -3,7 +3,7 @@ import { ConfigError } from '../../src/core/config';
 import { analyzeSurfaces, withMinBoundaryLength } from '../../src/core/analysis';
 import { offsetClosedSurface } from '../../src/core/closed/closedOffset';
 import { ellipsoidArea } from '../../src/core/closed/conicArc';
-import { randomSequentialSites } from '../../src/core/closed/randomSequentialSites';
+import { randomSequentialSites } from './randomSequentialSites';
 import { restrictedVoronoi } from '../../src/core/closed/restrictedVoronoi';
 import type { MeshGeometry } from '../../src/core/closed/restrictedSurface';
 import { closestPointOnEllipsoid } from '../../src/core/cubemap/sample';
@@ -159,7 +159,7 @@ describe('the diagrams of a stack feed the analysis', () => {
   });
 });
 
-describe('random sequential addition (the lab seeding)', () => {
+describe("the tests' random sequential addition (randomSequentialSites.ts)", () => {
   it('keeps the minimum distance, is reproducible, and is uniform in area on an ellipsoid', () => {
     const a = 80,
       b = 40,

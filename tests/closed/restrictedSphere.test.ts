@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
-import { isSymmetric } from '../../src/core/analysis/adjacency';
-import { randomSequentialSites } from '../../src/core/closed/randomSequentialSites';
+import { isSymmetric } from '../oracles/adjacency';
+import { randomSequentialSites } from './randomSequentialSites';
 import { restrictedVoronoi } from '../../src/core/closed/restrictedVoronoi';
 import { sphereSurface } from '../../src/core/closed/restrictedSurface';
 import { sphericalVoronoi } from '../oracles/sphericalDelaunay';

@@ -6,8 +6,11 @@ import {
   BORDER_Y_END as BORDER_BOTTOM,
   BORDER_Y_START as BORDER_TOP,
 } from '../../src/core/border';
-import { countContacts, edgesBetween } from '../../src/core/measure';
+import { countContacts, pairKey, type LayerContacts } from '../../src/core/measure';
 import { randomSites, rasterizeVoronoi } from './images';
+
+/** Edge count between raw labels a and b (0 when they do not touch). */
+const edgesBetween = (contacts: LayerContacts, a: number, b: number): number => (a === b ? 0 : (contacts.edges.get(pairKey(a, b)) ?? 0));
 
 /**
  * The hand-checkable case of docs/measure.md's edge-count definition:

@@ -12,9 +12,8 @@ import {
   prepareMesh,
   quartetFilter,
   randomSitesOnMesh,
-  signedVolume,
 } from '../../src/core/measure';
-import { meshArea } from '../../src/core/mesh/types';
+import { meshArea, signedVolume } from '../../src/core/mesh/types';
 import { createRandom } from '../../src/core/random';
 import { lzwEncode } from './tiffWriter';
 
@@ -277,7 +276,7 @@ describe('surface meshes of a classified volume', () => {
       expect(edges.get(`${b},${a}`)).toBe(1);
     }
     expect(Math.abs(meshArea(mesh.positions, mesh.indices) / (4 * Math.PI * R * R) - 1)).toBeLessThan(0.03);
-    expect(Math.abs(signedVolume(mesh.positions, mesh.indices) / ((4 / 3) * Math.PI * R ** 3) - 1)).toBeLessThan(0.03);
+    expect(Math.abs(signedVolume(mesh) / ((4 / 3) * Math.PI * R ** 3) - 1)).toBeLessThan(0.03);
   });
 });
 
@@ -298,10 +297,10 @@ describe('sites carried along the normal to the other surface', () => {
     const outer = prepareMesh(maskSurfaceMesh(classes, W, H, D, voxel, (c) => c !== 1, 1.5));
     const sites = randomSitesOnMesh(inner, 30, 2, 4);
     const radius = (p: Float64Array, i: number) => Math.hypot(p[3 * i] - 24, p[3 * i + 1] - 24, p[3 * i + 2] - 24);
-    const hit = carryAlongNormals(inner, sites, outer, 1, 20, () => 5);
+    const hit = carryAlongNormals(inner, sites, outer, 20, () => 5);
     expect([hit.alongNormal, hit.parallel]).toEqual([30, 0]);
     for (let i = 0; i < 30; i++) expect(Math.abs(radius(hit.sites, i) - 18)).toBeLessThan(0.6);
-    const missed = carryAlongNormals(inner, sites, outer, 1, 3, () => 5);
+    const missed = carryAlongNormals(inner, sites, outer, 3, () => 5);
     expect([missed.alongNormal, missed.parallel]).toEqual([0, 30]);
     for (let i = 0; i < 30; i++) expect(Math.abs(radius(missed.sites, i) - 15)).toBeLessThan(0.6);
   });

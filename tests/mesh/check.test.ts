@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { assertGenusZero, checkMesh, meshTopology } from '../../src/core/mesh/check';
-import { flipOrientation, icosphere, mapVertices, mergeMeshes, openSphere, selectFaces, torusMesh } from '../../src/core/mesh/generate';
-import type { TriangleMesh } from '../../src/core/mesh/types';
+import { flipOrientation, icosphere, mapVertices, openSphere, selectFaces, torusMesh } from '../../src/core/mesh/generate';
+import { mergeMeshes, type TriangleMesh } from '../../src/core/mesh/types';
 import { GENUS_ZERO_SHIPPED, loadShipped } from './helpers';
 
 const sphere = icosphere(4);

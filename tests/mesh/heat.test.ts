@@ -2,8 +2,8 @@ import { describe, expect, it } from 'vitest';
 import { icosphere, mulberry32 } from '../../src/core/mesh/generate';
 import { cotanLaplacian, geodesicVoronoi, HeatGeodesics, lumpedMass } from '../../src/core/mesh/heat';
 import { csrAddDiagonal, SparseCholesky, type CsrMatrix } from '../../src/core/mesh/sparse';
-import { meanEdgeLength, surfaceArea } from '../../src/core/mesh/types';
-import { loadShipped } from './helpers';
+import { meanEdgeLength } from '../../src/core/mesh/types';
+import { loadShipped, surfaceArea } from './helpers';
 
 /** y = A x, from the CSR layout's definition. */
 function csrMultiply(A: CsrMatrix, x: ArrayLike<number>): Float64Array {

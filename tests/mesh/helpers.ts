@@ -4,7 +4,7 @@ import type { Config } from '../../src/core/config';
 import { parseMesh } from '../../src/core/mesh/parse';
 import { loadMeshFile } from '../../src/node/meshFile';
 import type { RunInputs } from '../../src/run';
-import type { TriangleMesh } from '../../src/core/mesh/types';
+import { faceAreas, type TriangleMesh } from '../../src/core/mesh/types';
 
 export const MESH_DIR = join(__dirname, '..', '..', 'public', 'meshes');
 
@@ -20,4 +20,11 @@ export const GENUS_ZERO_SHIPPED = ['organoid.ply', 'egg-chamber.ply', 'level-set
 /** What a host hands runSheet for a mesh config: the file, loaded by the Node host's loader (the pipeline reads none). */
 export function meshInputs(config: Config): RunInputs {
   return config.surface.kind === 'mesh' ? { meshFile: loadMeshFile(config.surface.src) } : {};
+}
+
+/** Total area of a mesh's triangles. */
+export function surfaceArea(mesh: TriangleMesh): number {
+  let s = 0;
+  for (const a of faceAreas(mesh)) s += a;
+  return s;
 }

@@ -2,9 +2,10 @@ import { describe, expect, it } from 'vitest';
 import { meshTopology } from '../../src/core/mesh/check';
 import { bumpySphere, icosphere } from '../../src/core/mesh/generate';
 import { detectFormat, MeshParseError, parseMesh, weldVertices } from '../../src/core/mesh/parse';
-import { surfaceArea, type TriangleMesh } from '../../src/core/mesh/types';
-import { writeObj, writePlyAscii, writePlyBinary, writeStlAscii, writeStlBinary } from '../../src/core/mesh/write';
-import { loadShipped } from './helpers';
+import type { TriangleMesh } from '../../src/core/mesh/types';
+import { writePlyAscii } from '../../src/core/mesh/write';
+import { writeObj, writePlyBinary, writeStlAscii, writeStlBinary } from './writers';
+import { loadShipped, surfaceArea } from './helpers';
 
 const source = bumpySphere(6, 11);
 const topo = meshTopology(source);

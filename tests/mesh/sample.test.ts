@@ -5,8 +5,8 @@ import { MeshBVH } from 'three-mesh-bvh';
 import { closestPointOnEllipsoid, sampleSurface } from '../../src/core/cubemap/sample';
 import { icosphere, mulberry32 } from '../../src/core/mesh/generate';
 import { sphericalParameterization } from '../../src/core/mesh/spherical';
-import { surfaceArea, type TriangleMesh, type Vec3 } from '../../src/core/mesh/types';
-import { loadShipped } from './helpers';
+import type { TriangleMesh, Vec3 } from '../../src/core/mesh/types';
+import { loadShipped, surfaceArea } from './helpers';
 
 interface ProjectedPoint {
   point: Vec3;

@@ -6,7 +6,8 @@
 import { describe, expect, it } from 'vitest';
 import { validateConfig, type ConfigInput } from '../../src/core/config';
 import { runSheet } from '../../src/run/runSheet';
-import { cellSolid, signedVolume, type CellSolid } from '../../src/view/cellSolid';
+import { cellSolid, type CellSolid } from '../../src/view/cellSolid';
+import { signedVolume } from '../../src/core/mesh/types';
 import { surfacePolygons } from '../../src/view/cellPolygons';
 import { viewStack, type ViewStack } from '../../src/view/stack';
 import { useHeadlessContext } from '../gpu/context';
@@ -43,7 +44,7 @@ function expectClosed(solid: CellSolid): void {
     const [a, b] = key.split(',');
     expect(directed.get(`${b},${a}`), `${key} reversed`).toBe(1);
   }
-  expect(signedVolume(solid.positions, solid.indices)).toBeGreaterThan(0);
+  expect(signedVolume(solid)).toBeGreaterThan(0);
   for (const v of solid.normals) expect(Number.isFinite(v)).toBe(true);
 }
 
@@ -77,7 +78,7 @@ describe('cellSolid on planes and tubes (exact cross-sections)', () => {
       expect(solid.exact).toBe(true);
       expectClosed(solid);
       const area = surfacePolygons(stack.surfaces[0]).cells[id].area;
-      const volume = signedVolume(solid.positions, solid.indices);
+      const volume = signedVolume(solid);
       expect(Math.abs(volume - area * thickness) / (area * thickness), `cell ${id}`).toBeLessThan(1e-6);
       checked++;
     }
@@ -174,7 +175,7 @@ describe('cellSolid on closed surfaces (traced restricted Voronoi cells)', () =>
       // outer cap areas (flat fans) times the thickness.
       const inner = fanArea(solid, 0);
       const outer = fanArea(solid, last);
-      const volume = signedVolume(solid.positions, solid.indices);
+      const volume = signedVolume(solid);
       expect(volume).toBeGreaterThan(inner * thickness);
       expect(volume).toBeLessThan(outer * thickness);
     }

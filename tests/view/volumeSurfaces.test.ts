@@ -6,7 +6,8 @@
  * encloses its measured volume.
  */
 import { beforeAll, describe, expect, it } from 'vitest';
-import { LUMEN, measureVolume, OUTSIDE, signedVolume, type ClassifiedVolume, type VolumeMeasuredResult } from '../../src/core/measure';
+import { LUMEN, measureVolume, OUTSIDE, type ClassifiedVolume, type VolumeMeasuredResult } from '../../src/core/measure';
+import { signedVolume } from '../../src/core/mesh/types';
 import { cellShape, drawSurface } from '../../src/view/volumeSurfaces';
 import { writeTiff } from '../measure/tiffWriter';
 import { labelData, permutedLabels, shellVolume, volumePages } from '../measure/volumes';
@@ -103,7 +104,7 @@ describe('a measured volume drawn in the page', () => {
         const [a, b] = key.split(',');
         expect(edges.get(`${b},${a}`)).toBe(count);
       }
-      const enclosed = signedVolume(shape.positions, shape.indices);
+      const enclosed = signedVolume(shape);
       expect(enclosed).toBeGreaterThan(0.75 * cell.volume);
       expect(enclosed).toBeLessThan(1.1 * cell.volume);
     }

@@ -14,12 +14,12 @@ import { methodCaption, type ViewStack } from '../../view/stack';
 import { describeHeadline, describeOmitted } from '../../core/analysis/headline';
 import { describeEngine } from '../../run/enginePolicy';
 
-export interface CellTable {
+interface CellTable {
   header: string[];
   rows: (string | number)[][];
 }
 
-export function cellTable(stack: ViewStack): CellTable {
+function cellTable(stack: ViewStack): CellTable {
   return { header: cellTableHeader(stack), rows: stack.result.cells.map((_, i) => cellRow(stack, i)) };
 }
 
@@ -59,7 +59,7 @@ export function cellRow(stack: ViewStack, i: number): (string | number)[] {
 }
 
 /** The engine that ran, in words, with why (not the config's "auto"). */
-export function engineLine(stack: ViewStack): string {
+function engineLine(stack: ViewStack): string {
   const { engine, config } = stack.result;
   return `engine: ${describeEngine(engine)} (engine setting "${config.engine}": ${engine.reason})`;
 }

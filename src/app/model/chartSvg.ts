@@ -8,7 +8,7 @@
  */
 import { escapeXml, legendSvg, num, svgDocument, textWidth, type LegendItem } from './svgFigure';
 
-export interface ChartPoint {
+interface ChartPoint {
   x: number;
   y: number;
   /** Interval drawn as an error bar (or a band for a line with `band`). */
@@ -44,10 +44,10 @@ export interface ChartSpec {
   widthMm: number;
 }
 
-/** 1, 2 or 5 x 10^n steps, about `count` of them over [lo, hi]. */
-export function niceTicks(lo: number, hi: number, count = 5): number[] {
+/** 1, 2 or 5 x 10^n steps, about 5 of them over [lo, hi]. */
+function niceTicks(lo: number, hi: number): number[] {
   if (!(hi > lo)) return [lo];
-  const raw = (hi - lo) / count;
+  const raw = (hi - lo) / 5;
   const power = 10 ** Math.floor(Math.log10(raw));
   const step = [1, 2, 5, 10].map((m) => m * power).find((s) => s >= raw) ?? 10 * power;
   const ticks: number[] = [];

@@ -20,24 +20,6 @@ export interface MeasuredSection {
   readonly note: string | null;
 }
 
-export function toBase64(bytes: Uint8Array): string {
-  let text = '';
-  for (let i = 0; i < bytes.length; i += 0x8000) text += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
-  return btoa(text);
-}
-
-export function fromBase64(text: string, where: string): Uint8Array {
-  let binary: string;
-  try {
-    binary = atob(text);
-  } catch {
-    throw new Error(`${where}: not base64.`);
-  }
-  const out = new Uint8Array(binary.length);
-  for (let i = 0; i < binary.length; i++) out[i] = binary.charCodeAt(i);
-  return out;
-}
-
 /** Checks a stored section's shape (untrusted input); one-line errors naming the field. */
 export function readMeasuredSection(data: unknown, file: string): MeasuredSection {
   const where = `${file}: sections.measured`;
@@ -84,7 +66,7 @@ function at(value: unknown, path: string): unknown {
   return v;
 }
 
-const isNumbers = (v: unknown, nulls = false) => Array.isArray(v) && v.every((x) => typeof x === 'number' || (nulls && x === null));
+const isNumbersOrNulls = (v: unknown) => Array.isArray(v) && v.every((x) => typeof x === 'number' || x === null);
 
 /**
  * Checks a stored model comparison (untrusted, shown as saved without re-running the model):
@@ -99,7 +81,7 @@ export function checkStoredComparison(value: unknown, mode: 'layers' | 'volume',
     for (const m of ['percentScutoids', 'transitions', 'neighbours3D']) {
       numbers.push(`model.${m}.mean`);
       const ci = at(value, `model.${m}.ci95`);
-      if (!isNumbers(ci, true) || (ci as unknown[]).length !== 2) throw new Error(`${where}.model.${m}.ci95: expected two numbers (or null).`);
+      if (!isNumbersOrNulls(ci) || (ci as unknown[]).length !== 2) throw new Error(`${where}.model.${m}.ci95: expected two numbers (or null).`);
     }
     const kind = at(value, 'geometry.kind');
     if (kind === 'tube') numbers.push('geometry.innerRadius', 'geometry.outerRadius', 'geometry.length');
@@ -116,12 +98,12 @@ export function checkStoredComparison(value: unknown, mode: 'layers' | 'volume',
     throw new Error(`${where}.candidates: expected a list with the best k (${bestK}) in it.`);
   }
   candidates.forEach((c, k) => {
-    if (!isNumbers(at(c, 'polygonDistribution'), true) || typeof at(c, 'distance') !== 'number') {
+    if (!isNumbersOrNulls(at(c, 'polygonDistribution')) || typeof at(c, 'distance') !== 'number') {
       throw new Error(`${where}.candidates[${k}]: expected { polygonDistribution: numbers, distance: number }.`);
     }
   });
   const perSurface = at(value, 'summary.perSurface');
-  if (!Array.isArray(perSurface) || !perSurface.every((s) => isNumbers(at(s, 'polygonDistribution'), true))) {
+  if (!Array.isArray(perSurface) || !perSurface.every((s) => isNumbersOrNulls(at(s, 'polygonDistribution')))) {
     throw new Error(`${where}.summary.perSurface: expected one record per surface with its polygon distribution.`);
   }
 }

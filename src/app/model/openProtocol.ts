@@ -14,7 +14,7 @@ export type ToOpenWorker = OpenMessage | OpenJsonMessage | HoldMessage | Picture
  * A large result the page made itself (a run of over 20,000 cells, its records lazy over
  * columns): held from now on as if opened by this message's id, for its pictures and exports.
  */
-export interface HoldMessage {
+interface HoldMessage {
   readonly type: 'hold';
   readonly id: number;
   /** The result without its cell lists, and its columns. */

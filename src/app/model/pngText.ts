@@ -1,7 +1,8 @@
 /**
  * Provenance in a PNG: tEXt chunks (keyword, NUL, Latin-1 text; PNG 1.2 §4.2.3.1) inserted right
- * after IHDR, and read back. Text outside Latin-1 is written as JSON-style \uXXXX escapes, so a
- * configuration (JSON) survives unchanged. Pure: bytes in, bytes out.
+ * after IHDR (tests/app/pngRead.ts reads them back for the tests). Text outside Latin-1 is written
+ * as JSON-style \uXXXX escapes, so a configuration (JSON) survives unchanged. Pure: bytes in,
+ * bytes out.
  */
 
 const SIGNATURE = [0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a];
@@ -69,27 +70,6 @@ export function withPngText(png: Uint8Array, entries: readonly [keyword: string,
   return out;
 }
 
-/** Every tEXt chunk of `png` (keyword -> text), checking each chunk's CRC. */
-export function readPngText(png: Uint8Array): Record<string, string> {
-  checkSignature(png);
-  const view = new DataView(png.buffer, png.byteOffset, png.byteLength);
-  const out: Record<string, string> = Object.create(null);
-  let at = 8;
-  while (at + 12 <= png.length) {
-    const length = view.getUint32(at);
-    const type = String.fromCharCode(...png.subarray(at + 4, at + 8));
-    const data = png.subarray(at + 8, at + 8 + length);
-    if (view.getUint32(at + 8 + length) !== crc32(png.subarray(at + 4, at + 8 + length))) throw new Error(`PNG chunk ${type}: bad CRC`);
-    if (type === 'tEXt') {
-      const nul = data.indexOf(0);
-      out[String.fromCharCode(...data.subarray(0, nul))] = Array.from(data.subarray(nul + 1), (b) => String.fromCharCode(b)).join('');
-    }
-    if (type === 'IEND') break;
-    at += 12 + length;
-  }
-  return out;
-}
-
 /**
  * `png` with a pHYs chunk (PNG 1.2 §4.2.4.3) after IHDR saying `dpi` dots per inch, stored as
  * pixels per metre (unit 1), so a journal's tools print it at the chosen size. Replaces none:
@@ -111,18 +91,4 @@ export function withPngDpi(png: Uint8Array, dpi: number): Uint8Array {
   out.set(phys, ihdrEnd);
   out.set(png.subarray(ihdrEnd), ihdrEnd + phys.length);
   return out;
-}
-
-/** Dots per inch from a PNG's pHYs chunk (unit metre), null when it has none. */
-export function readPngDpi(png: Uint8Array): number | null {
-  checkSignature(png);
-  const view = new DataView(png.buffer, png.byteOffset, png.byteLength);
-  for (let at = 8; at + 12 <= png.length;) {
-    const length = view.getUint32(at);
-    const type = String.fromCharCode(...png.subarray(at + 4, at + 8));
-    if (type === 'pHYs' && png[at + 8 + 8] === 1) return view.getUint32(at + 8) * 0.0254;
-    if (type === 'IEND') break;
-    at += 12 + length;
-  }
-  return null;
 }

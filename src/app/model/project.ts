@@ -20,10 +20,11 @@ import { validateConfig } from '../../core/config';
 import { exactLabelImage } from '../../view/exactLabels';
 import type { Grid } from '../../core/grid';
 import type { LabelImage, SheetOutput, SheetResult } from '../../run';
+import { fromBase64, toBase64 } from './base64';
 import { savedSections } from './projectSections';
 
-export const PROJECT_FORMAT = 'tissue-sheet-project';
-export const PROJECT_FORMAT_VERSION = 1;
+const PROJECT_FORMAT = 'tissue-sheet-project';
+const PROJECT_FORMAT_VERSION = 1;
 /** Largest label image a file may bring, texels (the page's own runs stay far below). */
 const MAX_TEXELS = 1 << 24;
 /** Largest stack of grids a result may bring, texels in all (its label images are drawn from them). */
@@ -50,7 +51,7 @@ interface StoredImage {
   positions?: string;
 }
 
-export interface ProjectFile {
+interface ProjectFile {
   format: typeof PROJECT_FORMAT;
   formatVersion: number;
   software: SheetResult['software'];
@@ -126,7 +127,7 @@ export function openParsed(data: unknown, name: string): OpenedFile {
 }
 
 /** Label images of a plane's or tube's result drawn from its cells (exact cells, rasterized). */
-export function labelsFromCells(result: SheetResult): LabelImage[] {
+function labelsFromCells(result: SheetResult): LabelImage[] {
   const last = result.surfaces[result.surfaces.length - 1];
   const seededName = last?.name === 'apical' ? 'basal' : 'apical';
   const surfaces = [{ name: seededName, grid: result.grid, cells: result.cells }, ...result.surfaces];
@@ -257,7 +258,7 @@ function readImage(value: unknown, cellCount: number, where: string): LabelImage
     throw new Error(`${where}: expected name, grid and labelsRle.`);
   const grid = checkGrid(value.grid, `${where}.grid`);
   const texels = grid.width * grid.height;
-  const runs = new Int32Array(fromBase64(value.labelsRle, `${where}.labelsRle`, 8 * texels).buffer);
+  const runs = new Int32Array(fromBase64Words(value.labelsRle, `${where}.labelsRle`, 8 * texels).buffer);
   const labels = new Int32Array(texels);
   let at = 0;
   for (let k = 0; k + 1 < runs.length; k += 2) {
@@ -269,7 +270,7 @@ function readImage(value: unknown, cellCount: number, where: string): LabelImage
   }
   if (at !== texels) throw new Error(`${where}.labelsRle: covers ${at} of ${texels} texels.`);
   if (value.positions === undefined) return { name: value.name, grid, labels };
-  const bytes = fromBase64(String(value.positions), `${where}.positions`, 12 * texels);
+  const bytes = fromBase64Words(String(value.positions), `${where}.positions`, 12 * texels);
   if (bytes.length !== 12 * texels) throw new Error(`${where}.positions: expected x, y, z for each of ${texels} texels.`);
   return { name: value.name, grid, labels, positions: new Float32Array(bytes.buffer) };
 }
@@ -301,22 +302,12 @@ function runLengths(labels: Int32Array): Int32Array {
   return Int32Array.from(runs);
 }
 
-function toBase64(bytes: Uint8Array): string {
-  let text = '';
-  for (let k = 0; k < bytes.length; k += 0x8000) text += String.fromCharCode(...bytes.subarray(k, k + 0x8000));
-  return btoa(text);
-}
-
-function fromBase64(text: string, where: string, maxBytes: number): Uint8Array {
+/** Base64 of 4-byte values, at most `maxBytes` of them, decoded. */
+function fromBase64Words(text: string, where: string, maxBytes: number): Uint8Array {
   if (text.length > (maxBytes * 4) / 3 + 4) throw new Error(`${where}: larger than the image it describes.`);
-  let binary: string;
-  try {
-    binary = atob(text);
-  } catch {
-    throw new Error(`${where}: not base64.`);
-  }
-  if (binary.length % 4 !== 0) throw new Error(`${where}: not a whole number of 4-byte values.`);
-  return Uint8Array.from(binary, (ch) => ch.charCodeAt(0));
+  const bytes = fromBase64(text, where);
+  if (bytes.length % 4 !== 0) throw new Error(`${where}: not a whole number of 4-byte values.`);
+  return bytes;
 }
 
 function isObject(value: unknown): value is Record<string, unknown> {

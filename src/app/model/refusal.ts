@@ -42,9 +42,9 @@ function fits(config: Config, sheet: Record<string, unknown>): boolean {
 }
 
 /** The largest value in [0, hi] for which `ok` holds (bisection, 0.1 % of hi), or null. */
-function largest(hi: number, ok: (v: number) => boolean, lo = 0): number | null {
-  if (!ok(lo)) return null;
-  let a = lo;
+function largest(hi: number, ok: (v: number) => boolean): number | null {
+  if (!ok(0)) return null;
+  let a = 0;
   let b = hi;
   for (let k = 0; k < 40 && b - a > hi * 1e-3; k++) {
     const mid = (a + b) / 2;
@@ -116,7 +116,7 @@ export function explainRefusal(error: unknown, config: Config | null): Refusal {
 }
 
 /** The seeded surface's area in µm² where the configuration alone gives it (null for meshes). */
-export function surfaceArea(config: Config): number | null {
+function surfaceArea(config: Config): number | null {
   const s = config.surface;
   switch (s.kind) {
     case 'tube':

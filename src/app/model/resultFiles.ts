@@ -19,9 +19,9 @@ export interface GivenFile {
 }
 
 /** Largest JSON file the page opens, bytes (a side file may be larger: it is columns, read once). */
-export const MAX_JSON_BYTES = 256 * 1024 * 1024;
+const MAX_JSON_BYTES = 256 * 1024 * 1024;
 /** Largest cells side file the page opens, bytes (a million cells with a thickness is ~0.6 GB). */
-export const MAX_CELLS_FILE_BYTES = 1024 * 1024 * 1024;
+const MAX_CELLS_FILE_BYTES = 1024 * 1024 * 1024;
 
 const isSideFile = (file: GivenFile) => /\.cells\.bin$/i.test(file.name) || /\.bin$/i.test(file.name);
 

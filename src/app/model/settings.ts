@@ -40,7 +40,8 @@ export function urlWithConfig(href: string, config: ConfigDraft): string {
   return url.toString();
 }
 
-export function configFromStorage(storage: Storage | undefined = globalThis.localStorage): ConfigDraft | null {
+function configFromStorage(): ConfigDraft | null {
+  const storage: Storage | undefined = globalThis.localStorage;
   try {
     const text = storage?.getItem(STORAGE_KEY);
     return text ? validateConfigDraft(JSON.parse(text)) : null;

@@ -111,7 +111,7 @@ export function unrolledSvg(stack: ViewStack, options: { widthMm?: number } = {}
 }
 
 /** The headline in one line for a figure: "% scutoids 37.1 % (mean of n = 5, 95 % CI 30.4–43.7 %), exact method, Voronoi 51". */
-export function headlineLine(stack: ViewStack): string {
+function headlineLine(stack: ViewStack): string {
   const h = stack.result.headline;
   if (!h || h.percentScutoids === null) return 'no % scutoids (no cell counted)';
   const over =
@@ -122,4 +122,4 @@ export function headlineLine(stack: ViewStack): string {
 }
 
 /** Width of an SVG figure when none is chosen (a two-column journal figure). */
-export const DEFAULT_WIDTH_MM = 180;
+const DEFAULT_WIDTH_MM = 180;

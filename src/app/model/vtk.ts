@@ -16,7 +16,7 @@ import type { ViewStack } from '../../view/stack';
 import { surfacePolygons } from '../../view/cellPolygons';
 
 /** Polygons with one record per polygon (VTK cells). */
-export interface SheetPolygons {
+interface SheetPolygons {
   /** x, y, z per point, µm. */
   points: number[];
   /** Point indices per polygon. */
@@ -28,7 +28,7 @@ export interface SheetPolygons {
   valid: number[];
 }
 
-export function sheetPolygons(stack: ViewStack): SheetPolygons {
+function sheetPolygons(stack: ViewStack): SheetPolygons {
   const out: SheetPolygons = { points: [], polygons: [], cellId: [], surface: [], sides: [], scutoid: [], valid: [] };
   const closed = stack.closed;
   const push = (id: number, surfaceIndex: number, sides: number, corners: number[]) => {

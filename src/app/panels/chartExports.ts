@@ -10,7 +10,7 @@ import { figureSize, svgPng, type FigureOptions } from '../view/figure';
 import { download } from './exports';
 
 /** The DPI and width (mm) chosen beside the figure buttons (300 dpi, 180 mm when absent). */
-export function chosenFigureOptions(): FigureOptions {
+function chosenFigureOptions(): FigureOptions {
   const dpi = Number(document.querySelector<HTMLSelectElement>('#figure-dpi')?.value ?? 300);
   const widthMm = Number(document.querySelector<HTMLInputElement>('#figure-width')?.value ?? 180);
   figureSize({ dpi, widthMm }, 1); // refuses a DPI or width out of range, in words
@@ -27,7 +27,7 @@ export interface ChartProvenance {
   config: unknown;
 }
 
-export function provenanceOf(p: ChartProvenance): string[] {
+function provenanceOf(p: ChartProvenance): string[] {
   return [
     `${p.what}, written by tissue-sheet ${version}`,
     `engine: ${p.engine}`,

@@ -1,7 +1,7 @@
 /**
  * uPlot charts: the polygon distribution on each surface (seeded and other side by side as bars,
- * layers as lines), the CVT energy per Lloyd iteration, and % scutoids against the swept
- * parameter (mean ± sd over realizations).
+ * layers as lines), the CVT energy per Lloyd iteration, and Lewis's and Aboav-Weaire's laws. The
+ * sweep's chart is sweepChart.ts.
  */
 import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
@@ -48,17 +48,14 @@ const sideTicks = (_u: uPlot, ticks: number[]) => ticks.map((t) => (t >= 10 ? '1
 export class Charts {
   private readonly polygons: Chart;
   private readonly energy: Chart;
-  private readonly sweep: Chart;
+  private readonly lewis: Chart;
+  private readonly aboav: Chart;
 
-  private readonly lewis: Chart | null;
-  private readonly aboav: Chart | null;
-
-  constructor(polygons: HTMLElement, energy: HTMLElement, sweep: HTMLElement, lewis?: HTMLElement | null, aboav?: HTMLElement | null) {
+  constructor(polygons: HTMLElement, energy: HTMLElement, lewis: HTMLElement, aboav: HTMLElement) {
     this.polygons = new Chart(polygons);
     this.energy = new Chart(energy);
-    this.sweep = new Chart(sweep);
-    this.lewis = lewis ? new Chart(lewis) : null;
-    this.aboav = aboav ? new Chart(aboav) : null;
+    this.lewis = new Chart(lewis);
+    this.aboav = new Chart(aboav);
   }
 
   showStack(stack: ViewStack): void {
@@ -129,7 +126,7 @@ export class Charts {
     const finite = (v: number) => (Number.isFinite(v) ? v : null);
     const names = perSurface.map((s, k) => stack.surfaces[k]?.name ?? s.label ?? `surface ${k}`);
     const method = stack.analysis?.method ?? '';
-    this.lewis?.show(
+    this.lewis.show(
       {
         title: `Lewis's law: area of n-sided cells / mean area (${method})`,
         scales: { x: { time: false, range: [2.5, 10.5] } },
@@ -138,7 +135,7 @@ export class Charts {
       },
       [x, ...perSurface.map((s) => s.lewis.map((e) => finite(e.normalizedArea))), x.map((n) => (n - 2) / 4)] as uPlot.AlignedData,
     );
-    this.aboav?.show(
+    this.aboav.show(
       {
         title: `Aboav-Weaire: mean sides of the neighbours m(n) (${method})`,
         scales: { x: { time: false, range: [2.5, 10.5] } },
@@ -146,24 +143,6 @@ export class Charts {
         series: [{ label: 'sides n' }, ...names.map(line), { label: '5 + 8/n (Aboav)', stroke: '#555', dash: [4, 4], width: 1, points: { show: false } }],
       },
       [x, ...perSurface.map((s) => s.aboavWeaire.map((e) => finite(e.meanNeighbourSides))), x.map((n) => 5 + 8 / n)] as uPlot.AlignedData,
-    );
-  }
-
-  /** Points of a sweep: x, mean and sd of % scutoids. */
-  showSweep(label: string, points: { x: number; mean: number; sd: number }[]): void {
-    const xs = points.map((p) => p.x);
-    this.sweep.show(
-      {
-        title: `% scutoids vs ${label}`,
-        scales: { x: { time: false }, y: { range: (_u, min, max) => [Math.min(0, min), Math.max(10, max)] } },
-        series: [
-          { label },
-          { label: 'mean % scutoids', stroke: '#c0392b', width: 2, points: { show: true, size: 6 }, value: (_u, v) => (v === null ? '' : v.toFixed(1)) },
-          { label: '+ sd', stroke: '#c0392b55', dash: [4, 4] },
-          { label: '- sd', stroke: '#c0392b55', dash: [4, 4] },
-        ],
-      },
-      [xs, points.map((p) => p.mean), points.map((p) => p.mean + p.sd), points.map((p) => p.mean - p.sd)],
     );
   }
 }

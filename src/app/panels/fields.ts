@@ -19,14 +19,14 @@ import { SAMPLE_MESHES, sampleName, sampleUrl } from '../model/meshFiles';
 /** The form's config: a resolution left null is the default (defaultResolution), recomputed as the fields it depends on change. */
 type Config = ConfigDraft;
 
-export interface Option {
+interface Option {
   value: string;
   label: string;
   disabled?: boolean;
 }
 
-export type Group = 'Surface' | 'Cells' | 'Density' | 'Lloyd' | 'Sheet';
-export type FieldKind = 'number' | 'integer' | 'range' | 'select' | 'checkbox' | 'optional-number' | 'file' | 'mesh-file';
+type Group = 'Surface' | 'Cells' | 'Density' | 'Lloyd' | 'Sheet';
+type FieldKind = 'number' | 'integer' | 'range' | 'select' | 'checkbox' | 'optional-number' | 'file' | 'mesh-file';
 
 export interface FieldSpec {
   /** Dotted config path, or a virtual field handled by `get`/`set`. */
@@ -150,7 +150,7 @@ function withSurfaceKind(c: Config, kind: string): Config {
  * the thickness of the current s, around the seeded radius R (outward: R_outer = R·s, so
  * t = R(s − 1); inward: the other radius is R/s, so t = R(1 − 1/s)).
  */
-export function convertWall(c: Config, to: 'ratio' | 'thickness'): { surfaceRatio: number | null; thickness: number } {
+function convertWall(c: Config, to: 'ratio' | 'thickness'): { surfaceRatio: number | null; thickness: number } {
   if (c.surface.kind !== 'tube') return { surfaceRatio: to === 'ratio' ? 2 : null, thickness: to === 'ratio' ? 0 : thicknessForKind(c.surface) };
   const r = c.surface.radius;
   const inward = c.sheet.direction === 'inward';

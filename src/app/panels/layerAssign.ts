@@ -7,7 +7,7 @@
  */
 
 /** The layer name of position `k` of `n` (0 basal, n - 1 apical). */
-export function layerName(k: number, n: number): string {
+function layerName(k: number, n: number): string {
   return k === 0 ? 'basal' : k === n - 1 ? 'apical' : `layer ${k + 1}`;
 }
 

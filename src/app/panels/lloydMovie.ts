@@ -15,7 +15,7 @@ import { viewStack } from '../../view/stack';
 import { download } from './exports';
 
 /** Most frames a movie computes (each is a run: the cost grows with the square of the frames). */
-export const MAX_FRAMES = 25;
+const MAX_FRAMES = 25;
 const FRAME_MS = 400;
 
 export interface LloydMovieEvents {
@@ -114,7 +114,7 @@ function button(text: string, name: string): HTMLButtonElement {
 }
 
 /** The seeded surface's cells (coloured by sides) with its sites as dark dots, as ImageData. */
-export function frameImage(output: SheetOutput): ImageData {
+function frameImage(output: SheetOutput): ImageData {
   const stack = viewStack(output);
   const surface = stack.surfaces[0];
   const { width, height, texelX, texelY } = surface.image.grid;
@@ -136,7 +136,7 @@ export function frameImage(output: SheetOutput): ImageData {
 }
 
 /** A WebM of `frames` frames drawn by `draw(k)` on `canvas`, FRAME_MS each. */
-export function recordWebm(canvas: HTMLCanvasElement, frames: number, draw: (k: number) => void): Promise<Blob> {
+function recordWebm(canvas: HTMLCanvasElement, frames: number, draw: (k: number) => void): Promise<Blob> {
   if (frames === 0) return Promise.reject(new Error('Compute the Lloyd frames first ("Show Lloyd converging").'));
   if (typeof MediaRecorder === 'undefined' || !canvas.captureStream) return Promise.reject(new Error('This browser cannot record video (no MediaRecorder).'));
   const type = ['video/webm;codecs=vp9', 'video/webm;codecs=vp8', 'video/webm'].find((t) => MediaRecorder.isTypeSupported(t));

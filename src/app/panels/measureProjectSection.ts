@@ -4,7 +4,8 @@
  * fields and measures the kept files again (the saved comparison shown as saved), then checks
  * that the re-measurement gives the saved numbers and says so.
  */
-import { MAX_KEPT_BYTES, readMeasuredSection, sameMeasurement, toBase64, fromBase64, type MeasuredSection } from '../model/measureProject';
+import { fromBase64, toBase64 } from '../model/base64';
+import { MAX_KEPT_BYTES, readMeasuredSection, sameMeasurement, type MeasuredSection } from '../model/measureProject';
 import { registerProjectSection } from '../model/projectSections';
 import type { MeasurePanel } from './measurePanel';
 

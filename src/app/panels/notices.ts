@@ -14,10 +14,6 @@ export class LinkAlert {
     root.querySelector<HTMLButtonElement>('button')!.addEventListener('click', () => this.dismiss());
   }
 
-  get shown(): boolean {
-    return !this.root.hidden;
-  }
-
   show(message: string): void {
     this.text.textContent = message;
     this.root.hidden = false;

@@ -33,7 +33,7 @@ export interface RealizationsPanelOptions {
 }
 
 /** `href` with `&realizations=n`, or without the parameter when n is the default (5). */
-export function urlWithRealizations(href: string, n: number): string {
+function urlWithRealizations(href: string, n: number): string {
   const url = new URL(href);
   if (n === DEFAULT_REALIZATIONS) url.searchParams.delete(REALIZATIONS_PARAM);
   else url.searchParams.set(REALIZATIONS_PARAM, String(n));
@@ -46,7 +46,7 @@ function withHeadline(shown: ViewStack, headline: Headline | null): ViewStack {
 }
 
 /** Realization 1's own headline, from a headline over realizations (its counts are realization 1's). */
-export function drawnHeadline(h: Headline): Headline {
+function drawnHeadline(h: Headline): Headline {
   if (h.realizations <= 1) return h;
   const value = h.realizationValues[0] ?? null;
   return { ...h, percentScutoids: value, realizations: 1, ci95: null, sd: null, realizationSeeds: h.realizationSeeds.slice(0, 1), realizationValues: [value] };

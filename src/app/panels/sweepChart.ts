@@ -10,7 +10,7 @@
  * A reference point whose file gives an SD and n ≥ 2 gets an error bar: the 95 % CI of its mean
  * (referenceInterval, the runs' own interval), drawn as a whisker on the live chart and in the
  * figure; `data-reference-error-bars` counts the whiskers drawn.
- * They share the x axis and nothing else: points(), and so every export, hold the runs only.
+ * They share the x axis and nothing else: every export holds the runs only.
  */
 import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
@@ -90,15 +90,6 @@ export class SweepChart {
       }
     }
     if (!this.frame) this.frame = requestAnimationFrame(() => this.draw());
-  }
-
-  /** Mean and clamped 95 % interval per x and method (what the chart shows). */
-  points(): { x: number; method: string; mean: number; low: number; high: number; n: number }[] {
-    const out = [];
-    for (const x of [...this.values.keys()].sort((a, b) => a - b)) {
-      for (const [method, values] of this.values.get(x)!) out.push({ x, method, ...meanInterval(values) });
-    }
-    return out;
   }
 
   /**

@@ -163,8 +163,8 @@ export class ViewPanel {
     }
   }
 
-  /** Shows `stack`; the unrolled pictures in the next task unless `deferUnrolled` is false. */
-  show(stack: ViewStack, deferUnrolled = true): void {
+  /** Shows `stack`; the unrolled pictures in the next task. */
+  show(stack: ViewStack): void {
     this.stack = stack;
     if (this.selected >= stack.result.cells.length) this.selected = -1;
     this.view?.setSelected(this.selected);
@@ -173,8 +173,7 @@ export class ViewPanel {
     this.updateSolid();
     // In a task of its own: copying two large pictures in (a 100,000-cell result) would make one
     // task of it and the 3D view's rebuild (issue 27).
-    if (deferUnrolled) setTimeout(() => this.stack === stack && this.drawUnrolled(), 0);
-    else this.drawUnrolled();
+    setTimeout(() => this.stack === stack && this.drawUnrolled(), 0);
     renderCellInfo(this.cellInfo, stack, this.selected);
     this.cellField.max = String(stack.result.cells.length - 1);
     this.toggles.replaceChildren();

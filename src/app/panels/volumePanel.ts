@@ -18,6 +18,7 @@ import type { DrawnSurface } from '../../view/volumeSurfaces';
 import { withPngText } from '../model/pngText';
 import { volumeCellCsv } from '../model/volumeCsv';
 import { geometryText, intervalText, volumeFigure } from '../model/volumeFigure';
+import { paragraphs } from '../view/cellInfo';
 import { VolumeView } from '../view/volumeView';
 import { downloadChart } from './chartExports';
 import { download } from './exports';
@@ -254,13 +255,7 @@ export class VolumePanel {
       `Model cell ${id + 1}: ${model.valid[id] ? 'valid' : 'left out (on an open end of the tube)'}, ${model.scutoid[id] ? 'a scutoid' : 'not a scutoid'}.`,
       ...model.surfaces.map((s, k) => `Model ${s.name} (faces the ${s.faces}): ${s.sides[id]} sides, neighbours ${neighbours[k].join(', ') || 'none'}.`),
     ];
-    box.replaceChildren(
-      ...lines.map((text) => {
-        const p = document.createElement('p');
-        p.textContent = text;
-        return p;
-      }),
-    );
+    box.replaceChildren(...paragraphs(lines));
   }
 
   /** Picks cell `id` (0-based): drawn white, described, its shape asked of the worker. */
@@ -279,13 +274,7 @@ export class VolumePanel {
       ),
       `From basal to apical: won ${cell.won}, lost ${cell.lost} (transitions ${cell.transitions}); 3D neighbours ${cell.neighbours3D}; lateral neighbours ${cell.lateralNeighbours.join(', ') || 'none'}.`,
     ];
-    box.replaceChildren(
-      ...lines.map((text) => {
-        const p = document.createElement('p');
-        p.textContent = text;
-        return p;
-      }),
-    );
+    box.replaceChildren(...paragraphs(lines));
     const view = this.view;
     void this.client
       .cellShape(id)

@@ -10,7 +10,7 @@
 import { exactCell, outlineCells } from '../../view/cellOutline';
 import type { ViewStack, ViewSurface } from '../../view/stack';
 
-export interface CellSummary {
+interface CellSummary {
   id: number;
   valid: boolean;
   scutoid: boolean;
@@ -23,14 +23,14 @@ export interface CellSummary {
   flagsMethod: 'exact' | 'labels' | null;
 }
 
-export function neighbourIds(stack: ViewStack, surface: ViewSurface, id: number): number[] {
+function neighbourIds(stack: ViewStack, surface: ViewSurface, id: number): number[] {
   // The cell's own exact polygon (cellOutline.ts): the same neighbours as the whole surface's
   // exact cells, at a pick's cost whatever the cell count (issue 27).
   if (!stack.closed) return id >= 0 && id < surface.cells.length ? exactCell(surface.image.grid, outlineCells(surface.cells), id).neighbours : [];
   return (surface.cells[id]?.neighbours ?? []).map((n) => n.id).sort((a, b) => a - b);
 }
 
-export function cellSummary(stack: ViewStack, id: number): CellSummary {
+function cellSummary(stack: ViewStack, id: number): CellSummary {
   const first = stack.surfaces[0];
   const last = stack.surfaces[stack.surfaces.length - 1];
   const seeded = new Set(neighbourIds(stack, first, id));
@@ -71,6 +71,15 @@ export function cellInfoLines(stack: ViewStack, id: number): string[] {
   return lines;
 }
 
+/** One <p> per line of text (the cell descriptions of the 3D, measured and volume views). */
+export function paragraphs(lines: readonly string[]): HTMLParagraphElement[] {
+  return lines.map((line) => {
+    const p = document.createElement('p');
+    p.textContent = line;
+    return p;
+  });
+}
+
 export function renderCellInfo(container: HTMLElement, stack: ViewStack | null, id: number): void {
   container.replaceChildren();
   if (!stack || id < 0 || id >= stack.result.cells.length) {
@@ -78,11 +87,7 @@ export function renderCellInfo(container: HTMLElement, stack: ViewStack | null, 
     return;
   }
   const s = cellSummary(stack, id);
-  for (const line of cellInfoLines(stack, id)) {
-    const p = document.createElement('p');
-    p.textContent = line;
-    container.append(p);
-  }
+  container.append(...paragraphs(cellInfoLines(stack, id)));
   container.dataset.cell = String(id);
   container.dataset.won = s.won.join(' ');
   container.dataset.lost = s.lost.join(' ');

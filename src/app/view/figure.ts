@@ -18,7 +18,7 @@ export interface FigureOptions {
 }
 
 /** Longest side allowed, px: bounds the canvas before it is allocated. */
-export const MAX_FIGURE_PIXELS = 8192;
+const MAX_FIGURE_PIXELS = 8192;
 
 export function figureSize(options: FigureOptions, aspect: number): { width: number; height: number } {
   const { dpi, widthMm } = options;
@@ -33,7 +33,7 @@ export function figureSize(options: FigureOptions, aspect: number): { width: num
 }
 
 export async function figurePng(stack: ViewStack, view: SheetView3D | null, options: FigureOptions): Promise<Uint8Array> {
-  const canvas = stack.closed ? closedFigure(stack, view, options) : await unrolledFigure(stack, options);
+  const canvas = stack.closed ? closedFigure(view, options) : await unrolledFigure(stack, options);
   const blob = await new Promise<Blob>((resolve, reject) =>
     canvas.toBlob((b) => (b ? resolve(b) : reject(new Error('the figure could not be encoded'))), 'image/png'),
   );
@@ -49,7 +49,7 @@ async function unrolledFigure(stack: ViewStack, options: FigureOptions): Promise
 }
 
 /** An SVG drawn on a white canvas of the size `options` give (width in mm at dpi, the SVG's aspect). */
-export async function rasterizeSvg(svg: string, options: FigureOptions): Promise<HTMLCanvasElement> {
+async function rasterizeSvg(svg: string, options: FigureOptions): Promise<HTMLCanvasElement> {
   const box = /viewBox="([^"]+)"/.exec(svg)![1].split(' ').map(Number);
   const { width, height } = figureSize(options, box[2] / box[3]);
   const url = URL.createObjectURL(new Blob([svg], { type: 'image/svg+xml' }));
@@ -79,7 +79,7 @@ export async function svgPng(svg: string, options: FigureOptions, text: [string,
   return withPngText(withPngDpi(new Uint8Array(await blob.arrayBuffer()), options.dpi), text);
 }
 
-function closedFigure(stack: ViewStack, view: SheetView3D | null, options: FigureOptions): HTMLCanvasElement {
+function closedFigure(view: SheetView3D | null, options: FigureOptions): HTMLCanvasElement {
   if (!view) throw new Error('There is no 3D view to save: this browser does not provide WebGL.');
   const { width } = figureSize(options, 1);
   const viewHeight = Math.round(width * 0.75);

@@ -7,6 +7,7 @@
  */
 import type { MeasuredCellRecord, MeasuredResult } from '../../core/measure';
 import { withSelected, type LayerPicture } from '../../view/measurePicture';
+import { paragraphs } from './cellInfo';
 
 const PICTURE_HEIGHT_PX = 260;
 
@@ -104,11 +105,7 @@ export class MeasureLayers {
       ...names.map((n, k) => `Neighbours on ${n}: ${cell.neighbours[k].join(', ') || 'none'}.`),
       `Won from ${names[0]} to ${names[names.length - 1]}: ${won.join(', ') || 'none'}; lost: ${lost.join(', ') || 'none'}; transitions ${cell.transitions}, 3D neighbours ${cell.neighbours3D}.`,
     ];
-    for (const line of lines) {
-      const p = document.createElement('p');
-      p.textContent = line;
-      info.append(p);
-    }
+    info.append(...paragraphs(lines));
     info.dataset.label = String(cell.label);
     info.dataset.valid = String(cell.valid);
     info.dataset.scutoid = String(cell.scutoid);

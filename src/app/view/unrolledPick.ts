@@ -17,7 +17,7 @@ interface Patch {
 const patches = new WeakMap<HTMLCanvasElement, Patch[]>();
 
 /** Pixel rectangles (x, y, w, h) the outline covers on a canvas, one per periodic copy drawn. */
-export function patchRects(
+function patchRects(
   polygon: ArrayLike<number>,
   grid: { width: number; height: number; periodicX: boolean },
   canvas: { width: number; height: number },
@@ -40,7 +40,7 @@ export function patchRects(
 }
 
 /** Puts back what the last outline on `canvas` covered. */
-export function clearUnrolledPick(canvas: HTMLCanvasElement): void {
+function clearUnrolledPick(canvas: HTMLCanvasElement): void {
   const context = canvas.getContext('2d', { willReadFrequently: true });
   for (const patch of (patches.get(canvas) ?? []).reverse()) context?.putImageData(patch.pixels, patch.x, patch.y);
   patches.delete(canvas);

@@ -124,21 +124,6 @@ export const LAB_MEAN_CELL_DIAMETER_PIXELS = Math.sqrt((512 * 4096) / 200);
  * 6 µm; on other sizes and densities it keeps ignoring the same relative contact length,
  * whatever the grid's resolution.
  */
-export function labMinBoundaryLength(areaUm2: number, cells: number, pixels = LAB_MIN_BOUNDARY_PIXELS): number {
-  return (pixels * Math.sqrt(areaUm2 / cells)) / LAB_MEAN_CELL_DIAMETER_PIXELS;
-}
-
-/** True when j is in i's list exactly when i is in j's list (with equal lengths, within tol). */
-export function isSymmetric(adj: Pick<SurfaceAdjacency, 'offsets' | 'neighbours' | 'lengths'>, tol = 1e-9): boolean {
-  const count = adj.offsets.length - 1;
-  for (let i = 0; i < count; i++) {
-    for (let k = adj.offsets[i]; k < adj.offsets[i + 1]; k++) {
-      const j = adj.neighbours[k];
-      let found = -1;
-      for (let q = adj.offsets[j]; q < adj.offsets[j + 1]; q++) if (adj.neighbours[q] === i) found = q;
-      if (found < 0) return false;
-      if (Math.abs(adj.lengths[found] - adj.lengths[k]) > tol * Math.max(1, adj.lengths[k])) return false;
-    }
-  }
-  return true;
+export function labMinBoundaryLength(areaUm2: number, cells: number): number {
+  return (LAB_MIN_BOUNDARY_PIXELS * Math.sqrt(areaUm2 / cells)) / LAB_MEAN_CELL_DIAMETER_PIXELS;
 }

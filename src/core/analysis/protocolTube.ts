@@ -17,16 +17,16 @@ import { excludeInvalid, invalidOnAnySurface, labLayerRatios, LAB_PROTOCOL, vali
 export type SurfaceOf = (grid: Grid, sites: ArrayLike<number>, label: string) => SurfaceAdjacency;
 
 /** The exact diagram of the projected sites by d3-delaunay (exactVoronoi). */
-export const exactVoronoiSurface: SurfaceOf = (grid, sites, label) => ({ ...exactVoronoi(grid, sites).adjacency, label });
+const exactVoronoiSurface: SurfaceOf = (grid, sites, label) => ({ ...exactVoronoi(grid, sites).adjacency, label });
 
 /** The tube surface at ratio s: `width * s` texels around, same height and texel size. */
-export function tubeLayerGrid(grid: Grid, ratio: number): Grid {
+function tubeLayerGrid(grid: Grid, ratio: number): Grid {
   if (!(ratio > 0)) throw new Error(`surface ratio must be positive (got ${ratio})`);
   return { ...grid, width: grid.width * ratio };
 }
 
 /** Radial projection onto the surface at ratio s: (x * s, y), texel units. */
-export function projectToRatio(sites: ArrayLike<number>, ratio: number, out = new Float64Array(sites.length)): Float64Array {
+function projectToRatio(sites: ArrayLike<number>, ratio: number, out = new Float64Array(sites.length)): Float64Array {
   for (let k = 0; k + 1 < sites.length; k += 2) {
     out[k] = sites[k] * ratio;
     out[k + 1] = sites[k + 1];
@@ -62,15 +62,9 @@ function surfaceCache(grid: Grid, sites: ArrayLike<number>, surfaceOf: SurfaceOf
 }
 
 /** The lab protocol's analysis of one tube at one apical ratio. */
-export function analyzeTubeLab(
-  grid: Grid,
-  sites: ArrayLike<number>,
-  apicalRatio: number,
-  settings: LabProtocolSettings = LAB_PROTOCOL,
-  surfaceOf: SurfaceOf = exactVoronoiSurface,
-): LabTubeAnalysis {
+export function analyzeTubeLab(grid: Grid, sites: ArrayLike<number>, apicalRatio: number, settings: LabProtocolSettings = LAB_PROTOCOL): LabTubeAnalysis {
   const count = Math.floor(sites.length / 2);
-  const surfaceAt = surfaceCache(grid, sites, surfaceOf);
+  const surfaceAt = surfaceCache(grid, sites, exactVoronoiSurface);
   const validity = validityRatios(settings, apicalRatio < 1);
   const stackRatios = labLayerRatios(apicalRatio, settings);
   const stack = stackRatios.map(surfaceAt);
@@ -95,7 +89,7 @@ export function analyzeLabStack(stack: SurfaceAdjacency[], invalid: Uint8Array):
 }
 
 /** Lab intercalation count per cell over a stack: |∪ lost| + |∪ won| layer to layer. */
-export function labTransitions(stack: SurfaceAdjacency[]): { won: Int32Array; lost: Int32Array; transitions: Int32Array } {
+function labTransitions(stack: SurfaceAdjacency[]): { won: Int32Array; lost: Int32Array; transitions: Int32Array } {
   const count = stack[0].count;
   const csr = stack;
   const won = new Int32Array(count);

@@ -45,7 +45,7 @@ export interface AnalysisOptions {
 
 /** Side classes of the polygon distribution, Lewis and Aboav-Weaire: 3..9 then "10+". */
 export const SIDE_CLASSES = ['3', '4', '5', '6', '7', '8', '9', '10+'] as const;
-export type SideClass = (typeof SIDE_CLASSES)[number];
+type SideClass = (typeof SIDE_CLASSES)[number];
 
 /** Index into SIDE_CLASSES, or -1 for fewer than 3 sides. */
 export function sideClassIndex(sides: number): number {
@@ -53,7 +53,7 @@ export function sideClassIndex(sides: number): number {
   return Math.min(sides, 10) - 3;
 }
 
-export interface LewisEntry {
+interface LewisEntry {
   sides: SideClass;
   count: number;
   /** Mean area of the class, µm² (NaN when empty). */
@@ -62,7 +62,7 @@ export interface LewisEntry {
   normalizedArea: number;
 }
 
-export interface AboavEntry {
+interface AboavEntry {
   sides: SideClass;
   /** Cells of the class that entered the mean. */
   count: number;
@@ -219,7 +219,7 @@ export function analyzeSurfaces(surfaces: SurfaceAdjacency[], options: AnalysisO
 }
 
 /** Cell i's neighbours on `last` that are not on `first` into won[i], and the other way round into lost[i] (sets as neighbourSets gives). */
-export function countWonLost(
+function countWonLost(
   first: { readonly offsets: Int32Array; readonly ids: Int32Array },
   last: { readonly offsets: Int32Array; readonly ids: Int32Array },
   i: number,

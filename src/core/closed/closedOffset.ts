@@ -109,7 +109,7 @@ function moveAlong(sites: ArrayLike<number>, normals: ArrayLike<number>, count: 
 }
 
 /** The mesh's vertices moved t along their area-weighted normals (t = 0: the mesh itself). */
-export function offsetMesh(mesh: MeshGeometry, t: number): MeshGeometry {
+function offsetMesh(mesh: MeshGeometry, t: number): MeshGeometry {
   const neighbours = mesh.triangleNeighbours ?? triangleNeighbours(mesh.indices, mesh.positions.length / 3);
   if (t === 0) return { ...mesh, triangleNeighbours: neighbours };
   const normals = areaWeightedVertexNormals(mesh.positions, mesh.indices);

@@ -20,7 +20,7 @@
  */
 
 /** Gauss–Legendre nodes and weights on [-1, 1] (Newton on P_n, Golub–Welsch not needed). */
-export function gaussLegendre(n: number): { x: Float64Array; w: Float64Array } {
+function gaussLegendre(n: number): { x: Float64Array; w: Float64Array } {
   const x = new Float64Array(n),
     w = new Float64Array(n);
   for (let i = 0; i < n; i++) {
@@ -151,13 +151,13 @@ export class EllipsoidArcIntegrator {
     return this.adaptive(t0, t1, tolerance);
   }
 
-  /** Point of the ellipsoid arc at θ into out[o..o+2]. */
-  point(theta: number, out: Float64Array, o = 0): void {
+  /** Point of the ellipsoid arc at θ into out[0..2]. */
+  point(theta: number, out: Float64Array): void {
     const co = Math.cos(theta),
       si = Math.sin(theta);
-    out[o] = this.a * (this.cx + co * this.ux + si * this.vx);
-    out[o + 1] = this.b * (this.cy + co * this.uy + si * this.vy);
-    out[o + 2] = this.c * (this.cz + co * this.uz + si * this.vz);
+    out[0] = this.a * (this.cx + co * this.ux + si * this.vx);
+    out[1] = this.b * (this.cy + co * this.uy + si * this.vy);
+    out[2] = this.c * (this.cz + co * this.uz + si * this.vz);
   }
 
   /** An upper bound of |d p / dθ| over the whole arc: |M U| + |M V|. */

@@ -4,7 +4,7 @@
  */
 import type { SurfaceAdjacency } from '../analysis/adjacency';
 import { ContactRows, type ContactLength } from '../labels';
-import { texelFromIndex, texelIndex, wrapTexel, type Vec3 } from '../cubemap/cubemap';
+import { texelFromIndex, texelIndex, wrapTexel } from '../cubemap/cubemap';
 import type { CubeGeometryImage } from '../cubemap/sample';
 import type { TriangleMesh } from '../mesh/types';
 import { crossOfDifferences, vertexNormals } from '../mesh/types';
@@ -328,5 +328,3 @@ export function meshCurvatureRadii(mesh: TriangleMesh): { convex: number; concav
   }
   return { convex: kPlus > 0 ? 1 / kPlus : Infinity, concave: kMinus > 0 ? 1 / kMinus : Infinity };
 }
-
-export type { Vec3 };

@@ -9,7 +9,7 @@
  *   so that the layers of a stack, which share the topology, build it once.
  */
 
-/** The analytic ellipsoid (the config's `EllipsoidSurface` describes it; this is its geometry, µm). */
+/** The analytic ellipsoid (the config's ellipsoid surface describes it; this is its geometry, µm). */
 export interface EllipsoidGeometry {
   readonly kind: 'ellipsoid';
   readonly a: number;

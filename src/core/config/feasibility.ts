@@ -46,7 +46,7 @@ export function makeGrid(config: Pick<PlanarConfig, 'surface' | 'resolution'>): 
 }
 
 /** Texels a cell needs at least for its centroid to mean something. */
-export const MIN_TEXELS_PER_CELL = 16;
+const MIN_TEXELS_PER_CELL = 16;
 
 /** Area per point of the densest packing of points `spacing` apart (hexagonal lattice). */
 function hexagonalAreaPerPoint(spacing: number): number {

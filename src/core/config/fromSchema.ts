@@ -17,7 +17,7 @@
  * - 'input': what a user may write. Only `required` properties must be given.
  */
 
-export type SchemaReading = 'output' | 'input';
+type SchemaReading = 'output' | 'input';
 
 /** The TypeScript type of the data a schema node accepts, in the given reading. */
 export type FromSchema<S, R extends SchemaReading = 'output'> = S extends { readonly oneOf: readonly (infer B)[] }

@@ -22,7 +22,7 @@ import { ConfigError } from './validate';
 
 export const MIN_EXTENT_UM = 1e-3;
 export const MAX_EXTENT_UM = 1e7;
-export const MIN_TEXELS_PER_SIDE = 8;
+const MIN_TEXELS_PER_SIDE = 8;
 /** Default work budget: 2^34 texel-floods (a 16384² plane for 64 iterations). */
 export const DEFAULT_MAX_WORK = 2 ** 34;
 
@@ -176,7 +176,7 @@ export function checkTexelsPerSide(config: Config): void {
 }
 
 /** Refuses a grid wider than the GPU's texture limit, naming the field that made it so. */
-export function checkTextureSize(config: Config, maxTextureSize: number): void {
+function checkTextureSize(config: Config, maxTextureSize: number): void {
   const layout = surfaceLayout(config);
   const grids = layout.grids();
   grids.forEach((g, k) => {

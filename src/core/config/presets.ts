@@ -22,12 +22,12 @@ export const APP_START: ConfigInput = {
   cells: 150,
   sheet: { surfaceRatio: 1.5 },
 };
-export const DEFAULT_SPHERE_RADIUS = 60;
-export const DEFAULT_ELLIPSOID = { a: 90, b: 45, c: 45 } as const;
+const DEFAULT_SPHERE_RADIUS = 60;
+const DEFAULT_ELLIPSOID = { a: 90, b: 45, c: 45 } as const;
 /** The sample meshes are about unit size: µm per unit. */
-export const DEFAULT_MESH_SCALE = 50;
+const DEFAULT_MESH_SCALE = 50;
 /** The organoid-like sample, served from public/meshes/ (the app's sample list: app/model/meshFiles.ts). */
-export const DEFAULT_MESH_SRC = '/meshes/organoid.ply';
+const DEFAULT_MESH_SRC = '/meshes/organoid.ply';
 
 /** A surface of `kind` with default dimensions (closed kinds), or keeping the unrolled size (plane, tube). */
 export function surfaceOfKind(current: AnySurfaceConfig, kind: string): AnySurfaceConfig {
@@ -61,7 +61,7 @@ export function thicknessForKind(surface: AnySurfaceConfig): number {
 }
 
 /** Switching between plane and tube keeps the unrolled size: circumference <-> width, length <-> height. */
-export function planarOfKind(current: SurfaceConfig, kind: string): SurfaceConfig {
+function planarOfKind(current: SurfaceConfig, kind: string): SurfaceConfig {
   const d = unrolledDomain(current);
   if (kind === 'plane') return { kind: 'plane', width: d.lengthX, height: d.lengthY, periodicX: false, periodicY: false };
   if (kind === 'tube') return { kind: 'tube', radius: d.lengthX / (2 * Math.PI) || DEFAULT_TUBE_RADIUS, length: d.lengthY };

@@ -8,7 +8,7 @@ import { configSchema } from './schema';
 
 export type SchemaNode = Record<string, unknown>;
 
-export type FieldType = 'number' | 'integer' | 'string' | 'boolean' | 'array' | 'object';
+type FieldType = 'number' | 'integer' | 'string' | 'boolean' | 'array' | 'object';
 
 export interface SchemaField {
   /** Dotted config path: `resolution`, `surface.radius`, `density.kind`. */

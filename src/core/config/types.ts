@@ -12,32 +12,22 @@ type SchemaConfig = FromSchema<typeof configSchema>;
 
 /** Every surface kind the schema knows. */
 export type AnySurfaceConfig = SchemaConfig['surface'];
-export type PlaneSurface = Extract<AnySurfaceConfig, { kind: 'plane' }>;
-export type TubeSurface = Extract<AnySurfaceConfig, { kind: 'tube' }>;
+type PlaneSurface = Extract<AnySurfaceConfig, { kind: 'plane' }>;
+type TubeSurface = Extract<AnySurfaceConfig, { kind: 'tube' }>;
 /** Surfaces unrolled to a rectangle (the planar pipeline: plane, tube). */
 export type SurfaceConfig = PlaneSurface | TubeSurface;
 
-/** A sphere of the given radius (µm), centred at the origin. */
-export type SphereSurface = Extract<AnySurfaceConfig, { kind: 'sphere' }>;
-/** An ellipsoid x²/a² + y²/b² + z²/c² = 1 (semi-axes in µm), centred at the origin. */
-export type EllipsoidSurface = Extract<AnySurfaceConfig, { kind: 'ellipsoid' }>;
 /** A closed genus-0 triangle mesh (OBJ, PLY, STL), coordinates times `scale` in µm. */
 export type MeshSurface = Extract<AnySurfaceConfig, { kind: 'mesh' }>;
 /** Closed surfaces, sampled on a cube-map geometry image: every kind that is not unrolled. */
 export type ClosedSurfaceConfig = Exclude<AnySurfaceConfig, SurfaceConfig>;
 
 export type DensitySpec = SchemaConfig['density'];
-export type UniformDensity = Extract<DensitySpec, { kind: 'uniform' }>;
 export type LinearDensity = Extract<DensitySpec, { kind: 'linear' }>;
 export type GaussianDensity = Extract<DensitySpec, { kind: 'gaussian' }>;
 export type StripesDensity = Extract<DensitySpec, { kind: 'stripes' }>;
-export type ImageDensity = Extract<DensitySpec, { kind: 'image' }>;
-export type Axis = LinearDensity['axis'];
 
 export type LloydConfig = SchemaConfig['lloyd'];
-export type JumpFloodConfig = SchemaConfig['jumpFlood'];
-export type JumpFloodVariantName = JumpFloodConfig['variant'];
-export type CentroidPathName = SchemaConfig['centroidPath'];
 /** The sheet: which surface is seeded, and where the other surface and the layers lie. */
 export type SheetConfig = SchemaConfig['sheet'];
 
@@ -57,7 +47,7 @@ export interface ClosedConfig extends Omit<SchemaConfig, 'surface' | 'resolution
 export type Config = PlanarConfig | ClosedConfig;
 
 /** The closed kinds as a value (for runtime checks); the compiler keeps it equal to ClosedSurfaceConfig's kinds. */
-export const CLOSED_SURFACE_KINDS = ['sphere', 'ellipsoid', 'mesh'] as const satisfies readonly ClosedSurfaceConfig['kind'][];
+const CLOSED_SURFACE_KINDS = ['sphere', 'ellipsoid', 'mesh'] as const satisfies readonly ClosedSurfaceConfig['kind'][];
 // A closed kind added to the schema but missing from the list above fails to compile here.
 const closedKindsListed: Exclude<ClosedSurfaceConfig['kind'], (typeof CLOSED_SURFACE_KINDS)[number]> extends never ? true : never = true;
 void closedKindsListed;

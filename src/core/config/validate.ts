@@ -57,7 +57,7 @@ export function validateConfigDraft(input: unknown): ConfigDraft {
 }
 
 /** Keys that reach an object's prototype when assigned or walked: refused anywhere in a config. */
-export const PROTOTYPE_KEYS: ReadonlySet<string> = new Set(['__proto__', 'constructor', 'prototype']);
+const PROTOTYPE_KEYS: ReadonlySet<string> = new Set(['__proto__', 'constructor', 'prototype']);
 
 /**
  * `value` as plain JSON data (a copy), or a ConfigError naming the first bad value's path.

@@ -52,7 +52,7 @@ export function texelFromIndex(index: number, n: number): { face: number; i: num
 }
 
 /** Unit direction through the face-plane point (u, v) of face f (u, v may lie outside [-1, 1]). */
-export function faceUvToDirection(face: number, u: number, v: number): Vec3 {
+function faceUvToDirection(face: number, u: number, v: number): Vec3 {
   const { normal: N, s, t } = CUBE_FACES[face];
   const x = N[0] + u * s[0] + v * t[0],
     y = N[1] + u * s[1] + v * t[1],
@@ -70,7 +70,7 @@ export function texelDirection(face: number, i: number, j: number, n: number): V
  * Face and face-plane coordinates of a direction (need not be unit). The face is the axis of
  * largest |component|; ties (cube edges) go to x before y before z, and to + before -.
  */
-export function directionToFaceUv(d: Vec3): { face: number; u: number; v: number } {
+function directionToFaceUv(d: Vec3): { face: number; u: number; v: number } {
   const ax = Math.abs(d[0]),
     ay = Math.abs(d[1]),
     az = Math.abs(d[2]);
@@ -118,7 +118,6 @@ export function texelSolidAngle(i: number, j: number, n: number): number {
  * so the numbers can be copied into GLSL as they are.
  */
 export const CUBE_EDGE = { MinusS: 0, PlusS: 1, MinusT: 2, PlusT: 3 } as const;
-export type CubeEdge = (typeof CUBE_EDGE)[keyof typeof CUBE_EDGE];
 
 /**
  * How face-plane coordinates continue across one edge: the neighbour face and the affine map

@@ -50,7 +50,7 @@ function allocate(n: number): CubeGeometryImage {
 }
 
 /** Exact texel solid angles of one face (all faces are alike), row-major j * n + i. */
-export function faceSolidAngles(n: number): Float64Array {
+function faceSolidAngles(n: number): Float64Array {
   const out = new Float64Array(n * n);
   for (let j = 0; j < n; j++) for (let i = 0; i < n; i++) out[j * n + i] = texelSolidAngle(i, j, n);
   return out;
@@ -122,7 +122,7 @@ function coneBarycentric(s: Float64Array, ia: number, ib: number, ic: number, d:
 }
 
 /** Geometry image of a mesh through its spherical parameterization. */
-export function sampleParameterizedMesh(mesh: TriangleMesh, sphere: Float64Array, n: number): CubeGeometryImage {
+function sampleParameterizedMesh(mesh: TriangleMesh, sphere: Float64Array, n: number): CubeGeometryImage {
   const t = mesh.indices,
     p = mesh.positions;
   const nf = t.length / 3;

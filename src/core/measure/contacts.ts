@@ -45,7 +45,7 @@ export function countContacts(image: LabelPixels, periodicX: boolean): LayerCont
   let lastKey = -1;
   let lastCount = 0;
   const add = (a: number, b: number) => {
-    const key = a < b ? a * 65536 + b : b * 65536 + a;
+    const key = pairKey(a, b);
     if (key === lastKey) {
       lastCount++;
       return;
@@ -89,9 +89,4 @@ export function countContacts(image: LabelPixels, periodicX: boolean): LayerCont
   let labels = 0;
   for (let v = 1; v < labelSpace; v++) if (pixels[v] > 0) labels++;
   return { width, height, labelSpace, pixels, border, edges, labels };
-}
-
-/** Edge count between raw labels a and b (0 when they do not touch). */
-export function edgesBetween(contacts: LayerContacts, a: number, b: number): number {
-  return a === b ? 0 : (contacts.edges.get(pairKey(a, b)) ?? 0);
 }

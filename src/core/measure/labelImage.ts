@@ -6,7 +6,7 @@
 /** Largest layer accepted, in pixels (8192 x 16384): bounds memory before decoding. */
 export const MAX_LAYER_PIXELS = 2 ** 27;
 
-export type LabelPixelArray = Uint8Array | Uint16Array;
+type LabelPixelArray = Uint8Array | Uint16Array;
 
 /** One decoded layer: row-major labels (index y * width + x), 0 = background. */
 export interface LabelPixels {

@@ -24,13 +24,13 @@ export interface PlannedLayer {
   readonly header: PageHeader;
 }
 
-export interface PlannedFile {
+interface PlannedFile {
   readonly name: string;
   readonly bytes: number;
   readonly header: LabelFileHeader;
 }
 
-export interface PixelSizeChoice {
+interface PixelSizeChoice {
   readonly value: number;
   readonly source: PixelSizeSource;
   /** The file whose metadata gave it (source != "option"). */
@@ -54,7 +54,7 @@ export function inspectLabelFile(bytes: Uint8Array, file: string): LabelFileHead
   throw new MeasureInputError(file, 'not a PNG or TIFF image; give label images (8- or 16-bit PNG or TIFF)');
 }
 
-export function layerName(index: number, count: number): string {
+function layerName(index: number, count: number): string {
   if (index === 0) return 'basal';
   if (index === count - 1) return 'apical';
   return `layer ${index}`;

@@ -7,7 +7,7 @@ import type { AnalysisRecord, CellStatisticsRecord } from '../analysis/record';
 import type { PixelSizeSource } from './labelImage';
 import type { ModelComparison } from './compare';
 
-export interface MeasuredFileRecord {
+interface MeasuredFileRecord {
   readonly name: string;
   readonly bytes: number;
   readonly format: 'png' | 'tiff';
@@ -30,7 +30,7 @@ export interface MeasuredLayerRecord {
   readonly contactPairs: number;
 }
 
-export interface MeasuredInputs {
+interface MeasuredInputs {
   readonly files: MeasuredFileRecord[];
   readonly layers: MeasuredLayerRecord[];
   readonly pixelSize: { readonly value: number; readonly source: PixelSizeSource; readonly file: string | null; readonly detail: string };
@@ -44,7 +44,7 @@ export interface MeasuredInputs {
 }
 
 /** The per-cell statistics of analyses[0].cells (a simulated result's), with the original label. */
-export interface MeasuredCellStatistics extends CellStatisticsRecord {
+interface MeasuredCellStatistics extends CellStatisticsRecord {
   readonly label: number;
 }
 

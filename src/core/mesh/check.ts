@@ -8,7 +8,7 @@
  */
 import { boundingBox, faceAreas, signedVolume, type TriangleMesh } from './types';
 
-export type MeshProblemKind =
+type MeshProblemKind =
   | 'empty'
   | 'unreferenced-vertices'
   | 'degenerate-face'
@@ -71,6 +71,17 @@ class UnionFind {
   }
 }
 
+/** The mesh's vertices joined when they share a face: its connected components. */
+function faceComponents(mesh: TriangleMesh): UnionFind {
+  const t = mesh.indices;
+  const uf = new UnionFind(mesh.positions.length / 3);
+  for (let f = 0; f < t.length; f += 3) {
+    uf.union(t[f], t[f + 1]);
+    uf.union(t[f], t[f + 2]);
+  }
+  return uf;
+}
+
 interface EdgeInfo {
   a: number;
   b: number;
@@ -80,7 +91,7 @@ interface EdgeInfo {
 }
 
 /** Undirected edges of the mesh with their incident faces. Key: min * V + max. */
-export function buildEdges(mesh: TriangleMesh): Map<number, EdgeInfo> {
+function buildEdges(mesh: TriangleMesh): Map<number, EdgeInfo> {
   const t = mesh.indices;
   const nv = mesh.positions.length / 3;
   const edges = new Map<number, EdgeInfo>();
@@ -120,11 +131,7 @@ export function meshTopology(mesh: TriangleMesh): MeshTopology {
     if (e.faces.length === 1) boundary++;
     else if (e.faces.length > 2) nonManifold++;
   }
-  const uf = new UnionFind(nv);
-  for (let f = 0; f < nf; f++) {
-    uf.union(t[3 * f], t[3 * f + 1]);
-    uf.union(t[3 * f], t[3 * f + 2]);
-  }
+  const uf = faceComponents(mesh);
   const roots = new Set<number>();
   for (let v = 0; v < nv; v++) if (used[v]) roots.add(uf.find(v));
   const chi = V - edges.size + nf;
@@ -313,11 +320,7 @@ export function checkMesh(mesh: TriangleMesh): MeshProblem[] {
   }
 
   // Connected components (through shared vertices).
-  const uf = new UnionFind(nv);
-  for (let f = 0; f < nf; f++) {
-    uf.union(t[3 * f], t[3 * f + 1]);
-    uf.union(t[3 * f], t[3 * f + 2]);
-  }
+  const uf = faceComponents(mesh);
   const sizes = new Map<number, number>();
   for (let f = 0; f < nf; f++) {
     const r = uf.find(t[3 * f]);

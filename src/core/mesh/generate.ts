@@ -184,5 +184,3 @@ export function openSphere(frequency: number, holeAngle = 0.5): TriangleMesh {
     return z < Math.cos(holeAngle);
   });
 }
-
-export { mergeMeshes } from './types';

@@ -74,14 +74,16 @@ export function csrAddDiagonal(A: CsrMatrix, d: ArrayLike<number>, scale = 1): C
   return { ...A, values };
 }
 
+const LEAF_SIZE = 48;
+
 /**
  * Nested-dissection ordering of the graph of A (fill-reducing for Cholesky). Each part is
  * split by the middle BFS level from a pseudo-peripheral vertex; the two halves are ordered
  * first (recursively) and the separating level last, so eliminating a half never fills into
- * the other. Small parts are ordered by BFS (a Cuthill-McKee-like local order).
- * Returns perm with perm[newIndex] = oldIndex.
+ * the other. Small parts (up to LEAF_SIZE vertices) are ordered by BFS (a Cuthill-McKee-like
+ * local order). Returns perm with perm[newIndex] = oldIndex.
  */
-export function nestedDissection(A: CsrMatrix, leafSize = 48): Int32Array {
+function nestedDissection(A: CsrMatrix): Int32Array {
   const n = A.n;
   const inPart = new Int32Array(n).fill(-1); // part stamp
   const level = new Int32Array(n);
@@ -130,7 +132,7 @@ export function nestedDissection(A: CsrMatrix, leafSize = 48): Int32Array {
       const rest = part.filter((v) => seen[v] !== s0);
       stack.push(rest);
     }
-    if (comp.length <= leafSize) {
+    if (comp.length <= LEAF_SIZE) {
       for (let k = comp.length - 1; k >= 0; k--) order[--back] = comp[k];
       continue;
     }
@@ -293,8 +295,8 @@ export class SparseCholesky {
     return this.Lp[this.n];
   }
 
-  /** Solves A x = b. `out` may alias nothing else; b is not modified. */
-  solve(b: ArrayLike<number>, out = new Float64Array(this.n)): Float64Array {
+  /** Solves A x = b (a new array); b is not modified. */
+  solve(b: ArrayLike<number>): Float64Array {
     const { n, Lp, Li, Lx, perm, work: y } = this;
     for (let k = 0; k < n; k++) y[k] = b[perm[k]];
     for (let j = 0; j < n; j++) {
@@ -307,6 +309,7 @@ export class SparseCholesky {
       for (let p = Lp[j] + 1; p < Lp[j + 1]; p++) v -= Lx[p] * y[Li[p]];
       y[j] = v / Lx[Lp[j]];
     }
+    const out = new Float64Array(n);
     for (let k = 0; k < n; k++) out[perm[k]] = y[k];
     return out;
   }

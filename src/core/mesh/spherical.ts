@@ -16,11 +16,11 @@
  *    removed triangle becoming a cap around the north pole.
  * 3. Möbius centering (Baden et al. 2018, the seed's "centered" map): find the inversion centre
  *    c with Newton's method on μ(c) = area-weighted centre of mass of the mapped triangles,
- *    apply v → c + (1 - |c|²)(v + c)/|v + c|², repeat until |μ| < tolerance. Masses are the mesh's
+ *    apply v → c + (1 - |c|²)(v + c)/|v + c|², repeat until |μ| < 1e-8. Masses are the mesh's
  *    triangle areas, so the surface's area, not its vertex count, is balanced on the sphere.
  *    A Möbius map is conformal, so it keeps the map flip-free up to triangles whose circumcircle
  *    would exceed a hemisphere (never for real meshes; we count flips at the end anyway).
- * 4. Refinement (default 20 sweeps): spherical relaxation (each vertex moves to the normalised
+ * 4. Refinement (20 sweeps): spherical relaxation (each vertex moves to the normalised
  *    cotangent-weighted average of its neighbours, the harmonic-map iteration of Gu et al.
  *    2004), a move being rejected if it would flip a triangle; then centering again.
  */
@@ -29,7 +29,7 @@ import { cotanLaplacian } from './heat';
 import { csrFromTriplets, SparseCholesky } from './sparse';
 import { faceAreas, signedVolume, type TriangleMesh, type Vec3 } from './types';
 
-export interface AreaDistortion {
+interface AreaDistortion {
   /** Per triangle r = (parameter-sphere area / 4π) / (surface area / total): 1 is area preserving. */
   min: number;
   max: number;
@@ -51,17 +51,15 @@ export interface SphericalParameterization {
   inward: boolean;
 }
 
-export interface SphericalOptions {
-  /** Stop Möbius centering when |μ| is below this (default 1e-8). */
-  centeringTolerance?: number;
-  maxMobiusIterations?: number;
-  /**
-   * Sweeps of flip-guarded spherical relaxation after the conformal map (default 20): it evens
-   * out the distortion the 3 pinned vertices of the puncture leave (measured on a 2562-vertex
-   * icosphere: area ratio range 0.42..1.74 without, 0.96..1.04 with 20 sweeps).
-   */
-  relaxIterations?: number;
-}
+/** Möbius centering stops when |μ| is below this, or after MAX_MOBIUS_ITERATIONS. */
+const CENTERING_TOLERANCE = 1e-8;
+const MAX_MOBIUS_ITERATIONS = 200;
+/**
+ * Sweeps of flip-guarded spherical relaxation after the conformal map: they even out the
+ * distortion the 3 pinned vertices of the puncture leave (measured on a 2562-vertex icosphere:
+ * area ratio range 0.42..1.74 without, 0.96..1.04 with 20 sweeps).
+ */
+const RELAX_SWEEPS = 20;
 
 function det3(s: ArrayLike<number>, a: number, b: number, c: number): number {
   const ax = s[3 * a],
@@ -162,16 +160,10 @@ function solve3(J: number[], r: Vec3): Vec3 {
  * 2(I - v vᵀ)c, so the Jacobian is J = 2 Σ m_i (I - v_i v_iᵀ) / Σ m_i and the step c = -J⁻¹ μ.
  * Steps are limited to |c| ≤ 0.5 so a badly off-centre start converges.
  */
-export function mobiusCenter(
-  indices: Uint32Array,
-  sphere: Float64Array,
-  weights: Float64Array,
-  tolerance = 1e-8,
-  maxIterations = 200,
-): { iterations: number; mu: Vec3 } {
+function mobiusCenter(indices: Uint32Array, sphere: Float64Array, weights: Float64Array): { iterations: number; mu: Vec3 } {
   let mu = sphereCenterOfMass(indices, sphere, weights);
   let it = 0;
-  while (Math.hypot(...mu) > tolerance && it < maxIterations) {
+  while (Math.hypot(...mu) > CENTERING_TOLERANCE && it < MAX_MOBIUS_ITERATIONS) {
     const J = [0, 0, 0, 0, 0, 0, 0, 0, 0];
     let wsum = 0;
     for (let f = 0; f < indices.length / 3; f++) {
@@ -206,7 +198,7 @@ export function mobiusCenter(
 }
 
 /** Statistics of r = (Ω_f / 4π) / (A_f / A) over the triangles. */
-export function areaDistortion(indices: Uint32Array, sphere: Float64Array, areas: Float64Array): AreaDistortion {
+function areaDistortion(indices: Uint32Array, sphere: Float64Array, areas: Float64Array): AreaDistortion {
   let total = 0;
   for (const a of areas) total += a;
   let min = Infinity,
@@ -227,7 +219,7 @@ export function areaDistortion(indices: Uint32Array, sphere: Float64Array, areas
  * weighted average of its neighbours (cotangent weights clamped at 0), rejecting any move that
  * would make one of its triangles inverted. Returns the number of accepted moves.
  */
-export function relaxSphere(mesh: TriangleMesh, sphere: Float64Array, sweeps: number): number {
+function relaxSphere(mesh: TriangleMesh, sphere: Float64Array, sweeps: number): number {
   const W = cotanLaplacian(mesh, true);
   const vf = vertexFaces(mesh);
   const t = mesh.indices;
@@ -271,7 +263,7 @@ export function relaxSphere(mesh: TriangleMesh, sphere: Float64Array, sweeps: nu
  * Maps a closed genus-0 mesh onto the unit sphere (see the module comment). Throws with the
  * checkMesh messages if the mesh is not closed, manifold, connected and of genus 0.
  */
-export function sphericalParameterization(input: TriangleMesh, options: SphericalOptions = {}): SphericalParameterization {
+export function sphericalParameterization(input: TriangleMesh): SphericalParameterization {
   assertGenusZero(input);
   const inward = signedVolume(input) < 0;
   let mesh = input;
@@ -345,23 +337,16 @@ export function sphericalParameterization(input: TriangleMesh, options: Spherica
   // as seen from outside; a mirror fixes it whichever way the puncture was laid out.
   if (countFlipped(t, sphere) > t.length / 6) for (let v = 0; v < nv; v++) sphere[3 * v + 2] *= -1;
 
-  // 3. Möbius centering; 4. optional relaxation, then centre again.
-  const tol = options.centeringTolerance ?? 1e-8;
-  const maxIt = options.maxMobiusIterations ?? 200;
-  let { iterations, mu } = mobiusCenter(t, sphere, areas, tol, maxIt);
-  const sweeps = options.relaxIterations ?? 20;
-  if (sweeps > 0) {
-    relaxSphere(mesh, sphere, sweeps);
-    const again = mobiusCenter(t, sphere, areas, tol, maxIt);
-    iterations += again.iterations;
-    mu = again.mu;
-  }
+  // 3. Möbius centering; 4. relaxation, then centre again.
+  const first = mobiusCenter(t, sphere, areas);
+  relaxSphere(mesh, sphere, RELAX_SWEEPS);
+  const { iterations, mu } = mobiusCenter(t, sphere, areas);
   return {
     sphere,
     flipped: countFlipped(t, sphere),
     centerOfMass: mu,
     centerOfMassNorm: Math.hypot(...mu),
-    mobiusIterations: iterations,
+    mobiusIterations: first.iterations + iterations,
     areaDistortion: areaDistortion(t, sphere, areas),
     inward,
   };

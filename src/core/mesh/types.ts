@@ -18,14 +18,6 @@ export interface TriangleMesh {
 
 export type Vec3 = [number, number, number];
 
-export function vertexCount(mesh: TriangleMesh): number {
-  return mesh.positions.length / 3;
-}
-
-export function faceCount(mesh: TriangleMesh): number {
-  return mesh.indices.length / 3;
-}
-
 /** Axis-aligned bounding box; `diagonal` is the length of its diagonal (0 for an empty mesh). */
 export function boundingBox(positions: ArrayLike<number>): { min: Vec3; max: Vec3; diagonal: number } {
   const min: Vec3 = [Infinity, Infinity, Infinity];
@@ -99,12 +91,6 @@ export function faceAreas(mesh: TriangleMesh): Float64Array {
     out[f] = 0.5 * Math.sqrt(x * x + y * y + z * z);
   }
   return out;
-}
-
-export function surfaceArea(mesh: TriangleMesh): number {
-  let s = 0;
-  for (const a of faceAreas(mesh)) s += a;
-  return s;
 }
 
 /**

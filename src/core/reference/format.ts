@@ -24,7 +24,7 @@ export const REFERENCE_LIMITS = {
   maxDepth: 16,
 } as const;
 
-export type ReferenceKind = 'model' | 'data';
+type ReferenceKind = 'model' | 'data';
 
 export interface ReferencePoint {
   x: number;

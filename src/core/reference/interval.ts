@@ -14,7 +14,7 @@ export function referenceInterval(point: ReferencePoint): { low: number; high: n
 }
 
 /** How many of a curve's points have error bars (referenceInterval), of how many. */
-export function curveIntervals(curve: ReferenceCurve): { withInterval: number; points: number } {
+function curveIntervals(curve: ReferenceCurve): { withInterval: number; points: number } {
   return { withInterval: curve.points.filter((p) => referenceInterval(p) !== null).length, points: curve.points.length };
 }
 

@@ -16,7 +16,7 @@ export function quantityOfField(field: string): string {
 }
 
 /** The value of a quantity in a configuration (Voronoi k = lloyd.maxIterations + 1), or null. */
-export function quantityValue(config: unknown, quantity: string): number | null {
+function quantityValue(config: unknown, quantity: string): number | null {
   const field = Object.keys(QUANTITY_OF_FIELD).find((f) => QUANTITY_OF_FIELD[f] === quantity) ?? quantity;
   let value: unknown;
   try {
@@ -58,7 +58,7 @@ export function overlayFor(curves: readonly ReferenceCurve[], field: string, bas
 }
 
 /** Config fields whose values decide whether two sets of % scutoids are comparable. */
-export const COMPARED_FIELDS = [
+const COMPARED_FIELDS = [
   'surface.kind',
   'surface.radius',
   'surface.length',

@@ -20,7 +20,7 @@ import {
   type ReferencePoint,
 } from './format';
 
-export const REFERENCE_CSV_COLUMNS = ['curve', 'label', 'kind', 'quantity', 'source', 'x', 'percent', 'sd', 'n'] as const;
+const REFERENCE_CSV_COLUMNS = ['curve', 'label', 'kind', 'quantity', 'source', 'x', 'percent', 'sd', 'n'] as const;
 const REQUIRED = ['curve', 'label', 'kind', 'quantity', 'source', 'x', 'percent'];
 
 /** A plain decimal number (no NaN, Infinity, hex or spaces). */

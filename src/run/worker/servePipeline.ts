@@ -17,7 +17,7 @@ import type { FromWorker, SerializedError, ToWorker } from './protocol';
 import { withLazyCellRecords } from '../lazyRecords';
 
 /** Results of more cells than this are sent as columns (SheetOutput.tables), their lists empty. */
-export const COLUMNS_ABOVE_CELLS = 20_000;
+const COLUMNS_ABOVE_CELLS = 20_000;
 
 /** What this module uses of the worker's global scope (the DOM typings describe a window). */
 interface WorkerScope {

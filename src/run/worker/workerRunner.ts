@@ -136,12 +136,13 @@ function pageCallbacks({ present: _present, onPresented: _onPresented, ...callba
   return callbacks;
 }
 
-function abortError(): DOMException {
+/** What a cancelled run throws, on the page and from the worker alike. */
+export function abortError(): DOMException {
   return new DOMException('The run was cancelled', 'AbortError');
 }
 
 /** The same error classes as a run on the page throws. */
-export function rebuildError(error: SerializedError): Error {
+function rebuildError(error: SerializedError): Error {
   if (error.name === 'AbortError') return abortError();
   if (error.name === 'ConfigError') return new ConfigError(error.field ?? '', error.message);
   if (error.name === 'GpuCapabilityError') return new GpuCapabilityError(error.message);

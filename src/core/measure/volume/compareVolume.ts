@@ -30,7 +30,7 @@ import type { SurfaceMesh } from './surfaceMesh';
 import { fitTube, thicknessOf, type TubeGeometry } from './tubeFit';
 import type { VolumeMeasuredResult } from './volumeResult';
 
-export interface ShellGeometry {
+interface ShellGeometry {
   readonly kind: 'mesh';
   /** Which measured layer is the seeded (lumen-side) surface. */
   readonly seededLayer: 'basal' | 'apical';
@@ -124,16 +124,12 @@ export function shellSetup(result: VolumeMeasuredResult, meshes: ShellMeshes): S
     other,
     thickness,
     minSpacing,
-    carry: (sites) => carryAlongNormals(seeded, sites, other, 1, 3 * reach, thicknessAt),
+    carry: (sites) => carryAlongNormals(seeded, sites, other, 3 * reach, thicknessAt),
   };
 }
 
 /** The model of a closed shell on its own surface meshes (see the module comment). */
-export function compareShell(
-  result: VolumeMeasuredResult,
-  meshes: ShellMeshes,
-  options: CompareVolumeOptions,
-): { comparison: VolumeComparison | null; note: string } {
+function compareShell(result: VolumeMeasuredResult, meshes: ShellMeshes, options: CompareVolumeOptions): { comparison: VolumeComparison | null; note: string } {
   const setup = shellSetup(result, meshes);
   if ('note' in setup) return { comparison: null, note: setup.note };
   const { inner, layer, cells, seeded, other, thickness, minSpacing } = setup;

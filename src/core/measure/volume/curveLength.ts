@@ -14,7 +14,7 @@
  */
 import { disjointSets } from './disjointSets';
 
-export const SMOOTHING_STEPS = 30;
+const SMOOTHING_STEPS = 30;
 
 export interface CurveLength {
   /** Smoothed length, µm. */

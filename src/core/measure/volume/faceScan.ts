@@ -15,12 +15,12 @@
 import { CELL, LUMEN, OUTSIDE } from './voxelClasses';
 import type { VolumeArray } from './tiffVolume';
 
-export const FACE_X0 = 1;
-export const FACE_X1 = 2;
-export const FACE_Y0 = 4;
-export const FACE_Y1 = 8;
-export const FACE_Z0 = 16;
-export const FACE_Z1 = 32;
+const FACE_X0 = 1;
+const FACE_X1 = 2;
+const FACE_Y0 = 4;
+const FACE_Y1 = 8;
+const FACE_Z0 = 16;
+const FACE_Z1 = 32;
 export const VOLUME_FACE_NAMES: ReadonlyArray<[number, string]> = [
   [FACE_X0, 'first column'],
   [FACE_X1, 'last column'],
@@ -41,9 +41,9 @@ export interface FaceTally {
 }
 
 /** Radius (voxels) of the ball whose background voxels give a face's local normal. */
-export const NORMAL_RADIUS = 3;
+const NORMAL_RADIUS = 3;
 
-export interface LateralTally {
+interface LateralTally {
   /** Pair key a * (cells + 1) + b, a < b (dense ids). */
   readonly keys: number[];
   /** 3 counts then 3 signed sums (towards b) per pair. */

@@ -67,7 +67,7 @@ const point = new Vector3();
 const target = { point: new Vector3(), distance: 0, faceIndex: 0 };
 
 /** Closest point of the mesh to (x, y, z) into out[o..o+2]; returns its triangle. */
-export function closestOnMesh(mesh: PreparedMesh, x: number, y: number, z: number, out: Float64Array, o: number): number {
+function closestOnMesh(mesh: PreparedMesh, x: number, y: number, z: number, out: Float64Array, o: number): number {
   mesh.bvh.closestPointToPoint(point.set(x, y, z), target);
   out[o] = target.point.x;
   out[o + 1] = target.point.y;
@@ -175,15 +175,13 @@ export function meshSurface(mesh: PreparedMesh, sites: Float64Array, label: stri
 }
 
 /**
- * Each site carried along its triangle's normal (towards `direction` = +1 along it, -1 against)
- * to the first point of `other` within `maxDistance` µm; where the ray meets nothing, the point
+ * Each site carried along its triangle's outward normal to the first point of `other` within `maxDistance` µm; where the ray meets nothing, the point
  * at `thicknessAt(x, y, z)` along the normal (the parallel surface at the local measured thickness).
  */
 export function carryAlongNormals(
   from: PreparedMesh,
   sites: Float64Array,
   other: PreparedMesh,
-  direction: 1 | -1,
   maxDistance: number,
   thicknessAt: (x: number, y: number, z: number) => number,
 ): { sites: Float64Array; alongNormal: number; parallel: number } {
@@ -197,14 +195,14 @@ export function carryAlongNormals(
     const f = closestOnMesh(from, sites[3 * s], sites[3 * s + 1], sites[3 * s + 2], on, 0);
     const n = from.normals.subarray(3 * f, 3 * f + 3);
     ray.origin.set(on[0], on[1], on[2]);
-    ray.direction.set(direction * n[0], direction * n[1], direction * n[2]);
+    ray.direction.set(n[0], n[1], n[2]);
     const hit = other.bvh.raycastFirst(ray, DoubleSide, 0, maxDistance);
     if (hit) {
       out.set([hit.point.x, hit.point.y, hit.point.z], 3 * s);
       alongNormal++;
     } else {
       const h = thicknessAt(on[0], on[1], on[2]);
-      for (let k = 0; k < 3; k++) out[3 * s + k] = on[k] + direction * n[k] * h;
+      for (let k = 0; k < 3; k++) out[3 * s + k] = on[k] + n[k] * h;
       parallel++;
     }
   }

@@ -30,10 +30,10 @@ import type { TubeGeometry } from './tubeFit';
 import type { VolumeMeasuredResult } from './volumeResult';
 
 /** Drawn triangles per surface at most (the page's budget for the measured surfaces too). */
-export const MAX_MODEL_TRIANGLES = 300_000;
+const MAX_MODEL_TRIANGLES = 300_000;
 
 /** One of the model's surfaces, drawn. */
-export interface ModelSurfaceDrawing {
+interface ModelSurfaceDrawing {
   readonly name: 'basal' | 'apical';
   readonly faces: 'outside' | 'lumen';
   /** x, y, z per vertex, three vertices per triangle (unshared), µm in the volume's coordinates. */
@@ -210,7 +210,7 @@ function across(axis: readonly number[]): [number[], number[]] {
 }
 
 /** Maps unrolled texel coordinates of the tube model (x around, y along) to the volume's µm. */
-export function tubePoint(geometry: TubeGeometry, grid: Grid, radius: number): (x: number, y: number, out: Float64Array, o: number) => void {
+function tubePoint(geometry: TubeGeometry, grid: Grid, radius: number): (x: number, y: number, out: Float64Array, o: number) => void {
   const [u, v] = across(geometry.axis);
   const { axis, centre } = geometry;
   return (x, y, out, o) => {

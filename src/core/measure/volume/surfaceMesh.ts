@@ -13,7 +13,7 @@
  *   blocks' terraces without shrinking the surface.
  * Triangles are oriented with their normals leaving the mask.
  */
-import { signedVolume as meshSignedVolume } from '../../mesh/types';
+import { signedVolume } from '../../mesh/types';
 
 export interface SurfaceMesh {
   /** x, y, z per vertex, µm from the volume's corner. */
@@ -140,7 +140,7 @@ export function maskSurfaceMesh(
   }
   const mesh = { positions: Float64Array.from(positions), indices: Uint32Array.from(indices), blocks: [bx, by, bz] as [number, number, number] };
   taubin(mesh.positions, mesh.indices, 10);
-  if (signedVolume(mesh.positions, mesh.indices) < 0) {
+  if (signedVolume(mesh) < 0) {
     for (let t = 0; t < mesh.indices.length; t += 3) [mesh.indices[t + 1], mesh.indices[t + 2]] = [mesh.indices[t + 2], mesh.indices[t + 1]];
   }
   return mesh;
@@ -177,9 +177,4 @@ function taubin(p: Float64Array, t: Uint32Array, rounds: number): void {
     }
     p.set(next);
   }
-}
-
-/** Volume enclosed by a closed, consistently oriented mesh (positive when its normals point out). */
-export function signedVolume(p: ArrayLike<number>, t: ArrayLike<number>): number {
-  return meshSignedVolume({ positions: p, indices: t });
 }

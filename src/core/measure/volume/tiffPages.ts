@@ -50,12 +50,12 @@ const TYPE_SIZE: Record<number, number> = { 1: 1, 2: 1, 3: 2, 4: 4, 5: 8, 6: 1, 
 const MAX_ENTRIES = 4096;
 
 /** Most pages (z-slices) a volume may have. */
-export const MAX_PAGES = 65536;
+const MAX_PAGES = 65536;
 
 /** Most values a tag we decode may hold (strip or tile offsets of one page). */
 const MAX_TAG_VALUES = 2 ** 22;
 
-export function isClassicOrBigTiff(bytes: Uint8Array): boolean {
+function isClassicOrBigTiff(bytes: Uint8Array): boolean {
   if (bytes.length < 8) return false;
   const le = bytes[0] === 0x49 && bytes[1] === 0x49;
   const be = bytes[0] === 0x4d && bytes[1] === 0x4d;

@@ -8,7 +8,7 @@ import type { LateralContactRecord, VolumeExclusion, VolumeMeasuredResult } from
 export const LAYER_NAMES = ['basal', 'apical'] as const;
 
 /** Whether any lumen voxel (a background component or --lumen-label) lies on a face of the volume. */
-export function lumenOnFaces(classes: Uint8Array, W: number, H: number, D: number): boolean {
+function lumenOnFaces(classes: Uint8Array, W: number, H: number, D: number): boolean {
   const at = (x: number, y: number, z: number) => classes[(z * H + y) * W + x] === LUMEN;
   for (let y = 0; y < H; y++) for (let x = 0; x < W; x++) if (at(x, y, 0) || at(x, y, D - 1)) return true;
   for (let z = 0; z < D; z++) {

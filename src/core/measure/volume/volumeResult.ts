@@ -20,7 +20,7 @@ export interface VolumeSurfaceRecord {
   readonly contactPairs: number;
 }
 
-export interface VolumeInputs {
+interface VolumeInputs {
   readonly files: { readonly name: string; readonly bytes: number; readonly format: 'tiff'; readonly pages: number }[];
   readonly volume: {
     readonly width: number;

@@ -15,15 +15,15 @@ import type { LabelVolume, VolumeArray } from './tiffVolume';
 import { disjointSets } from './disjointSets';
 
 /** Most cells a volume may have (pair keys of dense ids stay exact doubles). */
-export const MAX_CELLS = 2 ** 24;
+const MAX_CELLS = 2 ** 24;
 
 export const CELL = 0;
 export const OUTSIDE = 1;
 export const LUMEN = 2;
-export const POCKET = 3;
+const POCKET = 3;
 const UNVISITED = 4;
 
-export interface BackgroundComponent {
+interface BackgroundComponent {
   readonly voxels: number;
   /** Voxels on the volume's faces. */
   readonly faceVoxels: number;

@@ -30,7 +30,7 @@ export function parseVoxelSizeOption(text: string): { x: number; y: number; z: n
 const positive = (v: number | null | undefined): v is number => v != null && Number.isFinite(v) && v > 0;
 
 /** The ImageJ calibration, or null when the file has none (or only pixel units, or a `spacing=` that is no distance). */
-export function imagejVoxelSize(chain: TiffChain): VoxelSize | null {
+function imagejVoxelSize(chain: TiffChain): VoxelSize | null {
   const imagej = parseImageJDescription(chain.description ?? undefined);
   if (!imagej?.unit) return null;
   const unit = micronsPerUnit(imagej.unit);

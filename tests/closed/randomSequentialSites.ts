@@ -1,5 +1,7 @@
 /**
- * The lab's seeding on closed surfaces: random sites uniform in surface area with a minimum
+ * Sites for the restricted Voronoi tests and bench/restrictedVoronoi.ts, seeded as the lab seeds
+ * closed surfaces (the product's placement is placeClosedSites in src/core/closed/geometry.ts, on
+ * the cube-map geometry image): random sites uniform in surface area with a minimum
  * distance, by random sequential addition (RSA): draw a uniform point, keep it when it is at
  * least `minSpacing` µm (3D Euclidean distance) from every site kept so far, otherwise draw
  * again. Reproducible from `seed`. Pure: no Lloyd, no GPU.
@@ -17,12 +19,12 @@
  * `minSpacing` (the config's fault: exit 2) and the largest spacing that is likely to fit. Neighbour checks use a hash
  * grid of cells `minSpacing` wide (typed arrays, collisions checked by distance).
  */
-import { ConfigError } from '../config/configError';
-import { createRandom, searchCdf } from '../random';
-import { RSA_JAMMING_COVERAGE } from '../sites';
-import { areaWeightedVertexNormals, triangleArea } from '../mesh/types';
-import { ellipsoidArea } from './conicArc';
-import type { RestrictedSurface } from './restrictedSurface';
+import { ConfigError } from '../../src/core/config/configError';
+import { createRandom, searchCdf } from '../../src/core/random';
+import { RSA_JAMMING_COVERAGE } from '../../src/core/sites';
+import { areaWeightedVertexNormals, triangleArea } from '../../src/core/mesh/types';
+import { ellipsoidArea } from '../../src/core/closed/conicArc';
+import type { RestrictedSurface } from '../../src/core/closed/restrictedSurface';
 
 export interface RandomSequentialOptions {
   /** Consecutive rejected draws before giving up (default 20,000). */
