@@ -8,9 +8,6 @@ import { GpuCapabilityError, type GpuCapabilities } from './context';
 export type CentroidPath = 'blend' | 'gather' | 'readback';
 export type RequestedCentroidPath = CentroidPath | 'auto';
 
-/** The two geometry-image layouts the GPU engines run on: core/config/surfaceLayout.ts's layouts. */
-export type SurfaceFamilyName = SurfaceLayoutName;
-
 export interface CentroidPathChoice {
   readonly path: CentroidPath;
   /** One sentence: why this path (recorded in the result). */
@@ -27,7 +24,7 @@ export interface CentroidPathChoice {
  *   pass: a requested "gather" runs the readback).
  * A requested "blend" without EXT_float_blend is refused with what to do instead.
  */
-export function chooseCentroidPath(family: SurfaceFamilyName, requested: RequestedCentroidPath, capabilities: GpuCapabilities): CentroidPathChoice {
+export function chooseCentroidPath(family: SurfaceLayoutName, requested: RequestedCentroidPath, capabilities: GpuCapabilities): CentroidPathChoice {
   if (requested === 'blend' && !capabilities.floatBlend) {
     throw new GpuCapabilityError('centroidPath: "blend" needs EXT_float_blend, which this WebGL2 context lacks; use "auto" or "gather"');
   }

@@ -14,10 +14,6 @@ export interface GpuCapabilities {
 /** Renderer strings of CPU rasterizers (Chromium's SwiftShader, Mesa's llvmpipe/softpipe, WARP). */
 const SOFTWARE_RENDERER = /swiftshader|llvmpipe|softpipe|swrast|software rasterizer|basic render driver/i;
 
-export function isSoftwareRenderer(rendererName: string): boolean {
-  return SOFTWARE_RENDERER.test(rendererName);
-}
-
 /** A three.js renderer bound to a WebGL2 context, in a page or in Node (headless-gl). */
 export interface GpuContext {
   readonly renderer: THREE.WebGLRenderer;
@@ -64,7 +60,7 @@ export function wrapContext(
       renderer: name,
       maxTextureSize: gl.getParameter(gl.MAX_TEXTURE_SIZE) as number,
       floatBlend,
-      softwareRenderer: isSoftwareRenderer(name),
+      softwareRenderer: SOFTWARE_RENDERER.test(name),
     },
     dispose() {
       renderer.dispose();

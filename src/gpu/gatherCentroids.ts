@@ -104,13 +104,6 @@ export class GatherCentroids {
     return sums;
   }
 
-  /** The largest window half-size in use (texels). */
-  get maxRadius(): number {
-    let max = 0;
-    for (let i = 0; i < this.siteCount; i++) max = Math.max(max, this.radii[i]);
-    return max;
-  }
-
   dispose(): void {
     this.pass.dispose();
     for (const target of this.targets) target.dispose();
@@ -144,7 +137,8 @@ export class GatherCentroids {
   /** Draws the tiles of the largest window; each pixel only walks its own window's part. */
   private drawWindows(): THREE.WebGLRenderTarget {
     const { uniforms } = this.pass;
-    const radius = this.maxRadius;
+    let radius = 0; // the largest window half-size in use (texels)
+    for (let i = 0; i < this.siteCount; i++) radius = Math.max(radius, this.radii[i]);
     uniforms.maxRadius.value = radius;
     this.radiusTexture.needsUpdate = true;
     const span = (length: number, periodic: boolean) => (periodic && 2 * radius + 1 >= length ? length : 2 * radius + 1);

@@ -1,11 +1,10 @@
 import type * as THREE from 'three';
-import { LAYOUTS, maxResolution } from '../core/config/surfaceLayout';
+import { LAYOUTS, maxResolution, type SurfaceLayoutName } from '../core/config/surfaceLayout';
 import { texelEdgeTable } from '../core/cubemap/cubemap';
 import type { Grid } from '../core/grid';
 import { accumulateCentroidRows } from '../core/labels';
 import cubeMetric from '../shaders/cubeMetric.glsl';
 import gridMetric from '../shaders/gridMetric.glsl';
-import type { SurfaceFamilyName } from './centroidPolicy';
 
 /**
  * Values per site in GpuEngine.sums: w·dx, w·dy, w·dz, w, w·|d|², with d the metric's offset
@@ -22,7 +21,7 @@ export const SUMS_STRIDE = 5;
  * map are its two instances; the engine never asks which one it has.
  */
 export interface TexelLayout {
-  readonly family: SurfaceFamilyName;
+  readonly family: SurfaceLayoutName;
   readonly width: number;
   readonly height: number;
   /** Coordinates per site: 2 (grid, texel units) or 3 (cube map, µm; plus its atlas texel). */

@@ -1,6 +1,6 @@
 import { engineNameFor, type Config } from '../core/config';
-import { LAYOUTS } from '../core/config/surfaceLayout';
-import { chooseCentroidPath, type CentroidPath, type SurfaceFamilyName } from '../gpu/centroidPolicy';
+import { LAYOUTS, type SurfaceLayoutName } from '../core/config/surfaceLayout';
+import { chooseCentroidPath, type CentroidPath } from '../gpu/centroidPolicy';
 import type { GpuCapabilities } from '../gpu/context';
 
 /** Which engine runs Lloyd and finds the neighbours of a run, and why (recorded in the result). */
@@ -9,7 +9,7 @@ export type EngineChoice = GpuEngineChoice | ExactEngineChoice;
 /** Jump flood and centroid passes in WebGL2 render targets. */
 interface GpuEngineChoice {
   readonly name: 'gpu';
-  readonly family: SurfaceFamilyName;
+  readonly family: SurfaceLayoutName;
   /** How the GPU sums centroids. */
   readonly centroidPath: CentroidPath;
   /** One line: why this engine and centroid path. */
@@ -19,7 +19,7 @@ interface GpuEngineChoice {
 /** Lloyd on the exact Voronoi diagram on the CPU (planes and tubes): every analysis exact, no label textures. */
 interface ExactEngineChoice {
   readonly name: 'exact';
-  readonly family: SurfaceFamilyName;
+  readonly family: SurfaceLayoutName;
   readonly centroidPath: null;
   readonly reason: string;
 }
@@ -32,7 +32,7 @@ interface ExactEngineChoice {
  *   software renderer (there the "GPU" is the CPU, and the exact computation costs a fraction of
  *   a jump flood), unless the labels method is asked for, and the GPU engine otherwise.
  */
-export function chooseEngine(config: Config, family: SurfaceFamilyName, capabilities: GpuCapabilities): EngineChoice {
+export function chooseEngine(config: Config, family: SurfaceLayoutName, capabilities: GpuCapabilities): EngineChoice {
   if (engineNameFor(config, capabilities) === 'exact') {
     return exact(
       family,
@@ -52,7 +52,7 @@ export function chooseEngine(config: Config, family: SurfaceFamilyName, capabili
   return { name: 'gpu', family, centroidPath: path.path, reason: `${why}; centroid path ${path.path} (${path.reason})` };
 }
 
-function exact(family: SurfaceFamilyName, reason: string): ExactEngineChoice {
+function exact(family: SurfaceLayoutName, reason: string): ExactEngineChoice {
   return { name: 'exact', family, centroidPath: null, reason };
 }
 

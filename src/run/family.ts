@@ -1,7 +1,7 @@
 import type { SurfaceAdjacency } from '../core/analysis';
 import type { Config } from '../core/config';
+import type { SurfaceLayoutName } from '../core/config/surfaceLayout';
 import type { GrayImage } from '../core/density';
-import type { SurfaceFamilyName } from '../gpu/centroidPolicy';
 import type { GpuContext } from '../gpu/context';
 import type { IterationRecord } from '../gpu/lloyd';
 import type { MeshFile } from './closedMesh';
@@ -73,7 +73,7 @@ export interface Labeller<Layer, Projected> {
  * Layer: one surface of the stack; Projected: the sites moved onto a layer.
  */
 export interface SurfaceFamily<C extends Config, Geometry, Sites, Layer extends StackLayer, Projected> {
-  readonly name: SurfaceFamilyName;
+  readonly name: SurfaceLayoutName;
   /** Checks what can be checked before any work, then builds the seeded surface. */
   prepare(config: C, inputs: RunInputs): Promise<Geometry>;
   /** Checks the sheet (offsets, thickness) against the prepared surface; throws ConfigError. */
