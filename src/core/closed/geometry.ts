@@ -2,6 +2,7 @@
  * Pure geometry of closed sheets on cube-map geometry images (no GL): initial sites, offset
  * (apical) surfaces, label adjacency across face edges, and the curvature bound for offsets of a mesh.
  */
+import { ConfigError } from '../config/configError';
 import type { SurfaceAdjacency } from '../analysis/adjacency';
 import { ContactRows, type ContactLength } from '../labels';
 import { texelFromIndex, texelIndex, wrapTexel } from '../cubemap/cubemap';
@@ -68,7 +69,11 @@ export function placeClosedSites(image: CubeGeometryImage, projector: ClosedProj
   const taken = new Set<number>();
   while (placed < count) {
     if (failures > 20000) {
-      throw new Error(`minSpacing: could place only ${placed} of ${count} sites at least ${minSpacing} µm apart; lower minSpacing or cells`);
+      // A config the surface cannot hold (exit 2 naming the field; a sweep records the point).
+      throw new ConfigError(
+        'minSpacing',
+        `minSpacing: could place only ${placed} of ${count} sites at least ${minSpacing} µm apart; lower minSpacing or cells`,
+      );
     }
     const texel = searchCdf(cdf, texels, random.next() * total);
     // Jitter within the texel: up to half the spacing towards the neighbours along i and j
