@@ -17,7 +17,7 @@ import { readFileSync, writeFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { LAB_PROTOCOL, type LabProtocolSettings } from '../src/core/analysis/protocol';
 import { labTubeTable, type SurfaceOf } from '../src/core/analysis/protocolTube';
-import { makeGrid, validateConfig } from '../src/core/config';
+import { makeGrid, validateConfig, type PlanarConfig } from '../src/core/config';
 import { ExactLloydRun } from '../src/core/exactEngine/exactLloyd';
 import { exactSurface } from '../src/core/exactEngine/exactSurface';
 import { PlanarVoronoi } from '../src/core/exactEngine/planarVoronoi';
@@ -70,7 +70,8 @@ function stats(values: number[]) {
 
 /** % scutoids (exact adjacency) per realization, Voronoi k and ratio: [r][k index][ratio index]. */
 function compute(sweep: ReturnType<typeof spec>, seeds: number[]): number[][][] {
-  const config = validateConfig({ ...sweep.base, seed: seeds[0] });
+  // The published tube: a planar (tube) config.
+  const config = validateConfig({ ...sweep.base, seed: seeds[0] }) as PlanarConfig;
   const grid = makeGrid(config);
   const sheet = config.sheet;
   const settings: LabProtocolSettings = { ...LAB_PROTOCOL, layerStep: sheet.layerStep ?? LAB_PROTOCOL.layerStep, validityMaxRatio: sheet.validityMaxRatio };
@@ -116,7 +117,7 @@ export function build(): ReferenceDocument {
       points: VORONOI_K.map((k, ki) => point(ki, si, k)),
     })),
   ];
-  const doc = {
+  const doc: ReferenceDocument = {
     format: REFERENCE_FORMAT,
     version: REFERENCE_FORMAT_VERSION,
     title: `tissue-sheet ${version}: % scutoids on the published tube (200 cells), protocol lab, exact engine, ${REALIZATIONS} realizations — a reproduction, not the paper's numbers`,
@@ -141,14 +142,18 @@ export function build(): ReferenceDocument {
 
 if (process.argv[1] && fileURLToPath(import.meta.url) === process.argv[1]) {
   const start = performance.now();
-  const text = `${JSON.stringify(build(), null, 1)}\n`;
+  const doc = build();
   const seconds = ((performance.now() - start) / 1000).toFixed(1);
   const runs = VORONOI_K.length * RATIOS.length * REALIZATIONS;
   if (process.argv.includes('--check')) {
-    const same = readFileSync(OUTPUT, 'utf8') === text;
+    // The same document, whatever the layout (the committed file is laid out by Prettier).
+    const same = JSON.stringify(JSON.parse(readFileSync(OUTPUT, 'utf8'))) === JSON.stringify(doc);
     console.log(`${same ? 'up to date' : 'DIFFERS'}: ${OUTPUT} (${runs} runs in ${seconds} s)`);
     process.exit(same ? 0 : 1);
   }
-  writeFileSync(OUTPUT, text);
+  // Laid out as `npm run format` lays it out, so the two never fight over the file.
+  const prettier = await import('prettier');
+  const options = await prettier.resolveConfig(OUTPUT);
+  writeFileSync(OUTPUT, await prettier.format(JSON.stringify(doc, null, 1), { ...options, parser: 'json', filepath: OUTPUT }));
   console.log(`wrote ${OUTPUT}: ${runs} runs in ${seconds} s`);
 }
