@@ -14,6 +14,17 @@
  * flood's short jumps hardly do: over 20-iteration Lloyd runs on open and periodic grids the
  * mislabeled fraction from iteration 5 on was the same with and without it (see tests/gpu/jumpFlood.test.ts, which
  * checks warm floods against brute force and against a cold flood of the same sites).
+ *
+ * A cube map floods each face's n x n square (floodWidth = n): steps n/2, ..., 1 carry a label
+ * at most n - 1 texels, across a whole face but not across the next one, so texels far from
+ * every site stayed unlabelled (1 site on a sphere: about 40 % of it; a few sites: the far
+ * part of a face without a site). A cold flood therefore starts with cubeFaceHops
+ * (src/core/cubemap/cubemap.ts) steps of n, each to the neighbouring faces (the largest step the
+ * cube map's stepTexel follows: at most one face beyond an edge). After them every face holds
+ * a label, and the halving steps spread it over the whole face: a chain of steps from any
+ * texel of a face to any other stays inside that face, and labels are replaced, never
+ * removed. With a site on every face (almost every run of a few dozen cells or more) no hop
+ * runs and the schedule is the plain one. A warm flood starts from complete labels: no hop.
  */
 export type JumpFloodVariant = 'jfa' | 'jfa+2' | '1+jfa';
 
@@ -45,6 +56,8 @@ export function warmSchedule(width: number, height: number, maxDisplacement: num
 export class FloodSchedules {
   readonly cold: readonly number[];
   private readonly warm = new Map<number, readonly number[]>();
+  /** The cold schedule after 1 and 2 hops of a whole side (cube faces). */
+  private readonly hopped: readonly (readonly number[])[];
 
   constructor(
     private readonly width: number,
@@ -52,11 +65,15 @@ export class FloodSchedules {
     variant: JumpFloodVariant,
   ) {
     this.cold = coldSchedule(width, height, variant);
+    this.hopped = [this.cold, [width, ...this.cold], [width, width, ...this.cold]];
   }
 
-  /** The cold schedule, or the warm one for sites that moved at most `maxDisplacement` texels. */
-  steps(maxDisplacement?: number): readonly number[] {
-    if (maxDisplacement === undefined) return this.cold;
+  /**
+   * The cold schedule (after `hops` steps of the whole width: see cubeFaceHops), or the warm
+   * one for sites that moved at most `maxDisplacement` texels.
+   */
+  steps(maxDisplacement?: number, hops = 0): readonly number[] {
+    if (maxDisplacement === undefined) return this.hopped[hops];
     const first = warmFirstStep(this.width, this.height, maxDisplacement);
     let steps = this.warm.get(first);
     if (!steps) {

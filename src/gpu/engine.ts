@@ -158,7 +158,7 @@ export class GpuEngine {
    * labels, given the largest distance (texels, an upper bound) any site moved since.
    */
   floodLabels(warmFromDisplacement?: number): void {
-    const steps = this.schedules.steps(warmFromDisplacement);
+    const steps = this.schedules.steps(warmFromDisplacement, this.layout.floodHops?.(this.siteData, this.siteCount));
     if (warmFromDisplacement === undefined) {
       // glClear: far cheaper than a pass on software GL.
       this.renderer.setRenderTarget(this.labelTargets[this.current]);
@@ -192,11 +192,8 @@ export class GpuEngine {
       this.packedLabels.read(labels, this.accumulateBand);
       return sums;
     }
-    if (this.gather) {
-      this.gather.compute(labels, staging, this.siteData, this.geometryData);
-    } else {
-      this.scatter(labels, false);
-    }
+    if (this.gather) this.gather.compute(labels, staging, this.siteData, this.geometryData);
+    else this.scatter(labels, false);
     // One pass gives (w dx, w dy, w, energy) on a grid, (w dx, w dy, w dz, w) on a cube map.
     const split = this.layout.defines.SPLIT_ENERGY === 1;
     for (let i = 0; i < siteCount; i++) {

@@ -1,6 +1,6 @@
 import type * as THREE from 'three';
 import { LAYOUTS, maxResolution, type SurfaceLayoutName } from '../core/config/surfaceLayout';
-import { texelEdgeTable } from '../core/cubemap/cubemap';
+import { cubeFaceHops, texelEdgeTable } from '../core/cubemap/cubemap';
 import type { Grid } from '../core/grid';
 import { accumulateCentroidRows } from '../core/labels';
 import cubeMetric from '../shaders/cubeMetric.glsl';
@@ -29,6 +29,8 @@ export interface TexelLayout {
   /** The sides a cold flood must span (the grid; one cube face). */
   readonly floodWidth: number;
   readonly floodHeight: number;
+  /** Steps of floodWidth a cold flood of these sites (GpuEngine's siteData) needs first (cube map: cubeFaceHops). */
+  floodHops?(sites: Float32Array, count: number): number;
   readonly metric: string;
   readonly defines: Record<string, number>;
   readonly uniforms: Record<string, THREE.IUniform>;
@@ -93,6 +95,7 @@ export function cubeLayout(n: number): TexelLayout {
     dimensions: 3,
     floodWidth: n,
     floodHeight: n,
+    floodHops: (sites, count) => cubeFaceHops(n, sites, count),
     metric: cubeMetric,
     defines: { SPLIT_ENERGY: 1 },
     uniforms: { edgeTable: { value: Array.from(texelEdgeTable(n)) } },

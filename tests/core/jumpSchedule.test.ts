@@ -1,4 +1,5 @@
 import { describe, expect, it } from 'vitest';
+import { cubeFaceHops } from '../../src/core/cubemap/cubemap';
 import { coldSchedule, FloodSchedules, nextPowerOfTwo, warmFirstStep, warmSchedule } from '../../src/core/jumpSchedule';
 
 describe('jump flood schedules', () => {
@@ -32,5 +33,29 @@ describe('FloodSchedules (both GPU engines)', () => {
     }
     // displacements with the same first step share one schedule
     expect(schedules.steps(5)).toBe(schedules.steps(6));
+  });
+});
+
+describe('face hops of a cold cube-map flood (few sites)', () => {
+  const n = 8;
+  // Site data as the engine holds it: x, y, z, atlas index; face f's texels are f n² .. (f + 1) n² - 1.
+  const onFaces = (...faces: number[]) => faces.flatMap((f) => [0, 0, 0, f * n * n + 5]);
+  it('needs none with a site on every face, one when several faces hold sites, two when one face holds them all', () => {
+    expect(cubeFaceHops(n, onFaces(0, 1, 2, 3, 4, 5, 5), 7)).toBe(0);
+    for (const faces of [
+      [0, 1],
+      [2, 3],
+      [4, 0, 0],
+      [0, 1, 2, 3, 4],
+    ])
+      expect(cubeFaceHops(n, onFaces(...faces), faces.length)).toBe(1);
+    for (const faces of [[0], [5], [3, 3, 3]]) expect(cubeFaceHops(n, onFaces(...faces), faces.length)).toBe(2);
+  });
+  it('prefixes the cold schedule with that many steps of the whole side; warm schedules have none', () => {
+    const schedules = new FloodSchedules(24, 24, 'jfa+2');
+    expect(schedules.steps(undefined, 0)).toBe(schedules.cold);
+    expect(schedules.steps(undefined, 1)).toEqual([24, ...schedules.cold]);
+    expect(schedules.steps(undefined, 2)).toEqual([24, 24, ...schedules.cold]);
+    expect(schedules.steps(3, 2)).toEqual(warmSchedule(24, 24, 3));
   });
 });

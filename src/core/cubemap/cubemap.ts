@@ -250,3 +250,17 @@ export function wrapTexel(face: number, i: number, j: number, n: number): { face
   const t = directionToTexel(d, n);
   return { face: t.face, i: t.i, j: t.j };
 }
+
+/**
+ * How many steps of a whole face (n) a cold jump flood of the cube map runs before its halving
+ * steps (src/core/jumpSchedule.ts), from the faces that hold a site (`sites`: `stride` values
+ * per site, the atlas index of its texel at offset 3; face = index / n²): 0 when all six do;
+ * 2 when one face holds them all (its opposite face is two faces away); else 1 (every face
+ * without a site then borders one with a site).
+ */
+export function cubeFaceHops(n: number, sites: ArrayLike<number>, count: number, stride = 4): number {
+  let faces = 0;
+  for (let i = 0; i < count; i++) faces |= 1 << Math.floor(sites[stride * i + 3] / (n * n));
+  if (faces === 0b111111) return 0;
+  return faces & (faces - 1) ? 1 : 2;
+}
