@@ -39,7 +39,7 @@ export type SweepRunner<C extends ConfigObject, S> = (config: C, run: SweepRun<C
  * Computes a task's runs (given in `runs` order) and calls `done` once per run as it finishes,
  * in any order; rejects on the first failure (runs already reported stay done).
  */
-export type SweepTaskRunner<C extends ConfigObject, S> = (runs: SweepRun<C>[], done: (run: SweepRun<C>, summary: S) => void) => Promise<void>;
+type SweepTaskRunner<C extends ConfigObject, S> = (runs: SweepRun<C>[], done: (run: SweepRun<C>, summary: S) => void) => Promise<void>;
 
 export interface SweepProgress<C extends ConfigObject = ConfigObject> {
   phase: 'start' | 'done' | 'error';
