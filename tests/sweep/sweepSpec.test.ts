@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { analysisMethods, validateConfig } from '../../src/core/config';
+import { analysisMethods, engineNameFor, validateConfig } from '../../src/core/config';
 import { expandSweep, setPath, summaryColumns, sweepColumns, SweepSpecError, validateSweepSpec } from '../../src/core/sweep';
 
 const base = { surface: { kind: 'tube', radius: 16, length: 200 }, resolution: 64, cells: 20, lloyd: { maxIterations: 1 } };
@@ -153,9 +153,12 @@ describe('runs.csv columns', () => {
           columns.some((c) => c.startsWith('labels.')),
           `${surface.kind} ${adjacency}`,
         ).toBe(adjacency !== 'exact');
-        // on a GPU, the columns' methods are those the pipeline computes (core/config/analysisMethods.ts)
-        const methods = new Set(summaryColumns(config, { softwareRenderer: false }).flatMap((c) => (c.includes('.') ? [c.split('.')[0]] : [])));
-        expect([...methods]).toEqual(analysisMethods(config, 'gpu'));
+        // the columns' methods are those the pipeline computes (core/config/analysisMethods.ts) on
+        // either engine the policy may pick for it (a GPU, or a software renderer)
+        const methods = new Set(columns.flatMap((c) => (c.includes('.') ? [c.split('.')[0]] : [])));
+        const engines = [false, true].map((softwareRenderer) => engineNameFor(config, { softwareRenderer }));
+        const computed = new Set(engines.flatMap((engine) => analysisMethods(config, engine)));
+        expect([...methods].sort()).toEqual([...computed].sort());
       }
     }
   });

@@ -5,17 +5,16 @@
  *
  * It mirrors the pipeline's sweep summary (src/run/sweepSummary.ts), flattened with "." (see
  * flattenSummary): `iterations`, `finalEnergy`, `centroidPath`, then for each adjacency method
- * the config produces on this renderer (core/config/analysisMethods.ts, the description the
- * pipeline computes its analyses from: "labels" unless sheet.adjacency is "exact", "exact"
- * unless it is "labels", on every surface; only "exact" when the engine policy picks the exact
- * CPU engine): `<method>.percentScutoids`,
- * `.scutoids`, `.validCells`, `.excludedCells`, `.meanTransitions`, `.meanWon`, `.meanLost`,
- * `.meanNeighbours3D`, and per surface of
- * the stack (seeded, "layer k" without its space, other) `<method>.<surface>.meanSides` and
- * `<method>.<surface>.polygons.<3..10+>`. A CLI test checks a real run's summary against this.
+ * the config may produce on any renderer (possibleMethods; core/config/analysisMethods.ts, the
+ * description the pipeline computes its analyses from: "labels" unless sheet.adjacency is
+ * "exact", "exact" unless it is "labels", on every surface; only "exact" when the engine policy
+ * picks the exact CPU engine): `<method>.percentScutoids`, `.scutoids`, `.validCells`,
+ * `.excludedCells`, `.meanTransitions`, `.meanWon`, `.meanLost`, `.meanNeighbours3D`, and per
+ * surface of the stack (seeded, "layer k" without its space, other) `<method>.<surface>.meanSides`
+ * and `<method>.<surface>.polygons.<3..10+>`. A CLI test checks a real run's summary against this.
  */
 import { SIDE_CLASSES } from '../analysis';
-import { ADJACENCY_METHODS, methodsOnRenderer, type AdjacencyMethod, type Config, type RendererTraits } from '../config';
+import { ADJACENCY_METHODS, methodsOnRenderer, type AdjacencyMethod, type Config } from '../config';
 import { sheetOffsets } from '../sheetGeometry';
 
 const TOP_COLUMNS = ['iterations', 'finalEnergy', 'centroidPath'] as const;
@@ -51,10 +50,10 @@ function possibleMethods(config: Config): AdjacencyMethod[] {
   return ADJACENCY_METHODS.filter((m) => both.has(m));
 }
 
-/** The summary columns one run of `config` may fill (given a renderer: does fill), in order. */
-export function summaryColumns(config: Config, renderer?: RendererTraits): string[] {
+/** The summary columns one run of `config` may fill, in order. */
+export function summaryColumns(config: Config): string[] {
   const columns: string[] = [...TOP_COLUMNS];
-  for (const method of renderer ? methodsOnRenderer(config, renderer) : possibleMethods(config)) {
+  for (const method of possibleMethods(config)) {
     columns.push(...METHOD_METRICS.map((m) => `${method}.${m}`));
     for (const surface of surfaceColumnNames(config)) columns.push(...surfaceColumns(method, surface));
   }
@@ -66,11 +65,11 @@ export function summaryColumns(config: Config, renderer?: RendererTraits): strin
  * order of the configs' methods: top columns, then per method (labels, exact) its metrics and
  * its surfaces in order of first appearance.
  */
-export function sweepColumns(configs: Iterable<Config>, renderer?: RendererTraits): string[] {
+export function sweepColumns(configs: Iterable<Config>): string[] {
   const surfaces = new Map<string, string[]>(ADJACENCY_METHODS.map((m) => [m, []]));
   const used = new Set<string>();
   for (const config of configs) {
-    for (const method of renderer ? methodsOnRenderer(config, renderer) : possibleMethods(config)) {
+    for (const method of possibleMethods(config)) {
       used.add(method);
       const list = surfaces.get(method)!;
       for (const s of surfaceColumnNames(config)) if (!list.includes(s)) list.push(s);
