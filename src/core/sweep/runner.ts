@@ -94,7 +94,7 @@ export function baseColumns(fields: readonly string[]): string[] {
   return ['key', ...fields, 'realization', 'seed'];
 }
 
-export interface ResumeState<C extends ConfigObject> {
+interface ResumeState<C extends ConfigObject> {
   remaining: SweepRun<C>[];
   done: SweepRun<C>[];
   /** Done rows whose seed differs from the run's seed. */
