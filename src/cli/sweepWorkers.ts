@@ -151,10 +151,6 @@ export class SweepWorkers {
     await Promise.all(extra.map((slot) => slot.worker.terminate()));
   }
 
-  get size(): number {
-    return this.slots.length;
-  }
-
   /** False once every thread failed or exited (the caller then computes on its own thread). */
   get usable(): boolean {
     return this.slots.some((s) => !s.reserved);

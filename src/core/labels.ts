@@ -21,9 +21,9 @@ import { type Grid, wrapDelta } from './grid';
  * cleared): [Σ w·dx, Σ w·dy, Σ w, Σ w·d²], where (dx, dy) is the minimum-image offset in texel
  * units from the SITE to the texel centre and d² the squared physical distance (µm²); the
  * GPU centroid passes accumulate the same. Texels labelled -1 are skipped. `labels`
- * holds the band's rows only (row firstRow at index 0), `sites` positions with `siteStride`
- * floats per site. For callers that read labels back in bands (the GPU engine's readback
- * centroid path); allocates nothing.
+ * holds the band's rows only (row firstRow at index 0), `sites` 4 floats per site, its
+ * position first (the GPU engine's site layout). For callers that read labels back in bands
+ * (the GPU engine's readback centroid path); allocates nothing.
  *
  * A row crosses a cell in one run of equal labels, and within a run dy is constant, so a run
  * sums only w, w·dx and w·dx² in local variables; Σw·dy and Σw·d² follow when it ends
@@ -35,7 +35,6 @@ export function accumulateCentroidRows(
   firstRow: number,
   rows: number,
   sites: Float32Array,
-  siteStride: number,
   count: number,
   weight: Float32Array | null,
   sums: Float64Array,
@@ -53,10 +52,10 @@ export function accumulateCentroidRows(
     for (let i = 0; i < width; i++) {
       const id = labels[r * width + i];
       if (id !== run) {
-        if (run >= 0) addRun(grid, sums, run, j, sites[siteStride * run + 1], sumW, sumWdx, sumWdx2);
+        if (run >= 0) addRun(grid, sums, run, j, sites[4 * run + 1], sumW, sumWdx, sumWdx2);
         if (id >= count) throw new Error(`reduceCentroids: label ${id} at texel (${i}, ${j}) but only ${count} sites`);
         run = id;
-        siteX = id >= 0 ? sites[siteStride * id] : 0;
+        siteX = id >= 0 ? sites[4 * id] : 0;
         sumW = 0;
         sumWdx = 0;
         sumWdx2 = 0;
@@ -70,7 +69,7 @@ export function accumulateCentroidRows(
       sumWdx += w * dx;
       sumWdx2 += w * dx * dx;
     }
-    if (run >= 0) addRun(grid, sums, run, j, sites[siteStride * run + 1], sumW, sumWdx, sumWdx2);
+    if (run >= 0) addRun(grid, sums, run, j, sites[4 * run + 1], sumW, sumWdx, sumWdx2);
   }
 }
 

@@ -74,7 +74,7 @@ export function gridLayout(grid: Grid): TexelLayout {
       // accumulateCentroidRows sums runs of equal ids (4 values a site); spread them to SUMS_STRIDE.
       if (band.length !== 4 * count) band = new Float64Array(4 * count);
       else band.fill(0);
-      accumulateCentroidRows(grid, ids, firstRow, rows, sites, 4, count, geometry, band);
+      accumulateCentroidRows(grid, ids, firstRow, rows, sites, count, geometry, band);
       for (let i = 0; i < count; i++) {
         const o = SUMS_STRIDE * i;
         sums[o] += band[4 * i];

@@ -10,7 +10,7 @@ import {
   geometryValues,
   readCsvTable,
   readRunsCsv,
-  runRow,
+  runCells,
   runSweep,
   validateSweepSpec,
   variedFields,
@@ -93,7 +93,7 @@ describe('sweep --workers N', () => {
         engines.add(result.engine.name);
         // The row: the run's base geometry (units.ts) and its summary, computed alone.
         const summary = { ...geometryValues(validateConfig(run.config), fields), ...sweepSummary(result) };
-        expect(byKey.get(run.key), run.key).toEqual(runRow(run, fields, summary, table.header));
+        expect(byKey.get(run.key), run.key).toEqual(runCells(run, fields, summary, table.header).row);
       }
       expect([...engines].sort()).toEqual(['exact', 'gpu']);
     } finally {

@@ -236,7 +236,7 @@ describe('reduceCentroids and the Lloyd move', () => {
       const banded = new Float64Array(4 * count);
       for (let y0 = 0; y0 < g.height; y0 += 5) {
         const rows = Math.min(5, g.height - y0);
-        accumulateCentroidRows(g, labels.subarray(y0 * g.width, (y0 + rows) * g.width), y0, rows, sites4, 4, count, weight, banded);
+        accumulateCentroidRows(g, labels.subarray(y0 * g.width, (y0 + rows) * g.width), y0, rows, sites4, count, weight, banded);
       }
       // The oracle sums texel by texel from the definition (tests/oracles/labels.ts).
       const direct = reduceCentroids(g, labels, sites2, weight);

@@ -1,12 +1,13 @@
 import { describe, expect, it } from 'vitest';
-import { csvField, flatList, flatSummary, runCells, type SweepRun } from '../../src/core/sweep';
+import { csvField, flatList, runCells, type SweepRun } from '../../src/core/sweep';
 import { Random } from '../../src/core/random';
 import { recordOf } from '../../src/core/sweep/records';
 
 /**
- * runCells' row from a thread's flat key list, from a flat record, and the text an independent
- * formatting of the same cells gives (String of a number, csvField of the rest), whatever the
- * values repeat (its number texts are kept) or which columns a run's base fills.
+ * runCells' row from a thread's flat key list, from a record (a runner's summary, which
+ * runCells flattens), and the text an independent formatting of the same cells gives (String of
+ * a number, csvField of the rest), whatever the values repeat (its number texts are kept) or
+ * which columns a run's base fills.
  */
 describe('runCells', () => {
   it('the same cells, row and line from a key list and from a record, numbers as String(n)', () => {
@@ -36,7 +37,7 @@ describe('runCells', () => {
       } as unknown as SweepRun;
       const geometry = { tube: trial % 2 === 0 ? 'tube' : 'plane' };
       const fromList = runCells(run, ['k'], flatList(summaryKeys, values), header, geometry);
-      const record = flatSummary(Object.fromEntries(summaryKeys.map((key, n) => [key, values[n]])));
+      const record = Object.fromEntries(summaryKeys.map((key, n) => [key, values[n]]));
       const fromRecord = runCells(run, ['k'], record, header, geometry);
       expect(fromList.cells).toEqual(fromRecord.cells);
       expect(fromList.row).toEqual(fromRecord.row);

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { aggregateRows, aggregateToCsv, aggregateToJson, flatList, flatSummary, meanSd, runCells, runSweep, type SweepRun } from '../../src/core/sweep';
+import { aggregateRows, aggregateToCsv, aggregateToJson, flatList, meanSd, runCells, runSweep, type SweepRun } from '../../src/core/sweep';
 import { Random } from '../../src/core/random';
 
 /** The statistics as the reduce-based meanSd computed them before (the oracle for the loops). */
@@ -44,8 +44,11 @@ describe('sweep rows keep their typed cells for the aggregate', () => {
         for (const c of ['a', 'b', 'c', 'd']) summary[c] = random.next() < 0.2 ? odd[Math.floor(random.next() * odd.length)] : random.next() * 100 - 50;
         summary.text = 'label';
         const run = { key: `p${p}#r${r}`, point: { k: p }, realization: r, seed: r, config: {}, pointKey: `k=${p}` } as unknown as SweepRun;
-        // Flat as it is (flatSummary): array and object values are cells, not flattened.
-        rows.push(runCells(run, ['k'], r % 2 === 0 ? flatSummary(summary) : flatList(Object.keys(summary), Object.values(summary)), header).row);
+        // A runner's record (flattened by runCells) or a thread's key list; array and object
+        // values are cells only in a key list (a record's would be flattened into other columns).
+        const nested = Object.values(summary).some((v) => typeof v === 'object' && v !== null);
+        const flat = r % 2 === 0 && !nested ? summary : flatList(Object.keys(summary), Object.values(summary));
+        rows.push(runCells(run, ['k'], flat, header).row);
       }
     }
     // The same rows as a reader of runs.csv gets them: text only, no typed cells.

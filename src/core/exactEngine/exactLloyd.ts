@@ -27,9 +27,6 @@ export interface ExactLloydOptions {
   readonly tolerance: number;
   /** 1 = plain Lloyd; up to ~1.9 over-relaxes. */
   readonly overRelaxation: number;
-  /** Ignored: the exact diagram has no warm start (accepted so LloydOptions can be passed as is). */
-  readonly warmStart?: boolean;
-  readonly profile?: boolean;
 }
 
 /** One iteration: the GPU engine's record (jumpFloodPasses 0; see IterationRecord for the timings). */

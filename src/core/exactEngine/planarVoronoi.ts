@@ -23,10 +23,11 @@
  * - Open axes: a cell is the Voronoi cell clipped to [0, L]. Cells of sites on the hull of the
  *   points are unbounded: their two rays are cut at a far distance (1e4 domain sizes) before
  *   clipping, so the far edges are always clipped away.
- * - `cell(i, out)` writes cell i as a labelled polygon relative to its site (µm): the label of an
- *   edge is the site across it (j for an original, n + j for a copy of site j: label % n is the
- *   site id), or a negative code for a domain edge (BORDER_CODES). Labels of edges of zero length
- *   are kept; callers filter with `epsilon`.
+ * - `cellAt(k, out)` writes the cell of the k-th site in the spatial order (site siteAt(k)) as a
+ *   labelled polygon relative to its site (µm): the label of an edge is the site across it (j for
+ *   an original, n + j for a copy of site j: label % n is the site id), or a negative code for a
+ *   domain edge (the EDGE_* constants). Labels of edges of zero length are kept; callers filter with
+ *   `epsilon`.
  * - Degenerate input (no triangle that is not flat, as d3-delaunay's collinear test) falls back
  *   to exactVoronoi for polygons (then every edge is labelled FAR: no neighbours are read from it).
  */
@@ -80,11 +81,11 @@ export class PlanarVoronoi {
   /**
    * Site of original point p (points are the sites in a spatial order: by distance from the
    * domain's centre, in rings of about one site, the order the triangulation inserts them, so
-   * the triangulation and a walk over the cells in this order read recent memory), and the
-   * point of each site.
+   * the triangulation and a walk over the cells in this order read recent memory).
    */
   private readonly order: Int32Array;
-  private readonly rank: Int32Array;
+  /** Each site's ring (sortSpatially's scratch). */
+  private readonly bucketOf: Int32Array;
   private bucketStart = new Int32Array(0);
   /** A diagram of siteX, siteY on this grid is built. */
   private built = false;
@@ -119,7 +120,7 @@ export class PlanarVoronoi {
     this.siteX = new Float64Array(count);
     this.siteY = new Float64Array(count);
     this.order = new Int32Array(count);
-    this.rank = new Int32Array(count);
+    this.bucketOf = new Int32Array(count);
     this.copies = new Uint8Array(count);
     this.setGrid(grid);
   }
@@ -251,9 +252,9 @@ export class PlanarVoronoi {
     return this.order[k];
   }
 
-  /** Counting sort of the sites into rings around the centre, stable in id: order and rank. */
+  /** Counting sort of the sites into rings around the centre, stable in id: order. */
   private sortSpatially(): void {
-    const { count: n, siteX, siteY, order, rank, widthUm: W, heightUm: H } = this;
+    const { count: n, siteX, siteY, order, bucketOf, widthUm: W, heightUm: H } = this;
     // Rings around the domain's centre, about one site per bucket: the order in which the
     // triangulation inserts points (by distance from a centre), so the triangles of nearby rings
     // are made together, and walking the cells in this order reads recent memory.
@@ -264,19 +265,17 @@ export class PlanarVoronoi {
     const cx = W / 2;
     const cy = H / 2;
     const scale = buckets / (cx * cx + cy * cy || 1);
-    // The bucket of each site, kept in rank for the second pass.
+    // The bucket of each site, kept for the second pass.
     for (let i = 0; i < n; i++) {
       const dx = siteX[i] - cx;
       const dy = siteY[i] - cy;
       const bucket = Math.min(buckets - 1, Math.floor((dx * dx + dy * dy) * scale));
-      rank[i] = bucket;
+      bucketOf[i] = bucket;
       start[bucket + 1]++;
     }
     for (let b = 0; b < buckets; b++) start[b + 1] += start[b];
     for (let i = 0; i < n; i++) {
-      const p = start[rank[i]]++;
-      order[p] = i;
-      rank[i] = p;
+      order[start[bucketOf[i]]++] = i;
     }
   }
 
@@ -357,14 +356,10 @@ export class PlanarVoronoi {
     return true;
   }
 
-  /** Cell i as a labelled polygon relative to its site (µm), clipped to the domain. */
-  cell(i: number, out: PolygonBuffer): PolygonBuffer {
-    return this.cellAt(this.rank[i], out);
-  }
-
   /**
-   * The cell of the k-th site in the spatial order (site siteAt(k), at (xAt(k), yAt(k)) µm), as
-   * cell(): the fast way to walk every cell (everything it reads is close in memory).
+   * The cell of the k-th site in the spatial order (site siteAt(k), at (xAt(k), yAt(k)) µm) as a
+   * labelled polygon relative to its site (µm), clipped to the domain: the fast way to walk every
+   * cell (everything it reads is close in memory).
    */
   cellAt(k: number, out: PolygonBuffer): PolygonBuffer {
     out.clear();

@@ -7,13 +7,9 @@ import type { Grid } from '../grid';
  * what views draw when the exact engine ran (it makes no label textures); no statistic reads it.
  * Polygons are unwrapped around their site, so rows and columns wrap along periodic axes.
  */
-export function rasterizeCells(
-  grid: Grid,
-  voronoi: { readonly cells: readonly Pick<ExactVoronoi['cells'][number], 'id' | 'polygon'>[] },
-  out = new Int32Array(grid.width * grid.height),
-): Int32Array {
-  out.fill(-1);
+export function rasterizeCells(grid: Grid, voronoi: { readonly cells: readonly Pick<ExactVoronoi['cells'][number], 'id' | 'polygon'>[] }): Int32Array {
   const { width, height, periodicX, periodicY } = grid;
+  const out = new Int32Array(width * height).fill(-1);
   for (const cell of voronoi.cells) {
     const p = cell.polygon;
     const n = p.length / 2;

@@ -26,7 +26,7 @@ import { internKeys, recordOf } from './records';
 import { cellNumber, columnPosition, typedCellsOf } from './typedCells';
 import { columnUnit, fileColumn } from './units';
 
-export const RESERVED_COLUMNS = ['key', 'realization', 'seed'] as const;
+const RESERVED_COLUMNS = ['key', 'realization', 'seed'] as const;
 
 export interface ColumnStats {
   mean: number;
@@ -36,7 +36,7 @@ export interface ColumnStats {
   missing: number;
 }
 
-export interface AggregatePoint {
+interface AggregatePoint {
   point: Record<string, string>;
   runs: number;
   stats: Record<string, ColumnStats>;
@@ -189,16 +189,16 @@ function statsByRows(rows: readonly Float64Array[], at: Int32Array, out: ColumnS
 const orEmpty = (x: number): number | string => (Number.isFinite(x) ? x : '');
 
 /** The 95 % confidence interval of the mean (t distribution, not clamped); NaN when n < 2. */
-export function ci95(stats: ColumnStats): [number, number] {
+function ci95(stats: ColumnStats): [number, number] {
   if (stats.n < 2 || !Number.isFinite(stats.se)) return [NaN, NaN];
   const half = tQuantile975(stats.n - 1) * stats.se;
   return [stats.mean - half, stats.mean + half];
 }
 
-export type CsvStatistic = 'mean' | 'sd' | 'ci95low' | 'ci95high' | 'n';
+type CsvStatistic = 'mean' | 'sd' | 'ci95low' | 'ci95high' | 'n';
 
 /** The statistics aggregate.csv writes for a column (see the module comment); none: not written. */
-export function csvStatistics(column: string): readonly CsvStatistic[] {
+function csvStatistics(column: string): readonly CsvStatistic[] {
   const metric = /^(?:labels|exact)\.([^.]+)$/.exec(column)?.[1];
   if (metric !== undefined) {
     return ['percentScutoids', 'scutoids', 'validCells', 'meanTransitions', 'meanWon', 'meanLost', 'meanNeighbours3D'].includes(metric)
@@ -217,7 +217,7 @@ export function aggregateColumns(summary: readonly string[], text: ReadonlySet<s
 }
 
 /** `<column>.<statistic>`, with the column's unit last (n has none). */
-export function statisticColumn(column: string, statistic: CsvStatistic): string {
+function statisticColumn(column: string, statistic: CsvStatistic): string {
   const unit = statistic === 'n' ? null : columnUnit(column);
   return unit === null ? `${column}.${statistic}` : `${column}.${statistic}_${unit}`;
 }

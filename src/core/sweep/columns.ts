@@ -5,44 +5,25 @@
  *
  * It mirrors the pipeline's sweep summary (src/run/sweepSummary.ts), flattened with "." (see
  * flattenSummary): `iterations`, `finalEnergy`, `centroidPath`, then for each adjacency method
- * the config produces on this renderer (core/config/analysisMethods.ts, the description the
- * pipeline computes its analyses from: "labels" unless sheet.adjacency is "exact", "exact"
- * unless it is "labels", on every surface; only "exact" when the engine policy picks the exact
- * CPU engine): `<method>.percentScutoids`,
- * `.scutoids`, `.validCells`, `.excludedCells`, `.meanTransitions`, `.meanWon`, `.meanLost`,
- * `.meanNeighbours3D`, and per surface of
- * the stack (seeded, "layer k" without its space, other) `<method>.<surface>.meanSides` and
- * `<method>.<surface>.polygons.<3..10+>`. A CLI test checks a real run's summary against this.
+ * the config may produce on any renderer (possibleMethods; core/config/analysisMethods.ts, the
+ * description the pipeline computes its analyses from: "labels" unless sheet.adjacency is
+ * "exact", "exact" unless it is "labels", on every surface; only "exact" when the engine policy
+ * picks the exact CPU engine): `<method>.percentScutoids`, `.scutoids`, `.validCells`,
+ * `.excludedCells`, `.meanTransitions`, `.meanWon`, `.meanLost`, `.meanNeighbours3D`, and per
+ * surface of the stack (seeded, "layer k" without its space, other) `<method>.<surface>.meanSides`
+ * and `<method>.<surface>.polygons.<3..10+>`. A CLI test checks a real run's summary against this.
  */
 import { SIDE_CLASSES } from '../analysis';
-import { ADJACENCY_METHODS, methodsOnRenderer, type AdjacencyMethod, type Config, type RendererTraits } from '../config';
+import { ADJACENCY_METHODS, methodsOnRenderer, type AdjacencyMethod, type Config } from '../config';
 import { sheetOffsets } from '../sheetGeometry';
 
-export const TOP_COLUMNS = ['iterations', 'finalEnergy', 'centroidPath'] as const;
+const TOP_COLUMNS = ['iterations', 'finalEnergy', 'centroidPath'] as const;
 /** Summary columns holding text; every other summary column holds a number ("NaN" included). */
 export const TEXT_COLUMNS: ReadonlySet<string> = new Set(['centroidPath']);
-export const METHOD_METRICS = [
-  'percentScutoids',
-  'scutoids',
-  'validCells',
-  'excludedCells',
-  'meanTransitions',
-  'meanWon',
-  'meanLost',
-  'meanNeighbours3D',
-] as const;
-export const METHODS = ADJACENCY_METHODS;
-
-/**
- * Adjacency methods whose statistics a run of `config` reports on a renderer (the GPU engine
- * unless told otherwise): the same description the pipeline computes its analyses from.
- */
-export function runMethods(config: Config, renderer: RendererTraits = { softwareRenderer: false }): AdjacencyMethod[] {
-  return methodsOnRenderer(config, renderer);
-}
+const METHOD_METRICS = ['percentScutoids', 'scutoids', 'validCells', 'excludedCells', 'meanTransitions', 'meanWon', 'meanLost', 'meanNeighbours3D'] as const;
 
 /** Layers between the seeded and the other surface: as many as the stack has (sheetOffsets). */
-export function stackLayerCount(config: Config): number {
+function stackLayerCount(config: Config): number {
   return sheetOffsets(config).length - 2;
 }
 
@@ -64,15 +45,15 @@ function surfaceColumns(method: string, surface: string): string[] {
  * the engine of the first run sharing it, so a sweep allows both outcomes; resume checks that
  * each method's columns are filled all or none (see resume.ts).
  */
-export function possibleMethods(config: Config): AdjacencyMethod[] {
-  const both = new Set([...runMethods(config, { softwareRenderer: false }), ...runMethods(config, { softwareRenderer: true })]);
-  return METHODS.filter((m) => both.has(m));
+function possibleMethods(config: Config): AdjacencyMethod[] {
+  const both = new Set([...methodsOnRenderer(config, { softwareRenderer: false }), ...methodsOnRenderer(config, { softwareRenderer: true })]);
+  return ADJACENCY_METHODS.filter((m) => both.has(m));
 }
 
-/** The summary columns one run of `config` may fill (given a renderer: does fill), in order. */
-export function summaryColumns(config: Config, renderer?: RendererTraits): string[] {
+/** The summary columns one run of `config` may fill, in order. */
+export function summaryColumns(config: Config): string[] {
   const columns: string[] = [...TOP_COLUMNS];
-  for (const method of renderer ? runMethods(config, renderer) : possibleMethods(config)) {
+  for (const method of possibleMethods(config)) {
     columns.push(...METHOD_METRICS.map((m) => `${method}.${m}`));
     for (const surface of surfaceColumnNames(config)) columns.push(...surfaceColumns(method, surface));
   }
@@ -84,18 +65,18 @@ export function summaryColumns(config: Config, renderer?: RendererTraits): strin
  * order of the configs' methods: top columns, then per method (labels, exact) its metrics and
  * its surfaces in order of first appearance.
  */
-export function sweepColumns(configs: Iterable<Config>, renderer?: RendererTraits): string[] {
-  const surfaces = new Map<string, string[]>(METHODS.map((m) => [m, []]));
+export function sweepColumns(configs: Iterable<Config>): string[] {
+  const surfaces = new Map<string, string[]>(ADJACENCY_METHODS.map((m) => [m, []]));
   const used = new Set<string>();
   for (const config of configs) {
-    for (const method of renderer ? runMethods(config, renderer) : possibleMethods(config)) {
+    for (const method of possibleMethods(config)) {
       used.add(method);
       const list = surfaces.get(method)!;
       for (const s of surfaceColumnNames(config)) if (!list.includes(s)) list.push(s);
     }
   }
   const columns: string[] = [...TOP_COLUMNS];
-  for (const method of METHODS) {
+  for (const method of ADJACENCY_METHODS) {
     if (!used.has(method)) continue;
     columns.push(...METHOD_METRICS.map((m) => `${method}.${m}`));
     for (const s of surfaces.get(method)!) columns.push(...surfaceColumns(method, s));

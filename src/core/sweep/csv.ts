@@ -25,12 +25,12 @@ const FORMULA_START = /^'*[=+\-@\t\r]/;
 const PLAIN_NUMBER = /^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$/;
 
 /** A text cell made safe to open in a spreadsheet (see the module comment). */
-export function neutralizeFormula(text: string): string {
+function neutralizeFormula(text: string): string {
   return FORMULA_START.test(text) && !PLAIN_NUMBER.test(text) ? `'${text}` : text;
 }
 
 /** The inverse of neutralizeFormula, applied to every cell read. */
-export function restoreFormula(text: string): string {
+function restoreFormula(text: string): string {
   return text.startsWith("'") && FORMULA_START.test(text) && !PLAIN_NUMBER.test(text.slice(1)) ? text.slice(1) : text;
 }
 

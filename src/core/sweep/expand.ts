@@ -49,7 +49,7 @@ export interface SweepRun<C extends ConfigObject = ConfigObject> {
 }
 
 /** FNV-1a over the UTF-16 code units followed by a murmur3 finalizer: a uint32. */
-export function hash32(text: string): number {
+function hash32(text: string): number {
   let h = 0x811c9dc5;
   for (let i = 0; i < text.length; i++) {
     h ^= text.charCodeAt(i);

@@ -20,9 +20,9 @@ import type { ConfigObject, SweepRun } from './expand';
 import { getPath, valueText } from './expand';
 
 export const FLINTSTONES_RATIO = 'sheet.surfaceRatio';
-export const FLINTSTONES_METRICS = ['exact.meanNeighbours3D', 'labels.meanNeighbours3D'] as const;
+const FLINTSTONES_METRICS = ['exact.meanNeighbours3D', 'labels.meanNeighbours3D'] as const;
 /** n3D(1) of the lab's fit (fittingLogFunc.m). */
-export const FLINTSTONES_ANCHOR = 6;
+const FLINTSTONES_ANCHOR = 6;
 const FREE_PARAMETERS = 3;
 
 export interface SweepFlintstonesFit {

@@ -1,8 +1,8 @@
 /**
  * One run's row of runs.csv: its cells in the header's order (typed: numbers stay numbers), the
- * same row as the text a reader gets back, and its CSV line; the flat summaries a runner hands
- * over (a record marked flat, or a key list and values). runSweep (runner.ts) makes a row this
- * way as each run finishes.
+ * same row as the text a reader gets back, and its CSV line; the flat summary a sweep thread
+ * hands over (a key list and values). runSweep (runner.ts) makes a row this way as each run
+ * finishes.
  */
 import { csvField, flattenSummary } from './csv';
 import type { ConfigObject, SweepRun } from './expand';
@@ -42,7 +42,7 @@ export function runCells<C extends ConfigObject>(
     const where = headerPositions(header);
     for (const [column, value] of base) for (const k of where.get(column) ?? []) cells[k] = value;
   } else {
-    const flat = isFlatSummary(summary) ? summary : flattenSummary(summary);
+    const flat = flattenSummary(summary);
     for (const c in flat) {
       if (!known.has(c) && !base.has(c)) throw new Error(`run ${run.key}: its summary has a column "${c}" that the sweep's header lacks`);
     }
@@ -116,14 +116,6 @@ function headerSet(header: readonly string[]): Set<string> {
   return set;
 }
 
-/** Marks a summary that is already flat (column -> value), so runCells uses it as it is. */
-export const FLAT_SUMMARY: unique symbol = Symbol('flat sweep summary');
-
-/** A flat summary (column -> number or text), marked so that it is not flattened again. */
-export function flatSummary(values: Record<string, unknown>): Record<string, unknown> {
-  return Object.defineProperty(values, FLAT_SUMMARY, { value: true, enumerable: false });
-}
-
 /**
  * A flat summary as its column names and values side by side (a sweep thread's message), so no
  * object of hundreds of keys is built per run; the names are one array per shape of summary.
@@ -167,18 +159,4 @@ function listPositions(keys: readonly string[], header: readonly string[], known
     byHeader.set(header, at);
   }
   return at;
-}
-
-function isFlatSummary(summary: unknown): summary is Record<string, unknown> {
-  return typeof summary === 'object' && summary !== null && (summary as { [FLAT_SUMMARY]?: boolean })[FLAT_SUMMARY] === true;
-}
-
-/** The text cells of one run's row (see runCells). */
-export function runRow<C extends ConfigObject>(
-  run: SweepRun<C>,
-  fields: readonly string[],
-  summary: unknown,
-  header: readonly string[],
-): Record<string, string> {
-  return runCells(run, fields, summary, header).row;
 }

@@ -39,7 +39,7 @@ export type SweepRunner<C extends ConfigObject, S> = (config: C, run: SweepRun<C
  * Computes a task's runs (given in `runs` order) and calls `done` once per run as it finishes,
  * in any order; rejects on the first failure (runs already reported stay done).
  */
-export type SweepTaskRunner<C extends ConfigObject, S> = (runs: SweepRun<C>[], done: (run: SweepRun<C>, summary: S) => void) => Promise<void>;
+type SweepTaskRunner<C extends ConfigObject, S> = (runs: SweepRun<C>[], done: (run: SweepRun<C>, summary: S) => void) => Promise<void>;
 
 export interface SweepProgress<C extends ConfigObject = ConfigObject> {
   phase: 'start' | 'done' | 'error';
@@ -94,7 +94,7 @@ export function baseColumns(fields: readonly string[]): string[] {
   return ['key', ...fields, 'realization', 'seed'];
 }
 
-export interface ResumeState<C extends ConfigObject> {
+interface ResumeState<C extends ConfigObject> {
   remaining: SweepRun<C>[];
   done: SweepRun<C>[];
   /** Done rows whose seed differs from the run's seed. */

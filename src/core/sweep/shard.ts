@@ -25,7 +25,7 @@ export interface Shard {
   readonly count: number;
 }
 
-export const MAX_SHARDS = 1_000_000;
+const MAX_SHARDS = 1_000_000;
 
 /** The shard named by `--shard TEXT` (environment for "slurm"); errors name --shard or the variable. */
 export function parseShard(text: string, env: Record<string, string | undefined> = {}): Shard {

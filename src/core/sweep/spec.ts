@@ -21,7 +21,6 @@ import { countRuns, FORBIDDEN_KEYS, setPath, type SweepSpec } from './expand';
 import { DEFAULT_MAX_RUNS, MAX_REALIZATIONS, MAX_VALUES_PER_FIELD, SEED_MODES, sweepSpecSchema } from './specSchema';
 import { validate as validateSweepSpecShape } from './specValidator.generated';
 
-/** A standalone ajv validator: true when valid, else `errors[0]` says why. */
 /** What the shape check guarantees (base is checked against the config schema afterwards). */
 interface SweepSpecShape {
   base: unknown;
@@ -30,6 +29,7 @@ interface SweepSpecShape {
   seed?: number;
   seedMode: 'per-run' | 'per-realization';
 }
+/** A standalone ajv validator: true when valid, else `errors[0]` says why. */
 type GeneratedValidator = ((data: unknown) => data is SweepSpecShape) & { errors?: ErrorObject[] | null };
 
 /** A sweep-spec problem: a ConfigError whose `field` is a path in the spec (`vary["sheet.layers"][1]`). */
@@ -39,8 +39,6 @@ export class SweepSpecError extends ConfigError {
     this.name = 'SweepSpecError';
   }
 }
-
-export { DEFAULT_MAX_RUNS, MAX_REALIZATIONS, MAX_VALUES_PER_FIELD, SEED_MODES, sweepSpecSchema } from './specSchema';
 
 // The shape check is compiled ahead of time (npm run validators:write) from specSchema.ts: the
 // page's Content-Security-Policy has no 'unsafe-eval', so ajv cannot compile it at run time.
@@ -144,7 +142,7 @@ export function findForbiddenKey(value: unknown, path: string[]): string | undef
 type SchemaNode = { properties?: Record<string, SchemaNode>; oneOf?: readonly SchemaNode[] };
 
 /** Refuses a varied path that names no field of the config schema, listing the fields there. */
-export function checkVariedPath(path: string): void {
+function checkVariedPath(path: string): void {
   const field = `vary["${path}"]`;
   if (path === 'seed') {
     throw new SweepSpecError(field, `${field}: the seed is derived per run from "seed" and "seedMode"; vary "realizations" instead`);
