@@ -61,7 +61,7 @@ export function closedSites(projector: ClosedProjector, sites: ClosedSites, texe
           dy = buffer[1] - sites.positions[3 * i + 1],
           dz = buffer[2] - sites.positions[3 * i + 2];
         maxSquared = Math.max(maxSquared, dx * dx + dy * dy + dz * dz);
-        storeProjection(sites, i, buffer, 0, engine.layout.width);
+        storeProjection(sites, i, buffer, engine.layout.width);
       }
       move.energy = energy;
       move.maxDisplacement = Math.sqrt(maxSquared);

@@ -157,7 +157,7 @@ function closestPointsOn(axes: readonly [number, number, number], sites: ClosedS
   const buffer = new Float64Array(PROJECTION_STRIDE);
   for (let i = 0; i < sites.count; i++) {
     projector.project(sites.positions[3 * i], sites.positions[3 * i + 1], sites.positions[3 * i + 2], buffer, 0);
-    storeProjection(moved, i, buffer, 0, n);
+    storeProjection(moved, i, buffer, n);
   }
   return { positions: moved.positions, texels: moved.texels };
 }

@@ -35,15 +35,14 @@ export function allocateSites(count: number): ClosedSites {
   };
 }
 
-/** Copies projector output (stride 9) for site i into `sites`, with its texel on an n-texel map. */
-export function storeProjection(sites: ClosedSites, i: number, buffer: Float64Array, o: number, n: number): void {
-  const b = PROJECTION_STRIDE * o;
+/** Copies one projector output (the first PROJECTION_STRIDE values of `buffer`) for site i into `sites`, with its texel on an n-texel map. */
+export function storeProjection(sites: ClosedSites, i: number, buffer: Float64Array, n: number): void {
   for (let c = 0; c < 3; c++) {
-    sites.positions[3 * i + c] = buffer[b + c];
-    sites.normals[3 * i + c] = buffer[b + 3 + c];
-    sites.directions[3 * i + c] = buffer[b + 6 + c];
+    sites.positions[3 * i + c] = buffer[c];
+    sites.normals[3 * i + c] = buffer[3 + c];
+    sites.directions[3 * i + c] = buffer[6 + c];
   }
-  sites.texels[i] = directionTexel(buffer[b + 6], buffer[b + 7], buffer[b + 8], n);
+  sites.texels[i] = directionTexel(buffer[6], buffer[7], buffer[8], n);
 }
 
 /**
@@ -117,7 +116,7 @@ export function placeClosedSites(image: CubeGeometryImage, projector: ClosedProj
         continue;
       }
     }
-    storeProjection(sites, placed, buffer, 0, n);
+    storeProjection(sites, placed, buffer, n);
     // Two sites in one texel would splat over each other: draw again.
     if (taken.has(sites.texels[placed])) {
       failures++;
