@@ -69,7 +69,7 @@ export function wrapContext(
   };
 }
 
-export function noWebGL2(): GpuCapabilityError {
+function noWebGL2(): GpuCapabilityError {
   return new GpuCapabilityError(
     'WebGL2 is not available here, and tissue-sheet computes on the GPU with WebGL2. ' +
       'Enable hardware acceleration or WebGL in the browser settings, or use a current browser.',
