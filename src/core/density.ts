@@ -12,6 +12,7 @@
 import type { DensitySpec } from './config';
 import { ConfigError } from './config/configError';
 import { distanceSquared, type Grid } from './grid';
+import { exp } from './exp';
 
 /** A decoded grayscale image. */
 export interface GrayImage {
@@ -67,7 +68,7 @@ function fillGaussian(out: Float32Array, grid: Grid, center: readonly [number, n
   for (let j = 0; j < height; j++) {
     for (let i = 0; i < width; i++) {
       const r2 = distanceSquared(grid, cx, cy, i + 0.5, j + 0.5);
-      out[j * width + i] = 1 + (peak - 1) * Math.exp(r2 * scale);
+      out[j * width + i] = 1 + (peak - 1) * exp(r2 * scale);
     }
   }
 }

@@ -16,8 +16,10 @@
  * Fit: nonlinear least squares (Levenberg–Marquardt from a few starting points, numerical
  * Jacobian by central differences), weights 1/σ² when σ is given. Standard errors from the
  * covariance s²·(JᵀWJ)⁻¹ with s² = χ²/(m − p) (the convention of scipy's curve_fit and MATLAB's
- * fit: residual scatter sets the scale).
+ * fit: residual scatter sets the scale). e^x by src/core/exp.ts, not Math.exp: the same bits
+ * in Node and in every browser, so a sweep's fits are the same in the CLI and the page.
  */
+import { exp } from '../exp';
 
 export interface FlintstonesPoint {
   /** Surface ratio. */
@@ -58,12 +60,12 @@ export interface FlintstonesOptions {
 
 /** b from the anchor n3D(1) = n1. */
 export function anchoredB(nMax: number, c: number, d: number, n1: number): number {
-  return (n1 * d - Math.exp(1 / c) * (nMax - n1)) / nMax;
+  return (n1 * d - exp(1 / c) * (nMax - n1)) / nMax;
 }
 
 /** n3D(s) for the given parameters. */
 export function flintstonesLaw(s: number, p: FlintstonesParameters): number {
-  const e = Math.exp(s / p.c);
+  const e = exp(s / p.c);
   return (p.nMax * (p.b + e)) / (p.d + e);
 }
 
@@ -76,7 +78,7 @@ function parametersOf(theta: number[], anchor: number | null): FlintstonesParame
 /** The constraints of the lab's fit (fittingLogFunc.m): c > 0, d < 0, d > b, d + e^{1/c} > 0. */
 function admissible(theta: number[], anchor: number | null, sMin: number): boolean {
   const p = parametersOf(theta, anchor);
-  return p.c > 0.02 && p.d < 0 && p.d > p.b && p.d + Math.exp(sMin / p.c) > 0 && p.nMax > 0 && Number.isFinite(p.b);
+  return p.c > 0.02 && p.d < 0 && p.d > p.b && p.d + exp(sMin / p.c) > 0 && p.nMax > 0 && Number.isFinite(p.b);
 }
 
 /**
@@ -153,8 +155,8 @@ function residuals(theta: number[], data: FitData, anchor: number | null, out: F
   const { ratios, root, mean, exps } = data;
   const [nMax, c, d] = theta;
   if (!Object.is(c, data.expC)) {
-    for (let i = 0; i < ratios.length; i++) exps[i] = Math.exp(ratios[i] / c);
-    data.expOne = Math.exp(1 / c);
+    for (let i = 0; i < ratios.length; i++) exps[i] = exp(ratios[i] / c);
+    data.expOne = exp(1 / c);
     data.expC = c;
   }
   // parametersOf and flintstonesLaw, term for term, with the kept exponentials.
@@ -330,7 +332,7 @@ export function fitFlintstones(points: readonly FlintstonesPoint[], options: Fli
   for (const cScale of [0.1, 0.25, 0.5, 1]) {
     for (const dFraction of [0.2, 0.6, 0.95]) {
       const c = cScale * sMax;
-      const d = -dFraction * Math.exp(sMin / c);
+      const d = -dFraction * exp(sMin / c);
       const nMax = nTop + 0.3;
       const start = anchor === null ? [nMax, c, d, anchoredB(nMax, c, d, n1)] : [nMax, c, d];
       if (!admissible(start, anchor, sMin)) continue;

@@ -20,6 +20,7 @@
 import type { DensitySpec, GaussianDensity, LinearDensity, StripesDensity } from '../config';
 import { densityField, type GrayImage } from '../density';
 import { wrapDelta, type Grid } from '../grid';
+import { exp } from '../exp';
 import { clipHalfPlane, PolygonBuffer, polygonExtent, polygonMoments } from './polygon';
 
 /** A density the exact engine integrates (analytic, or piecewise constant per texel). */
@@ -185,7 +186,7 @@ export class CellIntegrator {
     if (density.kind === 'gaussian') {
       const dx = wrapDelta(x - density.center[0], this.widthUm, grid.periodicX);
       const dy = wrapDelta(y - density.center[1], this.heightUm, grid.periodicY);
-      return 1 + (density.peak - 1) * Math.exp(-(dx * dx + dy * dy) / (2 * density.sigma * density.sigma));
+      return 1 + (density.peak - 1) * exp(-(dx * dx + dy * dy) / (2 * density.sigma * density.sigma));
     }
     return 1;
   }
