@@ -6,6 +6,19 @@
 import { afterEach, describe, expect, it } from 'vitest';
 import { ConfigError, validateConfig } from '../../src/core/config';
 
+/** The ConfigError validateConfig throws for `input`, checked to name `field`. */
+function refusedAt(input: unknown, field: string): ConfigError {
+  let error: unknown;
+  try {
+    validateConfig(input);
+  } catch (e) {
+    error = e;
+  }
+  expect(error, field).toBeInstanceOf(ConfigError);
+  expect((error as ConfigError).field).toBe(field);
+  return error as ConfigError;
+}
+
 const POLLUTED = ['polluted', 'cells', 'layers', 'radius'];
 
 afterEach(() => {
@@ -62,15 +75,8 @@ describe('prototype keys in a config', () => {
       [{ sheet: { layers: 2 }, surface: { kind: 'tube', radius: 10, length: () => 1 } }, 'surface.length'],
     ];
     for (const [input, field] of cases) {
-      let error: unknown;
-      try {
-        validateConfig(input);
-      } catch (e) {
-        error = e;
-      }
-      expect(error, field).toBeInstanceOf(ConfigError);
-      expect((error as ConfigError).field).toBe(field);
-      expect((error as ConfigError).message.startsWith(`${field}: must be `)).toBe(true);
+      const error = refusedAt(input, field);
+      expect(error.message.startsWith(`${field}: must be `)).toBe(true);
     }
   });
 
@@ -114,16 +120,6 @@ describe('prototype keys in a config', () => {
       [keys, 'sheet', /^sheet: could not be read \(no keys\)/],
       [prototype, 'lloyd', /^lloyd: could not be read \(no prototype\)/],
     ];
-    for (const [input, field, message] of cases) {
-      let error: unknown;
-      try {
-        validateConfig(input);
-      } catch (e) {
-        error = e;
-      }
-      expect(error, field).toBeInstanceOf(ConfigError);
-      expect((error as ConfigError).field).toBe(field);
-      expect((error as ConfigError).message).toMatch(message);
-    }
+    for (const [input, field, message] of cases) expect(refusedAt(input, field).message).toMatch(message);
   });
 });
