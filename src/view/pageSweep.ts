@@ -35,6 +35,7 @@ import {
   type Aggregate,
   type ColumnStats,
   type RejectedRow,
+  type ResumePlan,
   type SweepFlintstonesFit,
   type SweepRun,
   type ValidSweepSpec,
@@ -132,8 +133,16 @@ export function planSweep(input: unknown, maxRuns?: number): SweepPlan {
  * a runs.csv of this spec (another header).
  */
 export function resumableRows(plan: SweepPlan, csv: string): { rows: Record<string, string>[]; rejected: RejectedRow[] } {
-  const { rows, rejected } = planResume(csv, { ...plan.resume, runs: plan.ordered });
+  const { rows, rejected } = resumeOf(plan, csv);
   return { rows, rejected };
+}
+
+/** The last resume planned: the panel asks for the same plan and file at load, to offer Resume and to run. */
+let lastResume: { plan: SweepPlan; csv: string; resume: ResumePlan } | null = null;
+
+function resumeOf(plan: SweepPlan, csv: string): ResumePlan {
+  if (lastResume?.plan !== plan || lastResume.csv !== csv) lastResume = { plan, csv, resume: planResume(csv, { ...plan.resume, runs: plan.ordered }) };
+  return lastResume.resume;
 }
 
 /** A grid point's validated, feasible config; errors name the point. */
@@ -151,7 +160,7 @@ function pointConfig(run: Run): Config {
 export async function sweepInPage(input: unknown, options: PageSweepOptions = {}): Promise<PageSweepResult> {
   const plan = planSweep(input, options.maxRuns);
   const { spec, fields, ordered: runs, header, summary } = plan;
-  const resumed = planResume(options.resumeCsv ?? '', { ...plan.resume, runs });
+  const resumed = resumeOf(plan, options.resumeCsv ?? '');
   let csv = resumed.cleanText;
   const rows = [...resumed.rows];
   // Each run's row by its key: a progress event names its run, whose row is already appended.
